@@ -1,0 +1,147 @@
+//! Arbitrary-precision integers and the small helpers the kernel needs around them.
+//!
+//! `Int` is `dashu_int::IBig`: pure Rust, inline storage up to 128 bits, and the
+//! fastest pure-Rust big integer we measured (see `BENCHMARKS.md`). Every value that
+//! fits in 62 bits is kept as a machine integer by [`crate::Vec3`], so `Int` is only
+//! touched by constructed values (great-circle intersections, rational vertices) and
+//! by the exact fallback of the predicates.
+
+use crate::Sign;
+use dashu_int::ops::{BitTest, Gcd, UnsignedAbs};
+pub use dashu_int::IBig as Int;
+
+/// Sign of an [`Int`].
+#[inline]
+pub fn sign_of(v: &Int) -> Sign {
+    let s = v.signum();
+    if s == Int::ZERO {
+        Sign::Zero
+    } else if s == Int::ONE {
+        Sign::Positive
+    } else {
+        Sign::Negative
+    }
+}
+
+/// Number of bits of |v| (0 for 0).
+#[inline]
+pub fn bit_len(v: &Int) -> u32 {
+    v.unsigned_abs().bit_len() as u32
+}
+
+/// Number of bits of |v| (0 for 0).
+#[inline]
+pub fn bit_len_i64(v: i64) -> u32 {
+    64 - v.unsigned_abs().leading_zeros()
+}
+
+/// Number of bits of |v| (0 for 0).
+#[inline]
+pub fn bit_len_i128(v: i128) -> u32 {
+    128 - v.unsigned_abs().leading_zeros()
+}
+
+/// Nearest `f64` of an [`Int`] (relative error at most 2^-52; infinite beyond the f64 range).
+#[inline]
+pub fn to_f64(v: &Int) -> f64 {
+    v.to_f64().value()
+}
+
+/// The value as `i64` when it fits.
+#[inline]
+pub fn to_i64(v: &Int) -> Option<i64> {
+    i64::try_from(v).ok()
+}
+
+/// The value as `i128` when it fits.
+#[inline]
+pub fn to_i128(v: &Int) -> Option<i128> {
+    i128::try_from(v).ok()
+}
+
+/// Greatest common divisor of |a| and |b| (gcd(0, 0) = 0).
+pub fn gcd(a: &Int, b: &Int) -> Int {
+    if *a == Int::ZERO {
+        return Int::from(b.unsigned_abs());
+    }
+    if *b == Int::ZERO {
+        return Int::from(a.unsigned_abs());
+    }
+    Int::from(a.unsigned_abs().gcd(b.unsigned_abs()))
+}
+
+/// Greatest common divisor of |a| and |b| on machine words (gcd(0, 0) = 0).
+///
+/// Binary gcd; switches to 64-bit words as soon as both operands fit, which is where
+/// most of the iterations happen for the ~126-bit intersection points.
+#[inline]
+pub fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    b >>= b.trailing_zeros();
+    // Both odd from here on. Branch-free min/difference: the comparison is unpredictable.
+    loop {
+        if (a | b) >> 64 == 0 {
+            return (gcd_odd_u64(a as u64, b as u64) as u128) << shift;
+        }
+        let lo = a.min(b);
+        let d = a.max(b) - lo;
+        if d == 0 {
+            return lo << shift;
+        }
+        a = lo;
+        b = d >> d.trailing_zeros();
+    }
+}
+
+/// gcd of two odd non-zero words.
+#[inline]
+fn gcd_odd_u64(mut a: u64, mut b: u64) -> u64 {
+    loop {
+        let lo = a.min(b);
+        let d = a.max(b) - lo;
+        if d == 0 {
+            return lo;
+        }
+        a = lo;
+        b = d >> d.trailing_zeros();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gcd_matches_euclid() {
+        for a in 0u128..60 {
+            for b in 0u128..60 {
+                let mut x = a;
+                let mut y = b;
+                while y != 0 {
+                    let t = x % y;
+                    x = y;
+                    y = t;
+                }
+                assert_eq!(gcd_u128(a, b), x, "gcd({a},{b})");
+                assert_eq!(gcd(&Int::from(a), &-Int::from(b)), Int::from(x));
+            }
+        }
+    }
+
+    #[test]
+    fn bit_lengths() {
+        assert_eq!(bit_len_i64(0), 0);
+        assert_eq!(bit_len_i64(1), 1);
+        assert_eq!(bit_len_i64(-8), 4);
+        assert_eq!(bit_len_i64(i64::MIN), 64);
+        assert_eq!(bit_len(&(Int::from(1) << 100usize)), 101);
+        assert_eq!(bit_len_i128(-(1i128 << 100)), 101);
+    }
+}
