@@ -1,0 +1,187 @@
+//! Exact interference of two convex polytopes: do their interiors meet, and where.
+
+use crate::polytope::{Containment, Polytope};
+use apart_kernel::int::{self, Int};
+use apart_kernel::{Rational, Sign, Vec3};
+
+/// True when some plane weakly separates `a` and `b` (their interiors are disjoint).
+///
+/// Separating-axis test over the exact candidate normals of two convex polytopes: the
+/// facet normals of both and the cross products of their edge directions. Touching
+/// polytopes (shared faces, edges, points) are separated.
+pub fn interiors_disjoint(a: &Polytope, b: &Polytope) -> bool {
+    separating_normal(a, b).is_some()
+}
+
+/// A normal `n` with `max_a n·x <= min_b n·y`, if any (the plane separates with `a` below).
+pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
+    let separates = |n: &Vec3| -> bool {
+        let (ha, _) = a.support(n);
+        let (hb, _) = b.support(&n.neg());
+        // max_a n·x <= min_b n·y  <=>  ha + hb' <= 0 with hb' = max_b (-n)·y.
+        ha + hb <= Int::ZERO
+    };
+    for f in a.facets() {
+        if separates(&f.normal) {
+            return Some(f.normal.clone());
+        }
+    }
+    for f in b.facets() {
+        let n = f.normal.neg();
+        if separates(&n) {
+            return Some(n);
+        }
+    }
+    for da in a.edge_directions() {
+        for db in b.edge_directions() {
+            let n = da.cross(db);
+            if n.is_zero() {
+                continue;
+            }
+            let n = n.primitive();
+            if separates(&n) {
+                return Some(n);
+            }
+            let m = n.neg();
+            if separates(&m) {
+                return Some(m);
+            }
+        }
+    }
+    None
+}
+
+/// When the interiors of `a` and `b` meet, a point in both interiors (exact rational
+/// coordinates); `None` when they are disjoint or only touch.
+///
+/// The witness is the average of a superset of the vertices of `a ∩ b` (vertices of one
+/// inside the other, and crossings of edges of one with facets of the other): a convex
+/// combination giving every vertex of the full-dimensional intersection positive weight,
+/// hence an interior point of it.
+pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
+    if interiors_disjoint(a, b) {
+        return None;
+    }
+    // Homogeneous points (x, w), w > 0.
+    let mut pts: Vec<(Vec3, Int)> = Vec::new();
+    for (p, q) in [(a, b), (b, a)] {
+        for v in p.vertices() {
+            if q.locate(v) != Containment::Outside {
+                pts.push((v.clone(), Int::ONE));
+            }
+        }
+        for e in p.edges() {
+            let (s, t) = (
+                &p.vertices()[e.ends[0] as usize],
+                &p.vertices()[e.ends[1] as usize],
+            );
+            let d = t.sub(s);
+            for f in q.facets() {
+                // n·(s + λ d) = c  =>  λ = (c - n·s) / (n·d), strictly inside (0, 1).
+                let den = f.normal.dot(&d);
+                if den == Int::ZERO {
+                    continue;
+                }
+                let num = &f.offset - f.normal.dot(s);
+                let (num, den) = if den < Int::ZERO {
+                    (-num, -den)
+                } else {
+                    (num, den)
+                };
+                if num <= Int::ZERO || num >= den {
+                    continue;
+                }
+                // Point = (s * den + d * num) / den.
+                let x = s.scale(&den).add(&d.scale(&num));
+                if locate_homogeneous(q, &x, &den) != Containment::Outside {
+                    pts.push((x, den));
+                }
+            }
+        }
+    }
+    debug_assert!(!pts.is_empty());
+    // Average of x_i / w_i.
+    let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
+    for (x, w) in &pts {
+        for (k, s) in sum.iter_mut().enumerate() {
+            *s = &*s + &Rational::new(x.get(k), w.clone());
+        }
+    }
+    let n = Rational::from_int(Int::from(pts.len()));
+    let inv = Rational::new(n.denom().clone(), n.numer().clone());
+    Some(sum.map(|s| &s * &inv))
+}
+
+fn locate_homogeneous(p: &Polytope, x: &Vec3, w: &Int) -> Containment {
+    let mut on = false;
+    for f in p.facets() {
+        match int::sign_of(&(f.normal.dot(x) - &f.offset * w)) {
+            Sign::Positive => return Containment::Outside,
+            Sign::Zero => on = true,
+            Sign::Negative => {}
+        }
+    }
+    if on {
+        Containment::Boundary
+    } else {
+        Containment::Inside
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+        let mut pts = Vec::new();
+        for x in [lo[0], hi[0]] {
+            for y in [lo[1], hi[1]] {
+                for z in [lo[2], hi[2]] {
+                    pts.push(Vec3::new(x, y, z));
+                }
+            }
+        }
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    fn strictly_inside(p: &Polytope, w: &[Rational; 3]) -> bool {
+        p.facets().iter().all(|f| {
+            let mut s = Rational::from_int(-f.offset.clone());
+            for (k, c) in w.iter().enumerate() {
+                s = &s + &(&Rational::from_int(f.normal.get(k)) * c);
+            }
+            s.sign() == Sign::Negative
+        })
+    }
+
+    #[test]
+    fn touching_boxes_do_not_interfere() {
+        let a = boxp([0, 0, 0], [2, 2, 2]);
+        assert!(interiors_disjoint(&a, &boxp([2, 0, 0], [4, 2, 2]))); // shared face
+        assert!(interiors_disjoint(&a, &boxp([2, 2, 0], [4, 4, 2]))); // shared edge
+        assert!(interiors_disjoint(&a, &boxp([2, 2, 2], [4, 4, 4]))); // shared vertex
+        assert!(interior_witness(&a, &boxp([2, 0, 0], [4, 2, 2])).is_none());
+    }
+
+    #[test]
+    fn overlapping_boxes_have_a_witness() {
+        let a = boxp([0, 0, 0], [2, 2, 2]);
+        for b in [
+            boxp([1, 1, 1], [3, 3, 3]),
+            boxp([0, 0, 0], [2, 2, 2]),
+            boxp([-1, 1, -1], [3, 2, 3]),
+        ] {
+            let w = interior_witness(&a, &b).expect("overlap");
+            assert!(strictly_inside(&a, &w) && strictly_inside(&b, &w), "{w:?}");
+        }
+    }
+
+    #[test]
+    fn crossing_without_vertices_inside() {
+        // Two long bars crossing like a plus sign: no vertex of either is inside the other.
+        let a = boxp([-4, -1, 0], [4, 1, 1]);
+        let b = boxp([-1, -4, 0], [1, 4, 1]);
+        let w = interior_witness(&a, &b).expect("overlap");
+        assert!(strictly_inside(&a, &w) && strictly_inside(&b, &w));
+    }
+}

@@ -1,0 +1,585 @@
+//! Exact convex polytopes: vertices, facet planes with integer normals, adjacency.
+
+use crate::hull2d::hull_in_plane;
+use apart_kernel::int::{self, Int};
+use apart_kernel::predicates::dot_sign;
+use apart_kernel::{Sign, Vec3};
+use std::collections::HashMap;
+use std::fmt;
+
+/// A facet: the plane `normal · x = offset` (outward, primitive normal) and its vertices.
+#[derive(Clone, Debug)]
+pub struct Facet {
+    /// Outward normal, a primitive integer vector.
+    pub normal: Vec3,
+    /// `normal · v` for every vertex `v` of the facet; `normal · x <= offset` inside.
+    pub offset: Int,
+    /// Vertex indices, counter-clockwise seen from outside (around `normal`), strictly
+    /// convex (no vertex in the middle of a facet edge).
+    pub cycle: Vec<u32>,
+}
+
+/// An edge between two vertices and two facets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// End points; `ends[0] -> ends[1]` is the direction in which `facets[0]` traverses it.
+    pub ends: [u32; 2],
+    /// The facet traversing the edge from `ends[0]` to `ends[1]`, then the other one.
+    pub facets: [u32; 2],
+}
+
+/// A full-dimensional convex polytope with exact integer vertices.
+#[derive(Clone)]
+pub struct Polytope {
+    vertices: Vec<Vec3>,
+    facets: Vec<Facet>,
+    edges: Vec<Edge>,
+    /// Distinct edge directions, primitive, one of each `±d` pair.
+    edge_dirs: Vec<Vec3>,
+}
+
+/// Why a set of triangles or points is not a convex polytope.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PolytopeError {
+    /// Vertex `vertex` lies strictly outside the plane of triangle `triangle`.
+    NotConvex {
+        /// Index of the triangle whose plane is violated.
+        triangle: usize,
+        /// Index of the offending vertex.
+        vertex: usize,
+    },
+    /// Triangle `triangle` has collinear vertices (no plane).
+    DegenerateTriangle {
+        /// Index of the triangle.
+        triangle: usize,
+    },
+    /// The points do not span three dimensions (no volume).
+    Flat,
+    /// The facets do not close up into a sphere-like surface (inconsistent input).
+    NotClosed,
+}
+
+impl fmt::Display for PolytopeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PolytopeError::NotConvex { triangle, vertex } => write!(
+                f,
+                "not convex: vertex {vertex} lies outside the plane of face {triangle}"
+            ),
+            PolytopeError::DegenerateTriangle { triangle } => {
+                write!(f, "face {triangle} has collinear vertices")
+            }
+            PolytopeError::Flat => write!(f, "the points do not enclose any volume"),
+            PolytopeError::NotClosed => write!(f, "the faces do not form a closed convex surface"),
+        }
+    }
+}
+
+impl std::error::Error for PolytopeError {}
+
+/// Where a point lies with respect to a closed polytope.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Containment {
+    /// In the interior.
+    Inside,
+    /// On the boundary.
+    Boundary,
+    /// Outside.
+    Outside,
+}
+
+impl Polytope {
+    /// The polytope bounded by `triangles` over `points`, which must form a closed,
+    /// consistently outward-oriented surface (as the mesh loader guarantees).
+    /// Coplanar triangles merge into one facet; vertices in the middle of facet edges
+    /// or inside facets are dropped. Fails when the surface is not convex.
+    pub fn from_triangles(
+        points: &[Vec3],
+        triangles: &[[u32; 3]],
+    ) -> Result<Polytope, PolytopeError> {
+        let mut planes: HashMap<Vec3, (Int, Vec<usize>)> = HashMap::new();
+        let mut order: Vec<Vec3> = Vec::new();
+        for (t, tri) in triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| &points[i as usize]);
+            let n = b.sub(a).cross(&c.sub(a));
+            if n.is_zero() {
+                return Err(PolytopeError::DegenerateTriangle { triangle: t });
+            }
+            let n = n.primitive();
+            let off = n.dot(a);
+            match planes.get_mut(&n) {
+                Some((o, ts)) => {
+                    if *o != off {
+                        // Two parallel faces facing the same way: one is behind the other.
+                        let (t0, behind) = if *o < off {
+                            (ts[0], tri[0])
+                        } else {
+                            (t, triangles[ts[0]][0])
+                        };
+                        return Err(PolytopeError::NotConvex {
+                            triangle: t0,
+                            vertex: behind as usize,
+                        });
+                    }
+                    ts.push(t);
+                }
+                None => {
+                    order.push(n.clone());
+                    planes.insert(n, (off, vec![t]));
+                }
+            }
+        }
+        let mut used: Vec<u32> = triangles.iter().flatten().copied().collect();
+        used.sort_unstable();
+        used.dedup();
+        // Every used vertex must be on the inner side of every face plane.
+        for n in &order {
+            let (off, ts) = &planes[n];
+            for &v in &used {
+                let s = int::sign_of(&(n.dot(&points[v as usize]) - off));
+                if s == Sign::Positive {
+                    return Err(PolytopeError::NotConvex {
+                        triangle: ts[0],
+                        vertex: v as usize,
+                    });
+                }
+            }
+        }
+        let mut facets = Vec::with_capacity(order.len());
+        for n in order {
+            let (off, ts) = planes.remove(&n).unwrap();
+            let mut vs: Vec<u32> = ts.iter().flat_map(|&t| triangles[t]).collect();
+            vs.sort_unstable();
+            vs.dedup();
+            let pts: Vec<Vec3> = vs.iter().map(|&v| points[v as usize].clone()).collect();
+            let hull = hull_in_plane(&n, &pts);
+            if hull.len() < 3 {
+                return Err(PolytopeError::NotClosed);
+            }
+            facets.push((
+                n,
+                off,
+                hull.into_iter().map(|i| vs[i]).collect::<Vec<u32>>(),
+            ));
+        }
+        Polytope::assemble(points, facets)
+    }
+
+    /// The convex hull of a small set of points (at most a few dozen: the method tries
+    /// every triple, O(n^4)). Meant for tests and for small generated pieces.
+    pub fn hull_of_points(points: &[Vec3]) -> Result<Polytope, PolytopeError> {
+        let mut pts: Vec<Vec3> = points.to_vec();
+        pts.sort_by_key(|p| p.to_strings());
+        pts.dedup();
+        let n = pts.len();
+        // Outward facet planes found so far, keyed by (normal, offset).
+        let mut planes: std::collections::HashSet<(Vec3, Int)> = std::collections::HashSet::new();
+        let mut order = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                let dij = pts[j].sub(&pts[i]);
+                for k in j + 1..n {
+                    let nrm = dij.cross(&pts[k].sub(&pts[i]));
+                    if nrm.is_zero() {
+                        continue;
+                    }
+                    let nrm = nrm.primitive();
+                    let off = nrm.dot(&pts[i]);
+                    if planes.contains(&(nrm.clone(), off.clone()))
+                        || planes.contains(&(nrm.neg(), -off.clone()))
+                    {
+                        continue;
+                    }
+                    let (mut pos, mut neg) = (false, false);
+                    for p in &pts {
+                        match int::sign_of(&(nrm.dot(p) - &off)) {
+                            Sign::Positive => pos = true,
+                            Sign::Negative => neg = true,
+                            Sign::Zero => {}
+                        }
+                        if pos && neg {
+                            break;
+                        }
+                    }
+                    if pos && neg {
+                        continue;
+                    }
+                    let (nrm, off) = if pos { (nrm.neg(), -off) } else { (nrm, off) };
+                    order.push((nrm.clone(), off.clone()));
+                    planes.insert((nrm, off));
+                }
+            }
+        }
+        if order.len() < 4 {
+            return Err(PolytopeError::Flat);
+        }
+        let mut facets = Vec::new();
+        for (nrm, off) in order {
+            let on: Vec<u32> = (0..n as u32)
+                .filter(|&v| nrm.dot(&pts[v as usize]) == off)
+                .collect();
+            let sub: Vec<Vec3> = on.iter().map(|&v| pts[v as usize].clone()).collect();
+            let hull = hull_in_plane(&nrm, &sub);
+            if hull.len() < 3 {
+                return Err(PolytopeError::Flat);
+            }
+            facets.push((nrm, off, hull.into_iter().map(|i| on[i]).collect()));
+        }
+        Polytope::assemble(&pts, facets)
+    }
+
+    /// Builds the polytope from facet planes and strictly convex vertex cycles
+    /// (counter-clockwise around the outward normal) over `points`; unused points are
+    /// dropped and vertices renumbered.
+    pub fn from_facets(
+        points: &[Vec3],
+        facets: Vec<(Vec3, Vec<u32>)>,
+    ) -> Result<Polytope, PolytopeError> {
+        let facets = facets
+            .into_iter()
+            .map(|(n, c)| {
+                let off = n.dot(&points[c[0] as usize]);
+                (n, off, c)
+            })
+            .collect();
+        Polytope::assemble(points, facets)
+    }
+
+    fn assemble(
+        points: &[Vec3],
+        facets: Vec<(Vec3, Int, Vec<u32>)>,
+    ) -> Result<Polytope, PolytopeError> {
+        let mut remap: HashMap<u32, u32> = HashMap::new();
+        let mut vertices = Vec::new();
+        let facets: Vec<Facet> = facets
+            .into_iter()
+            .map(|(normal, offset, cycle)| {
+                let cycle = cycle
+                    .into_iter()
+                    .map(|v| {
+                        *remap.entry(v).or_insert_with(|| {
+                            vertices.push(points[v as usize].clone());
+                            (vertices.len() - 1) as u32
+                        })
+                    })
+                    .collect();
+                Facet {
+                    normal,
+                    offset,
+                    cycle,
+                }
+            })
+            .collect();
+        let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+        for (f, facet) in facets.iter().enumerate() {
+            let c = &facet.cycle;
+            for i in 0..c.len() {
+                let e = (c[i], c[(i + 1) % c.len()]);
+                if directed.insert(e, f as u32).is_some() {
+                    return Err(PolytopeError::NotClosed);
+                }
+            }
+        }
+        let mut edges = Vec::with_capacity(directed.len() / 2);
+        for (&(u, v), &f) in &directed {
+            let g = *directed.get(&(v, u)).ok_or(PolytopeError::NotClosed)?;
+            if u < v {
+                edges.push(Edge {
+                    ends: [u, v],
+                    facets: [f, g],
+                });
+            }
+        }
+        edges.sort_by_key(|e| e.ends);
+        if vertices.len() + facets.len() != edges.len() + 2 || facets.len() < 4 {
+            return Err(PolytopeError::NotClosed);
+        }
+        let mut edge_dirs: Vec<Vec3> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for e in &edges {
+            let d = vertices[e.ends[1] as usize]
+                .sub(&vertices[e.ends[0] as usize])
+                .primitive();
+            let d = canonical_sign(d);
+            if seen.insert(d.clone()) {
+                edge_dirs.push(d);
+            }
+        }
+        Ok(Polytope {
+            vertices,
+            facets,
+            edges,
+            edge_dirs,
+        })
+    }
+
+    /// The vertices (extreme points only).
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
+    /// The facets.
+    pub fn facets(&self) -> &[Facet] {
+        &self.facets
+    }
+
+    /// The edges.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The distinct edge directions, primitive, one per `±d` pair.
+    pub fn edge_directions(&self) -> &[Vec3] {
+        &self.edge_dirs
+    }
+
+    /// The support value `max n · v` and the vertices attaining it.
+    pub fn support(&self, n: &Vec3) -> (Int, Vec<u32>) {
+        if let Some(nn) = n.as_small() {
+            if self.vertices.iter().all(|v| v.as_small().is_some()) {
+                let dot = |v: &Vec3| {
+                    let c = v.as_small().unwrap();
+                    nn[0] as i128 * c[0] as i128
+                        + nn[1] as i128 * c[1] as i128
+                        + nn[2] as i128 * c[2] as i128
+                };
+                let mut best = i128::MIN;
+                let mut arg = Vec::new();
+                for (i, v) in self.vertices.iter().enumerate() {
+                    let d = dot(v);
+                    if d > best {
+                        best = d;
+                        arg.clear();
+                    }
+                    if d == best {
+                        arg.push(i as u32);
+                    }
+                }
+                return (Int::from(best), arg);
+            }
+        }
+        let mut best: Option<Int> = None;
+        let mut arg = Vec::new();
+        for (i, v) in self.vertices.iter().enumerate() {
+            let d = n.dot(v);
+            match &best {
+                Some(b) if d < *b => continue,
+                Some(b) if d == *b => arg.push(i as u32),
+                _ => {
+                    best = Some(d);
+                    arg.clear();
+                    arg.push(i as u32);
+                }
+            }
+        }
+        (best.expect("polytope without vertices"), arg)
+    }
+
+    /// Six times the volume, exactly.
+    pub fn volume6(&self) -> Int {
+        let mut total = Int::ZERO;
+        for f in &self.facets {
+            let c = &f.cycle;
+            let p0 = &self.vertices[c[0] as usize];
+            for i in 1..c.len() - 1 {
+                let (p1, p2) = (
+                    &self.vertices[c[i] as usize],
+                    &self.vertices[c[i + 1] as usize],
+                );
+                total += p0.dot(&p1.cross(p2));
+            }
+        }
+        total
+    }
+
+    /// Where `p` lies: inside, on the boundary, or outside.
+    pub fn locate(&self, p: &Vec3) -> Containment {
+        let mut on = false;
+        for f in &self.facets {
+            match int::sign_of(&(f.normal.dot(p) - &f.offset)) {
+                Sign::Positive => return Containment::Outside,
+                Sign::Zero => on = true,
+                Sign::Negative => {}
+            }
+        }
+        if on {
+            Containment::Boundary
+        } else {
+            Containment::Inside
+        }
+    }
+
+    /// The reflection `-P = {-x : x in P}`.
+    pub fn reflected(&self) -> Polytope {
+        let vertices: Vec<Vec3> = self.vertices.iter().map(Vec3::neg).collect();
+        let facets = self
+            .facets
+            .iter()
+            .map(|f| {
+                let mut cycle = f.cycle.clone();
+                cycle.reverse();
+                (f.normal.neg(), f.offset.clone(), cycle)
+            })
+            .collect();
+        Polytope::assemble(&vertices, facets).expect("reflection of a valid polytope")
+    }
+
+    /// The polytope translated by `t`.
+    pub fn translated(&self, t: &Vec3) -> Polytope {
+        let mut p = self.clone();
+        for v in &mut p.vertices {
+            *v = v.add(t);
+        }
+        for f in &mut p.facets {
+            f.offset += f.normal.dot(t);
+        }
+        p
+    }
+
+    /// Number of vertices + facets + edges, a size measure for statistics.
+    pub fn complexity(&self) -> usize {
+        self.vertices.len() + self.facets.len() + self.edges.len()
+    }
+}
+
+impl fmt::Debug for Polytope {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "Polytope({} vertices, {} facets, {} edges)",
+            self.vertices.len(),
+            self.facets.len(),
+            self.edges.len()
+        )
+    }
+}
+
+/// `d` or `-d`, whichever has its first non-zero component positive.
+pub fn canonical_sign(d: Vec3) -> Vec3 {
+    for i in 0..3 {
+        match int::sign_of(&d.get(i)) {
+            Sign::Positive => return d,
+            Sign::Negative => return d.neg(),
+            Sign::Zero => {}
+        }
+    }
+    d
+}
+
+/// Sign of `n · p - c`: which side of the plane `n · x = c` the point lies on.
+pub fn plane_side(n: &Vec3, c: &Int, p: &Vec3) -> Sign {
+    if *c == Int::ZERO {
+        return dot_sign(n, p);
+    }
+    int::sign_of(&(n.dot(p) - c))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    pub(crate) fn cube(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+        let mut pts = Vec::new();
+        for x in [lo[0], hi[0]] {
+            for y in [lo[1], hi[1]] {
+                for z in [lo[2], hi[2]] {
+                    pts.push(Vec3::new(x, y, z));
+                }
+            }
+        }
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn cube_structure() {
+        let c = cube([0, 0, 0], [2, 3, 4]);
+        assert_eq!(c.vertices().len(), 8);
+        assert_eq!(c.facets().len(), 6);
+        assert_eq!(c.edges().len(), 12);
+        assert_eq!(c.edge_directions().len(), 3);
+        assert_eq!(c.volume6(), Int::from(6 * 24));
+        assert_eq!(c.locate(&Vec3::new(1, 1, 1)), Containment::Inside);
+        assert_eq!(c.locate(&Vec3::new(0, 1, 1)), Containment::Boundary);
+        assert_eq!(c.locate(&Vec3::new(-1, 1, 1)), Containment::Outside);
+        let (h, arg) = c.support(&Vec3::new(0, 0, 1));
+        assert_eq!(h, Int::from(4));
+        assert_eq!(arg.len(), 4);
+        let r = c.reflected();
+        assert_eq!(r.volume6(), c.volume6());
+        assert_eq!(r.locate(&Vec3::new(-1, -1, -1)), Containment::Inside);
+        // Facet cycles are counter-clockwise around the outward normal.
+        for p in [&c, &r] {
+            for f in p.facets() {
+                let v: Vec<&Vec3> = f.cycle.iter().map(|&i| &p.vertices()[i as usize]).collect();
+                let s = apart_kernel::predicates::det3_sign(
+                    &f.normal,
+                    &v[1].sub(v[0]),
+                    &v[2].sub(v[1]),
+                );
+                assert_eq!(s, Sign::Positive);
+            }
+        }
+    }
+
+    #[test]
+    fn triangulated_cube_with_extra_vertices() {
+        // A cube of side 2 whose top face is split into four triangles around its centre
+        // and whose front face has a vertex in the middle of an edge.
+        let pts: Vec<Vec3> = [
+            [0, 0, 0],
+            [2, 0, 0],
+            [2, 2, 0],
+            [0, 2, 0],
+            [0, 0, 2],
+            [2, 0, 2],
+            [2, 2, 2],
+            [0, 2, 2],
+            [1, 1, 2], // 8: centre of the top
+        ]
+        .iter()
+        .map(|&c| Vec3::from(c))
+        .collect();
+        let tris = [
+            [0, 2, 1],
+            [0, 3, 2],
+            [4, 5, 8],
+            [5, 6, 8],
+            [6, 7, 8],
+            [7, 4, 8],
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+        ];
+        let p = Polytope::from_triangles(&pts, &tris).unwrap();
+        assert_eq!(p.vertices().len(), 8);
+        assert_eq!(p.facets().len(), 6);
+        assert_eq!(p.volume6(), Int::from(48));
+    }
+
+    #[test]
+    fn rejects_non_convex() {
+        // A tetrahedron with one face pushed in is not convex.
+        let pts: Vec<Vec3> = [[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 1]]
+            .iter()
+            .map(|&c| Vec3::from(c))
+            .collect();
+        // Faces around the dent at vertex 4 replacing the slanted face (1,2,3).
+        let tris = [
+            [0, 2, 1],
+            [0, 1, 3],
+            [0, 3, 2],
+            [1, 2, 4],
+            [2, 3, 4],
+            [3, 1, 4],
+        ];
+        assert!(matches!(
+            Polytope::from_triangles(&pts, &tris),
+            Err(PolytopeError::NotConvex { .. })
+        ));
+    }
+}
