@@ -1,0 +1,247 @@
+//! Exact Minkowski sums of convex polytopes.
+//!
+//! The facets of `P ⊕ Q` come in three kinds (the overlay of the two Gaussian maps):
+//! a facet of `P` plus the face of `Q` extreme in its normal; a facet of `Q` plus the
+//! face of `P` extreme in its normal; and the parallelogram `e_P + e_Q` for each pair of
+//! edges whose Gaussian arcs (the normals of the planes supporting the edge) cross in
+//! their relative interiors. Arcs that touch at an end point or overlap give facets of
+//! the first two kinds, so only strict crossings make new facets. Each facet's vertex
+//! cycle is the exact convex hull of the sums of the two faces' vertices.
+
+use apart_kernel::predicates::dot_sign;
+use apart_kernel::spherical::{arc_position, ArcPosition};
+use apart_kernel::{Int, Sign, Vec3};
+use apart_pieces::hull2d::hull_in_plane;
+use apart_pieces::{Polytope, PolytopeError};
+use std::collections::HashMap;
+
+/// `b ⊕ (−a) = {y − x : x ∈ a, y ∈ b}`: the translations of `a` that make it meet `b`.
+pub fn minkowski_difference(b: &Polytope, a: &Polytope) -> Result<Polytope, PolytopeError> {
+    minkowski_sum(b, &a.reflected())
+}
+
+/// The Minkowski sum `p ⊕ q` of two convex polytopes.
+pub fn minkowski_sum(p: &Polytope, q: &Polytope) -> Result<Polytope, PolytopeError> {
+    let mut points: Vec<Vec3> = Vec::new();
+    let mut ids: HashMap<Vec3, u32> = HashMap::new();
+    let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
+    let mut normals_done: HashMap<Vec3, ()> = HashMap::new();
+
+    let mut add_facet =
+        |n: &Vec3, pts: Vec<Vec3>, points: &mut Vec<Vec3>| -> Result<(), PolytopeError> {
+            let hull = hull_in_plane(n, &pts);
+            if hull.len() < 3 {
+                return Err(PolytopeError::NotClosed);
+            }
+            let cycle = hull
+                .into_iter()
+                .map(|i| {
+                    let v = &pts[i];
+                    *ids.entry(v.clone()).or_insert_with(|| {
+                        points.push(v.clone());
+                        (points.len() - 1) as u32
+                    })
+                })
+                .collect();
+            facets.push((n.clone(), cycle));
+            Ok(())
+        };
+
+    // Facets of p and of q, each with the other's extreme face.
+    for (x, y) in [(p, q), (q, p)] {
+        for f in x.facets() {
+            if normals_done.insert(f.normal.clone(), ()).is_some() {
+                continue; // both have a facet with this normal: already summed
+            }
+            let (_, arg) = y.support(&f.normal);
+            let mut pts = Vec::with_capacity(f.cycle.len() * arg.len());
+            for &i in &f.cycle {
+                for &j in &arg {
+                    pts.push(x.vertices()[i as usize].add(&y.vertices()[j as usize]));
+                }
+            }
+            add_facet(&f.normal, pts, &mut points)?;
+        }
+    }
+
+    // Parallelograms of edge pairs whose Gaussian arcs cross.
+    let arcs_p = gaussian_arcs(p);
+    let arcs_q = gaussian_arcs(q);
+    for (ep, ap) in p.edges().iter().zip(&arcs_p) {
+        for (eq, aq) in q.edges().iter().zip(&arcs_q) {
+            let Some(n) = crossing(ap, aq) else { continue };
+            let pts = vec![
+                p.vertices()[ep.ends[0] as usize].add(&q.vertices()[eq.ends[0] as usize]),
+                p.vertices()[ep.ends[0] as usize].add(&q.vertices()[eq.ends[1] as usize]),
+                p.vertices()[ep.ends[1] as usize].add(&q.vertices()[eq.ends[0] as usize]),
+                p.vertices()[ep.ends[1] as usize].add(&q.vertices()[eq.ends[1] as usize]),
+            ];
+            add_facet(&n, pts, &mut points)?;
+        }
+    }
+    Polytope::from_facets(&points, facets)
+}
+
+/// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal
+/// `c = m0 × m1` of the great circle through them (parallel to the edge).
+struct GaussArc {
+    m0: Vec3,
+    m1: Vec3,
+    c: Vec3,
+}
+
+fn gaussian_arcs(p: &Polytope) -> Vec<GaussArc> {
+    p.edges()
+        .iter()
+        .map(|e| {
+            let m0 = p.facets()[e.facets[0] as usize].normal.clone();
+            let m1 = p.facets()[e.facets[1] as usize].normal.clone();
+            let c = m0.cross(&m1);
+            GaussArc { m0, m1, c }
+        })
+        .collect()
+}
+
+/// The common point of two Gaussian arcs when they cross in both relative interiors.
+///
+/// Arcs `(a0, a1)` and `(b0, b1)` (each shorter than a half circle) cross properly iff
+/// `b0`, `b1` lie strictly on opposite sides of circle `a`, `a0`, `a1` strictly on
+/// opposite sides of circle `b`, and `sign(c_a · b0) = −sign(c_b · a0)`.
+fn crossing(a: &GaussArc, b: &GaussArc) -> Option<Vec3> {
+    let s0 = dot_sign(&a.c, &b.m0);
+    if s0 == Sign::Zero {
+        return None;
+    }
+    let s1 = dot_sign(&a.c, &b.m1);
+    if s1 != -s0 {
+        return None;
+    }
+    let t0 = dot_sign(&b.c, &a.m0);
+    if t0 != -s0 {
+        return None;
+    }
+    let t1 = dot_sign(&b.c, &a.m1);
+    if t1 != s0 {
+        return None;
+    }
+    let x = a.c.cross(&b.c).primitive();
+    // x or -x: the one on arc a.
+    let x = if arc_position(&a.c, &a.m0, &a.m1, &x) == ArcPosition::Interior {
+        x
+    } else {
+        x.neg()
+    };
+    debug_assert_eq!(arc_position(&a.c, &a.m0, &a.m1, &x), ArcPosition::Interior);
+    debug_assert_eq!(arc_position(&b.c, &b.m0, &b.m1, &x), ArcPosition::Interior);
+    Some(x)
+}
+
+/// `max n · v` over the vertices of `p` (the support function).
+pub fn support_value(p: &Polytope, n: &Vec3) -> Int {
+    p.support(n).0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pts(c: &[[i64; 3]]) -> Vec<Vec3> {
+        c.iter().map(|&v| Vec3::from(v)).collect()
+    }
+
+    /// Brute force: the hull of all pairwise sums.
+    fn brute(p: &Polytope, q: &Polytope) -> Polytope {
+        let mut s = Vec::new();
+        for a in p.vertices() {
+            for b in q.vertices() {
+                s.push(a.add(b));
+            }
+        }
+        Polytope::hull_of_points(&s).unwrap()
+    }
+
+    fn same(a: &Polytope, b: &Polytope) -> bool {
+        let mut va: Vec<String> = a.vertices().iter().map(|v| format!("{v:?}")).collect();
+        let mut vb: Vec<String> = b.vertices().iter().map(|v| format!("{v:?}")).collect();
+        va.sort();
+        vb.sort();
+        let mut fa: Vec<String> = a
+            .facets()
+            .iter()
+            .map(|f| format!("{:?} {}", f.normal, f.offset))
+            .collect();
+        let mut fb: Vec<String> = b
+            .facets()
+            .iter()
+            .map(|f| format!("{:?} {}", f.normal, f.offset))
+            .collect();
+        fa.sort();
+        fb.sort();
+        va == vb && fa == fb
+    }
+
+    #[test]
+    fn cube_plus_tetrahedron() {
+        let cube = Polytope::hull_of_points(&pts(&[
+            [0, 0, 0],
+            [1, 0, 0],
+            [0, 1, 0],
+            [1, 1, 0],
+            [0, 0, 1],
+            [1, 0, 1],
+            [0, 1, 1],
+            [1, 1, 1],
+        ]))
+        .unwrap();
+        let tet =
+            Polytope::hull_of_points(&pts(&[[0, 0, 0], [2, 1, 0], [1, 3, 1], [0, 1, 4]])).unwrap();
+        let s = minkowski_sum(&cube, &tet).unwrap();
+        assert!(same(&s, &brute(&cube, &tet)));
+        assert_eq!(s.volume6(), brute(&cube, &tet).volume6());
+    }
+
+    #[test]
+    fn parallel_faces_and_edges() {
+        // Two boxes: every facet normal is shared, every edge direction parallel.
+        let a = Polytope::hull_of_points(&pts(&[
+            [0, 0, 0],
+            [2, 0, 0],
+            [0, 3, 0],
+            [2, 3, 0],
+            [0, 0, 1],
+            [2, 0, 1],
+            [0, 3, 1],
+            [2, 3, 1],
+        ]))
+        .unwrap();
+        let d = minkowski_difference(&a, &a).unwrap();
+        assert_eq!(d.vertices().len(), 8);
+        assert_eq!(d.facets().len(), 6);
+        assert!(same(&d, &brute(&a, &a.reflected())));
+    }
+
+    #[test]
+    fn octahedron_and_pyramid() {
+        let oct = Polytope::hull_of_points(&pts(&[
+            [1, 0, 0],
+            [-1, 0, 0],
+            [0, 1, 0],
+            [0, -1, 0],
+            [0, 0, 1],
+            [0, 0, -1],
+        ]))
+        .unwrap();
+        let pyr = Polytope::hull_of_points(&pts(&[
+            [-1, -1, 0],
+            [1, -1, 0],
+            [1, 1, 0],
+            [-1, 1, 0],
+            [0, 0, 2],
+        ]))
+        .unwrap();
+        for (x, y) in [(&oct, &pyr), (&pyr, &oct), (&oct, &oct), (&pyr, &pyr)] {
+            let s = minkowski_difference(x, y).unwrap();
+            assert!(same(&s, &brute(x, &y.reflected())));
+        }
+    }
+}

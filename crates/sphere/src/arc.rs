@@ -1,0 +1,149 @@
+//! Minor arcs of great circles.
+
+use apart_kernel::predicates::det3_sign;
+use apart_kernel::spherical::{arc_position, ArcPosition};
+use apart_kernel::{Sign, Vec3};
+
+/// A minor arc (shorter than a half circle) of the great circle with normal `normal`,
+/// running counter-clockwise around `normal` from `start` to `end`
+/// (`det(normal, start, end) > 0`). The positive side of the arc's circle
+/// (`normal · x > 0`) lies to the left when travelling from `start` to `end`, seen from
+/// outside the sphere.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Arc {
+    /// Normal of the great circle (primitive).
+    pub normal: Vec3,
+    /// Start point (primitive).
+    pub start: Vec3,
+    /// End point (primitive).
+    pub end: Vec3,
+}
+
+impl Arc {
+    /// The minor arc from `start` to `end` on the great circle through them, oriented
+    /// from `start` to `end`. `None` when the points coincide or are antipodal.
+    pub fn between(start: &Vec3, end: &Vec3) -> Option<Arc> {
+        let n = start.cross(end);
+        if n.is_zero() {
+            return None;
+        }
+        Some(Arc {
+            normal: n.primitive(),
+            start: start.primitive(),
+            end: end.primitive(),
+        })
+    }
+
+    /// The arc from `start` to `end` on the circle with normal `normal`, oriented so that
+    /// it runs counter-clockwise around `normal`: the end points are swapped when needed.
+    /// `None` when they are not distinct, non-antipodal points of that circle.
+    pub fn on_circle(normal: &Vec3, a: &Vec3, b: &Vec3) -> Option<Arc> {
+        match det3_sign(normal, a, b) {
+            Sign::Positive => Some(Arc {
+                normal: normal.primitive(),
+                start: a.primitive(),
+                end: b.primitive(),
+            }),
+            Sign::Negative => Some(Arc {
+                normal: normal.primitive(),
+                start: b.primitive(),
+                end: a.primitive(),
+            }),
+            Sign::Zero => None,
+        }
+    }
+
+    /// The same set of points traversed the other way (normal negated).
+    pub fn reversed(&self) -> Arc {
+        Arc {
+            normal: self.normal.neg(),
+            start: self.end.clone(),
+            end: self.start.clone(),
+        }
+    }
+
+    /// The antipodal image `{-x}` of the arc (still counter-clockwise around the same
+    /// normal; the positive side maps to the negative side).
+    pub fn antipodal(&self) -> Arc {
+        Arc {
+            normal: self.normal.clone(),
+            start: self.start.neg(),
+            end: self.end.neg(),
+        }
+    }
+
+    /// Where `p` lies relative to this closed arc (`None` when `p` is not on its circle).
+    pub fn locate(&self, p: &Vec3) -> Option<ArcPosition> {
+        if apart_kernel::predicates::dot_sign(&self.normal, p) != Sign::Zero {
+            return None;
+        }
+        Some(arc_position(&self.normal, &self.start, &self.end, p))
+    }
+
+    /// An integer point strictly inside the arc (`start + end`, a positive combination).
+    pub fn interior_point(&self) -> Vec3 {
+        self.start.add(&self.end)
+    }
+
+    /// Conservative floating-point bounding box of the arc on the unit sphere:
+    /// `[min, max]` per coordinate, padded for rounding.
+    pub fn bbox(&self) -> [[f64; 2]; 3] {
+        let s = self.start.unit_f64();
+        let e = self.end.unit_f64();
+        // The arc lies within distance (1 - cos(θ/2)) <= |s - e|^2 / 2 (+ rounding) of its
+        // chord, where θ is its angle; pad every side by that sagitta.
+        let d2 = (s[0] - e[0]).powi(2) + (s[1] - e[1]).powi(2) + (s[2] - e[2]).powi(2);
+        let pad = d2 * 0.5 + 1e-9;
+        let mut b = [[0.0; 2]; 3];
+        for k in 0..3 {
+            b[k] = [s[k].min(e[k]) - pad, s[k].max(e[k]) + pad];
+        }
+        b
+    }
+}
+
+/// Conservative floating-point box of a single sphere point.
+pub fn point_bbox(p: &Vec3) -> [[f64; 2]; 3] {
+    let u = p.unit_f64();
+    let pad = 1e-9;
+    [
+        [u[0] - pad, u[0] + pad],
+        [u[1] - pad, u[1] + pad],
+        [u[2] - pad, u[2] + pad],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orientation_helpers() {
+        let a = Arc::between(&Vec3::new(1, 0, 0), &Vec3::new(0, 2, 0)).unwrap();
+        assert_eq!(a.normal, Vec3::new(0, 0, 1));
+        assert_eq!(a.end, Vec3::new(0, 1, 0));
+        let r = Arc::on_circle(
+            &Vec3::new(0, 0, 1),
+            &Vec3::new(0, 1, 0),
+            &Vec3::new(1, 0, 0),
+        )
+        .unwrap();
+        assert_eq!(r, a);
+        assert_eq!(a.locate(&Vec3::new(1, 1, 0)), Some(ArcPosition::Interior));
+        assert_eq!(a.locate(&Vec3::new(1, 1, 1)), None);
+        let anti = a.antipodal();
+        assert_eq!(
+            anti.locate(&Vec3::new(-1, -1, 0)),
+            Some(ArcPosition::Interior)
+        );
+        assert!(Arc::between(&Vec3::new(1, 0, 0), &Vec3::new(-3, 0, 0)).is_none());
+    }
+
+    #[test]
+    fn bbox_contains_the_arc() {
+        let a = Arc::between(&Vec3::new(1, 0, 0), &Vec3::new(-1, 1, 0)).unwrap();
+        let b = a.bbox();
+        // The arc passes through (0, 1, 0), outside the chord's box in y.
+        assert!(b[1][1] >= 1.0);
+    }
+}

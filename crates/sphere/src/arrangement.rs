@@ -1,0 +1,955 @@
+//! The exact arrangement of great-circle arcs on the sphere.
+//!
+//! Built in one batch, with no sweep and hence no sweep-order predicates:
+//! 1. every arc is put on its circle's canonical orientation (labels flipped to match);
+//! 2. all pairs of arcs whose floating-point boxes meet are intersected exactly (two
+//!    circles meet at `±(n1 × n2)`; overlapping arcs of one circle meet at end points);
+//! 3. each arc is cut at the points found on it, sorted along the arc, and identical
+//!    pieces from different arcs are merged into one edge carrying all their labels;
+//! 4. the edges leaving each vertex are sorted counter-clockwise (seen from outside);
+//! 5. boundary cycles are traced (faces on the left of half-edges).
+//!
+//! Degeneracy is the normal case: overlapping arcs, many arcs through one vertex and end
+//! points on other arcs all reduce to exact point equality of primitive vectors.
+//!
+//! A face of the sphere may have several boundary cycles. When the graph is not
+//! connected, the builder adds *structural* arcs joining its components and builds
+//! again; cycles separated only by structural edges form one face, and a vertex or edge
+//! that exists only because of structural arcs is marked as such.
+
+use crate::arc::{point_bbox, Arc};
+use apart_kernel::predicates::{det3_sign, dot_sign};
+use apart_kernel::spherical::{arc_position, circle_intersection, ArcPosition};
+use apart_kernel::{Sign, Vec3};
+use std::collections::HashMap;
+
+/// Data attached to an input arc and merged onto the edges it covers.
+pub trait ArcLabel: Clone {
+    /// The label as seen from the opposite orientation of the arc (normal negated).
+    fn flipped(&self) -> Self;
+}
+
+/// An arc to insert; `label: None` marks a structural arc (no data, only topology).
+#[derive(Clone, Debug)]
+pub struct InputArc<L> {
+    /// The arc.
+    pub arc: Arc,
+    /// Its data, oriented like `arc`.
+    pub label: Option<L>,
+}
+
+/// A point to insert as a vertex, with data.
+#[derive(Clone, Debug)]
+pub struct InputPoint<P> {
+    /// The point (any non-zero integer vector).
+    pub point: Vec3,
+    /// Its data.
+    pub label: P,
+}
+
+/// A vertex of the arrangement.
+#[derive(Clone, Debug)]
+pub struct Vertex<P> {
+    /// The point, a primitive integer vector.
+    pub point: Vec3,
+    /// Data of the input points at this position.
+    pub labels: Vec<P>,
+    /// Outgoing half-edges in counter-clockwise order seen from outside the sphere.
+    pub around: Vec<u32>,
+    /// True when the vertex exists only because of structural arcs.
+    pub structural: bool,
+}
+
+/// An edge: an open minor arc between two vertices.
+#[derive(Clone, Debug)]
+pub struct Edge<L> {
+    /// Index of its circle in [`Arrangement::circles`].
+    pub circle: u32,
+    /// The edge runs counter-clockwise around the circle's normal from `from` to `to`.
+    pub from: u32,
+    /// See `from`.
+    pub to: u32,
+    /// Data of the input arcs covering it, oriented like the circle's normal.
+    pub labels: Vec<L>,
+    /// True when only structural arcs cover it.
+    pub structural: bool,
+}
+
+/// The arrangement: vertices, edges, half-edges (two per edge: `2e` runs from `from` to
+/// `to`, `2e + 1` back), boundary cycles and faces.
+#[derive(Clone, Debug)]
+pub struct Arrangement<L, P> {
+    circles: Vec<Vec3>,
+    vertices: Vec<Vertex<P>>,
+    edges: Vec<Edge<L>>,
+    next: Vec<u32>,
+    cycle_of: Vec<u32>,
+    cycles: Vec<u32>,
+    face_of_cycle: Vec<u32>,
+    faces: Vec<Vec<u32>>,
+}
+
+/// Statistics of a build.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BuildStats {
+    /// Input arcs.
+    pub arcs: usize,
+    /// Candidate arc pairs from the broad phase.
+    pub candidate_pairs: usize,
+    /// Structural arcs added to connect components.
+    pub structural_arcs: usize,
+}
+
+struct Canon<L> {
+    circle: u32,
+    start: Vec3,
+    end: Vec3,
+    label: Option<L>,
+}
+
+impl<L: ArcLabel, P: Clone> Arrangement<L, P> {
+    /// Builds the arrangement of `arcs` and `points`.
+    pub fn build(
+        arcs: Vec<InputArc<L>>,
+        points: Vec<InputPoint<P>>,
+    ) -> (Arrangement<L, P>, BuildStats) {
+        let mut stats = BuildStats {
+            arcs: arcs.len(),
+            ..Default::default()
+        };
+        let first = build_once(&arcs, &points, &mut stats);
+        let extra = connecting_arcs(&first);
+        if extra.is_empty() {
+            return (first, stats);
+        }
+        stats.structural_arcs = extra.len();
+        let mut all = arcs;
+        all.extend(extra.into_iter().map(|arc| InputArc { arc, label: None }));
+        let second = build_once(&all, &points, &mut stats);
+        debug_assert!(
+            connecting_arcs(&second).is_empty(),
+            "structural arcs left the graph disconnected"
+        );
+        (second, stats)
+    }
+
+    /// Canonical circle normals (first non-zero component positive).
+    pub fn circles(&self) -> &[Vec3] {
+        &self.circles
+    }
+
+    /// The vertices.
+    pub fn vertices(&self) -> &[Vertex<P>] {
+        &self.vertices
+    }
+
+    /// The edges.
+    pub fn edges(&self) -> &[Edge<L>] {
+        &self.edges
+    }
+
+    /// Number of half-edges (twice the edges).
+    pub fn half_edge_count(&self) -> usize {
+        self.edges.len() * 2
+    }
+
+    /// Origin vertex of half-edge `h`.
+    pub fn origin(&self, h: u32) -> u32 {
+        let e = &self.edges[(h / 2) as usize];
+        if h % 2 == 0 {
+            e.from
+        } else {
+            e.to
+        }
+    }
+
+    /// Target vertex of half-edge `h`.
+    pub fn target(&self, h: u32) -> u32 {
+        self.origin(h ^ 1)
+    }
+
+    /// The next half-edge around the face on the left of `h`.
+    pub fn next(&self, h: u32) -> u32 {
+        self.next[h as usize]
+    }
+
+    /// The boundary cycle containing half-edge `h`.
+    pub fn cycle_of(&self, h: u32) -> u32 {
+        self.cycle_of[h as usize]
+    }
+
+    /// Number of boundary cycles.
+    pub fn cycle_count(&self) -> usize {
+        self.cycles.len()
+    }
+
+    /// One half-edge of cycle `c`.
+    pub fn cycle_start(&self, c: u32) -> u32 {
+        self.cycles[c as usize]
+    }
+
+    /// The half-edges of cycle `c` in order.
+    pub fn cycle_half_edges(&self, c: u32) -> Vec<u32> {
+        let start = self.cycles[c as usize];
+        let mut out = vec![start];
+        let mut h = self.next[start as usize];
+        while h != start {
+            out.push(h);
+            h = self.next[h as usize];
+        }
+        out
+    }
+
+    /// The face of cycle `c`.
+    pub fn face_of_cycle(&self, c: u32) -> u32 {
+        self.face_of_cycle[c as usize]
+    }
+
+    /// The face on the left of half-edge `h`.
+    pub fn face_of(&self, h: u32) -> u32 {
+        self.face_of_cycle[self.cycle_of[h as usize] as usize]
+    }
+
+    /// The faces, each a list of boundary cycles (structural edges included). A sphere
+    /// with no edges has one face with no cycle.
+    pub fn faces(&self) -> &[Vec<u32>] {
+        &self.faces
+    }
+
+    /// True when half-edge `h` runs counter-clockwise around its circle's normal (its
+    /// left side is the circle's positive side).
+    pub fn is_forward(h: u32) -> bool {
+        h % 2 == 0
+    }
+
+    /// The half-edge `h` as an arc (oriented along `h`).
+    pub fn half_edge_arc(&self, h: u32) -> Arc {
+        let e = &self.edges[(h / 2) as usize];
+        let n = &self.circles[e.circle as usize];
+        let (a, b) = (
+            &self.vertices[e.from as usize].point,
+            &self.vertices[e.to as usize].point,
+        );
+        if h % 2 == 0 {
+            Arc {
+                normal: n.clone(),
+                start: a.clone(),
+                end: b.clone(),
+            }
+        } else {
+            Arc {
+                normal: n.neg(),
+                start: b.clone(),
+                end: a.clone(),
+            }
+        }
+    }
+
+    /// The edge `e` as an arc counter-clockwise around its circle's canonical normal.
+    pub fn edge_arc(&self, e: u32) -> Arc {
+        self.half_edge_arc(2 * e)
+    }
+
+    /// The real boundary of face `f` as closed loops of real half-edges (face on the
+    /// left), one loop per boundary component: structural edges are ignored, so a face
+    /// with holes has several loops.
+    pub fn boundary_loops(&self, f: u32) -> Vec<Vec<u32>> {
+        let mut hs: Vec<u32> = Vec::new();
+        for &c in &self.faces[f as usize] {
+            hs.extend(
+                self.cycle_half_edges(c)
+                    .into_iter()
+                    .filter(|&h| !self.edges[(h / 2) as usize].structural),
+            );
+        }
+        let mut seen: std::collections::HashSet<u32> = std::collections::HashSet::new();
+        let mut loops = Vec::new();
+        for &h0 in &hs {
+            if !seen.insert(h0) {
+                continue;
+            }
+            let mut lp = vec![h0];
+            let mut h = self.real_next(h0);
+            while h != h0 {
+                seen.insert(h);
+                lp.push(h);
+                h = self.real_next(h);
+            }
+            loops.push(lp);
+        }
+        loops
+    }
+
+    /// The real half-edge following real half-edge `h` around the face on its left when
+    /// structural edges are ignored.
+    fn real_next(&self, h: u32) -> u32 {
+        let w = self.target(h);
+        let around = &self.vertices[w as usize].around;
+        let k = around
+            .iter()
+            .position(|&g| g == h ^ 1)
+            .expect("twin at target");
+        for step in 1..=around.len() {
+            let g = around[(k + around.len() - step) % around.len()];
+            if !self.edges[(g / 2) as usize].structural {
+                return g;
+            }
+        }
+        unreachable!("a real half-edge has a real twin")
+    }
+
+    /// Number of real (non-structural) vertices, edges and faces, for statistics.
+    pub fn real_counts(&self) -> (usize, usize, usize) {
+        let v = self.vertices.iter().filter(|v| !v.structural).count();
+        let e = self.edges.iter().filter(|e| !e.structural).count();
+        (v, e, self.faces.len())
+    }
+}
+
+fn canonical_circle(n: &Vec3) -> (Vec3, bool) {
+    let n = n.primitive();
+    for i in 0..3 {
+        match apart_kernel::int::sign_of(&n.get(i)) {
+            Sign::Positive => return (n, false),
+            Sign::Negative => return (n.neg(), true),
+            Sign::Zero => {}
+        }
+    }
+    panic!("zero circle normal")
+}
+
+fn build_once<L: ArcLabel, P: Clone>(
+    arcs: &[InputArc<L>],
+    points: &[InputPoint<P>],
+    stats: &mut BuildStats,
+) -> Arrangement<L, P> {
+    // 1. Canonical circles and orientations.
+    let mut circle_ids: HashMap<Vec3, u32> = HashMap::new();
+    let mut circles: Vec<Vec3> = Vec::new();
+    let canon: Vec<Canon<L>> = arcs
+        .iter()
+        .map(|ia| {
+            let (n, flipped) = canonical_circle(&ia.arc.normal);
+            let circle = *circle_ids.entry(n.clone()).or_insert_with(|| {
+                circles.push(n);
+                (circles.len() - 1) as u32
+            });
+            let (s, e) = (ia.arc.start.primitive(), ia.arc.end.primitive());
+            if flipped {
+                Canon {
+                    circle,
+                    start: e,
+                    end: s,
+                    label: ia.label.as_ref().map(|l| l.flipped()),
+                }
+            } else {
+                Canon {
+                    circle,
+                    start: s,
+                    end: e,
+                    label: ia.label.clone(),
+                }
+            }
+        })
+        .collect();
+
+    // 2. Vertices at end points and input points.
+    let mut table = VertexTable::<P>::default();
+    let ends: Vec<[u32; 2]> = canon
+        .iter()
+        .map(|c| [table.get_or_insert(&c.start), table.get_or_insert(&c.end)])
+        .collect();
+    let point_ids: Vec<u32> = points
+        .iter()
+        .map(|ip| {
+            let id = table.get_or_insert(&ip.point.primitive());
+            let v = &mut table.vertices[id as usize];
+            v.labels.push(ip.label.clone());
+            v.structural = false;
+            id
+        })
+        .collect();
+
+    // 3. Points strictly inside each arc.
+    let mut splits: Vec<Vec<u32>> = vec![Vec::new(); canon.len()];
+    let boxes: Vec<[[f64; 2]; 3]> = canon
+        .iter()
+        .map(|c| {
+            Arc {
+                normal: circles[c.circle as usize].clone(),
+                start: c.start.clone(),
+                end: c.end.clone(),
+            }
+            .bbox()
+        })
+        .collect();
+    let mut crossings: HashMap<(u32, u32), Option<Vec3>> = HashMap::new();
+    let pairs = candidate_pairs(&boxes);
+    stats.candidate_pairs += pairs.len();
+    for (i, j) in pairs {
+        let (a, b) = (&canon[i], &canon[j]);
+        let (na, nb) = (&circles[a.circle as usize], &circles[b.circle as usize]);
+        if a.circle == b.circle {
+            // Overlapping arcs of one circle: each is cut at the other's end points.
+            for (x, y, target) in [(a, b, i), (b, a, j)] {
+                for p in [&y.start, &y.end] {
+                    if arc_position(na, &x.start, &x.end, p) == ArcPosition::Interior {
+                        splits[target].push(table.get_or_insert(p));
+                    }
+                }
+            }
+            continue;
+        }
+        let key = (a.circle.min(b.circle), a.circle.max(b.circle));
+        let p = crossings
+            .entry(key)
+            .or_insert_with(|| circle_intersection(na, nb))
+            .clone();
+        let Some(p) = p else { continue };
+        for q in [p.clone(), p.neg()] {
+            let pa = arc_position(na, &a.start, &a.end, &q);
+            if pa == ArcPosition::Outside {
+                continue;
+            }
+            let pb = arc_position(nb, &b.start, &b.end, &q);
+            if pb == ArcPosition::Outside {
+                continue;
+            }
+            let id = table.get_or_insert(&q);
+            if pa == ArcPosition::Interior {
+                splits[i].push(id);
+            }
+            if pb == ArcPosition::Interior {
+                splits[j].push(id);
+            }
+        }
+    }
+    // Input points lying inside arcs.
+    if !points.is_empty() {
+        let pboxes: Vec<[[f64; 2]; 3]> = points.iter().map(|ip| point_bbox(&ip.point)).collect();
+        for (i, k) in candidate_pairs_between(&boxes, &pboxes) {
+            let c = &canon[i];
+            let id = point_ids[k];
+            let p = &table.vertices[id as usize].point;
+            let n = &circles[c.circle as usize];
+            if dot_sign(n, p) == Sign::Zero
+                && arc_position(n, &c.start, &c.end, p) == ArcPosition::Interior
+            {
+                splits[i].push(id);
+            }
+        }
+    }
+
+    // 4. Cut arcs into edges, merging identical pieces.
+    let mut vertices = table.vertices;
+    let mut edge_ids: HashMap<(u32, u32, u32), u32> = HashMap::new();
+    let mut edges: Vec<Edge<L>> = Vec::new();
+    for (i, c) in canon.iter().enumerate() {
+        let n = &circles[c.circle as usize];
+        let mut inner = std::mem::take(&mut splits[i]);
+        inner.sort_unstable();
+        inner.dedup();
+        inner.sort_by(|&x, &y| {
+            match det3_sign(n, &vertices[x as usize].point, &vertices[y as usize].point) {
+                Sign::Positive => std::cmp::Ordering::Less,
+                Sign::Negative => std::cmp::Ordering::Greater,
+                Sign::Zero => std::cmp::Ordering::Equal,
+            }
+        });
+        let mut chain = Vec::with_capacity(inner.len() + 2);
+        chain.push(ends[i][0]);
+        chain.extend(inner);
+        chain.push(ends[i][1]);
+        for w in chain.windows(2) {
+            let key = (c.circle, w[0], w[1]);
+            let id = *edge_ids.entry(key).or_insert_with(|| {
+                edges.push(Edge {
+                    circle: c.circle,
+                    from: w[0],
+                    to: w[1],
+                    labels: Vec::new(),
+                    structural: true,
+                });
+                (edges.len() - 1) as u32
+            });
+            let e = &mut edges[id as usize];
+            if let Some(l) = &c.label {
+                e.labels.push(l.clone());
+                e.structural = false;
+            }
+        }
+    }
+    for e in &edges {
+        if !e.structural {
+            vertices[e.from as usize].structural = false;
+            vertices[e.to as usize].structural = false;
+        }
+    }
+    // A vertex where a structural arc merely crosses a real edge stays structural; one
+    // where a real edge bends or ends is real (set above); points are real.
+
+    // 5. Rotation system.
+    for (e, edge) in edges.iter().enumerate() {
+        vertices[edge.from as usize].around.push(2 * e as u32);
+        vertices[edge.to as usize].around.push(2 * e as u32 + 1);
+    }
+    for v in vertices.iter_mut() {
+        sort_around(&v.point, &mut v.around, &edges, &circles);
+    }
+    let mut pos_in_around = vec![0u32; edges.len() * 2];
+    for v in &vertices {
+        for (k, &h) in v.around.iter().enumerate() {
+            pos_in_around[h as usize] = k as u32;
+        }
+    }
+    let origin = |h: u32| -> u32 {
+        let e = &edges[(h / 2) as usize];
+        if h % 2 == 0 {
+            e.from
+        } else {
+            e.to
+        }
+    };
+    // next(h) = the outgoing half-edge at h's target just before twin(h) (clockwise).
+    let mut next = vec![0u32; edges.len() * 2];
+    for h in 0..(edges.len() * 2) as u32 {
+        let twin = h ^ 1;
+        let w = origin(twin);
+        let around = &vertices[w as usize].around;
+        let k = pos_in_around[twin as usize] as usize;
+        next[h as usize] = around[(k + around.len() - 1) % around.len()];
+    }
+
+    // 6. Cycles.
+    let mut cycle_of = vec![u32::MAX; edges.len() * 2];
+    let mut cycles = Vec::new();
+    for h in 0..(edges.len() * 2) as u32 {
+        if cycle_of[h as usize] != u32::MAX {
+            continue;
+        }
+        let c = cycles.len() as u32;
+        cycles.push(h);
+        let mut g = h;
+        loop {
+            cycle_of[g as usize] = c;
+            g = next[g as usize];
+            if g == h {
+                break;
+            }
+        }
+    }
+
+    // 7. Faces: cycles joined across structural edges.
+    let mut uf = UnionFind::new(cycles.len());
+    for (e, edge) in edges.iter().enumerate() {
+        if edge.structural {
+            uf.union(cycle_of[2 * e] as usize, cycle_of[2 * e + 1] as usize);
+        }
+    }
+    let mut face_ids: HashMap<usize, u32> = HashMap::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    let mut face_of_cycle = vec![0u32; cycles.len()];
+    for (c, slot) in face_of_cycle.iter_mut().enumerate() {
+        let root = uf.find(c);
+        let f = *face_ids.entry(root).or_insert_with(|| {
+            faces.push(Vec::new());
+            (faces.len() - 1) as u32
+        });
+        faces[f as usize].push(c as u32);
+        *slot = f;
+    }
+    if cycles.is_empty() {
+        faces.push(Vec::new());
+    }
+    Arrangement {
+        circles,
+        vertices,
+        edges,
+        next,
+        cycle_of,
+        cycles,
+        face_of_cycle,
+        faces,
+    }
+}
+
+/// Vertices keyed by their primitive point.
+struct VertexTable<P> {
+    ids: HashMap<Vec3, u32>,
+    vertices: Vec<Vertex<P>>,
+}
+
+impl<P> Default for VertexTable<P> {
+    fn default() -> Self {
+        VertexTable {
+            ids: HashMap::new(),
+            vertices: Vec::new(),
+        }
+    }
+}
+
+impl<P> VertexTable<P> {
+    /// The id of the vertex at primitive point `p`, created (structural until an edge or
+    /// point makes it real) when new.
+    fn get_or_insert(&mut self, p: &Vec3) -> u32 {
+        if let Some(&id) = self.ids.get(p) {
+            return id;
+        }
+        self.vertices.push(Vertex {
+            point: p.clone(),
+            labels: Vec::new(),
+            around: Vec::new(),
+            structural: true,
+        });
+        let id = (self.vertices.len() - 1) as u32;
+        self.ids.insert(p.clone(), id);
+        id
+    }
+}
+
+/// Sorts outgoing half-edges at `v` counter-clockwise, seen from outside.
+///
+/// Half-edge `h` leaves along tangent `σ (n × v)` (σ = +1 for forward half-edges).
+/// For two of them, `det(v, t1, t2) = σ1 σ2 |v|² det(n1, n2, v)` and
+/// `t1 · t2 = σ1 σ2 |v|² (n1 · n2)`, so the comparisons need only the circle normals.
+fn sort_around<L>(v: &Vec3, around: &mut [u32], edges: &[Edge<L>], circles: &[Vec3]) {
+    if around.len() < 2 {
+        return;
+    }
+    let normal = |h: u32| &circles[edges[(h / 2) as usize].circle as usize];
+    let sigma = |h: u32| {
+        if h % 2 == 0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        }
+    };
+    let cross_sign = |a: u32, b: u32| sigma(a) * sigma(b) * det3_sign(normal(a), normal(b), v);
+    let dot_sgn = |a: u32, b: u32| sigma(a) * sigma(b) * dot_sign(normal(a), normal(b));
+    let r = around[0];
+    // Half 0: angle from the reference in [0, π); half 1: [π, 2π).
+    let half = |h: u32| -> u8 {
+        if h == r {
+            return 0;
+        }
+        match cross_sign(r, h) {
+            Sign::Positive => 0,
+            Sign::Negative => 1,
+            Sign::Zero => {
+                if dot_sgn(r, h) == Sign::Positive {
+                    0
+                } else {
+                    1
+                }
+            }
+        }
+    };
+    let mut keyed: Vec<(u8, u32)> = around.iter().map(|&h| (half(h), h)).collect();
+    keyed.sort_by(|&(ha, a), &(hb, b)| {
+        ha.cmp(&hb).then_with(|| {
+            if a == b {
+                return std::cmp::Ordering::Equal;
+            }
+            if a == r {
+                return std::cmp::Ordering::Less;
+            }
+            if b == r {
+                return std::cmp::Ordering::Greater;
+            }
+            match cross_sign(a, b) {
+                Sign::Positive => std::cmp::Ordering::Less,
+                Sign::Negative => std::cmp::Ordering::Greater,
+                Sign::Zero => std::cmp::Ordering::Equal,
+            }
+        })
+    });
+    for (slot, (_, h)) in around.iter_mut().zip(keyed) {
+        *slot = h;
+    }
+}
+
+/// Pairs of boxes that overlap, by sort-and-sweep along x.
+fn candidate_pairs(boxes: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
+    let mut order: Vec<usize> = (0..boxes.len()).collect();
+    order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
+    let mut out = Vec::new();
+    let mut active: Vec<usize> = Vec::new();
+    for &i in &order {
+        let lo = boxes[i][0][0];
+        active.retain(|&j| boxes[j][0][1] >= lo);
+        for &j in &active {
+            if overlap(&boxes[i], &boxes[j]) {
+                out.push((j.min(i), j.max(i)));
+            }
+        }
+        active.push(i);
+    }
+    out
+}
+
+/// Pairs (arc box, point box) that overlap.
+fn candidate_pairs_between(a: &[[[f64; 2]; 3]], b: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
+    let mut events: Vec<(f64, u8, usize)> = Vec::with_capacity(a.len() + b.len());
+    for (i, bx) in a.iter().enumerate() {
+        events.push((bx[0][0], 0, i));
+    }
+    for (i, bx) in b.iter().enumerate() {
+        events.push((bx[0][0], 1, i));
+    }
+    events.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let (mut act_a, mut act_b): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    let mut out = Vec::new();
+    for (lo, kind, i) in events {
+        act_a.retain(|&j| a[j][0][1] >= lo);
+        act_b.retain(|&j| b[j][0][1] >= lo);
+        if kind == 0 {
+            for &k in &act_b {
+                if overlap(&a[i], &b[k]) {
+                    out.push((i, k));
+                }
+            }
+            act_a.push(i);
+        } else {
+            for &j in &act_a {
+                if overlap(&a[j], &b[i]) {
+                    out.push((j, i));
+                }
+            }
+            act_b.push(i);
+        }
+    }
+    out
+}
+
+fn overlap(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
+    (0..3).all(|k| a[k][0] <= b[k][1] && b[k][0] <= a[k][1])
+}
+
+/// Structural arcs that connect the components of `arr` (empty when connected).
+fn connecting_arcs<L, P>(arr: &Arrangement<L, P>) -> Vec<Arc> {
+    let n = arr.vertices.len();
+    if n <= 1 {
+        return Vec::new();
+    }
+    let mut uf = UnionFind::new(n);
+    for e in &arr.edges {
+        uf.union(e.from as usize, e.to as usize);
+    }
+    let mut comp_ids: HashMap<usize, usize> = HashMap::new();
+    let mut comps: Vec<Vec<usize>> = Vec::new();
+    for v in 0..n {
+        let root = uf.find(v);
+        let c = *comp_ids.entry(root).or_insert_with(|| {
+            comps.push(Vec::new());
+            comps.len() - 1
+        });
+        comps[c].push(v);
+    }
+    if comps.len() == 1 {
+        return Vec::new();
+    }
+    // Largest component first; each later one joins its nearest vertex among the
+    // earlier ones (so the joins form a tree).
+    comps.sort_by_key(|c| std::cmp::Reverse(c.len()));
+    let unit: Vec<[f64; 3]> = arr.vertices.iter().map(|v| v.point.unit_f64()).collect();
+    let mut out = Vec::new();
+    let mut connected: Vec<usize> = comps[0].clone();
+    for comp in comps.iter().skip(1) {
+        let mut best: Option<(f64, usize, usize)> = None;
+        for &a in comp {
+            for &b in &connected {
+                let d = unit[a][0] * unit[b][0] + unit[a][1] * unit[b][1] + unit[a][2] * unit[b][2];
+                if best.is_none_or(|(bd, _, _)| d > bd) {
+                    let (pa, pb) = (&arr.vertices[a].point, &arr.vertices[b].point);
+                    if Arc::between(pa, pb).is_some() {
+                        best = Some((d, a, b));
+                    }
+                }
+            }
+            if comp.len() * connected.len() > 4_000_000 {
+                break; // enough candidates for a huge input; any join is correct
+            }
+        }
+        let (_, a, b) = best.expect("two components whose vertices are all antipodal");
+        out.push(Arc::between(&arr.vertices[a].point, &arr.vertices[b].point).unwrap());
+        connected.extend(comp.iter().copied());
+    }
+    out
+}
+
+/// Disjoint sets with path halving.
+pub(crate) struct UnionFind {
+    parent: Vec<usize>,
+}
+
+impl UnionFind {
+    pub(crate) fn new(n: usize) -> UnionFind {
+        UnionFind {
+            parent: (0..n).collect(),
+        }
+    }
+
+    pub(crate) fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] != x {
+            self.parent[x] = self.parent[self.parent[x]];
+            x = self.parent[x];
+        }
+        x
+    }
+
+    pub(crate) fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            self.parent[ra] = rb;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Clone, Debug, PartialEq)]
+    struct L(i32);
+    impl ArcLabel for L {
+        fn flipped(&self) -> L {
+            L(-self.0)
+        }
+    }
+
+    fn arc(a: [i64; 3], b: [i64; 3]) -> InputArc<L> {
+        InputArc {
+            arc: Arc::between(&Vec3::from(a), &Vec3::from(b)).unwrap(),
+            label: Some(L(1)),
+        }
+    }
+
+    fn euler<Lb: ArcLabel, P: Clone>(a: &Arrangement<Lb, P>) -> i64 {
+        a.vertices().len() as i64 - a.edges().len() as i64 + a.faces().len() as i64
+    }
+
+    #[test]
+    fn octahedron_of_coordinate_circles() {
+        // The three coordinate great circles, each as four quarter arcs.
+        let axes = [
+            [1, 0, 0],
+            [0, 1, 0],
+            [0, 0, 1],
+            [-1, 0, 0],
+            [0, -1, 0],
+            [0, 0, -1],
+        ];
+        let mut arcs = Vec::new();
+        for (i, a) in axes.iter().enumerate() {
+            for b in axes.iter().skip(i + 1) {
+                if Arc::between(&Vec3::from(*a), &Vec3::from(*b)).is_some() {
+                    arcs.push(arc(*a, *b));
+                }
+            }
+        }
+        assert_eq!(arcs.len(), 12);
+        let (arr, _) = Arrangement::<L, ()>::build(arcs, vec![]);
+        assert_eq!(arr.vertices().len(), 6);
+        assert_eq!(arr.edges().len(), 12);
+        assert_eq!(arr.faces().len(), 8);
+        assert_eq!(euler(&arr), 2);
+        for f in arr.faces() {
+            assert_eq!(f.len(), 1);
+            assert_eq!(arr.cycle_half_edges(f[0]).len(), 3);
+        }
+    }
+
+    #[test]
+    fn overlapping_arcs_and_crossings() {
+        // Two overlapping arcs on the equator, one meridian arc crossing both, one arc
+        // ending on the equator.
+        let arcs = vec![
+            arc([1, 0, 0], [0, 1, 0]),
+            arc([1, -1, 0], [1, 1, 0]),
+            arc([1, 1, -1], [1, 1, 1]),
+            arc([2, 1, 0], [2, 1, 5]),
+        ];
+        let (arr, _) = Arrangement::<L, ()>::build(arcs, vec![]);
+        // Vertices: (1,-1,0) (1,0,0) (2,1,0) (1,1,0) (0,1,0) (1,1,-1) (1,1,1) (2,1,5)
+        assert_eq!(arr.vertices().len(), 8);
+        // Equator pieces: (1,-1)-(1,0), (1,0)-(2,1), (2,1)-(1,1), (1,1)-(0,1): 4;
+        // meridian: 2; the spur: 1.
+        assert_eq!(arr.edges().len(), 7);
+        let shared = arr.edges().iter().filter(|e| e.labels.len() == 2).count();
+        assert_eq!(shared, 2);
+        assert_eq!(euler(&arr), 2);
+        assert_eq!(arr.faces().len(), 1);
+    }
+
+    #[test]
+    fn disconnected_components_share_a_face() {
+        // Two small triangles far apart: three faces (inside each, and the outside with
+        // two boundary cycles).
+        let tri = |c: [i64; 3], d: [[i64; 3]; 3]| -> Vec<InputArc<L>> {
+            let p: Vec<[i64; 3]> = d
+                .iter()
+                .map(|o| [c[0] * 10 + o[0], c[1] * 10 + o[1], c[2] * 10 + o[2]])
+                .collect();
+            vec![arc(p[0], p[1]), arc(p[1], p[2]), arc(p[2], p[0])]
+        };
+        let mut arcs = tri([0, 0, 1], [[1, 0, 0], [0, 1, 0], [-1, -1, 0]]);
+        arcs.extend(tri([0, 0, -1], [[1, 0, 0], [-1, -1, 0], [0, 1, 0]]));
+        let (arr, stats) = Arrangement::<L, ()>::build(
+            arcs,
+            vec![InputPoint {
+                point: Vec3::new(1, 0, 0),
+                label: (),
+            }],
+        );
+        assert!(stats.structural_arcs >= 2);
+        assert_eq!(arr.faces().len(), 3);
+        let loops: Vec<usize> = (0..3).map(|f| arr.boundary_loops(f).len()).collect();
+        assert_eq!(loops.iter().filter(|&&n| n == 2).count(), 1, "{loops:?}");
+        assert_eq!(loops.iter().filter(|&&n| n == 1).count(), 2, "{loops:?}");
+        let (v, e, f) = arr.real_counts();
+        // Real: 6 triangle corners + the isolated point; 6 edges; V - E + F = 1 + C.
+        assert_eq!((v, e, f), (7, 6, 3));
+    }
+
+    #[test]
+    fn many_arcs_through_one_vertex() {
+        let mut arcs = Vec::new();
+        for (x, y) in [
+            (1, 0),
+            (1, 1),
+            (0, 1),
+            (-1, 1),
+            (-1, 0),
+            (-1, -1),
+            (0, -1),
+            (1, -1),
+        ] {
+            arcs.push(arc([0, 0, 1], [x, y, 0]));
+        }
+        let (arr, _) = Arrangement::<L, ()>::build(arcs, vec![]);
+        let pole = arr
+            .vertices()
+            .iter()
+            .find(|v| v.point == Vec3::new(0, 0, 1))
+            .unwrap();
+        assert_eq!(pole.around.len(), 8);
+        // Counter-clockwise seen from above: the directions' angles increase.
+        let angles: Vec<f64> = pole
+            .around
+            .iter()
+            .map(|&h| {
+                let t = arr.vertices()[arr.target(h) as usize].point.unit_f64();
+                t[1].atan2(t[0])
+            })
+            .collect();
+        let k = angles
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(b.1))
+            .unwrap()
+            .0;
+        for i in 1..8 {
+            assert!(angles[(k + i) % 8] > angles[(k + i - 1) % 8]);
+        }
+    }
+}

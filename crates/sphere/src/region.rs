@@ -1,0 +1,267 @@
+//! Region maps: an open-or-closed subset of the sphere described by the arcs and points
+//! where its status changes.
+
+use crate::arc::Arc;
+use crate::arrangement::Arrangement;
+use crate::bitset::BitSet;
+use crate::overlay::{CellStatuses, PointStatus, RegionArrangement, SideLabel};
+use apart_kernel::predicates::det3_sign;
+use apart_kernel::{Sign, Vec3};
+
+/// A map's status on both sides of an arc and on the arc itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Sides {
+    /// Status on the positive side of the arc's circle.
+    pub pos: bool,
+    /// Status on the (open) arc.
+    pub on: bool,
+    /// Status on the negative side.
+    pub neg: bool,
+}
+
+impl Sides {
+    /// The label of this arc for map `map`.
+    pub fn label(self, map: u32) -> SideLabel {
+        SideLabel {
+            map,
+            pos: self.pos,
+            on: self.on,
+            neg: self.neg,
+        }
+    }
+}
+
+/// A subset of the sphere given by the arcs where its status changes (with the status
+/// on each side and on the arc) and the points whose status differs from their
+/// surroundings or where such arcs end or meet. Away from these, the status is constant
+/// on each connected region.
+#[derive(Clone, Debug, Default)]
+pub struct RegionMap {
+    /// Boundary arcs, each counter-clockwise around its normal, with their sides.
+    pub arcs: Vec<(Arc, Sides)>,
+    /// Points with their status.
+    pub points: Vec<(Vec3, bool)>,
+}
+
+impl RegionMap {
+    /// The image under `x -> -x`: arcs map to antipodal arcs (positive and negative
+    /// sides swap), points to antipodal points.
+    pub fn antipodal(&self) -> RegionMap {
+        RegionMap {
+            arcs: self
+                .arcs
+                .iter()
+                .map(|(a, s)| {
+                    (
+                        a.antipodal(),
+                        Sides {
+                            pos: s.neg,
+                            on: s.on,
+                            neg: s.pos,
+                        },
+                    )
+                })
+                .collect(),
+            points: self.points.iter().map(|(p, b)| (p.neg(), *b)).collect(),
+        }
+    }
+
+    /// True when the map has no arc and no point (its status is the same everywhere).
+    pub fn is_uniform(&self) -> bool {
+        self.arcs.is_empty() && self.points.is_empty()
+    }
+}
+
+/// The union of the maps of `arr` (a cell is `true` when any map is `true` there),
+/// simplified: edges whose status equals both neighbouring faces' are dropped, vertices
+/// whose status equals their surroundings and that no remaining edge needs are dropped,
+/// and remaining edges continuing straight through a dropped vertex are merged (as long
+/// as the merged arc stays shorter than a half circle).
+pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
+    let any = |b: &BitSet| !b.is_empty();
+    let face_status = |h: u32| any(&st.cycles[arr.cycle_of(h) as usize]);
+    if arr.edges().is_empty() {
+        let face = any(&st.faces[0]);
+        let points = arr
+            .vertices()
+            .iter()
+            .zip(&st.vertices)
+            .filter(|(_, s)| any(s) != face)
+            .map(|(v, s)| (v.point.clone(), any(s)))
+            .collect();
+        return RegionMap {
+            arcs: Vec::new(),
+            points,
+        };
+    }
+    let n_edges = arr.edges().len();
+    let sides: Vec<Sides> = (0..n_edges)
+        .map(|e| Sides {
+            pos: face_status(2 * e as u32),
+            on: any(&st.edges[e]),
+            neg: face_status(2 * e as u32 + 1),
+        })
+        .collect();
+    let kept: Vec<bool> = sides
+        .iter()
+        .map(|s| !(s.pos == s.on && s.on == s.neg))
+        .collect();
+    let vstatus: Vec<bool> = st.vertices.iter().map(any).collect();
+    // A vertex can be skipped when exactly two kept edges meet there, on one circle,
+    // continuing straight (one arrives, one leaves in circle order), with equal sides,
+    // and the vertex has the arcs' status.
+    let kept_around: Vec<Vec<u32>> = arr
+        .vertices()
+        .iter()
+        .map(|v| {
+            v.around
+                .iter()
+                .copied()
+                .filter(|&h| kept[(h / 2) as usize])
+                .collect()
+        })
+        .collect();
+    let skippable: Vec<bool> = (0..arr.vertices().len())
+        .map(|v| {
+            let hs = &kept_around[v];
+            if hs.len() != 2 {
+                return false;
+            }
+            let (a, b) = ((hs[0] / 2) as usize, (hs[1] / 2) as usize);
+            let (ea, eb) = (&arr.edges()[a], &arr.edges()[b]);
+            ea.circle == eb.circle
+                && (hs[0] % 2) != (hs[1] % 2)
+                && sides[a] == sides[b]
+                && vstatus[v] == sides[a].on
+        })
+        .collect();
+    let face_around = |v: usize| -> bool {
+        match arr.vertices()[v].around.first() {
+            Some(&h) => face_status(h),
+            None => vstatus[v],
+        }
+    };
+    let mut points = Vec::new();
+    for (v, vert) in arr.vertices().iter().enumerate() {
+        let needed = !kept_around[v].is_empty() || vstatus[v] != face_around(v);
+        if needed && !skippable[v] {
+            points.push((vert.point.clone(), vstatus[v]));
+        }
+    }
+    // Merge chains of kept edges through skippable vertices.
+    let mut arcs = Vec::new();
+    let mut done = vec![false; n_edges];
+    let out_forward = |v: u32, circle: u32| -> Option<u32> {
+        kept_around[v as usize]
+            .iter()
+            .copied()
+            .find(|&h| h % 2 == 0 && arr.edges()[(h / 2) as usize].circle == circle)
+            .map(|h| h / 2)
+    };
+    let in_forward = |v: u32, circle: u32| -> Option<u32> {
+        kept_around[v as usize]
+            .iter()
+            .copied()
+            .find(|&h| h % 2 == 1 && arr.edges()[(h / 2) as usize].circle == circle)
+            .map(|h| h / 2)
+    };
+    for e0 in 0..n_edges {
+        if !kept[e0] || done[e0] {
+            continue;
+        }
+        let circle = arr.edges()[e0].circle;
+        // Walk back to the start of the chain (or around a full circle of skippable ones).
+        let mut first = e0 as u32;
+        loop {
+            let v = arr.edges()[first as usize].from;
+            if !skippable[v as usize] {
+                break;
+            }
+            match in_forward(v, circle) {
+                Some(p) if p != e0 as u32 => first = p,
+                _ => break,
+            }
+        }
+        // Walk forward, cutting where the arc would reach a half circle.
+        let normal = &arr.circles()[circle as usize];
+        let mut cur = first;
+        let mut start = arr.edges()[cur as usize].from;
+        loop {
+            done[cur as usize] = true;
+            let edge = &arr.edges()[cur as usize];
+            let end = edge.to;
+            let next = if skippable[end as usize] {
+                out_forward(end, circle).filter(|&n| !done[n as usize])
+            } else {
+                None
+            };
+            let close = match &next {
+                Some(n) => {
+                    let far = &arr.vertices()[arr.edges()[*n as usize].to as usize].point;
+                    det3_sign(normal, &arr.vertices()[start as usize].point, far) != Sign::Positive
+                }
+                None => true,
+            };
+            if close {
+                arcs.push((
+                    Arc {
+                        normal: normal.clone(),
+                        start: arr.vertices()[start as usize].point.clone(),
+                        end: arr.vertices()[end as usize].point.clone(),
+                    },
+                    sides[cur as usize],
+                ));
+                if skippable[end as usize] && next.is_some() {
+                    // Cut here: the skipped vertex becomes an end point after all.
+                    points.push((
+                        arr.vertices()[end as usize].point.clone(),
+                        vstatus[end as usize],
+                    ));
+                }
+                start = end;
+            }
+            match next {
+                Some(n) => cur = n,
+                None => break,
+            }
+        }
+    }
+    points.sort_by_key(|a| a.0.to_strings());
+    points.dedup_by(|a, b| a.0 == b.0);
+    RegionMap { arcs, points }
+}
+
+/// Inserts region maps (map index = position in `maps`) as labelled arcs and points.
+pub fn region_inputs(
+    maps: &[&RegionMap],
+) -> (
+    Vec<crate::arrangement::InputArc<SideLabel>>,
+    Vec<crate::arrangement::InputPoint<PointStatus>>,
+) {
+    let mut arcs = Vec::new();
+    let mut points = Vec::new();
+    for (m, map) in maps.iter().enumerate() {
+        for (a, s) in &map.arcs {
+            arcs.push(crate::arrangement::InputArc {
+                arc: a.clone(),
+                label: Some(s.label(m as u32)),
+            });
+        }
+        for (p, b) in &map.points {
+            points.push(crate::arrangement::InputPoint {
+                point: p.clone(),
+                label: PointStatus {
+                    map: m as u32,
+                    on: *b,
+                },
+            });
+        }
+    }
+    (arcs, points)
+}
+
+/// Builds the arrangement of one region map alone (for inspection and drawing).
+pub fn arrangement_of(map: &RegionMap) -> RegionArrangement {
+    let (arcs, points) = region_inputs(&[map]);
+    Arrangement::build(arcs, points).0
+}
