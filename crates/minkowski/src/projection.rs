@@ -60,13 +60,12 @@ fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonE
     let mut arcs = Vec::new();
     for e in m.edges() {
         let (f, g) = (e.facets[0] as usize, e.facets[1] as usize);
-        let (front, other) = match (signs[f], signs[g]) {
+        let (front, _back) = match (signs[f], signs[g]) {
             (Sign::Negative, Sign::Negative) => continue,
             (Sign::Negative, _) => (f, g),
             (_, Sign::Negative) => (g, f),
             _ => continue,
         };
-        let _ = other;
         let (v0, v1) = (
             &m.vertices()[e.ends[0] as usize],
             &m.vertices()[e.ends[1] as usize],

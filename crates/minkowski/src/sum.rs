@@ -13,70 +13,115 @@ use apart_kernel::spherical::{arc_position, ArcPosition};
 use apart_kernel::{Int, Sign, Vec3};
 use apart_pieces::hull2d::hull_in_plane;
 use apart_pieces::{Polytope, PolytopeError};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// `b ⊕ (−a) = {y − x : x ∈ a, y ∈ b}`: the translations of `a` that make it meet `b`.
+/// (When many sums share `a`, reflect it once and call [`minkowski_sum`].)
 pub fn minkowski_difference(b: &Polytope, a: &Polytope) -> Result<Polytope, PolytopeError> {
     minkowski_sum(b, &a.reflected())
 }
 
 /// The Minkowski sum `p ⊕ q` of two convex polytopes.
 pub fn minkowski_sum(p: &Polytope, q: &Polytope) -> Result<Polytope, PolytopeError> {
-    let mut points: Vec<Vec3> = Vec::new();
-    let mut ids: HashMap<Vec3, u32> = HashMap::new();
-    let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
-    let mut normals_done: HashMap<Vec3, ()> = HashMap::new();
+    sum_prepared(&Summand::new(p.clone()), &Summand::new(q.clone()))
+}
 
-    let mut add_facet =
-        |n: &Vec3, pts: Vec<Vec3>, points: &mut Vec<Vec3>| -> Result<(), PolytopeError> {
-            let hull = hull_in_plane(n, &pts);
-            if hull.len() < 3 {
-                return Err(PolytopeError::NotClosed);
-            }
-            let cycle = hull
-                .into_iter()
-                .map(|i| {
-                    let v = &pts[i];
-                    *ids.entry(v.clone()).or_insert_with(|| {
-                        points.push(v.clone());
-                        (points.len() - 1) as u32
-                    })
-                })
-                .collect();
-            facets.push((n.clone(), cycle));
-            Ok(())
-        };
+/// A polytope with its Gaussian arcs precomputed, for summing it many times.
+#[derive(Clone, Debug)]
+pub struct Summand {
+    polytope: Polytope,
+    arcs: Vec<GaussArc>,
+}
+
+impl Summand {
+    /// Prepares `polytope` for [`sum_prepared`].
+    pub fn new(polytope: Polytope) -> Summand {
+        let arcs = gaussian_arcs(&polytope);
+        Summand { polytope, arcs }
+    }
+
+    /// The polytope.
+    pub fn polytope(&self) -> &Polytope {
+        &self.polytope
+    }
+}
+
+/// The Minkowski sum of two prepared polytopes.
+pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
+    let (p, q) = (&sp.polytope, &sq.polytope);
+    let nq = q.vertices().len() as u64;
+    // A vertex of a Minkowski sum decomposes uniquely into vertices of the summands, so
+    // the index pair (i, j) identifies it.
+    let mut points: Vec<Vec3> = Vec::new();
+    let mut ids: HashMap<u64, u32> = HashMap::default();
+    let mut vertex = |i: u32, j: u32, points: &mut Vec<Vec3>| -> u32 {
+        *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
+            points.push(p.vertices()[i as usize].add(&q.vertices()[j as usize]));
+            (points.len() - 1) as u32
+        })
+    };
+    let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
+    let mut normals_done: HashMap<Vec3, ()> = HashMap::default();
 
     // Facets of p and of q, each with the other's extreme face.
-    for (x, y) in [(p, q), (q, p)] {
+    for (x_is_p, x, y) in [(true, p, q), (false, q, p)] {
         for f in x.facets() {
             if normals_done.insert(f.normal.clone(), ()).is_some() {
                 continue; // both have a facet with this normal: already summed
             }
             let (_, arg) = y.support(&f.normal);
-            let mut pts = Vec::with_capacity(f.cycle.len() * arg.len());
-            for &i in &f.cycle {
-                for &j in &arg {
-                    pts.push(x.vertices()[i as usize].add(&y.vertices()[j as usize]));
+            let pair = |a: u32, b: u32| if x_is_p { (a, b) } else { (b, a) };
+            let cycle: Vec<u32> = if arg.len() == 1 {
+                // Facet plus a vertex: the facet's own cycle, translated.
+                f.cycle
+                    .iter()
+                    .map(|&a| {
+                        let (i, j) = pair(a, arg[0]);
+                        vertex(i, j, &mut points)
+                    })
+                    .collect()
+            } else {
+                let mut cand: Vec<(u32, u32)> = Vec::with_capacity(f.cycle.len() * arg.len());
+                let mut pts = Vec::with_capacity(f.cycle.len() * arg.len());
+                for &a in &f.cycle {
+                    for &b in &arg {
+                        let (i, j) = pair(a, b);
+                        cand.push((i, j));
+                        pts.push(p.vertices()[i as usize].add(&q.vertices()[j as usize]));
+                    }
                 }
-            }
-            add_facet(&f.normal, pts, &mut points)?;
+                let hull = hull_in_plane(&f.normal, &pts);
+                if hull.len() < 3 {
+                    return Err(PolytopeError::NotClosed);
+                }
+                hull.into_iter()
+                    .map(|k| vertex(cand[k].0, cand[k].1, &mut points))
+                    .collect()
+            };
+            facets.push((f.normal.clone(), cycle));
         }
     }
 
     // Parallelograms of edge pairs whose Gaussian arcs cross.
-    let arcs_p = gaussian_arcs(p);
-    let arcs_q = gaussian_arcs(q);
-    for (ep, ap) in p.edges().iter().zip(&arcs_p) {
-        for (eq, aq) in q.edges().iter().zip(&arcs_q) {
+    for (ep, ap) in p.edges().iter().zip(&sp.arcs) {
+        for (eq, aq) in q.edges().iter().zip(&sq.arcs) {
             let Some(n) = crossing(ap, aq) else { continue };
-            let pts = vec![
-                p.vertices()[ep.ends[0] as usize].add(&q.vertices()[eq.ends[0] as usize]),
-                p.vertices()[ep.ends[0] as usize].add(&q.vertices()[eq.ends[1] as usize]),
-                p.vertices()[ep.ends[1] as usize].add(&q.vertices()[eq.ends[0] as usize]),
-                p.vertices()[ep.ends[1] as usize].add(&q.vertices()[eq.ends[1] as usize]),
+            let [p0, p1] = ep.ends;
+            let [q0, q1] = eq.ends;
+            // Counter-clockwise around n: (p0+q0, p1+q0, p1+q1, p0+q1) when
+            // det(n, p1 - p0, q1 - q0) > 0, the reverse otherwise.
+            let dp = p.vertices()[p1 as usize].sub(&p.vertices()[p0 as usize]);
+            let dq = q.vertices()[q1 as usize].sub(&q.vertices()[q0 as usize]);
+            let mut cycle = vec![
+                vertex(p0, q0, &mut points),
+                vertex(p1, q0, &mut points),
+                vertex(p1, q1, &mut points),
+                vertex(p0, q1, &mut points),
             ];
-            add_facet(&n, pts, &mut points)?;
+            if apart_kernel::predicates::det3_sign(&n, &dp, &dq) == Sign::Negative {
+                cycle.reverse();
+            }
+            facets.push((n, cycle));
         }
     }
     Polytope::from_facets(&points, facets)
@@ -84,6 +129,7 @@ pub fn minkowski_sum(p: &Polytope, q: &Polytope) -> Result<Polytope, PolytopeErr
 
 /// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal
 /// `c = m0 × m1` of the great circle through them (parallel to the edge).
+#[derive(Clone, Debug)]
 struct GaussArc {
     m0: Vec3,
     m1: Vec3,

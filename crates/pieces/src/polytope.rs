@@ -4,7 +4,7 @@ use crate::hull2d::hull_in_plane;
 use apart_kernel::int::{self, Int};
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::fmt;
 
 /// A facet: the plane `normal · x = offset` (outward, primitive normal) and its vertices.
@@ -34,8 +34,9 @@ pub struct Polytope {
     vertices: Vec<Vec3>,
     facets: Vec<Facet>,
     edges: Vec<Edge>,
-    /// Distinct edge directions, primitive, one of each `±d` pair.
-    edge_dirs: Vec<Vec3>,
+    /// Distinct edge directions, primitive, one of each `±d` pair (computed on demand:
+    /// Minkowski sums never need theirs).
+    edge_dirs: std::sync::OnceLock<Vec<Vec3>>,
 }
 
 /// Why a set of triangles or points is not a convex polytope.
@@ -97,7 +98,7 @@ impl Polytope {
         points: &[Vec3],
         triangles: &[[u32; 3]],
     ) -> Result<Polytope, PolytopeError> {
-        let mut planes: HashMap<Vec3, (Int, Vec<usize>)> = HashMap::new();
+        let mut planes: HashMap<Vec3, (Int, Vec<usize>)> = HashMap::default();
         let mut order: Vec<Vec3> = Vec::new();
         for (t, tri) in triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|i| &points[i as usize]);
@@ -173,7 +174,7 @@ impl Polytope {
         pts.dedup();
         let n = pts.len();
         // Outward facet planes found so far, keyed by (normal, offset).
-        let mut planes: std::collections::HashSet<(Vec3, Int)> = std::collections::HashSet::new();
+        let mut planes: rustc_hash::FxHashSet<(Vec3, Int)> = rustc_hash::FxHashSet::default();
         let mut order = Vec::new();
         for i in 0..n {
             for j in i + 1..n {
@@ -249,7 +250,7 @@ impl Polytope {
         points: &[Vec3],
         facets: Vec<(Vec3, Int, Vec<u32>)>,
     ) -> Result<Polytope, PolytopeError> {
-        let mut remap: HashMap<u32, u32> = HashMap::new();
+        let mut remap: Vec<u32> = vec![u32::MAX; points.len()];
         let mut vertices = Vec::new();
         let facets: Vec<Facet> = facets
             .into_iter()
@@ -257,10 +258,12 @@ impl Polytope {
                 let cycle = cycle
                     .into_iter()
                     .map(|v| {
-                        *remap.entry(v).or_insert_with(|| {
+                        let slot = &mut remap[v as usize];
+                        if *slot == u32::MAX {
                             vertices.push(points[v as usize].clone());
-                            (vertices.len() - 1) as u32
-                        })
+                            *slot = (vertices.len() - 1) as u32;
+                        }
+                        *slot
                     })
                     .collect();
                 Facet {
@@ -270,46 +273,40 @@ impl Polytope {
                 }
             })
             .collect();
-        let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+        // Directed edges (u, v, facet) sorted by undirected key: each undirected edge must
+        // appear exactly twice, once each way.
+        let mut directed: Vec<(u32, u32, u32)> =
+            Vec::with_capacity(facets.iter().map(|f| f.cycle.len()).sum());
         for (f, facet) in facets.iter().enumerate() {
             let c = &facet.cycle;
             for i in 0..c.len() {
-                let e = (c[i], c[(i + 1) % c.len()]);
-                if directed.insert(e, f as u32).is_some() {
-                    return Err(PolytopeError::NotClosed);
-                }
+                directed.push((c[i], c[(i + 1) % c.len()], f as u32));
             }
         }
-        let mut edges = Vec::with_capacity(directed.len() / 2);
-        for (&(u, v), &f) in &directed {
-            let g = *directed.get(&(v, u)).ok_or(PolytopeError::NotClosed)?;
-            if u < v {
-                edges.push(Edge {
-                    ends: [u, v],
-                    facets: [f, g],
-                });
-            }
-        }
-        edges.sort_by_key(|e| e.ends);
-        if vertices.len() + facets.len() != edges.len() + 2 || facets.len() < 4 {
+        directed.sort_unstable_by_key(|&(u, v, _)| (u.min(v), u.max(v), u));
+        if directed.len() % 2 != 0 {
             return Err(PolytopeError::NotClosed);
         }
-        let mut edge_dirs: Vec<Vec3> = Vec::new();
-        let mut seen = std::collections::HashSet::new();
-        for e in &edges {
-            let d = vertices[e.ends[1] as usize]
-                .sub(&vertices[e.ends[0] as usize])
-                .primitive();
-            let d = canonical_sign(d);
-            if seen.insert(d.clone()) {
-                edge_dirs.push(d);
+        let mut edges = Vec::with_capacity(directed.len() / 2);
+        for w in directed.chunks(2) {
+            let ((u0, v0, f0), (u1, v1, f1)) = (w[0], w[1]);
+            if u0 != v1 || v0 != u1 || u0 == v0 {
+                return Err(PolytopeError::NotClosed);
             }
+            // u0 < v0 by the sort key: facet f0 runs u0 -> v0.
+            edges.push(Edge {
+                ends: [u0, v0],
+                facets: [f0, f1],
+            });
+        }
+        if vertices.len() + facets.len() != edges.len() + 2 || facets.len() < 4 {
+            return Err(PolytopeError::NotClosed);
         }
         Ok(Polytope {
             vertices,
             facets,
             edges,
-            edge_dirs,
+            edge_dirs: std::sync::OnceLock::new(),
         })
     }
 
@@ -330,7 +327,20 @@ impl Polytope {
 
     /// The distinct edge directions, primitive, one per `±d` pair.
     pub fn edge_directions(&self) -> &[Vec3] {
-        &self.edge_dirs
+        self.edge_dirs.get_or_init(|| {
+            let mut dirs: Vec<Vec3> = Vec::new();
+            let mut seen = rustc_hash::FxHashSet::default();
+            for e in &self.edges {
+                let d = self.vertices[e.ends[1] as usize]
+                    .sub(&self.vertices[e.ends[0] as usize])
+                    .primitive();
+                let d = canonical_sign(d);
+                if seen.insert(d.clone()) {
+                    dirs.push(d);
+                }
+            }
+            dirs
+        })
     }
 
     /// The support value `max n · v` and the vertices attaining it.

@@ -147,3 +147,43 @@ mod tests {
         assert!(b[1][1] >= 1.0);
     }
 }
+
+/// True when two closed minor arcs share at least one point. Exact.
+pub fn arcs_intersect(a: &Arc, b: &Arc) -> bool {
+    use apart_kernel::spherical::circle_intersection;
+    match circle_intersection(&a.normal, &b.normal) {
+        None => {
+            // One circle: the arcs meet iff an end point of one lies on the other.
+            [&b.start, &b.end]
+                .iter()
+                .any(|p| a.locate(p) != Some(ArcPosition::Outside))
+                || [&a.start, &a.end]
+                    .iter()
+                    .any(|p| b.locate(p) != Some(ArcPosition::Outside))
+        }
+        Some(p) => [p.clone(), p.neg()].iter().any(|q| {
+            arc_position(&a.normal, &a.start, &a.end, q) != ArcPosition::Outside
+                && arc_position(&b.normal, &b.start, &b.end, q) != ArcPosition::Outside
+        }),
+    }
+}
+
+#[cfg(test)]
+mod intersect_tests {
+    use super::*;
+
+    #[test]
+    fn crossing_touching_disjoint() {
+        let eq = Arc::between(&Vec3::new(1, -1, 0), &Vec3::new(1, 1, 0)).unwrap();
+        let mer = Arc::between(&Vec3::new(1, 0, -1), &Vec3::new(1, 0, 1)).unwrap();
+        assert!(arcs_intersect(&eq, &mer));
+        let far = Arc::between(&Vec3::new(-1, 0, -1), &Vec3::new(-1, 0, 1)).unwrap();
+        assert!(!arcs_intersect(&eq, &far));
+        let touching = Arc::between(&Vec3::new(1, 1, 0), &Vec3::new(0, 1, 1)).unwrap();
+        assert!(arcs_intersect(&eq, &touching));
+        let overlap = Arc::between(&Vec3::new(2, 1, 0), &Vec3::new(0, 1, 0)).unwrap();
+        assert!(arcs_intersect(&eq, &overlap));
+        let beyond = Arc::between(&Vec3::new(1, 2, 0), &Vec3::new(0, 1, 0)).unwrap();
+        assert!(!arcs_intersect(&eq, &beyond));
+    }
+}

@@ -21,7 +21,7 @@ use crate::arc::{point_bbox, Arc};
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, circle_intersection, ArcPosition};
 use apart_kernel::{Sign, Vec3};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Data attached to an input arc and merged onto the edges it covers.
 pub trait ArcLabel: Clone {
@@ -262,7 +262,7 @@ impl<L: ArcLabel, P: Clone> Arrangement<L, P> {
                     .filter(|&h| !self.edges[(h / 2) as usize].structural),
             );
         }
-        let mut seen: std::collections::HashSet<u32> = std::collections::HashSet::new();
+        let mut seen: rustc_hash::FxHashSet<u32> = rustc_hash::FxHashSet::default();
         let mut loops = Vec::new();
         for &h0 in &hs {
             if !seen.insert(h0) {
@@ -324,7 +324,7 @@ fn build_once<L: ArcLabel, P: Clone>(
     stats: &mut BuildStats,
 ) -> Arrangement<L, P> {
     // 1. Canonical circles and orientations.
-    let mut circle_ids: HashMap<Vec3, u32> = HashMap::new();
+    let mut circle_ids: HashMap<Vec3, u32> = HashMap::default();
     let mut circles: Vec<Vec3> = Vec::new();
     let canon: Vec<Canon<L>> = arcs
         .iter()
@@ -359,6 +359,9 @@ fn build_once<L: ArcLabel, P: Clone>(
         .iter()
         .map(|c| [table.get_or_insert(&c.start), table.get_or_insert(&c.end)])
         .collect();
+    let endpoint_count = table.vertices.len();
+    // Points that are not arc end points must be located on arcs; the others are found
+    // by the arc-arc tests (an end point inside another arc is a crossing of the two).
     let point_ids: Vec<u32> = points
         .iter()
         .map(|ip| {
@@ -383,7 +386,7 @@ fn build_once<L: ArcLabel, P: Clone>(
             .bbox()
         })
         .collect();
-    let mut crossings: HashMap<(u32, u32), Option<Vec3>> = HashMap::new();
+    let mut crossings: HashMap<(u32, u32), Option<Vec3>> = HashMap::default();
     let pairs = candidate_pairs(&boxes);
     stats.candidate_pairs += pairs.len();
     for (i, j) in pairs {
@@ -400,13 +403,26 @@ fn build_once<L: ArcLabel, P: Clone>(
             }
             continue;
         }
+        // An arc meets another circle only if its end points are not strictly on one
+        // side of it (two cheap dot products before any construction).
+        let apart = |n: &Vec3, x: &Canon<L>| {
+            let s = dot_sign(n, &x.start);
+            s != Sign::Zero && s == dot_sign(n, &x.end)
+        };
+        if apart(nb, a) || apart(na, b) {
+            continue;
+        }
         let key = (a.circle.min(b.circle), a.circle.max(b.circle));
         let p = crossings
             .entry(key)
             .or_insert_with(|| circle_intersection(na, nb))
             .clone();
         let Some(p) = p else { continue };
-        for q in [p.clone(), p.neg()] {
+        // At most one of ±p lies on the minor arc a; find it from two determinants.
+        let Some(q) = point_on_arc(na, &a.start, &a.end, &p) else {
+            continue;
+        };
+        {
             let pa = arc_position(na, &a.start, &a.end, &q);
             if pa == ArcPosition::Outside {
                 continue;
@@ -424,12 +440,20 @@ fn build_once<L: ArcLabel, P: Clone>(
             }
         }
     }
-    // Input points lying inside arcs.
-    if !points.is_empty() {
-        let pboxes: Vec<[[f64; 2]; 3]> = points.iter().map(|ip| point_bbox(&ip.point)).collect();
+    // Input points (other than arc end points) lying inside arcs.
+    let lone: Vec<u32> = point_ids
+        .iter()
+        .copied()
+        .filter(|&id| id as usize >= endpoint_count)
+        .collect();
+    if !lone.is_empty() {
+        let pboxes: Vec<[[f64; 2]; 3]> = lone
+            .iter()
+            .map(|&id| point_bbox(&table.vertices[id as usize].point))
+            .collect();
         for (i, k) in candidate_pairs_between(&boxes, &pboxes) {
             let c = &canon[i];
-            let id = point_ids[k];
+            let id = lone[k];
             let p = &table.vertices[id as usize].point;
             let n = &circles[c.circle as usize];
             if dot_sign(n, p) == Sign::Zero
@@ -442,7 +466,7 @@ fn build_once<L: ArcLabel, P: Clone>(
 
     // 4. Cut arcs into edges, merging identical pieces.
     let mut vertices = table.vertices;
-    let mut edge_ids: HashMap<(u32, u32, u32), u32> = HashMap::new();
+    let mut edge_ids: HashMap<(u32, u32, u32), u32> = HashMap::default();
     let mut edges: Vec<Edge<L>> = Vec::new();
     for (i, c) in canon.iter().enumerate() {
         let n = &circles[c.circle as usize];
@@ -546,7 +570,7 @@ fn build_once<L: ArcLabel, P: Clone>(
             uf.union(cycle_of[2 * e] as usize, cycle_of[2 * e + 1] as usize);
         }
     }
-    let mut face_ids: HashMap<usize, u32> = HashMap::new();
+    let mut face_ids: HashMap<usize, u32> = HashMap::default();
     let mut faces: Vec<Vec<u32>> = Vec::new();
     let mut face_of_cycle = vec![0u32; cycles.len()];
     for (c, slot) in face_of_cycle.iter_mut().enumerate() {
@@ -573,6 +597,25 @@ fn build_once<L: ArcLabel, P: Clone>(
     }
 }
 
+/// The one of `p`, `-p` that can lie on the minor arc `s -> e` of circle `n`, if any:
+/// `p` needs `det(n, s, p) >= 0` and `det(n, p, e) >= 0`, and `-p` the reverse.
+fn point_on_arc(n: &Vec3, s: &Vec3, e: &Vec3, p: &Vec3) -> Option<Vec3> {
+    let d1 = det3_sign(n, s, p);
+    let d2 = det3_sign(n, p, e);
+    match (d1, d2) {
+        (Sign::Negative, Sign::Negative) => Some(p.neg()),
+        (Sign::Negative, _) | (_, Sign::Negative) => {
+            // Mixed signs: p is outside; -p is outside too unless the zero is an end point.
+            if d1 == Sign::Zero || d2 == Sign::Zero {
+                Some(p.neg())
+            } else {
+                None
+            }
+        }
+        _ => Some(p.clone()),
+    }
+}
+
 /// Vertices keyed by their primitive point.
 struct VertexTable<P> {
     ids: HashMap<Vec3, u32>,
@@ -582,7 +625,7 @@ struct VertexTable<P> {
 impl<P> Default for VertexTable<P> {
     fn default() -> Self {
         VertexTable {
-            ids: HashMap::new(),
+            ids: HashMap::default(),
             vertices: Vec::new(),
         }
     }
@@ -735,7 +778,7 @@ fn connecting_arcs<L, P>(arr: &Arrangement<L, P>) -> Vec<Arc> {
     for e in &arr.edges {
         uf.union(e.from as usize, e.to as usize);
     }
-    let mut comp_ids: HashMap<usize, usize> = HashMap::new();
+    let mut comp_ids: HashMap<usize, usize> = HashMap::default();
     let mut comps: Vec<Vec<usize>> = Vec::new();
     for v in 0..n {
         let root = uf.find(v);
@@ -770,8 +813,22 @@ fn connecting_arcs<L, P>(arr: &Arrangement<L, P>) -> Vec<Arc> {
                 break; // enough candidates for a huge input; any join is correct
             }
         }
-        let (_, a, b) = best.expect("two components whose vertices are all antipodal");
-        out.push(Arc::between(&arr.vertices[a].point, &arr.vertices[b].point).unwrap());
+        match best {
+            Some((_, a, b)) => {
+                out.push(Arc::between(&arr.vertices[a].point, &arr.vertices[b].point).unwrap())
+            }
+            None => {
+                // Every candidate pair is antipodal (e.g. two isolated opposite points):
+                // join through a point perpendicular to both.
+                let (pa, pb) = (
+                    &arr.vertices[comp[0]].point,
+                    &arr.vertices[connected[0]].point,
+                );
+                let m = crate::polygon::perpendicular(pa);
+                out.push(Arc::between(pa, &m).unwrap());
+                out.push(Arc::between(&m, pb).unwrap());
+            }
+        }
         connected.extend(comp.iter().copied());
     }
     out

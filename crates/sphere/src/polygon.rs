@@ -168,8 +168,8 @@ pub fn perpendicular(q: &Vec3) -> Vec3 {
 
 /// Merges arcs lying on the same circle (same inward normal) that chain end to start.
 fn merge_cocircular(arcs: Vec<Arc>) -> Result<Vec<Arc>, PolygonError> {
-    use std::collections::HashMap;
-    let mut by_circle: HashMap<Vec3, Vec<Arc>> = HashMap::new();
+    use rustc_hash::FxHashMap as HashMap;
+    let mut by_circle: HashMap<Vec3, Vec<Arc>> = HashMap::default();
     let mut order = Vec::new();
     for a in arcs {
         let key = a.normal.clone();
@@ -186,7 +186,7 @@ fn merge_cocircular(arcs: Vec<Arc>) -> Result<Vec<Arc>, PolygonError> {
             continue;
         }
         // Chain the group: start at the arc whose start is no other arc's end.
-        let ends: std::collections::HashSet<&Vec3> = group.iter().map(|a| &a.end).collect();
+        let ends: rustc_hash::FxHashSet<&Vec3> = group.iter().map(|a| &a.end).collect();
         let first = group
             .iter()
             .position(|a| !ends.contains(&a.start))
@@ -223,7 +223,7 @@ fn merge_cocircular(arcs: Vec<Arc>) -> Result<Vec<Arc>, PolygonError> {
 
 /// Orders arcs into one closed cycle (end of each = start of the next).
 fn chain(arcs: Vec<Arc>) -> Result<Vec<Arc>, PolygonError> {
-    use std::collections::HashMap;
+    use rustc_hash::FxHashMap as HashMap;
     let starts: HashMap<&Vec3, usize> = arcs
         .iter()
         .enumerate()

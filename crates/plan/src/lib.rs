@@ -1,0 +1,80 @@
+//! Assembly planning with infinite translations.
+//!
+//! [`regions::BlockingRegions`] computes, once per assembly, the blocked region of every
+//! pair of parts (exact Minkowski sums of their convex pieces, projected onto the sphere
+//! and united). [`motion_space::MotionSpace`] overlays the regions of any subset of parts
+//! into an arrangement whose every vertex, edge and face carries its directional
+//! blocking graph ([`dbg::Dbg`]); [`partition::partition`] reads off every direction and
+//! minimal subset that separates the assembly.
+//!
+//! ```
+//! use apart_kernel::Vec3;
+//! use apart_pieces::Polytope;
+//! use apart_plan::{partition, Options, PartPieces, CellKind};
+//! // Two unit cubes, one on top of the other.
+//! let cube = |z: i64| {
+//!     let pts: Vec<Vec3> = (0..8).map(|i| Vec3::new(i & 1, i >> 1 & 1, z + (i >> 2))).collect();
+//!     PartPieces { name: format!("cube{z}"), pieces: vec![Polytope::hull_of_points(&pts).unwrap()] }
+//! };
+//! let result = partition(&[cube(0), cube(1)], &Options::default()).unwrap();
+//! assert!(!result.interlocked);
+//! // The top cube leaves through the open upper hemisphere (a face) ...
+//! let up = result.solutions.iter().find(|s| s.cell == CellKind::Face && s.moving == vec![1]).unwrap();
+//! assert!(up.unit[2] > 0.0);
+//! // ... and slides off along the equator (edges).
+//! assert!(result.solutions.iter().any(|s| s.cell == CellKind::Edge && s.moving == vec![1]));
+//! ```
+
+pub mod clearance;
+pub mod dbg;
+pub mod motion_space;
+pub mod partition;
+pub mod regions;
+
+pub use dbg::Dbg;
+pub use motion_space::{CellKind, MotionSpace};
+pub use partition::{dbg_at, partition, partition_subset, Options, Partitioning, Solution, Stats};
+pub use regions::{BlockingRegions, PartPieces};
+
+/// Why planning could not run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PlanError {
+    /// A part has no convex pieces (a non-convex part without declared pieces).
+    NoPieces {
+        /// Part index.
+        part: usize,
+        /// Part name.
+        name: String,
+    },
+    /// Two parts' interiors overlap (pieces `pieces.0` of the first and `pieces.1` of the
+    /// second).
+    Overlap {
+        /// Part indices.
+        parts: (usize, usize),
+        /// Part names.
+        names: (String, String),
+        /// Piece indices.
+        pieces: (usize, usize),
+    },
+    /// An internal inconsistency (a bug): reported, never hidden.
+    Internal(String),
+}
+
+impl std::fmt::Display for PlanError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PlanError::NoPieces { name, .. } => write!(
+                f,
+                "part \"{name}\" is not convex and declares no convex pieces; declare its pieces (a sub-folder or \"pieces\" in assembly.json)"
+            ),
+            PlanError::Overlap { names, pieces, .. } => write!(
+                f,
+                "parts \"{}\" and \"{}\" overlap (piece {} of the first and piece {} of the second share interior points)",
+                names.0, names.1, pieces.0, pieces.1
+            ),
+            PlanError::Internal(m) => write!(f, "internal error: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for PlanError {}

@@ -1,0 +1,310 @@
+//! Blocked regions of pairs of parts, computed once and shared by every planner.
+//!
+//! For parts `i < j`, `Q_ij` is the open set of directions along which `i`, moving, hits
+//! the interior of `j`: the union of the open central projections of
+//! `b ⊕ (−a)` over pieces `a` of `i` and `b` of `j`. `Q_ji = −Q_ij`. Each union is
+//! simplified to the arcs and points where the blocked status changes before any
+//! overlay of several pairs.
+
+use crate::PlanError;
+use apart_kernel::Vec3;
+use apart_minkowski::{project, sum_prepared, Projection, Summand};
+use apart_pieces::Polytope;
+use apart_sphere::overlay::{cell_statuses, PointStatus, SideLabel};
+use apart_sphere::region::{simplify_union, RegionMap, Sides};
+use apart_sphere::{Arrangement, BitSet, InputArc, InputPoint, SphericalPolygon};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// A part as the planners see it: a name and convex pieces whose union is the part.
+#[derive(Clone, Debug)]
+pub struct PartPieces {
+    /// Part name.
+    pub name: String,
+    /// Convex pieces with pairwise disjoint interiors.
+    pub pieces: Vec<Polytope>,
+}
+
+/// The blocked region of one unordered pair of parts.
+#[derive(Clone, Debug)]
+pub struct PairRegion {
+    /// The moving part (smaller index).
+    pub i: usize,
+    /// The fixed part.
+    pub j: usize,
+    /// One open polygon per piece pair: `i` moving along `d` hits `j` iff `d` lies in
+    /// the interior of at least one.
+    pub polygons: Vec<SphericalPolygon>,
+    /// Their union, simplified.
+    pub region: RegionMap,
+}
+
+impl PairRegion {
+    /// Exactly: does `i` moving along `d` hit `j`?
+    pub fn blocks(&self, d: &Vec3) -> bool {
+        self.polygons.iter().any(|p| p.contains_open(d))
+    }
+
+    /// Exactly: does `i` moving along `x + εy` hit `j`, for every small enough `ε > 0`?
+    pub fn blocks_perturbed(&self, x: &Vec3, y: &Vec3) -> bool {
+        self.polygons
+            .iter()
+            .any(|p| p.contains_open_perturbed(x, y))
+    }
+}
+
+/// Timings and sizes of the region computation.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RegionStats {
+    /// Convex pieces in the assembly.
+    pub pieces: usize,
+    /// Minkowski sums computed (one per piece pair of different parts).
+    pub sums: usize,
+    /// Arcs in the simplified pair regions.
+    pub region_arcs: usize,
+    /// Seconds spent on Minkowski sums.
+    pub sums_seconds: f64,
+    /// Seconds spent on central projections.
+    pub projection_seconds: f64,
+    /// Seconds spent on per-pair unions.
+    pub unions_seconds: f64,
+}
+
+/// The blocked regions of every pair of parts.
+#[derive(Clone, Debug)]
+pub struct BlockingRegions {
+    names: Vec<String>,
+    pairs: Vec<PairRegion>,
+    index: Vec<usize>,
+    /// Timings and sizes.
+    pub stats: RegionStats,
+}
+
+impl BlockingRegions {
+    /// Computes the regions of all pairs (Minkowski sums, projections and unions run in
+    /// parallel over piece pairs and pairs of parts).
+    pub fn compute(parts: &[PartPieces]) -> Result<BlockingRegions, PlanError> {
+        let n = parts.len();
+        for (k, p) in parts.iter().enumerate() {
+            if p.pieces.is_empty() {
+                return Err(PlanError::NoPieces {
+                    part: k,
+                    name: p.name.clone(),
+                });
+            }
+        }
+        let pairs: Vec<(usize, usize)> = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .collect();
+        let jobs: Vec<(usize, usize, usize, usize)> = pairs
+            .iter()
+            .flat_map(|&(i, j)| {
+                (0..parts[i].pieces.len())
+                    .flat_map(move |a| (0..parts[j].pieces.len()).map(move |b| (i, j, a, b)))
+            })
+            .collect();
+        let mut stats = RegionStats {
+            pieces: parts.iter().map(|p| p.pieces.len()).sum(),
+            sums: jobs.len(),
+            ..Default::default()
+        };
+
+        let t = Instant::now();
+        // Every piece b and reflected piece −a prepared once (Gaussian arcs).
+        let fixed: Vec<Vec<Summand>> = parts
+            .par_iter()
+            .map(|p| p.pieces.iter().map(|b| Summand::new(b.clone())).collect())
+            .collect();
+        let reflected: Vec<Vec<Summand>> = parts
+            .par_iter()
+            .map(|p| {
+                p.pieces
+                    .iter()
+                    .map(|a| Summand::new(a.reflected()))
+                    .collect()
+            })
+            .collect();
+        let sums: Vec<Polytope> = jobs
+            .par_iter()
+            .map(|&(i, j, a, b)| {
+                sum_prepared(&fixed[j][b], &reflected[i][a]).map_err(|e| {
+                    PlanError::Internal(format!(
+                        "Minkowski sum of {} and {}: {e}",
+                        parts[i].name, parts[j].name
+                    ))
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        stats.sums_seconds = t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let polys: Vec<SphericalPolygon> = sums
+            .par_iter()
+            .zip(&jobs)
+            .map(|(m, &(i, j, a, b))| match project(m) {
+                Ok(Projection::Polygon(p)) => Ok(p),
+                Ok(Projection::Everything) => Err(PlanError::Overlap {
+                    parts: (i, j),
+                    names: (parts[i].name.clone(), parts[j].name.clone()),
+                    pieces: (a, b),
+                }),
+                Err(e) => Err(PlanError::Internal(format!(
+                    "projection for {} and {}: {e}",
+                    parts[i].name, parts[j].name
+                ))),
+            })
+            .collect::<Result<_, _>>()?;
+        drop(sums);
+        stats.projection_seconds = t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let mut grouped: Vec<Vec<SphericalPolygon>> = vec![Vec::new(); pairs.len()];
+        let mut pair_index = vec![usize::MAX; n * n];
+        for (k, &(i, j)) in pairs.iter().enumerate() {
+            pair_index[i * n + j] = k;
+        }
+        for (p, &(i, j, _, _)) in polys.into_iter().zip(&jobs) {
+            grouped[pair_index[i * n + j]].push(p);
+        }
+        let regions: Vec<PairRegion> = pairs
+            .par_iter()
+            .zip(grouped)
+            .map(|(&(i, j), polygons)| {
+                let region = union_of(&polygons);
+                PairRegion {
+                    i,
+                    j,
+                    polygons,
+                    region,
+                }
+            })
+            .collect();
+        stats.unions_seconds = t.elapsed().as_secs_f64();
+        stats.region_arcs = regions.iter().map(|r| r.region.arcs.len()).sum();
+        let mut index = vec![usize::MAX; n * n];
+        for (k, r) in regions.iter().enumerate() {
+            index[r.i * n + r.j] = k;
+        }
+        Ok(BlockingRegions {
+            names: parts.iter().map(|p| p.name.clone()).collect(),
+            pairs: regions,
+            index,
+            stats,
+        })
+    }
+
+    /// Number of parts.
+    pub fn part_count(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Part names.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// All pair regions.
+    pub fn pairs(&self) -> &[PairRegion] {
+        &self.pairs
+    }
+
+    /// The region of the unordered pair `{i, j}` (stored as `Q_min,max`).
+    pub fn pair(&self, i: usize, j: usize) -> &PairRegion {
+        let (a, b) = (i.min(j), i.max(j));
+        &self.pairs[self.index[a * self.names.len() + b]]
+    }
+
+    /// Exactly: does part `i` moving along `d` hit part `j`?
+    pub fn blocks(&self, i: usize, j: usize, d: &Vec3) -> bool {
+        let r = self.pair(i, j);
+        if i < j {
+            r.blocks(d)
+        } else {
+            r.blocks(&d.neg())
+        }
+    }
+}
+
+/// True when the open polygon `p` lies inside the open polygon `q` (then `p` adds
+/// nothing to a union containing `q`). A pointed polygon or lune is the conic hull of its
+/// corners, so it suffices that every corner lies in the closed `q`; a hemisphere lies in
+/// another only when they are equal.
+fn contained_in(p: &SphericalPolygon, q: &SphericalPolygon) -> bool {
+    if p.normals().len() == 1 {
+        return q.normals().len() == 1 && q.normals()[0] == p.normals()[0];
+    }
+    p.corners().all(|c| q.contains_closed(c))
+}
+
+/// Drops polygons contained in another (keeping one of several equal ones).
+fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
+    let mut keep: Vec<&SphericalPolygon> = Vec::with_capacity(polygons.len());
+    // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
+    let mut order: Vec<usize> = (0..polygons.len()).collect();
+    order.sort_by_key(|&k| polygons[k].normals().len());
+    for k in order {
+        let p = &polygons[k];
+        if !keep.iter().any(|q| contained_in(p, q)) {
+            keep.retain(|q| !contained_in(q, p));
+            keep.push(p);
+        }
+    }
+    keep
+}
+
+/// The simplified union of open convex polygons.
+pub fn union_of(polygons: &[SphericalPolygon]) -> RegionMap {
+    let pruned = prune_contained(polygons);
+    let polygons: Vec<SphericalPolygon> = pruned.into_iter().cloned().collect();
+    if polygons.len() == 1 {
+        let p = &polygons[0];
+        return RegionMap {
+            arcs: p
+                .boundary()
+                .iter()
+                .map(|a| {
+                    (
+                        a.clone(),
+                        Sides {
+                            pos: true,
+                            on: false,
+                            neg: false,
+                        },
+                    )
+                })
+                .collect(),
+            points: p.corners().map(|c| (c.clone(), false)).collect(),
+        };
+    }
+    let mut arcs = Vec::new();
+    let mut points = Vec::new();
+    for (k, p) in polygons.iter().enumerate() {
+        let map = k as u32;
+        for a in p.boundary() {
+            arcs.push(InputArc {
+                arc: a.clone(),
+                label: Some(SideLabel {
+                    map,
+                    pos: true,
+                    on: false,
+                    neg: false,
+                }),
+            });
+        }
+        for c in p.corners() {
+            points.push(InputPoint {
+                point: c.clone(),
+                label: PointStatus { map, on: false },
+            });
+        }
+    }
+    let (arr, _) = Arrangement::build(arcs, points);
+    let st = cell_statuses(&arr, polygons.len(), |x, y| {
+        let mut s = BitSet::new(polygons.len());
+        for (k, p) in polygons.iter().enumerate() {
+            s.set(k, p.contains_open_perturbed(x, y));
+        }
+        s
+    });
+    simplify_union(&arr, &st)
+}

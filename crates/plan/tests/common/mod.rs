@@ -1,0 +1,145 @@
+//! Assemblies built in code for the planner tests (independent of the loaders).
+
+#![allow(dead_code)]
+
+use apart_kernel::Vec3;
+use apart_pieces::Polytope;
+use apart_plan::PartPieces;
+
+/// A convex piece: the hull of integer points.
+pub fn hull(pts: &[[i64; 3]]) -> Polytope {
+    let v: Vec<Vec3> = pts.iter().map(|&p| Vec3::from(p)).collect();
+    Polytope::hull_of_points(&v).unwrap()
+}
+
+/// An axis-aligned box [lo, hi].
+pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+    let mut pts = Vec::new();
+    for i in 0..8 {
+        pts.push([
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]);
+    }
+    hull(&pts)
+}
+
+pub fn part(name: &str, pieces: Vec<Polytope>) -> PartPieces {
+    PartPieces {
+        name: name.to_string(),
+        pieces,
+    }
+}
+
+/// The Split Star (Coffin), decomposed into two square pyramids and an octahedron per
+/// part, in the frame of the issue: red has vertices (±2,0,0) (±2,0,2) (±1,±1,1)
+/// (0,0,0) (0,0,2); green = red with z -> -z; blue = red under (x,y,z) -> (z,x,y);
+/// purple = blue with x -> -x; yellow = red under (x,y,z) -> (y,z,x); turquoise = yellow
+/// with y -> -y.
+pub fn split_star() -> Vec<PartPieces> {
+    let red: Vec<Vec<[i64; 3]>> = vec![
+        vec![[-1, -1, 1], [-2, 0, 2], [-2, 0, 0], [-1, 1, 1], [0, 0, 2]],
+        vec![[1, -1, 1], [2, 0, 0], [2, 0, 2], [1, 1, 1], [0, 0, 2]],
+        vec![
+            [-1, -1, 1],
+            [0, 0, 0],
+            [1, -1, 1],
+            [-1, 1, 1],
+            [1, 1, 1],
+            [0, 0, 2],
+        ],
+    ];
+    let map = |f: &dyn Fn([i64; 3]) -> [i64; 3]| -> Vec<Polytope> {
+        red.iter()
+            .map(|pc| hull(&pc.iter().map(|&p| f(p)).collect::<Vec<_>>()))
+            .collect()
+    };
+    let blue = |p: [i64; 3]| [p[2], p[0], p[1]];
+    let yellow = |p: [i64; 3]| [p[1], p[2], p[0]];
+    vec![
+        part("red", map(&|p| p)),
+        part("green", map(&|p| [p[0], p[1], -p[2]])),
+        part("blue", map(&blue)),
+        part(
+            "purple",
+            map(&|p| {
+                let q = blue(p);
+                [-q[0], q[1], q[2]]
+            }),
+        ),
+        part("yellow", map(&yellow)),
+        part(
+            "turquoise",
+            map(&|p| {
+                let q = yellow(p);
+                [q[0], -q[1], q[2]]
+            }),
+        ),
+    ]
+}
+
+/// Two unit cubes, `bottom` under `top`.
+pub fn stacked_cubes() -> Vec<PartPieces> {
+    vec![
+        part("bottom", vec![cuboid([0, 0, 0], [1, 1, 1])]),
+        part("top", vec![cuboid([0, 0, 1], [1, 1, 2])]),
+    ]
+}
+
+/// Four unit cubes in a row along x, each touching the next (paper 003, fig. 2).
+pub fn cubes_in_a_row(n: i64) -> Vec<PartPieces> {
+    (0..n)
+        .map(|i| part(&format!("c{i}"), vec![cuboid([i, 0, 0], [i + 1, 1, 1])]))
+        .collect()
+}
+
+/// A dovetail: a slot part (base, two overhanging sides, an end wall at x = -1..0) and a
+/// trapezoidal tenon, wider at the bottom, sliding along x out of the open end x = 10.
+pub fn dovetail() -> Vec<PartPieces> {
+    let prism = |yz: &[[i64; 2]], x0: i64, x1: i64| -> Polytope {
+        let pts: Vec<[i64; 3]> = yz
+            .iter()
+            .flat_map(|&[y, z]| [[x0, y, z], [x1, y, z]])
+            .collect();
+        hull(&pts)
+    };
+    let slot = vec![
+        cuboid([0, -4, 0], [10, 4, 1]),
+        prism(&[[-4, 1], [-3, 1], [-2, 3], [-4, 3]], 0, 10),
+        prism(&[[4, 1], [3, 1], [2, 3], [4, 3]], 0, 10),
+        cuboid([-1, -4, 0], [0, 4, 3]),
+    ];
+    let tenon = vec![prism(&[[-3, 1], [3, 1], [2, 3], [-2, 3]], 0, 10)];
+    vec![part("slot", slot), part("tenon", tenon)]
+}
+
+/// A peg in a blind hole whose floor and four walls are separate pieces.
+pub fn peg_in_hole() -> Vec<PartPieces> {
+    let block = vec![
+        cuboid([-3, -3, 0], [3, 3, 1]),  // floor
+        cuboid([-3, -3, 1], [-1, 3, 4]), // wall x-
+        cuboid([1, -3, 1], [3, 3, 4]),   // wall x+
+        cuboid([-1, -3, 1], [1, -1, 4]), // wall y-
+        cuboid([-1, 1, 1], [1, 3, 4]),   // wall y+
+    ];
+    let peg = vec![cuboid([-1, -1, 1], [1, 1, 6])];
+    vec![part("block", block), part("peg", peg)]
+}
+
+/// Two square rings of four bars each, linked like chain links.
+pub fn linked_rings() -> Vec<PartPieces> {
+    let a = vec![
+        cuboid([0, 0, 0], [6, 1, 1]),
+        cuboid([0, 0, 5], [6, 1, 6]),
+        cuboid([0, 0, 1], [1, 1, 5]),
+        cuboid([5, 0, 1], [6, 1, 5]),
+    ];
+    let b = vec![
+        cuboid([2, -2, 2], [3, 3, 3]),
+        cuboid([2, -2, -2], [3, 3, -1]),
+        cuboid([2, -2, -1], [3, -1, 2]),
+        cuboid([2, 2, -1], [3, 3, 2]),
+    ];
+    vec![part("ring_a", a), part("ring_b", b)]
+}
