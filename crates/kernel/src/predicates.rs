@@ -59,8 +59,10 @@ pub fn dot_sign(a: &Vec3, b: &Vec3) -> Sign {
             x[0] as i128 * y[0] as i128 + x[1] as i128 * y[1] as i128 + x[2] as i128 * y[2] as i128,
         );
     }
-    if let Some(s) = dot_filter(&a.approx(), &b.approx()) {
-        return s;
+    if let (Some(x), Some(y)) = (a.filter_approx(), b.filter_approx()) {
+        if let Some(s) = dot_filter(&x, &y) {
+            return s;
+        }
     }
     dot_sign_exact(a, b)
 }
@@ -114,8 +116,10 @@ pub fn det3_sign(a: &Vec3, b: &Vec3, c: &Vec3) -> Sign {
             return Sign::of_i128(det3_i128(x, y, z));
         }
     }
-    if let Some(s) = det3_filter(&a.approx(), &b.approx(), &c.approx()) {
-        return s;
+    if let (Some(x), Some(y), Some(z)) = (a.filter_approx(), b.filter_approx(), c.filter_approx()) {
+        if let Some(s) = det3_filter(&x, &y, &z) {
+            return s;
+        }
     }
     det3_sign_exact(a, b, c)
 }

@@ -29,7 +29,13 @@ struct BigVec {
     c: [Int; 3],
     /// The components as `i128` when every one fits (for the fixed-width exact tier).
     wide: Option<[i128; 3]>,
+    /// The components times 2^-s for a shift s that brings the largest into [1, 2), each
+    /// within relative error 2^-52. Sign predicates are homogeneous in each argument, so
+    /// they may use this shadow however large the integers are.
     approx: [f64; 3],
+    /// False when some non-zero component falls below 2^-300 after scaling (a dynamic
+    /// range the filter's products could underflow on): predicates then go exact.
+    filterable: bool,
 }
 
 impl PartialEq for BigVec {
@@ -42,6 +48,20 @@ impl std::hash::Hash for BigVec {
     fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
         self.c.hash(h)
     }
+}
+
+/// Scales `raw` by a power of two so its largest magnitude lies in [1, 2) (exact), and
+/// tells whether every non-zero value stays above 2^-300 (so that products of three
+/// shadows stay far from underflow).
+fn scaled_shadow(raw: &[f64; 3]) -> ([f64; 3], bool) {
+    let m = raw.iter().fold(0f64, |m, v| m.max(v.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return (*raw, m == 0.0);
+    }
+    let e = m.log2().floor() as i32;
+    let out = raw.map(|v| v * 2f64.powi(-e));
+    let ok = out.iter().all(|v| *v == 0.0 || v.abs() >= 2f64.powi(-300));
+    (out, ok)
 }
 
 #[inline]
@@ -84,10 +104,12 @@ impl Vec3 {
             } else {
                 Some(c)
             };
+            let (approx, filterable) = scaled_shadow(&c.map(|v| v as f64));
             Vec3(Repr::Big(Box::new(BigVec {
                 c: c.map(Int::from),
                 wide,
-                approx: c.map(|v| v as f64),
+                approx,
+                filterable,
             })))
         }
     }
@@ -104,7 +126,25 @@ impl Vec3 {
     }
 
     fn from_big(c: [Int; 3]) -> Vec3 {
-        let approx = [int::to_f64(&c[0]), int::to_f64(&c[1]), int::to_f64(&c[2])];
+        // Each component separately: keep its top 64 bits (truncation error below 2^-63
+        // relative), round to a double (2^-53), and scale by an exact power of two so the
+        // largest component lands near 1. A component more than 300 bits below the largest
+        // would approach underflow in the filter's products: the vector then skips the
+        // filter.
+        let bits = c.iter().map(int::bit_len).max().unwrap_or(0) as i32;
+        let mut filterable = true;
+        let approx = c.clone().map(|v| {
+            if v == Int::ZERO {
+                return 0.0;
+            }
+            let bl = int::bit_len(&v) as i32;
+            if bits - bl > 300 {
+                filterable = false;
+            }
+            let s = (bl - 64).max(0);
+            let m = int::to_f64(&(v >> s as usize));
+            m * 2f64.powi((s - (bits - 1)).max(-1000))
+        });
         let wide = match [
             int::to_i128(&c[0]),
             int::to_i128(&c[1]),
@@ -116,7 +156,12 @@ impl Vec3 {
             }
             _ => None,
         };
-        Vec3(Repr::Big(Box::new(BigVec { c, wide, approx })))
+        Vec3(Repr::Big(Box::new(BigVec {
+            c,
+            wide,
+            approx,
+            filterable,
+        })))
     }
 
     /// The components, borrowed in whichever representation they are stored.
@@ -159,12 +204,24 @@ impl Vec3 {
         [self.get(0), self.get(1), self.get(2)]
     }
 
-    /// Nearest `f64` of each component (relative error at most 2^-52).
+    /// Floating-point values proportional to the components (the components themselves
+    /// for vectors below 2^62; scaled by a power of two above), each within relative
+    /// error 2^-52. Good for directions and for sign predicates, not for magnitudes.
     #[inline]
     pub fn approx(&self) -> [f64; 3] {
         match &self.0 {
             Repr::Small(c) => [c[0] as f64, c[1] as f64, c[2] as f64],
             Repr::Big(b) => b.approx,
+        }
+    }
+
+    /// The floating-point shadow for predicate filters, `None` when the components'
+    /// dynamic range is too wide for a safe filter.
+    #[inline]
+    pub fn filter_approx(&self) -> Option<[f64; 3]> {
+        match &self.0 {
+            Repr::Small(c) => Some([c[0] as f64, c[1] as f64, c[2] as f64]),
+            Repr::Big(b) => b.filterable.then_some(b.approx),
         }
     }
 

@@ -79,6 +79,20 @@ fn any_size() -> impl Strategy<Value = Vec3> {
     ]
 }
 
+/// Vectors far beyond the f64 range (about 1,500 bits), with components of very
+/// different sizes now and then (the filter must stay exact or step aside).
+fn huge() -> impl Strategy<Value = Vec3> {
+    (vec_of(120), 1300usize..1500, 0usize..3, prop::bool::ANY).prop_map(
+        |(v, shift, k, wide_range)| {
+            let mut c = v.to_ints().map(|x| (x << shift) + Int::from(7));
+            if wide_range {
+                c[k] = Int::from(3); // a tiny component next to huge ones
+            }
+            Vec3::from_ints(c)
+        },
+    )
+}
+
 fn small_int() -> impl Strategy<Value = i64> {
     -5i64..=5
 }
@@ -124,6 +138,17 @@ proptest! {
         prop_assert_eq!(det3_sign(&a, &ka, &b), Sign::Zero);
         prop_assert_eq!(det3_sign(&a, &a, &b), Sign::Zero);
         prop_assert_eq!(det3_sign(&a, &a.neg(), &b), Sign::Zero);
+    }
+
+    #[test]
+    fn huge_vectors(a in huge(), b in huge(), c in any_size(), k in small_int(), l in small_int()) {
+        prop_assert_eq!(det3_sign(&a, &b, &c), sign(&ref_det(&a, &b, &c)));
+        prop_assert_eq!(dot_sign(&a, &b), sign(&ref_dot(&a, &b)));
+        let d = a.scale(&Int::from(k)).add(&b.scale(&Int::from(l)));
+        prop_assert_eq!(det3_sign(&a, &b, &d), Sign::Zero);
+        let e = d.add(&Vec3::new(0, 0, 1));
+        prop_assert_eq!(det3_sign(&a, &b, &e), sign(&ref_det(&a, &b, &e)));
+        prop_assert_eq!(dot_sign(&a.cross(&b), &e), sign(&ref_dot(&a.cross(&b), &e)));
     }
 
     #[test]
