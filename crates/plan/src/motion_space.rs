@@ -53,6 +53,17 @@ impl MotionSpace {
     /// Overlays the regions of every pair of parts in `subset` (global part indices);
     /// `Q_ji` is inserted as the antipode of `Q_ij`.
     pub fn build(regions: &BlockingRegions, subset: &[usize]) -> MotionSpace {
+        MotionSpace::build_with_guides(regions, subset, &[])
+    }
+
+    /// Like [`MotionSpace::build`], with extra *guide* arcs that change no status but cut
+    /// faces and edges (the equator, to draw each hemisphere separately). Guide arcs make
+    /// vertices and edges of their own: use this arrangement for drawing, not for cells.
+    pub fn build_with_guides(
+        regions: &BlockingRegions,
+        subset: &[usize],
+        guides: &[Arc],
+    ) -> MotionSpace {
         let mut parts = subset.to_vec();
         parts.sort_unstable();
         parts.dedup();
@@ -73,11 +84,21 @@ impl MotionSpace {
             refs.push(&r.region);
             refs.push(&owned[k]);
         }
-        let (arcs, points) = region_inputs(&refs);
+        let (mut arcs, points) = region_inputs(&refs);
         let input_arcs = arcs.len();
+        let guide_map = maps.len() as u32;
+        arcs.extend(guides.iter().map(|g| apart_sphere::InputArc {
+            arc: g.clone(),
+            label: Some(apart_sphere::overlay::SideLabel {
+                map: guide_map,
+                pos: false,
+                on: false,
+                neg: false,
+            }),
+        }));
         let (arr, build_stats) = Arrangement::build(arcs, points);
-        let st = cell_statuses(&arr, maps.len(), |x, y| {
-            let mut s = BitSet::new(maps.len());
+        let st = cell_statuses(&arr, maps.len() + 1, |x, y| {
+            let mut s = BitSet::new(maps.len() + 1);
             for (k, (r, _)) in region_maps.iter().enumerate() {
                 s.set(2 * k, r.blocks_perturbed(x, y));
                 s.set(2 * k + 1, r.blocks_perturbed(&x.neg(), &y.neg()));
@@ -123,13 +144,22 @@ impl MotionSpace {
     pub fn dbg(&self, status: &BitSet) -> Dbg {
         Dbg::new(
             self.parts.len(),
-            status.iter().map(|m| self.maps[m]).collect(),
+            status
+                .iter()
+                .filter(|&m| m < self.maps.len())
+                .map(|m| self.maps[m])
+                .collect(),
         )
     }
 
     /// Number of ordered pairs blocked in a status set.
-    pub fn blocked_pairs(status: &BitSet) -> usize {
-        status.count()
+    pub fn blocked_pairs(&self, status: &BitSet) -> usize {
+        status.iter().filter(|&m| m < self.maps.len()).count()
+    }
+
+    /// Number of ordered pairs of parts (maps).
+    pub fn pair_count(&self) -> usize {
+        self.maps.len()
     }
 
     /// The vertices that are cells of the motion space (something changes there).

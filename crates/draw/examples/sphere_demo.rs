@@ -1,0 +1,27 @@
+//! Writes the motion-space SVG of an assembly built in code (for eyeballing).
+#[path = "../../plan/tests/common/mod.rs"]
+mod common;
+
+fn main() {
+    let which = std::env::args().nth(1).unwrap_or_else(|| "star".into());
+    let parts = match which.as_str() {
+        "cubes" => common::stacked_cubes(),
+        "peg" => common::peg_in_hole(),
+        "dovetail" => common::dovetail(),
+        "row" => common::cubes_in_a_row(4),
+        _ => common::split_star(),
+    };
+    let regions = apart_plan::BlockingRegions::compute(&parts).unwrap();
+    let all: Vec<usize> = (0..parts.len()).collect();
+    let (p, _) = apart_plan::partition_subset(&regions, &all, &Default::default());
+    let svg = apart_draw::motion_space_svg(
+        &regions,
+        &all,
+        &p.solutions,
+        &apart_draw::SphereSvgOptions {
+            title: which.clone(),
+            ..Default::default()
+        },
+    );
+    std::fs::write(format!("/tmp/{which}.svg"), svg).unwrap();
+}
