@@ -1,0 +1,1 @@
+//! The assembly model of apart and its loader (in progress: the loader follows).

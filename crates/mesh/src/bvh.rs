@@ -1,0 +1,322 @@
+//! A bounding-volume hierarchy over boxes, for the broad phase of every geometric
+//! search (self-intersection, point location, part against part).
+//!
+//! Boxes are ordered along a Morton (Z-order) curve of their centres, grouped into
+//! leaves of a few boxes, and a complete binary tree is built over the leaves in heap
+//! layout (node `i` has children `2i` and `2i + 1`). The build is a parallel sort plus
+//! a linear pass; a query walks the tree with an explicit stack.
+
+use crate::aabb::Aabb;
+use rayon::prelude::*;
+
+const LEAF: usize = 4;
+
+/// A hierarchy over a list of boxes, answering "which boxes meet this box".
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    boxes: Vec<Aabb>,
+    order: Vec<u32>,
+    nodes: Vec<Aabb>,
+    leaves: usize,
+}
+
+/// Spreads the low 10 bits of `v` to every third bit.
+fn spread(v: u64) -> u64 {
+    let mut x = v & 0x3ff;
+    x = (x | x << 16) & 0x0300_00ff;
+    x = (x | x << 8) & 0x0300_f00f;
+    x = (x | x << 4) & 0x030c_30c3;
+    x = (x | x << 2) & 0x0924_9249;
+    x
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `boxes` (their indices are what queries report).
+    pub fn new(boxes: Vec<Aabb>) -> Bvh {
+        let n = boxes.len();
+        let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
+        let mut keys: Vec<u64> = boxes
+            .par_iter()
+            .enumerate()
+            .with_min_len(8192)
+            .map(|(i, b)| {
+                let mut code = 0u64;
+                for k in 0..3 {
+                    let span = (all.max[k] as i128 - all.min[k] as i128).max(1);
+                    let c = b.min[k] as i128 + b.max[k] as i128 - 2 * all.min[k] as i128;
+                    let q = (c * 1023 / (2 * span)).clamp(0, 1023) as u64;
+                    code |= spread(q) << k;
+                }
+                code << 32 | i as u64
+            })
+            .collect();
+        keys.par_sort_unstable();
+        let order: Vec<u32> = keys.iter().map(|k| *k as u32).collect();
+        drop(keys);
+        let leaves = n.div_ceil(LEAF).max(1).next_power_of_two();
+        let mut nodes = vec![Aabb::EMPTY; 2 * leaves];
+        nodes[leaves..]
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(|(l, node)| {
+                for &p in order.iter().skip(l * LEAF).take(LEAF) {
+                    *node = node.union(&boxes[p as usize]);
+                }
+            });
+        for i in (1..leaves).rev() {
+            nodes[i] = nodes[2 * i].union(&nodes[2 * i + 1]);
+        }
+        Bvh {
+            boxes,
+            order,
+            nodes,
+            leaves,
+        }
+    }
+
+    /// The boxes, by index.
+    pub fn boxes(&self) -> &[Aabb] {
+        &self.boxes
+    }
+
+    /// Visits every unordered pair of distinct boxes `(i, j)`, `i < j`, that meet,
+    /// traversing the tree against itself (in parallel near the root). Each visit
+    /// updates an accumulator of the thread that made it; the accumulators are merged.
+    pub fn self_pairs<A: Send>(
+        &self,
+        init: impl Fn() -> A + Sync,
+        visit: impl Fn(&mut A, u32, u32) + Sync,
+        merge: impl Fn(A, A) -> A + Sync,
+    ) -> A {
+        if self.boxes.is_empty() {
+            return init();
+        }
+        let ctx = PairCtx {
+            bvh: self,
+            _acc: std::marker::PhantomData,
+            init: &init,
+            visit: &visit,
+            merge: &merge,
+        };
+        ctx.within(1, 0)
+    }
+
+    /// The primitives of leaf node `i`.
+    fn leaf(&self, i: usize) -> &[u32] {
+        let l = i - self.leaves;
+        let lo = (l * LEAF).min(self.order.len());
+        let hi = ((l + 1) * LEAF).min(self.order.len());
+        &self.order[lo..hi]
+    }
+
+    /// Calls `f(i)` for every box `i` that meets the closed box `q`.
+    #[inline]
+    pub fn query(&self, q: &Aabb, mut f: impl FnMut(u32)) {
+        if self.boxes.is_empty() {
+            return;
+        }
+        let mut stack = [0usize; 64];
+        let mut top = 1;
+        stack[0] = 1;
+        while top > 0 {
+            top -= 1;
+            let i = stack[top];
+            if !self.nodes[i].overlaps(q) {
+                continue;
+            }
+            if i >= self.leaves {
+                let l = i - self.leaves;
+                for &p in self.order.iter().skip(l * LEAF).take(LEAF) {
+                    if self.boxes[p as usize].overlaps(q) {
+                        f(p);
+                    }
+                }
+            } else {
+                stack[top] = 2 * i + 1;
+                stack[top + 1] = 2 * i;
+                top += 2;
+            }
+        }
+    }
+}
+
+/// Depth down to which the self-traversal forks into parallel tasks.
+const PARALLEL_DEPTH: u32 = 10;
+
+struct PairCtx<'a, A, I, V, M> {
+    bvh: &'a Bvh,
+    _acc: std::marker::PhantomData<fn() -> A>,
+    init: &'a I,
+    visit: &'a V,
+    merge: &'a M,
+}
+
+impl<A, I, V, M> PairCtx<'_, A, I, V, M>
+where
+    A: Send,
+    I: Fn() -> A + Sync,
+    V: Fn(&mut A, u32, u32) + Sync,
+    M: Fn(A, A) -> A + Sync,
+{
+    /// Pairs inside the subtree of node `i`.
+    fn within(&self, i: usize, depth: u32) -> A {
+        let b = self.bvh;
+        if i >= b.leaves {
+            let mut acc = (self.init)();
+            let prims = b.leaf(i);
+            for (k, &p) in prims.iter().enumerate() {
+                for &q in &prims[k + 1..] {
+                    if b.boxes[p as usize].overlaps(&b.boxes[q as usize]) {
+                        (self.visit)(&mut acc, p.min(q), p.max(q));
+                    }
+                }
+            }
+            return acc;
+        }
+        if b.nodes[i].is_empty() {
+            return (self.init)();
+        }
+        if depth < PARALLEL_DEPTH {
+            let (x, (y, z)) = rayon::join(
+                || self.within(2 * i, depth + 1),
+                || {
+                    rayon::join(
+                        || self.within(2 * i + 1, depth + 1),
+                        || self.across(2 * i, 2 * i + 1, depth + 1),
+                    )
+                },
+            );
+            (self.merge)(x, (self.merge)(y, z))
+        } else {
+            let mut acc = (self.init)();
+            self.within_seq(i, &mut acc);
+            acc
+        }
+    }
+
+    fn within_seq(&self, i: usize, acc: &mut A) {
+        let b = self.bvh;
+        if i >= b.leaves {
+            let prims = b.leaf(i);
+            for (k, &p) in prims.iter().enumerate() {
+                for &q in &prims[k + 1..] {
+                    if b.boxes[p as usize].overlaps(&b.boxes[q as usize]) {
+                        (self.visit)(acc, p.min(q), p.max(q));
+                    }
+                }
+            }
+            return;
+        }
+        if b.nodes[i].is_empty() {
+            return;
+        }
+        self.within_seq(2 * i, acc);
+        self.within_seq(2 * i + 1, acc);
+        self.across_seq(2 * i, 2 * i + 1, acc);
+    }
+
+    /// Pairs with one box under node `x` and the other under node `y` (same depth).
+    fn across(&self, x: usize, y: usize, depth: u32) -> A {
+        let b = self.bvh;
+        if depth >= PARALLEL_DEPTH || x >= b.leaves || !b.nodes[x].overlaps(&b.nodes[y]) {
+            let mut acc = (self.init)();
+            self.across_seq(x, y, &mut acc);
+            return acc;
+        }
+        let (l, r) = rayon::join(
+            || {
+                let (p, q) = rayon::join(
+                    || self.across(2 * x, 2 * y, depth + 1),
+                    || self.across(2 * x, 2 * y + 1, depth + 1),
+                );
+                (self.merge)(p, q)
+            },
+            || {
+                let (p, q) = rayon::join(
+                    || self.across(2 * x + 1, 2 * y, depth + 1),
+                    || self.across(2 * x + 1, 2 * y + 1, depth + 1),
+                );
+                (self.merge)(p, q)
+            },
+        );
+        (self.merge)(l, r)
+    }
+
+    fn across_seq(&self, x: usize, y: usize, acc: &mut A) {
+        let b = self.bvh;
+        if !b.nodes[x].overlaps(&b.nodes[y]) {
+            return;
+        }
+        if x >= b.leaves {
+            for &p in b.leaf(x) {
+                let bp = &b.boxes[p as usize];
+                if !bp.overlaps(&b.nodes[y]) {
+                    continue;
+                }
+                for &q in b.leaf(y) {
+                    if bp.overlaps(&b.boxes[q as usize]) {
+                        (self.visit)(acc, p.min(q), p.max(q));
+                    }
+                }
+            }
+            return;
+        }
+        self.across_seq(2 * x, 2 * y, acc);
+        self.across_seq(2 * x, 2 * y + 1, acc);
+        self.across_seq(2 * x + 1, 2 * y, acc);
+        self.across_seq(2 * x + 1, 2 * y + 1, acc);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn query_matches_brute_force() {
+        let mut boxes = Vec::new();
+        let mut s = 12345u64;
+        let mut rnd = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) as i64) % m
+        };
+        for _ in 0..1000 {
+            let p = [rnd(1000), rnd(1000), rnd(1000)];
+            let d = [rnd(50), rnd(50), rnd(50)];
+            boxes.push(Aabb::of([&p, &[p[0] + d[0], p[1] + d[1], p[2] + d[2]]]));
+        }
+        let bvh = Bvh::new(boxes.clone());
+        for q in boxes.iter().take(100) {
+            let mut got = Vec::new();
+            bvh.query(q, |i| got.push(i));
+            got.sort();
+            let want: Vec<u32> = (0..boxes.len() as u32)
+                .filter(|&i| boxes[i as usize].overlaps(q))
+                .collect();
+            assert_eq!(got, want);
+        }
+        Bvh::new(Vec::new()).query(&boxes[0], |_| panic!("empty"));
+        // Self pairs.
+        let mut got = bvh.self_pairs(
+            Vec::new,
+            |v, i, j| v.push((i, j)),
+            |mut a, b| {
+                a.extend(b);
+                a
+            },
+        );
+        got.sort();
+        let mut want = Vec::new();
+        for i in 0..boxes.len() as u32 {
+            for j in i + 1..boxes.len() as u32 {
+                if boxes[i as usize].overlaps(&boxes[j as usize]) {
+                    want.push((i, j));
+                }
+            }
+        }
+        assert_eq!(got, want);
+    }
+}

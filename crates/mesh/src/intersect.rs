@@ -1,0 +1,395 @@
+//! Exact intersection tests between triangles and segments on the grid.
+//!
+//! Triangles of one mesh may legitimately share a vertex or an edge (after welding,
+//! equal points have equal indices). [`triangle_pair`] reports an intersection only
+//! when the closed triangles meet beyond the convex hull of their shared vertices.
+
+use crate::exact::{
+    cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project,
+    segments_meet_2d, sub, P3,
+};
+use apart_kernel::predicates::det3_sign;
+use apart_kernel::{Int, Sign, Vec3};
+
+/// How two triangles of a mesh meet beyond what they share.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Contact {
+    /// They cross or touch in a point or segment that is not shared.
+    Intersect,
+    /// They are coplanar and overlap in an area.
+    Overlap,
+}
+
+/// Closed segment `p q` against closed triangle `a b c` (non-degenerate).
+pub fn segment_meets_triangle(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> bool {
+    let op = orient3d(a, b, c, p);
+    let oq = orient3d(a, b, c, q);
+    if op != Sign::Zero && op == oq {
+        return false;
+    }
+    if op == Sign::Zero && oq == Sign::Zero {
+        let k = dominant_axis(&normal(a, b, c));
+        let [p2, q2, a2, b2, c2] = [p, q, a, b, c].map(|v| project(v, k));
+        return in_closed_triangle_2d(&p2, &a2, &b2, &c2)
+            || segments_meet_2d(&p2, &q2, &a2, &b2)
+            || segments_meet_2d(&p2, &q2, &b2, &c2)
+            || segments_meet_2d(&p2, &q2, &c2, &a2);
+    }
+    // The line crosses the plane once, within the segment; is that point in the triangle?
+    let s1 = orient3d(p, q, a, b);
+    let s2 = orient3d(p, q, b, c);
+    let s3 = orient3d(p, q, c, a);
+    let has_pos = [s1, s2, s3].contains(&Sign::Positive);
+    let has_neg = [s1, s2, s3].contains(&Sign::Negative);
+    !(has_pos && has_neg)
+}
+
+/// Closed triangles `t` and `u` with no shared vertex: do they meet?
+pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
+    let [a, b, c] = t;
+    let [d, e, f] = u;
+    let ou = [d, e, f].map(|v| orient3d(a, b, c, v));
+    if ou[0] != Sign::Zero && ou[0] == ou[1] && ou[1] == ou[2] {
+        return None;
+    }
+    let ot = [a, b, c].map(|v| orient3d(d, e, f, v));
+    if ot[0] != Sign::Zero && ot[0] == ot[1] && ot[1] == ot[2] {
+        return None;
+    }
+    if ou.iter().all(|s| *s == Sign::Zero) {
+        let k = dominant_axis(&normal(a, b, c));
+        let t2 = t.map(|v| project(v, k));
+        let u2 = u.map(|v| project(v, k));
+        let edges_meet = (0..3).any(|i| {
+            (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
+        });
+        let inside = in_closed_triangle_2d(&t2[0], &u2[0], &u2[1], &u2[2])
+            || in_closed_triangle_2d(&u2[0], &t2[0], &t2[1], &t2[2]);
+        if !(edges_meet || inside) {
+            return None;
+        }
+        // Positive-area overlap, or only touching along a boundary?
+        return Some(if coplanar_overlap_area(&t2, &u2) {
+            Contact::Overlap
+        } else {
+            Contact::Intersect
+        });
+    }
+    let hit = (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], d, e, f))
+        || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], a, b, c));
+    hit.then_some(Contact::Intersect)
+}
+
+/// True when two coplanar (projected) triangles share interior points.
+fn coplanar_overlap_area(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
+    // Separating axis on the six edge lines: the interiors are disjoint exactly when
+    // some edge line has one triangle weakly on each side.
+    let side = |a: &[i64; 2], b: &[i64; 2], p: &[i64; 2]| orient2d(a, b, p);
+    for (x, y) in [(t, u), (u, t)] {
+        let s = orient2d(&x[0], &x[1], &x[2]);
+        for i in 0..3 {
+            let (a, b) = (&x[i], &x[(i + 1) % 3]);
+            if y.iter().all(|p| side(a, b, p) != s) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The intersection test for two triangles of one mesh (vertex indices `t`, `u` into
+/// `v`), allowing what they share: a common vertex or a common edge.
+pub fn triangle_pair(v: &[P3], t: [u32; 3], u: [u32; 3]) -> Option<Contact> {
+    // Shared corners, as (index in t, index in u), without allocating.
+    let mut shared = [(0usize, 0usize); 3];
+    let mut n = 0;
+    for (i, &a) in t.iter().enumerate() {
+        for (j, &b) in u.iter().enumerate() {
+            if a == b {
+                shared[n] = (i, j);
+                n += 1;
+            }
+        }
+    }
+    let p = |i: u32| &v[i as usize];
+    match n {
+        0 => triangles_meet(t.map(p), u.map(p)),
+        1 => shared_vertex(v, t, u, shared[0]),
+        2 => {
+            // Rotate t so the shared edge is t[0] t[1]; c and d are the other vertices.
+            let (i0, i1) = (shared[0].0, shared[1].0);
+            let k = 3 - i0 - i1; // t's free vertex
+            let j = 3 - shared[0].1 - shared[1].1; // u's free vertex
+            let (a, b, c, d) = (p(t[(k + 1) % 3]), p(t[(k + 2) % 3]), p(t[k]), p(u[j]));
+            if orient3d(a, b, c, d) != Sign::Zero {
+                return None;
+            }
+            let axis = dominant_axis(&normal(a, b, c));
+            let [a2, b2, c2, d2] = [a, b, c, d].map(|x| project(x, axis));
+            (orient2d(&a2, &b2, &c2) == orient2d(&a2, &b2, &d2)).then_some(Contact::Overlap)
+        }
+        _ => Some(Contact::Overlap), // the same three vertices
+    }
+}
+
+/// Triangles sharing exactly one vertex meet beyond it exactly when their corner cones
+/// at that vertex share a non-zero direction (their intersection is convex and contains
+/// the vertex).
+fn shared_vertex(v: &[P3], t: [u32; 3], u: [u32; 3], (i, j): (usize, usize)) -> Option<Contact> {
+    let p = |x: u32| &v[x as usize];
+    let o = p(t[i]);
+    let (b, c) = (p(t[(i + 1) % 3]), p(t[(i + 2) % 3]));
+    let (e, f) = (p(u[(j + 1) % 3]), p(u[(j + 2) % 3]));
+    // Fast exits: one triangle strictly on one side of the other's plane.
+    let sb = orient3d(o, e, f, b);
+    let sc = orient3d(o, e, f, c);
+    if sb != Sign::Zero && sb == sc {
+        return None;
+    }
+    let se = orient3d(o, b, c, e);
+    let sf = orient3d(o, b, c, f);
+    if se != Sign::Zero && se == sf {
+        return None;
+    }
+    let (u1, u2, w1, w2) = (sub(b, o), sub(c, o), sub(e, o), sub(f, o));
+    if sb == Sign::Zero && sc == Sign::Zero {
+        // Coplanar: 2-D cones at the shared vertex.
+        let k = dominant_axis(&cross(&u1, &u2));
+        let [u1, u2, w1, w2] = [u1, u2, w1, w2].map(|x| project(&x, k));
+        let z = [0i64, 0];
+        let ccw = |a: [i64; 2], b: [i64; 2]| {
+            if orient2d(&z, &a, &b) == Sign::Positive {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        };
+        let (u1, u2) = ccw(u1, u2);
+        let (w1, w2) = ccw(w1, w2);
+        let in_cone = |r: &[i64; 2], a: &[i64; 2], b: &[i64; 2]| {
+            orient2d(&z, a, r) != Sign::Negative && orient2d(&z, r, b) != Sign::Negative
+        };
+        let meet = in_cone(&w1, &u1, &u2)
+            || in_cone(&w2, &u1, &u2)
+            || in_cone(&u1, &w1, &w2)
+            || in_cone(&u2, &w1, &w2);
+        if !meet {
+            return None;
+        }
+        // Area overlap unless the cones only share a boundary ray: near the vertex the
+        // triangles are their cones, so compare the triangles (0, u1, u2) and (0, w1, w2).
+        let area = coplanar_overlap_area(&[z, u1, u2], &[z, w1, w2]);
+        return Some(if area {
+            Contact::Overlap
+        } else {
+            Contact::Intersect
+        });
+    }
+    // Different planes: the cones can only share directions along ±l, l = n1 × n2.
+    let big = |x: &P3| Vec3::from_i64(*x);
+    let n1 = big(&u1).cross(&big(&u2));
+    let n2 = big(&w1).cross(&big(&w2));
+    let l = n1.cross(&n2);
+    let side = |a: &Vec3, b: &Vec3, n: &Vec3| det3_sign(a, b, n);
+    // r in cone(a, b) (normal n = a × b) iff (a × r)·n >= 0 and (r × b)·n >= 0.
+    let (p1, q1) = (side(&big(&u1), &l, &n1), side(&l, &big(&u2), &n1));
+    let (p2, q2) = (side(&big(&w1), &l, &n2), side(&l, &big(&w2), &n2));
+    let plus = p1 != Sign::Negative
+        && q1 != Sign::Negative
+        && p2 != Sign::Negative
+        && q2 != Sign::Negative;
+    let minus = p1 != Sign::Positive
+        && q1 != Sign::Positive
+        && p2 != Sign::Positive
+        && q2 != Sign::Positive;
+    (plus || minus).then_some(Contact::Intersect)
+}
+
+/// Where the closed segment `p q` meets the closed triangle `a b c`, as parameters
+/// `t = num/den` in [0, 1] along the segment (both ends of the overlap when the segment
+/// lies in the triangle's plane). Used to split edges of one solid at the faces of
+/// another.
+pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(Int, Int)> {
+    let mut out = Vec::new();
+    if !segment_meets_triangle(p, q, a, b, c) {
+        return out;
+    }
+    let n = normal(a, b, c);
+    let dot = |x: &P3| -> Int {
+        let d = sub(x, a);
+        Int::from(n[0]) * Int::from(d[0])
+            + Int::from(n[1]) * Int::from(d[1])
+            + Int::from(n[2]) * Int::from(d[2])
+    };
+    let (dp, dq) = (dot(p), dot(q));
+    if dp != dq {
+        // t = dp / (dp - dq).
+        let den = &dp - &dq;
+        out.push(normalize(dp, den));
+        return out;
+    }
+    // In the plane: clip the segment against the three edge lines (parameters where it
+    // crosses each, plus its ends when inside).
+    let k = dominant_axis(&n);
+    let [p2, q2, a2, b2, c2] = [p, q, a, b, c].map(|v| project(v, k));
+    if in_closed_triangle_2d(&p2, &a2, &b2, &c2) {
+        out.push((Int::ZERO, Int::ONE));
+    }
+    if in_closed_triangle_2d(&q2, &a2, &b2, &c2) {
+        out.push((Int::ONE, Int::ONE));
+    }
+    for (x, y) in [(&a2, &b2), (&b2, &c2), (&c2, &a2)] {
+        if !segments_meet_2d(&p2, &q2, x, y) {
+            continue;
+        }
+        // p + t (q - p) on the line x y: t = orient(x, y, p) / (orient(x, y, p) - orient(x, y, q)).
+        let o = |s: &[i64; 2]| -> Int {
+            Int::from(
+                (y[0] - x[0]) as i128 * (s[1] - x[1]) as i128
+                    - (y[1] - x[1]) as i128 * (s[0] - x[0]) as i128,
+            )
+        };
+        let (op, oq) = (o(&p2), o(&q2));
+        if op != oq {
+            let den = &op - &oq;
+            out.push(normalize(op, den));
+        } else {
+            // Collinear with the edge: the edge's ends, as parameters along p q.
+            let d = [q2[0] - p2[0], q2[1] - p2[1]];
+            let len = Int::from(d[0] as i128 * d[0] as i128 + d[1] as i128 * d[1] as i128);
+            for e in [x, y] {
+                let num = Int::from(
+                    (e[0] - p2[0]) as i128 * d[0] as i128 + (e[1] - p2[1]) as i128 * d[1] as i128,
+                );
+                if num >= Int::ZERO && num <= len && len > Int::ZERO {
+                    out.push(normalize(num, len.clone()));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn normalize(num: Int, den: Int) -> (Int, Int) {
+    let (num, den) = if den < Int::ZERO {
+        (-num, -den)
+    } else {
+        (num, den)
+    };
+    let g = apart_kernel::int::gcd(&num, &den);
+    if g > Int::ONE {
+        (num / &g, den / &g)
+    } else {
+        (num, den)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shared_edge_cases() {
+        let v = vec![
+            [0, 0, 0],
+            [2, 0, 0],
+            [0, 2, 0],
+            [0, -2, 0],
+            [1, 1, 0],
+            [0, 0, 2],
+        ];
+        assert_eq!(triangle_pair(&v, [0, 1, 2], [1, 0, 3]), None); // flat, opposite sides
+        assert_eq!(triangle_pair(&v, [0, 1, 2], [1, 0, 5]), None); // bent along the edge
+        assert_eq!(
+            triangle_pair(&v, [0, 1, 2], [1, 0, 4]),
+            Some(Contact::Overlap)
+        ); // folded
+        assert_eq!(
+            triangle_pair(&v, [0, 1, 2], [0, 2, 1]),
+            Some(Contact::Overlap)
+        ); // doubled
+    }
+
+    #[test]
+    fn shared_vertex_cases() {
+        let v = vec![
+            [0, 0, 0],
+            [2, 0, 0],
+            [0, 2, 0], // 0..2: base triangle in z = 0
+            [-2, 0, 0],
+            [0, -2, 0], // 3, 4: flat, opposite quadrant
+            [1, 1, 2],
+            [1, 1, -2], // 5, 6
+            [1, 0, 0],
+            [2, 2, 0], // 7, 8
+        ];
+        assert_eq!(triangle_pair(&v, [0, 1, 2], [0, 3, 4]), None);
+        // A triangle through the shared vertex piercing the base one.
+        assert_eq!(
+            triangle_pair(&v, [0, 1, 2], [0, 5, 6]),
+            Some(Contact::Intersect)
+        );
+        // Standing on the shared vertex only, above the plane.
+        assert_eq!(triangle_pair(&v, [0, 1, 2], [0, 5, 3]), None);
+        // Coplanar, overlapping in area.
+        assert_eq!(
+            triangle_pair(&v, [0, 1, 2], [0, 8, 2]),
+            Some(Contact::Overlap)
+        );
+        // Coplanar, sharing a boundary ray (a T-junction along the x axis).
+        assert_eq!(
+            triangle_pair(&v, [0, 1, 2], [0, 4, 7]),
+            Some(Contact::Intersect)
+        );
+        // Bowtie: two triangles meeting at the apex only, in different planes.
+        assert_eq!(triangle_pair(&v, [0, 1, 5], [0, 3, 6]), None);
+    }
+
+    #[test]
+    fn disjoint_and_crossing() {
+        let t = [&[0, 0, 0], &[4, 0, 0], &[0, 4, 0]];
+        assert_eq!(
+            triangles_meet(t, [&[1, 1, -1], &[1, 1, 1], &[2, 1, 1]]),
+            Some(Contact::Intersect)
+        );
+        assert_eq!(
+            triangles_meet(t, [&[5, 5, -1], &[5, 5, 1], &[6, 5, 1]]),
+            None
+        );
+        // Touching at a point (vertex of one inside the other).
+        assert_eq!(
+            triangles_meet(t, [&[1, 1, 0], &[1, 1, 3], &[2, 1, 3]]),
+            Some(Contact::Intersect)
+        );
+        // Coplanar, one inside the other.
+        assert_eq!(
+            triangles_meet(t, [&[1, 1, 0], &[2, 1, 0], &[1, 2, 0]]),
+            Some(Contact::Overlap)
+        );
+        // Coplanar, touching along part of an edge only.
+        assert_eq!(
+            triangles_meet(t, [&[1, 0, 0], &[2, -3, 0], &[3, 0, 0]]),
+            Some(Contact::Intersect)
+        );
+        assert_eq!(
+            triangles_meet(t, [&[5, 0, 0], &[6, -3, 0], &[7, 0, 0]]),
+            None
+        );
+    }
+
+    #[test]
+    fn segment_params() {
+        let (a, b, c) = ([0, 0, 0], [4, 0, 0], [0, 4, 0]);
+        let t = segment_triangle_params(&[1, 1, -1], &[1, 1, 3], &a, &b, &c);
+        assert_eq!(t, vec![(Int::from(1), Int::from(4))]);
+        // In the plane, crossing the triangle: enters at x = 0, leaves at x + y = 4.
+        let mut t = segment_triangle_params(&[-1, 1, 0], &[5, 1, 0], &a, &b, &c);
+        t.sort_by(|x, y| (&x.0 * &y.1).cmp(&(&y.0 * &x.1)));
+        t.dedup_by(|x, y| &x.0 * &y.1 == &y.0 * &x.1);
+        assert_eq!(
+            t,
+            vec![(Int::from(1), Int::from(6)), (Int::from(2), Int::from(3))]
+        );
+        assert!(segment_triangle_params(&[9, 9, -1], &[9, 9, 1], &a, &b, &c).is_empty());
+    }
+}

@@ -1,0 +1,42 @@
+//! Meshes of apart: reading and writing mesh files, snapping to the integer grid,
+//! welding, triangulating, and validating one closed solid, exactly.
+//!
+//! The flow for one object is [`formats::read_file`] (floating-point [`RawObject`]s),
+//! then [`Mesh::from_raw`] (snap with the assembly's [`apart_kernel::Grid`], weld equal
+//! grid points, triangulate polygons), then [`validate::validate`] (closed, oriented,
+//! manifold up to valid self-contacts, not self-intersecting, positive volume; convex or
+//! not). Every decision after snapping is an exact integer predicate. Problems are
+//! values ([`Problem`]) that name the element; nothing here panics on bad input.
+//!
+//! ```
+//! use apart_kernel::Grid;
+//! use apart_mesh::{formats, validate::check_solid};
+//! let off = b"OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+//! let objects = formats::read_bytes(off, formats::Format::Off, None).unwrap();
+//! let grid = Grid::choose(objects[0].vertices.iter().flatten().copied(), 30).unwrap();
+//! let (mesh, info, problems) = check_solid(&objects[0], &grid);
+//! assert!(problems.is_empty());
+//! let info = info.unwrap();
+//! assert!(info.convex);
+//! assert_eq!(info.volume_units(&grid).unwrap().to_string(), "1/6");
+//! assert_eq!(mesh.unwrap().triangles.len(), 4);
+//! ```
+
+pub mod aabb;
+pub mod bvh;
+pub mod exact;
+pub mod formats;
+pub mod intersect;
+pub mod locate;
+mod mesh;
+mod problem;
+mod raw;
+pub mod transform;
+mod triangulate;
+pub mod validate;
+mod weld;
+
+pub use aabb::Aabb;
+pub use mesh::{fmt_point, Mesh};
+pub use problem::{Problem, Severity};
+pub use raw::{Polygons, RawObject};

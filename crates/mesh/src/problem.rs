@@ -1,0 +1,185 @@
+//! Problems found while reading and validating: values with context, never panics.
+
+use serde::Serialize;
+use std::fmt;
+use std::path::PathBuf;
+
+/// How bad a problem is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    /// Something worth knowing that is not wrong (a solid touching itself along an edge).
+    Note,
+    /// Repaired or tolerated (inside-out part flipped, zero-area face dropped).
+    Warning,
+    /// The input is not a valid closed solid or assembly.
+    Error,
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Severity::Note => "note",
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        })
+    }
+}
+
+/// One problem, with as much context as is known: the file, the part and the element.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Problem {
+    /// How bad it is.
+    pub severity: Severity,
+    /// The file it was found in.
+    pub file: Option<PathBuf>,
+    /// The part it belongs to.
+    pub part: Option<String>,
+    /// The element: "face 12", "vertex 5", "edge (3, 7) at (1, 0, 2)-(1, 1, 2)".
+    pub element: Option<String>,
+    /// What is wrong, in words.
+    pub message: String,
+}
+
+impl Problem {
+    /// A problem with only a severity and a message.
+    pub fn new(severity: Severity, message: impl Into<String>) -> Problem {
+        Problem {
+            severity,
+            file: None,
+            part: None,
+            element: None,
+            message: message.into(),
+        }
+    }
+
+    /// An error.
+    pub fn error(message: impl Into<String>) -> Problem {
+        Problem::new(Severity::Error, message)
+    }
+
+    /// A warning.
+    pub fn warning(message: impl Into<String>) -> Problem {
+        Problem::new(Severity::Warning, message)
+    }
+
+    /// A note.
+    pub fn note(message: impl Into<String>) -> Problem {
+        Problem::new(Severity::Note, message)
+    }
+
+    /// The same problem, naming an element.
+    pub fn at(mut self, element: impl Into<String>) -> Problem {
+        self.element = Some(element.into());
+        self
+    }
+
+    /// The same problem, naming the file (kept when one is already set).
+    pub fn in_file(mut self, file: impl Into<PathBuf>) -> Problem {
+        if self.file.is_none() {
+            self.file = Some(file.into());
+        }
+        self
+    }
+
+    /// The same problem, naming the part (kept when one is already set).
+    pub fn in_part(mut self, part: impl Into<String>) -> Problem {
+        if self.part.is_none() {
+            self.part = Some(part.into());
+        }
+        self
+    }
+
+    /// True for errors.
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+impl fmt::Display for Problem {
+    /// `error: parts/red.off (part "red"), face 12: zero area after snapping`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: ", self.severity)?;
+        let mut context = String::new();
+        match (&self.file, &self.part) {
+            (Some(file), Some(part)) => {
+                context = format!("{} (part \"{part}\")", file.display());
+            }
+            (Some(file), None) => context = file.display().to_string(),
+            (None, Some(part)) => context = format!("part \"{part}\""),
+            (None, None) => {}
+        }
+        if let Some(element) = &self.element {
+            if !context.is_empty() {
+                context.push_str(", ");
+            }
+            context.push_str(element);
+        }
+        if context.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "{context}: {}", self.message)
+        }
+    }
+}
+
+/// Collects problems of one kind, keeping the first few in full and counting the rest,
+/// so that a broken million-triangle mesh yields a readable report.
+pub(crate) struct Capped {
+    pub(crate) kept: Vec<Problem>,
+    pub(crate) extra: usize,
+    limit: usize,
+}
+
+impl Capped {
+    pub(crate) fn new(limit: usize) -> Capped {
+        Capped {
+            kept: Vec::new(),
+            extra: 0,
+            limit,
+        }
+    }
+
+    pub(crate) fn push(&mut self, p: impl FnOnce() -> Problem) {
+        if self.kept.len() < self.limit {
+            self.kept.push(p());
+        } else {
+            self.extra += 1;
+        }
+    }
+
+    /// The kept problems, followed by one summary problem when some were left out.
+    pub(crate) fn finish(self, what: &str, out: &mut Vec<Problem>) {
+        let severity = self.kept.first().map(|p| p.severity);
+        out.extend(self.kept);
+        if self.extra > 0 {
+            out.push(Problem::new(
+                severity.unwrap_or(Severity::Error),
+                format!("... and {} more {what}", self.extra),
+            ));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_with_full_context() {
+        let p = Problem::error("zero area after snapping")
+            .at("face 12")
+            .in_file("parts/red.off")
+            .in_part("red");
+        assert_eq!(
+            p.to_string(),
+            "error: parts/red.off (part \"red\"), face 12: zero area after snapping"
+        );
+        assert_eq!(
+            Problem::warning("flipped").in_part("a").to_string(),
+            "warning: part \"a\": flipped"
+        );
+        assert_eq!(Problem::note("x").to_string(), "note: x");
+        assert!(Severity::Error > Severity::Warning && Severity::Warning > Severity::Note);
+    }
+}

@@ -1,0 +1,308 @@
+//! Validation of a mesh as one closed solid.
+//!
+//! Every check runs and reports, none stops the others (except that volume and
+//! orientation are only meaningful for a closed surface):
+//!
+//! | check | finding | severity |
+//! |---|---|---|
+//! | triangles | none left | error |
+//! | edges | used by one face (open boundary) | error, up to 5 listed |
+//! | edges | two faces running the same way (inconsistent orientation) | error |
+//! | edges | odd or unbalanced use (non-manifold) | error |
+//! | edges | 2k faces alternating around the edge | note: touches itself, valid |
+//! | vertices | several fans of faces (bowtie) | note: touches itself, valid |
+//! | volume | zero | error |
+//! | volume | negative (inside out) | warning: every face flipped |
+//! | shells | nested wrongly (winding number not 0/1) | error |
+//! | faces | two faces meeting beyond what they share | error |
+//!
+//! Contacts of a solid with itself are valid only through shared (welded) vertices and
+//! edges; a vertex of the solid lying inside one of its faces, or two faces touching
+//! along a segment that is not a shared edge, is reported as an intersection.
+
+mod convexity;
+pub(crate) mod edges;
+pub(crate) mod orientation;
+mod self_intersection;
+mod shells;
+mod vertices;
+
+use crate::aabb::Aabb;
+use crate::bvh::Bvh;
+use crate::intersect::Contact;
+use crate::locate::Locator;
+use crate::mesh::{fmt_point, Mesh, LIST};
+use crate::problem::{Capped, Problem};
+use apart_kernel::{Grid, Int, Rational, Sign};
+
+/// What validation learnt about a mesh.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshInfo {
+    /// Number of (welded, used) vertices.
+    pub vertices: usize,
+    /// Number of triangles.
+    pub triangles: usize,
+    /// Number of input faces that kept a non-zero area.
+    pub faces: usize,
+    /// Number of undirected edges.
+    pub edges: usize,
+    /// Connected components of the surface (across manifold edges).
+    pub shells: usize,
+    /// Every edge is manifold or a valid contact: the surface is closed and oriented.
+    pub closed: bool,
+    /// Six times the volume in grid units (after any flip), when closed.
+    pub volume6: Option<Int>,
+    /// Edges whose dihedral angle inside the solid exceeds 180 degrees.
+    pub reflex_edges: usize,
+    /// Edges along which the solid touches itself (2k alternating faces).
+    pub touching_edges: usize,
+    /// Vertices at which the solid touches itself (several fans of faces).
+    pub touching_vertices: usize,
+    /// Number of pairs of faces meeting beyond what they share.
+    pub self_intersections: usize,
+    /// The faces were flipped because the volume was negative.
+    pub flipped: bool,
+    /// The solid is convex (decided exactly).
+    pub convex: bool,
+    /// Bounding box in grid units.
+    pub bbox: Option<Aabb>,
+}
+
+/// `v · h³` for a volume `v` in grid units: the same volume in input units, exactly.
+pub fn volume_in_units(v: &Rational, grid: &Grid) -> Rational {
+    let e = 3 * grid.exp;
+    let p = Int::from(1) << (e.unsigned_abs() as usize);
+    let scale = if e >= 0 {
+        Rational::from_int(p)
+    } else {
+        Rational::new(Int::ONE, p)
+    };
+    v * &scale
+}
+
+impl MeshInfo {
+    /// The exact volume in grid units.
+    pub fn volume(&self) -> Option<Rational> {
+        self.volume6
+            .as_ref()
+            .map(|v| Rational::new(v.clone(), Int::from(6)))
+    }
+
+    /// The exact volume in input units (`volume6 · h³ / 6`).
+    pub fn volume_units(&self, grid: &Grid) -> Option<Rational> {
+        self.volume().map(|v| volume_in_units(&v, grid))
+    }
+}
+
+fn edge_at(mesh: &Mesh, grid: &Grid, a: u32, b: u32) -> String {
+    let sv = |v: u32| mesh.source_vertices[v as usize];
+    let p = |v: u32| fmt_point(grid, &mesh.vertices[v as usize]);
+    format!("edge ({}, {}) at {}-{}", sv(a), sv(b), p(a), p(b))
+}
+
+fn faces_at(mesh: &Mesh, t: u32, u: u32) -> String {
+    let (f, g) = (mesh.source_faces[t as usize], mesh.source_faces[u as usize]);
+    if f == g {
+        format!("face {f}")
+    } else {
+        format!("faces {} and {}", f.min(g), f.max(g))
+    }
+}
+
+/// Validates `mesh` as one closed solid. Flips every triangle when the volume is
+/// negative. `grid` only serves to print coordinates in input units.
+pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
+    let mut problems = Vec::new();
+    let mut faces: Vec<u32> = mesh.source_faces.clone();
+    faces.dedup();
+    let mut info = MeshInfo {
+        vertices: mesh.vertices.len(),
+        triangles: mesh.triangles.len(),
+        faces: faces.len(),
+        edges: 0,
+        shells: 0,
+        closed: false,
+        volume6: None,
+        reflex_edges: 0,
+        touching_edges: 0,
+        touching_vertices: 0,
+        self_intersections: 0,
+        flipped: false,
+        convex: false,
+        bbox: mesh.bbox(),
+    };
+    if mesh.triangles.is_empty() {
+        problems.push(Problem::error("empty mesh: no face with a non-zero area"));
+        return (info, problems);
+    }
+
+    // Edges and vertices.
+    let he = edges::HalfEdges::new(mesh);
+    let use_ = edges::classify(mesh, &he);
+    info.edges = use_.pairs.len()
+        + use_.boundary.len()
+        + use_.inconsistent.len()
+        + use_.nonmanifold.len()
+        + use_.touching.len();
+    info.reflex_edges = use_.reflex;
+    let convex_edges = use_.convex;
+    info.touching_edges = use_.touching.len();
+    info.closed = use_.closed();
+    let mut c = Capped::new(LIST);
+    for &(a, b) in &use_.boundary {
+        c.push(|| {
+            Problem::error("open boundary: the edge belongs to one face only")
+                .at(edge_at(mesh, grid, a, b))
+        });
+    }
+    c.finish("boundary edges", &mut problems);
+    let mut c = Capped::new(LIST);
+    for &(a, b, t, u) in &use_.inconsistent {
+        c.push(|| {
+            Problem::error(format!(
+                "inconsistent orientation: both run along {} in the same direction",
+                edge_at(mesh, grid, a, b)
+            ))
+            .at(faces_at(mesh, t, u))
+        });
+    }
+    c.finish("inconsistently oriented face pairs", &mut problems);
+    let mut c = Capped::new(LIST);
+    for &(a, b, n) in &use_.nonmanifold {
+        c.push(|| {
+            Problem::error(format!(
+                "non-manifold edge: shared by {n} faces that do not alternate in direction"
+            ))
+            .at(edge_at(mesh, grid, a, b))
+        });
+    }
+    c.finish("non-manifold edges", &mut problems);
+    let mut c = Capped::new(LIST);
+    for &(a, b, n) in &use_.touching {
+        c.push(|| {
+            Problem::note(format!(
+                "the solid touches itself along this edge ({n} faces, alternating): valid"
+            ))
+            .at(edge_at(mesh, grid, a, b))
+        });
+    }
+    c.finish("edges where the solid touches itself", &mut problems);
+    let touching_vertices = vertices::touching_vertices(mesh, &he);
+    info.touching_vertices = touching_vertices.len();
+    let mut c = Capped::new(LIST);
+    for &v in &touching_vertices {
+        c.push(|| {
+            Problem::note("the solid touches itself at this vertex: valid").at(format!(
+                "vertex {} at {}",
+                mesh.source_vertices[v as usize],
+                fmt_point(grid, &mesh.vertices[v as usize])
+            ))
+        });
+    }
+    c.finish("vertices where the solid touches itself", &mut problems);
+    drop(he);
+    let (shell_of, shells) = shells::shells(mesh.triangles.len(), &use_.pairs);
+    info.shells = shells;
+    drop(use_);
+
+    // Volume and orientation.
+    if info.closed {
+        let mut v6 = mesh.volume6();
+        if v6 == Int::ZERO {
+            problems.push(Problem::error("the solid has zero volume"));
+        } else {
+            if v6 < Int::ZERO {
+                mesh.flip();
+                v6 = -v6;
+                info.flipped = true;
+                info.reflex_edges = convex_edges;
+                problems.push(Problem::warning(
+                    "inside out (negative volume): every face was flipped",
+                ));
+            }
+            info.volume6 = Some(v6);
+        }
+    }
+
+    // Self-intersection.
+    let boxes: Vec<Aabb> = (0..mesh.triangles.len())
+        .map(|t| Aabb::of(mesh.corners(t)))
+        .collect();
+    let bvh = Bvh::new(boxes);
+    let (pairs, count) = self_intersection::self_intersections(mesh, &bvh, LIST);
+    info.self_intersections = count;
+    for &(t, u, contact) in &pairs {
+        let what = match contact {
+            Contact::Intersect => "self-intersection: the faces meet beyond their shared vertices",
+            Contact::Overlap => "self-intersection: the faces overlap (coplanar)",
+        };
+        problems.push(Problem::error(what).at(faces_at(mesh, t, u)));
+    }
+    if count > pairs.len() {
+        problems.push(Problem::error(format!(
+            "... and {} more intersecting face pairs",
+            count - pairs.len()
+        )));
+    }
+
+    // Nesting of shells.
+    if info.closed && info.volume6.is_some() && shells > 1 && count == 0 {
+        let volumes = orientation::shell_volumes(mesh, &shell_of, shells);
+        let mut members: Vec<Vec<u32>> = vec![Vec::new(); shells];
+        for (t, &s) in shell_of.iter().enumerate() {
+            if members[s as usize].len() < 16 {
+                members[s as usize].push(t as u32);
+            }
+        }
+        let locator = Locator::with_bvh(mesh, bvh);
+        let mut c = Capped::new(LIST);
+        for s in 0..shells {
+            let shell = format!(
+                "shell of face {}",
+                mesh.source_faces[members[s][0] as usize]
+            );
+            let sign = apart_kernel::int::sign_of(&volumes[s]);
+            if sign == Sign::Zero {
+                c.push(|| Problem::error("this shell has zero volume").at(shell));
+                continue;
+            }
+            let expected = if sign == Sign::Positive { 0 } else { 1 };
+            match orientation::winding_of_others(&locator, &shell_of, s as u32, &members[s]) {
+                Some(w) if w == expected => {}
+                Some(w) => c.push(|| {
+                    let why = if sign == Sign::Positive {
+                        format!("this shell lies inside the solid (winding number {w}): shells with the same orientation are nested")
+                    } else if w == 0 {
+                        "this shell is inside out: its faces point inwards but it bounds no cavity".to_string()
+                    } else {
+                        format!("this cavity lies in a region of winding number {w}")
+                    };
+                    Problem::error(why).at(shell)
+                }),
+                None => {}
+            }
+        }
+        c.finish("badly nested shells", &mut problems);
+    }
+
+    let has_errors = problems.iter().any(Problem::is_error);
+    info.convex = convexity::is_convex(&info, has_errors);
+    (info, problems)
+}
+
+/// Reads, snaps, welds, triangulates and validates one object: the mesh (when one
+/// could be built), what validation learnt, and every problem found on the way.
+pub fn check_solid(
+    raw: &crate::raw::RawObject,
+    grid: &Grid,
+) -> (Option<Mesh>, Option<MeshInfo>, Vec<Problem>) {
+    let (mesh, mut problems) = Mesh::from_raw(raw, grid);
+    match mesh {
+        Some(mut m) => {
+            let (info, more) = validate(&mut m, grid);
+            problems.extend(more);
+            (Some(m), Some(info), problems)
+        }
+        None => (None, None, problems),
+    }
+}

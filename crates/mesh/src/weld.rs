@@ -1,0 +1,170 @@
+//! Snapping input coordinates to the grid and welding equal grid points.
+//!
+//! Welding is sort-based: each vertex becomes a key (its integer coordinates, then its
+//! input index), the keys are sorted in parallel, and each run of equal coordinates
+//! becomes one vertex. Welded vertices keep the order of their first appearance in the
+//! input, so small meshes keep their numbering.
+
+use apart_kernel::Grid;
+use rayon::prelude::*;
+
+/// Snapped and welded vertices.
+#[derive(Debug)]
+pub(crate) struct Welded {
+    /// Distinct grid points, in order of first appearance.
+    pub points: Vec<[i64; 3]>,
+    /// For every input vertex, its welded index.
+    pub remap: Vec<u32>,
+    /// For every welded point, the first input vertex that snapped to it.
+    pub first: Vec<u32>,
+}
+
+/// Snaps every coordinate with `grid.snap` (the values must be finite and within the
+/// grid's range).
+pub(crate) fn snap_all(vertices: &[[f64; 3]], grid: &Grid) -> Vec<[i64; 3]> {
+    vertices
+        .par_iter()
+        .with_min_len(8192)
+        .map(|v| v.map(|c| grid.snap(c)))
+        .collect()
+}
+
+/// Welds equal grid points.
+pub(crate) fn weld(points: &[[i64; 3]]) -> Welded {
+    let n = points.len();
+    // Group heads: head[i] = the smallest input index with the same coordinates as i.
+    let mut head = vec![0u32; n];
+    let max = points
+        .par_iter()
+        .map(|p| p.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0))
+        .max()
+        .unwrap_or(0);
+    if max < 1 << 30 {
+        // Pack (x, y, z, index) into one u128: 31 + 31 + 31 + 32 bits, order-preserving.
+        // Partition the keys into buckets by a hash of the coordinates (equal points land
+        // in the same bucket), then sort each cache-sized bucket in parallel.
+        let off = 1i64 << 30;
+        let pack = |i: usize, p: &[i64; 3]| {
+            ((p[0] + off) as u128) << 94
+                | ((p[1] + off) as u128) << 63
+                | ((p[2] + off) as u128) << 32
+                | i as u128
+        };
+        let bits = (usize::BITS - (n / 2048).leading_zeros()).min(16);
+        let bucket = |p: &[i64; 3]| -> usize {
+            if bits == 0 {
+                return 0;
+            }
+            let h = (p[0] as u64)
+                .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+                .wrapping_add((p[1] as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F))
+                .wrapping_add((p[2] as u64).wrapping_mul(0x1656_67B1_9E37_79F9));
+            (h.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize
+        };
+        let ids: Vec<u32> = points
+            .par_iter()
+            .with_min_len(8192)
+            .map(|p| bucket(p) as u32)
+            .collect();
+        let mut offsets = vec![0usize; (1 << bits) + 1];
+        for &b in &ids {
+            offsets[b as usize + 1] += 1;
+        }
+        for b in 0..1 << bits {
+            offsets[b + 1] += offsets[b];
+        }
+        let mut cursor = offsets.clone();
+        let mut keys = vec![0u128; n];
+        for (i, p) in points.iter().enumerate() {
+            let b = ids[i] as usize;
+            keys[cursor[b]] = pack(i, p);
+            cursor[b] += 1;
+        }
+        drop(ids);
+        let mut slices: Vec<&mut [u128]> = Vec::with_capacity(1 << bits);
+        let mut rest: &mut [u128] = &mut keys;
+        for b in 0..1 << bits {
+            let (head, tail) = rest.split_at_mut(offsets[b + 1] - offsets[b]);
+            slices.push(head);
+            rest = tail;
+        }
+        slices.par_iter_mut().for_each(|s| s.sort_unstable());
+        let mut current = u128::MAX;
+        let mut h = 0u32;
+        for k in keys {
+            let coords = k >> 32;
+            let i = (k & 0xffff_ffff) as u32;
+            if coords != current {
+                current = coords;
+                h = i;
+            }
+            head[i as usize] = h;
+        }
+    } else {
+        let mut keys: Vec<([i64; 3], u32)> = points
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| (*p, i as u32))
+            .collect();
+        keys.par_sort_unstable();
+        let mut current: Option<[i64; 3]> = None;
+        let mut h = 0u32;
+        for (p, i) in keys {
+            if current != Some(p) {
+                current = Some(p);
+                h = i;
+            }
+            head[i as usize] = h;
+        }
+    }
+    // Number the heads in input order; every vertex takes its head's number.
+    let mut remap = vec![0u32; n];
+    let mut first = Vec::new();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let h = head[i] as usize;
+        if h == i {
+            remap[i] = first.len() as u32;
+            first.push(i as u32);
+            out.push(points[i]);
+        } else {
+            remap[i] = remap[h];
+        }
+    }
+    Welded {
+        points: out,
+        remap,
+        first,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welds_equal_points_in_first_appearance_order() {
+        let pts = vec![[5, 0, 0], [0, 0, 0], [5, 0, 0], [-3, 2, 1], [0, 0, 0]];
+        let w = weld(&pts);
+        assert_eq!(w.points, vec![[5, 0, 0], [0, 0, 0], [-3, 2, 1]]);
+        assert_eq!(w.remap, vec![0, 1, 0, 2, 1]);
+        assert_eq!(w.first, vec![0, 1, 3]);
+    }
+
+    #[test]
+    fn large_coordinates_take_the_general_path() {
+        let b = 1i64 << 40;
+        let pts = vec![[b, -b, 0], [0, 0, 0], [b, -b, 0], [b, -b, 1]];
+        let w = weld(&pts);
+        assert_eq!(w.remap, vec![0, 1, 0, 2]);
+    }
+
+    #[test]
+    fn snapping_merges_nearby_values() {
+        let g = Grid::choose([1.0, 0.1], 4).unwrap(); // h = 2^-3
+        let s = snap_all(&[[0.1, 0.0, 0.0], [0.11, 0.0, 0.0], [1.0, 0.0, 0.0]], &g);
+        let w = weld(&s);
+        assert_eq!(w.points.len(), 2); // 0.1 and 0.11 both snap to 1/8
+        assert_eq!(w.points[0], [1, 0, 0]);
+    }
+}
