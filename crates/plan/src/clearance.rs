@@ -3,6 +3,9 @@
 //! Clearance is a measurement reported to the user, not a combinatorial decision, so it
 //! is computed in floating point; the direction finally reported is an integer vector
 //! checked exactly (it lies on no arc and has the face's blocking graph).
+//!
+//! Internally distances are compared as squared chord lengths `2 − 2 cos θ`, which grow
+//! with the angle θ and need no trigonometry; [`to_angle`] converts back.
 
 use apart_sphere::overlay::RegionArrangement;
 
@@ -25,10 +28,14 @@ fn normalize(a: V3) -> V3 {
     [a[0] / n, a[1] / n, a[2] / n]
 }
 
-fn angle(a: &V3, b: &V3) -> f64 {
-    // atan2 of |a x b| and a.b is accurate for small and large angles alike.
-    let c = cross(a, b);
-    dot(&c, &c).sqrt().atan2(dot(a, b))
+fn chord2(a: &V3, b: &V3) -> f64 {
+    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    dot(&d, &d)
+}
+
+/// The angle (radians) of a squared chord length.
+pub fn to_angle(c2: f64) -> f64 {
+    2.0 * (c2.max(0.0).sqrt() / 2.0).min(1.0).asin()
 }
 
 /// A boundary arc in floating point: unit end points and unit normal (left = positive).
@@ -40,8 +47,8 @@ pub struct FArc {
 }
 
 impl FArc {
-    /// Angular distance from unit point `p` to the closed arc.
-    pub fn distance(&self, p: &V3) -> f64 {
+    /// Squared chord distance from unit point `p` to the closed arc.
+    pub fn distance2(&self, p: &V3) -> f64 {
         let s = dot(&self.n, p);
         let q = [
             p[0] - s * self.n[0],
@@ -51,16 +58,34 @@ impl FArc {
         let within =
             dot(&cross(&self.a, &q), &self.n) >= 0.0 && dot(&cross(&q, &self.b), &self.n) >= 0.0;
         if within && dot(&q, &q) > 1e-30 {
-            s.abs().min(1.0).asin()
+            // Nearest point: the projection onto the circle, at angle asin|s|.
+            2.0 - 2.0 * (1.0 - s * s).max(0.0).sqrt()
         } else {
-            angle(p, &self.a).min(angle(p, &self.b))
+            chord2(p, &self.a).min(chord2(p, &self.b))
         }
     }
 }
 
-/// The real boundary of face `f` as floating-point arcs (face on their positive side),
-/// plus isolated real points inside it.
-pub fn face_boundary(arr: &RegionArrangement, f: u32) -> (Vec<FArc>, Vec<V3>) {
+/// Real isolated points (vertices with no real edge, e.g. a free direction inside a
+/// blocked region) of every face, as unit vectors.
+pub fn isolated_points(arr: &RegionArrangement) -> Vec<Vec<V3>> {
+    let mut out = vec![Vec::new(); arr.faces().len()];
+    for v in arr.vertices() {
+        if v.structural || v.around.is_empty() {
+            continue;
+        }
+        if v.around
+            .iter()
+            .all(|&h| arr.edges()[(h / 2) as usize].structural)
+        {
+            out[arr.face_of(v.around[0]) as usize].push(v.point.unit_f64());
+        }
+    }
+    out
+}
+
+/// The real boundary arcs of face `f` as floating-point arcs (face on their left).
+pub fn face_boundary(arr: &RegionArrangement, f: u32) -> Vec<FArc> {
     let mut arcs = Vec::new();
     for lp in arr.boundary_loops(f) {
         for h in lp {
@@ -72,36 +97,28 @@ pub fn face_boundary(arr: &RegionArrangement, f: u32) -> (Vec<FArc>, Vec<V3>) {
             });
         }
     }
-    let mut points = Vec::new();
-    for v in arr.vertices() {
-        if v.structural || v.around.is_empty() {
-            continue;
-        }
-        let real = v
-            .around
-            .iter()
-            .any(|&h| !arr.edges()[(h / 2) as usize].structural);
-        if !real && arr.face_of(v.around[0]) == f {
-            points.push(v.point.unit_f64());
-        }
-    }
-    (arcs, points)
+    arcs
 }
 
-/// Clearance of unit point `p`: its angular distance to the nearest boundary element.
-pub fn clearance(p: &V3, arcs: &[FArc], points: &[V3]) -> f64 {
-    let mut c = std::f64::consts::PI;
+/// Squared chord clearance of unit point `p`: to the nearest boundary arc or point.
+pub fn clearance2(p: &V3, arcs: &[FArc], points: &[V3]) -> f64 {
+    let mut c = 4.0;
     for a in arcs {
-        c = c.min(a.distance(p));
+        c = a.distance2(p).min(c);
     }
     for q in points {
-        c = c.min(angle(p, q));
+        c = chord2(p, q).min(c);
     }
     c
 }
 
+/// Angular clearance (radians) of unit point `p`.
+pub fn clearance(p: &V3, arcs: &[FArc], points: &[V3]) -> f64 {
+    to_angle(clearance2(p, arcs, points))
+}
+
 /// Points just inside the face next to some of its boundary arcs (at most `max`), each
-/// with its clearance, best first.
+/// with its squared chord clearance, best first.
 pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64)> {
     let mut out = Vec::new();
     let stride = (arcs.len() / max.max(1)).max(1);
@@ -115,10 +132,11 @@ pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64
             .iter()
             .enumerate()
             .filter(|(j, _)| *j != k)
-            .map(|(_, o)| o.distance(&m))
-            .chain(points.iter().map(|q| angle(&m, q)))
-            .fold(angle(&arc.a, &arc.b) / 2.0, f64::min);
-        let delta = 0.5 * others;
+            .map(|(_, o)| o.distance2(&m))
+            .chain(points.iter().map(|q| chord2(&m, q)))
+            .fold(chord2(&arc.a, &arc.b) / 4.0, f64::min);
+        // Half the angular room, roughly (chords are within a few per cent of angles here).
+        let delta = 0.5 * others.sqrt();
         if delta <= 1e-12 {
             continue;
         }
@@ -127,21 +145,46 @@ pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64
             m[1] + delta * arc.n[1],
             m[2] + delta * arc.n[2],
         ]);
-        out.push((p, clearance(&p, arcs, points)));
+        out.push((p, clearance2(&p, arcs, points)));
     }
     out.sort_by(|a, b| b.1.total_cmp(&a.1));
     out
 }
 
-/// Moves `p` uphill in clearance. Every step is shorter than the current clearance, so
-/// the path never meets the boundary and `p` stays in the face.
+/// Unit directions for the search steps, in the plane of a tangent basis.
+const DIRS: [(f64, f64); 8] = [
+    (1.0, 0.0),
+    (
+        std::f64::consts::FRAC_1_SQRT_2,
+        std::f64::consts::FRAC_1_SQRT_2,
+    ),
+    (0.0, 1.0),
+    (
+        -std::f64::consts::FRAC_1_SQRT_2,
+        std::f64::consts::FRAC_1_SQRT_2,
+    ),
+    (-1.0, 0.0),
+    (
+        -std::f64::consts::FRAC_1_SQRT_2,
+        -std::f64::consts::FRAC_1_SQRT_2,
+    ),
+    (0.0, -1.0),
+    (
+        std::f64::consts::FRAC_1_SQRT_2,
+        -std::f64::consts::FRAC_1_SQRT_2,
+    ),
+];
+
+/// Moves `p` uphill in clearance; returns the point and its angular clearance. Every
+/// step is shorter than the current clearance, so the path never meets the boundary and
+/// `p` stays in the face.
 pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
-    let mut c = clearance(&p, arcs, points);
+    let mut c2 = clearance2(&p, arcs, points);
+    let mut c = to_angle(c2);
     let mut step = 0.5 * c;
     let mut iterations = 0;
-    while step > 1e-9 && iterations < 400 {
+    while step > 1e-7 * c.max(1e-9) && iterations < 120 {
         iterations += 1;
-        // Tangent basis at p.
         let helper = if p[0].abs() < 0.9 {
             [1.0, 0.0, 0.0]
         } else {
@@ -150,28 +193,49 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
         let u = normalize(cross(&p, &helper));
         let w = cross(&p, &u);
         let mut best: Option<(V3, f64)> = None;
-        for k in 0..16 {
-            let t = k as f64 * std::f64::consts::PI / 8.0;
-            let (s, co) = t.sin_cos();
+        for (co, s) in DIRS {
             let d = [
                 u[0] * co + w[0] * s,
                 u[1] * co + w[1] * s,
                 u[2] * co + w[2] * s,
             ];
             let q = normalize([p[0] + step * d[0], p[1] + step * d[1], p[2] + step * d[2]]);
-            let cq = clearance(&q, arcs, points);
-            if cq > c && best.is_none_or(|(_, bc)| cq > bc) {
+            let cq = clearance2(&q, arcs, points);
+            if cq > c2 && best.is_none_or(|(_, bc)| cq > bc) {
                 best = Some((q, cq));
             }
         }
         match best {
             Some((q, cq)) => {
                 p = q;
-                c = cq;
+                c2 = cq;
+                c = to_angle(c2);
                 step = step.min(0.9 * c);
             }
             None => step *= 0.5,
         }
     }
     (p, c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_match_angles() {
+        let arc = FArc {
+            a: [1.0, 0.0, 0.0],
+            b: [0.0, 1.0, 0.0],
+            n: [0.0, 0.0, 1.0],
+        };
+        // Above the middle of the arc at 30°: the distance is 30°.
+        let t = 30f64.to_radians();
+        let h = std::f64::consts::FRAC_1_SQRT_2 * t.cos();
+        let p = [h, h, t.sin()];
+        assert!((to_angle(arc.distance2(&p)) - t).abs() < 1e-12);
+        // Beyond the end point b: the distance to b.
+        let q = normalize([-1.0, 1.0, 0.0]);
+        assert!((to_angle(arc.distance2(&q)) - 45f64.to_radians()).abs() < 1e-12);
+    }
 }

@@ -43,6 +43,11 @@ pub struct MotionSpace {
     vertex_is_cell: Vec<bool>,
     edge_cell_of: Vec<u32>,
     edge_cells: Vec<Vec<u32>>,
+    /// Arcs of the real edges (by edge index; structural edges get a dummy) and their index.
+    edge_arcs: Vec<Arc>,
+    edge_index: apart_sphere::index::ArcIndex,
+    real_edge_ids: Vec<u32>,
+    vertex_at: HashMap<Vec3, u32>,
     /// Arcs inserted into the overlay (from the simplified pair regions).
     pub input_arcs: usize,
     /// Statistics of the arrangement build.
@@ -106,6 +111,25 @@ impl MotionSpace {
             s
         });
         let (vertex_is_cell, edge_cell_of, edge_cells) = cells(&arr, &st);
+        let edge_arcs: Vec<Arc> = (0..arr.edges().len() as u32)
+            .map(|e| arr.edge_arc(e))
+            .collect();
+        let real_arcs: Vec<Arc> = edge_arcs
+            .iter()
+            .zip(arr.edges())
+            .filter(|(_, e)| !e.structural)
+            .map(|(a, _)| a.clone())
+            .collect();
+        let real_ids: Vec<u32> = (0..arr.edges().len() as u32)
+            .filter(|&e| !arr.edges()[e as usize].structural)
+            .collect();
+        let edge_index = apart_sphere::index::ArcIndex::new(&real_arcs);
+        let vertex_at = arr
+            .vertices()
+            .iter()
+            .enumerate()
+            .map(|(v, x)| (x.point.clone(), v as u32))
+            .collect();
         MotionSpace {
             parts,
             maps,
@@ -114,6 +138,10 @@ impl MotionSpace {
             vertex_is_cell,
             edge_cell_of,
             edge_cells,
+            edge_arcs: real_arcs,
+            edge_index,
+            real_edge_ids: real_ids,
+            vertex_at,
             input_arcs,
             build_stats,
         }
@@ -183,30 +211,28 @@ impl MotionSpace {
     /// face (`None` index: faces are not located, their DBG is evaluated directly).
     pub fn locate(&self, d: &Vec3) -> (CellKind, Option<usize>) {
         let p = d.primitive();
-        for (v, vert) in self.arr.vertices().iter().enumerate() {
-            if vert.point == p {
-                if self.vertex_is_cell[v] {
-                    return (CellKind::Vertex, Some(v));
-                }
-                // A vertex that is no cell lies inside an edge cell or a face.
-                return match vert
-                    .around
-                    .iter()
-                    .find_map(|&h| self.edge_cell_of((h / 2) as usize))
-                {
-                    Some(c) => (CellKind::Edge, Some(c)),
-                    None => (CellKind::Face, None),
-                };
+        if let Some(&v) = self.vertex_at.get(&p) {
+            let vert = &self.arr.vertices()[v as usize];
+            if self.vertex_is_cell[v as usize] {
+                return (CellKind::Vertex, Some(v as usize));
             }
-        }
-        for (e, edge) in self.arr.edges().iter().enumerate() {
-            if !edge.structural
-                && self.arr.edge_arc(e as u32).locate(&p) == Some(ArcPosition::Interior)
+            // A vertex that is no cell lies inside an edge cell or a face.
+            return match vert
+                .around
+                .iter()
+                .find_map(|&h| self.edge_cell_of((h / 2) as usize))
             {
-                return (CellKind::Edge, self.edge_cell_of(e));
-            }
+                Some(c) => (CellKind::Edge, Some(c)),
+                None => (CellKind::Face, None),
+            };
         }
-        (CellKind::Face, None)
+        match self.edge_index.locate(&self.edge_arcs, &p) {
+            Some((k, _)) => (
+                CellKind::Edge,
+                self.edge_cell_of(self.real_edge_ids[k as usize] as usize),
+            ),
+            None => (CellKind::Face, None),
+        }
     }
 }
 

@@ -1,13 +1,14 @@
 //! Partitioning: every direction and subset that separates a (sub)assembly by one
 //! infinite translation.
 
-use crate::clearance::{climb, face_boundary, starting_points};
+use crate::clearance::{climb, face_boundary, isolated_points, starting_points};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
 use apart_kernel::Vec3;
 use apart_sphere::BitSet;
+use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
 
@@ -142,12 +143,23 @@ fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec
         |local: Vec<usize>| -> Vec<usize> { local.into_iter().map(|k| ms.parts()[k]).collect() };
     let mut out = Vec::new();
 
+    // Faces with solutions; their deep directions are independent searches, run in parallel.
+    let mut faces: Vec<(usize, Vec<Vec<usize>>)> = Vec::new();
     for f in 0..arr.faces().len() {
         let moving = sets(&st.faces[f]);
-        if moving.is_empty() {
-            continue;
+        if !moving.is_empty() {
+            faces.push((f, moving));
+            if opts.first {
+                break;
+            }
         }
-        let (direction, clearance) = face_direction(regions, ms, f as u32, &st.faces[f]);
+    }
+    let isolated = isolated_points(arr);
+    let directions: Vec<(Vec3, f64)> = faces
+        .par_iter()
+        .map(|(f, _)| face_direction(regions, ms, *f as u32, &st.faces[*f], &isolated[*f]))
+        .collect();
+    for ((_, moving), (direction, clearance)) in faces.into_iter().zip(directions) {
         for m in moving {
             out.push(Solution {
                 cell: CellKind::Face,
@@ -228,28 +240,37 @@ pub fn dbg_at(regions: &BlockingRegions, parts: &[usize], d: &Vec3) -> Dbg {
 
 /// A direction deep inside face `f` with its clearance (radians): the best of a
 /// clearance-climbing search from points next to the boundary, verified exactly (on no
-/// arc of the motion space, with the face's blocking graph); falls back to an exactly
-/// constructed point next to a boundary edge when verification fails.
+/// arc of the motion space, with the face's blocking graph); falls back to an exact
+/// point of the face found without floating point when verification fails.
 fn face_direction(
     regions: &BlockingRegions,
     ms: &MotionSpace,
     f: u32,
     status: &BitSet,
+    points: &[[f64; 3]],
 ) -> (Vec3, f64) {
     let arr = ms.arrangement();
     let want = ms.dbg(status);
-    let (arcs, points) = face_boundary(arr, f);
+    let arcs = face_boundary(arr, f);
     let verify = |d: &Vec3| -> bool {
         !d.is_zero() && ms.locate(d).0 == CellKind::Face && dbg_at(regions, ms.parts(), d) == want
     };
     if arcs.is_empty() && points.is_empty() {
         // The whole sphere is one face: any direction, with half-turn clearance.
-        let d = Vec3::new(0, 0, 1);
-        return (d, std::f64::consts::PI);
+        return (Vec3::new(0, 0, 1), std::f64::consts::PI);
     }
     let mut best: Option<([f64; 3], f64)> = None;
-    for (p, _) in starting_points(&arcs, &points, 8).into_iter().take(4) {
-        let (q, c) = climb(p, &arcs, &points);
+    let mut starts: Vec<[f64; 3]> = starting_points(&arcs, points, 8)
+        .into_iter()
+        .take(2)
+        .map(|(p, _)| p)
+        .collect();
+    if arcs.is_empty() {
+        // Only isolated points bound the face: start opposite the first one.
+        starts.push(points[0].map(|x| -x));
+    }
+    for p in starts {
+        let (q, c) = climb(p, &arcs, points);
         if best.is_none_or(|(_, bc)| c > bc) {
             best = Some((q, c));
         }
@@ -268,23 +289,11 @@ fn face_direction(
             }
         }
     }
-    // Fallback: k * (interior point of a boundary edge) + (normal towards the face).
-    let h = arr
-        .boundary_loops(f)
-        .into_iter()
-        .flatten()
-        .next()
-        .expect("a face with a real boundary has a boundary half-edge");
-    let arc = arr.half_edge_arc(h);
-    let m = arc.interior_point();
-    let mut k = apart_kernel::Int::from(1u64 << 20);
-    for _ in 0..64 {
-        let d = m.scale(&k).add(&arc.normal).primitive();
-        if verify(&d) {
-            let c = crate::clearance::clearance(&d.unit_f64(), &arcs, &points);
-            return (d, c);
-        }
-        k = &k * apart_kernel::Int::from(1u64 << 16);
-    }
-    unreachable!("no exact interior point found next to a boundary edge")
+    let d = ms.face_sample(f);
+    debug_assert!(
+        verify(&d),
+        "the exact face sample must have the face's graph"
+    );
+    let c = crate::clearance::clearance(&d.unit_f64(), &arcs, points);
+    (d, c)
 }

@@ -24,7 +24,7 @@ fn stacked_cubes_hemisphere_and_equator() {
         let up = s.moving == vec![top];
         assert!(up || s.moving == vec![bottom]);
         assert_eq!(s.unit[2] > 0.0, up);
-        assert!((s.clearance_deg - 90.0).abs() < 1e-6, "{}", s.clearance_deg);
+        assert!((s.clearance_deg - 90.0).abs() < 1e-3, "{}", s.clearance_deg);
     }
     // The equator is one edge where either cube slides off.
     assert_eq!(edges.len(), 2);

@@ -10,6 +10,7 @@
 pub mod arc;
 pub mod arrangement;
 pub mod bitset;
+pub mod index;
 pub mod overlay;
 pub mod polygon;
 pub mod region;

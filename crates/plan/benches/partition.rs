@@ -1,0 +1,170 @@
+//! Partitioning benchmark: prints a table of phase times, sizes, peak memory and the
+//! two-thread speed-up for growing assemblies. `cargo bench -p apart-plan --bench partition`
+//! (add `-- --quick` for a short run).
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use apart_plan::{partition, Options, PartPieces};
+use std::time::Instant;
+
+/// Resets the process's peak resident set size (Linux), so each case reports its own.
+fn reset_peak() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// Peak resident set size in MiB since the last reset.
+fn peak_mib() -> f64 {
+    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    s.lines()
+        .find(|l| l.starts_with("VmHWM:"))
+        .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// A row of `n` parts laid like two courses of bricks: part i is a lower brick
+/// [2i, 2i+2] and an upper brick [2i+1, 2i+3] (in x), so neighbours interlock.
+fn brick_row(n: i64) -> Vec<PartPieces> {
+    (0..n)
+        .map(|i| {
+            common::part(
+                &format!("b{i}"),
+                vec![
+                    common::cuboid([2 * i, 0, 0], [2 * i + 2, 2, 1]),
+                    common::cuboid([2 * i + 1, 0, 1], [2 * i + 3, 2, 2]),
+                ],
+            )
+        })
+        .collect()
+}
+
+/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2).
+fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<PartPieces> {
+    let mut s = seed;
+    let mut next = |m: i64| {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 33) % m as u64) as i64
+    };
+    let side = 12 * (n as f64).cbrt().ceil() as i64 + 12;
+    let mut boxes: Vec<([i64; 3], [i64; 3])> = Vec::new();
+    while boxes.len() < n {
+        let lo = [next(side), next(side), next(side)];
+        let hi = [
+            lo[0] + 2 + next(8),
+            lo[1] + 2 + next(8),
+            lo[2] + 2 + next(8),
+        ];
+        let overlaps = boxes
+            .iter()
+            .any(|(a, b)| (0..3).all(|d| lo[d] < b[d] && a[d] < hi[d]));
+        if !overlaps {
+            boxes.push((lo, hi));
+        }
+    }
+    let mut parts: Vec<Vec<apart_pieces::Polytope>> = vec![Vec::new(); k];
+    for (i, (lo, hi)) in boxes.into_iter().enumerate() {
+        parts[i % k].push(common::cuboid(lo, hi));
+    }
+    parts
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| common::part(&format!("p{i}"), p))
+        .collect()
+}
+
+struct Row {
+    name: String,
+    parts: usize,
+    pieces: usize,
+    sums: usize,
+    cells: (usize, usize, usize),
+    phases: [f64; 5],
+    t1: f64,
+    t2: f64,
+    peak: f64,
+    solutions: usize,
+}
+
+fn run(name: &str, parts: &[PartPieces], reps: usize) -> Row {
+    let pool = |k| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()
+            .unwrap()
+    };
+    let time = |k: usize| -> (f64, apart_plan::Partitioning) {
+        pool(k).install(|| {
+            let mut best = f64::INFINITY;
+            let mut last = None;
+            for _ in 0..reps {
+                let t = Instant::now();
+                let r = partition(parts, &Options::default()).unwrap();
+                best = best.min(t.elapsed().as_secs_f64());
+                last = Some(r);
+            }
+            (best, last.unwrap())
+        })
+    };
+    reset_peak();
+    let (t1, r) = time(1);
+    let peak = peak_mib();
+    let (t2, _) = time(2);
+    let s = r.stats;
+    Row {
+        name: name.to_string(),
+        parts: parts.len(),
+        pieces: s.pieces,
+        sums: s.sums,
+        cells: (s.vertices, s.edges, s.faces),
+        phases: [
+            s.seconds.sums,
+            s.seconds.projection,
+            s.seconds.unions,
+            s.seconds.overlay,
+            s.seconds.graphs,
+        ],
+        t1,
+        t2,
+        peak,
+        solutions: r.solutions.len(),
+    }
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let mut rows = Vec::new();
+    rows.push(run(
+        "split star",
+        &common::split_star(),
+        if quick { 20 } else { 200 },
+    ));
+    for n in [4, 8, 16, 32, 64] {
+        if quick && n > 16 {
+            break;
+        }
+        rows.push(run(&format!("brick row {n}"), &brick_row(n), 3));
+    }
+    for (n, k) in [(4, 2), (8, 4), (16, 4), (32, 8), (64, 8), (128, 16)] {
+        if quick && n > 32 {
+            break;
+        }
+        rows.push(run(
+            &format!("random boxes {n}/{k}"),
+            &random_boxes(n, k, 7 + n as u64),
+            3,
+        ));
+    }
+    println!(
+        "| assembly | parts | pieces | sums | V/E/F | sums ms | proj ms | unions ms | overlay ms | graphs ms | total 1 thread ms | total 2 threads ms | speed-up | peak MiB | solutions |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let [a, b, c, d, e] = r.phases.map(|x| x * 1000.0);
+        println!(
+            "| {} | {} | {} | {} | {}/{}/{} | {a:.2} | {b:.2} | {c:.2} | {d:.2} | {e:.2} | {:.2} | {:.2} | {:.2}x | {:.1} | {} |",
+            r.name, r.parts, r.pieces, r.sums, r.cells.0, r.cells.1, r.cells.2, r.t1 * 1000.0, r.t2 * 1000.0, r.t1 / r.t2, r.peak, r.solutions
+        );
+    }
+}
