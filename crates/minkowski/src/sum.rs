@@ -48,6 +48,12 @@ impl Summand {
 
 /// The Minkowski sum of two prepared polytopes.
 pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
+    if sp.polytope.den() != sq.polytope.den() {
+        // Different denominators: bring both to a common one (rare: decomposed parts).
+        let (p, q) = Polytope::common(&sp.polytope, &sq.polytope);
+        return sum_prepared(&Summand::new(p), &Summand::new(q));
+    }
+    let den = sp.polytope.den().clone();
     let (p, q) = (&sp.polytope, &sq.polytope);
     let nq = q.vertices().len() as u64;
     // A vertex of a Minkowski sum decomposes uniquely into vertices of the summands, so
@@ -124,7 +130,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
             facets.push((n, cycle));
         }
     }
-    Polytope::from_facets(&points, facets)
+    Ok(Polytope::from_facets(&points, facets)?.with_den(den))
 }
 
 /// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal
@@ -264,6 +270,26 @@ mod tests {
         assert_eq!(d.vertices().len(), 8);
         assert_eq!(d.facets().len(), 6);
         assert!(same(&d, &brute(&a, &a.reflected())));
+    }
+
+    #[test]
+    fn different_denominators() {
+        // [0, 1]^3 stored as [0, 2]^3 / 2, minus the unit cube at x = 1..2 (den 1):
+        // b ⊕ (−a) = [0, 2] x [-1, 1] x [-1, 1], stored with denominator 2.
+        let cube = |lo: i64, s: i64| -> Vec<Vec3> {
+            (0..8)
+                .map(|i| Vec3::new(lo + (i & 1) * s, (i >> 1 & 1) * s, (i >> 2) * s))
+                .collect()
+        };
+        let a = Polytope::hull_of_points(&cube(0, 2))
+            .unwrap()
+            .with_den(Int::from(2));
+        let b = Polytope::hull_of_points(&cube(1, 1)).unwrap();
+        let m = minkowski_difference(&b, &a).unwrap();
+        assert_eq!(m.den(), &Int::from(2));
+        assert_eq!(m.volume(), apart_kernel::Rational::from_int(8));
+        let (_, arg) = m.support(&Vec3::new(1, 0, 0));
+        assert_eq!(m.vertices()[arg[0] as usize].get(0), Int::from(4));
     }
 
     #[test]

@@ -15,6 +15,10 @@ pub fn interiors_disjoint(a: &Polytope, b: &Polytope) -> bool {
 
 /// A normal `n` with `max_a n·x <= min_b n·y`, if any (the plane separates with `a` below).
 pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
+    if a.den() != b.den() {
+        let (a, b) = Polytope::common(a, b);
+        return separating_normal(&a, &b);
+    }
     let separates = |n: &Vec3| -> bool {
         let (ha, _) = a.support(n);
         let (hb, _) = b.support(&n.neg());
@@ -59,6 +63,10 @@ pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
 /// combination giving every vertex of the full-dimensional intersection positive weight,
 /// hence an interior point of it.
 pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
+    if a.den() != b.den() {
+        let (a, b) = Polytope::common(a, b);
+        return interior_witness(&a, &b);
+    }
     if interiors_disjoint(a, b) {
         return None;
     }
@@ -107,7 +115,8 @@ pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
             *s = &*s + &Rational::new(x.get(k), w.clone());
         }
     }
-    let n = Rational::from_int(Int::from(pts.len()));
+    // The stored integers are den times the coordinates.
+    let n = Rational::from_int(Int::from(pts.len()) * a.den());
     let inv = Rational::new(n.denom().clone(), n.numer().clone());
     Some(sum.map(|s| &s * &inv))
 }
@@ -183,5 +192,38 @@ mod tests {
         let b = boxp([-1, -4, 0], [1, 4, 1]);
         let w = interior_witness(&a, &b).expect("overlap");
         assert!(strictly_inside(&a, &w) && strictly_inside(&b, &w));
+    }
+}
+
+#[cfg(test)]
+mod den_tests {
+    use super::*;
+    use apart_kernel::Vec3;
+
+    #[test]
+    fn different_denominators() {
+        // The cube [0, 1]^3 stored with denominator 2, and [1, 2] x [0, 1] x [0, 1].
+        let pts = |lo: i64, s: i64| -> Vec<Vec3> {
+            (0..8)
+                .map(|i| Vec3::new(lo + (i & 1) * s, (i >> 1 & 1) * s, (i >> 2) * s))
+                .collect()
+        };
+        let a = Polytope::hull_of_points(&pts(0, 2))
+            .unwrap()
+            .with_den(apart_kernel::Int::from(2));
+        let b = Polytope::hull_of_points(&pts(1, 1)).unwrap();
+        assert_eq!(a.volume(), Rational::from_int(1));
+        assert!(interiors_disjoint(&a, &b));
+        // Overlap: the unit cube itself, stored with denominator 3.
+        let d = Polytope::hull_of_points(&pts(0, 3))
+            .unwrap()
+            .with_den(apart_kernel::Int::from(3));
+        let w = interior_witness(&a, &d).expect("same cube");
+        for k in 0..3 {
+            assert_eq!(
+                w[k],
+                Rational::new(apart_kernel::Int::from(1), apart_kernel::Int::from(2))
+            );
+        }
     }
 }

@@ -28,10 +28,16 @@ pub struct Edge {
     pub facets: [u32; 2],
 }
 
-/// A full-dimensional convex polytope with exact integer vertices.
+/// A full-dimensional convex polytope with exact vertices.
+///
+/// Vertices are stored as integer vectors equal to `den` times the true coordinates
+/// (`den = 1` for pieces of grid coordinates; exact decomposition creates rational
+/// vertices and gives each piece the common denominator of its own). Facet offsets refer
+/// to the stored integers: a point `x` of the polytope satisfies `n · (den x) <= offset`.
 #[derive(Clone)]
 pub struct Polytope {
     vertices: Vec<Vec3>,
+    den: Int,
     facets: Vec<Facet>,
     edges: Vec<Edge>,
     /// Distinct edge directions, primitive, one of each `±d` pair (computed on demand:
@@ -304,15 +310,62 @@ impl Polytope {
         }
         Ok(Polytope {
             vertices,
+            den: Int::ONE,
             facets,
             edges,
             edge_dirs: std::sync::OnceLock::new(),
         })
     }
 
-    /// The vertices (extreme points only).
+    /// The vertices (extreme points only), as `den` times their coordinates.
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
+    }
+
+    /// The common denominator of the vertices (positive; 1 for grid pieces).
+    pub fn den(&self) -> &Int {
+        &self.den
+    }
+
+    /// The same polytope declared to have denominator `den` (its stored integers are
+    /// `den` times its coordinates). `den` must be positive.
+    pub fn with_den(mut self, den: Int) -> Polytope {
+        assert!(den > Int::ZERO, "denominator must be positive");
+        self.den = den;
+        self
+    }
+
+    /// The same polytope with its stored integers multiplied by `k > 0` (and its
+    /// denominator too), e.g. to bring two pieces to a common denominator.
+    pub fn rescaled(&self, k: &Int) -> Polytope {
+        if *k == Int::ONE {
+            return self.clone();
+        }
+        let mut p = self.clone();
+        for v in &mut p.vertices {
+            *v = v.scale(k);
+        }
+        for f in &mut p.facets {
+            f.offset *= k;
+        }
+        p.den *= k;
+        p.edge_dirs = std::sync::OnceLock::new();
+        p
+    }
+
+    /// Both polytopes brought to the least common multiple of their denominators.
+    pub fn common(a: &Polytope, b: &Polytope) -> (Polytope, Polytope) {
+        if a.den == b.den {
+            return (a.clone(), b.clone());
+        }
+        let g = apart_kernel::int::gcd(&a.den, &b.den);
+        (a.rescaled(&(&b.den / &g)), b.rescaled(&(&a.den / &g)))
+    }
+
+    /// The exact volume (true coordinates).
+    pub fn volume(&self) -> apart_kernel::Rational {
+        let d3 = &self.den * &self.den * &self.den;
+        apart_kernel::Rational::new(self.volume6(), d3 * Int::from(6))
     }
 
     /// The facets.
@@ -385,7 +438,8 @@ impl Polytope {
         (best.expect("polytope without vertices"), arg)
     }
 
-    /// Six times the volume, exactly.
+    /// Six times the volume of the stored integer polytope (the true volume times
+    /// `6 den³`), exactly.
     pub fn volume6(&self) -> Int {
         let mut total = Int::ZERO;
         for f in &self.facets {
@@ -402,7 +456,8 @@ impl Polytope {
         total
     }
 
-    /// Where `p` lies: inside, on the boundary, or outside.
+    /// Where the stored-integer point `p` (true point `p / den`) lies: inside, on the
+    /// boundary, or outside.
     pub fn locate(&self, p: &Vec3) -> Containment {
         let mut on = false;
         for f in &self.facets {
@@ -431,12 +486,16 @@ impl Polytope {
                 (f.normal.neg(), f.offset.clone(), cycle)
             })
             .collect();
-        Polytope::assemble(&vertices, facets).expect("reflection of a valid polytope")
+        Polytope::assemble(&vertices, facets)
+            .expect("reflection of a valid polytope")
+            .with_den(self.den.clone())
     }
 
-    /// The polytope translated by `t`.
+    /// The polytope translated by `t` (true coordinates, integer).
     pub fn translated(&self, t: &Vec3) -> Polytope {
         let mut p = self.clone();
+        let t = t.scale(&self.den);
+        let t = &t;
         for v in &mut p.vertices {
             *v = v.add(t);
         }
