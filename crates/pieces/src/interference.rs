@@ -219,9 +219,9 @@ mod den_tests {
             .unwrap()
             .with_den(apart_kernel::Int::from(3));
         let w = interior_witness(&a, &d).expect("same cube");
-        for k in 0..3 {
+        for c in &w {
             assert_eq!(
-                w[k],
+                *c,
                 Rational::new(apart_kernel::Int::from(1), apart_kernel::Int::from(2))
             );
         }
