@@ -1,1 +1,61 @@
-//! The assembly model of apart and its loader (in progress: the loader follows).
+//! The assembly model of apart and its loader.
+//!
+//! An [`Assembly`] is an ordered list of named [`Part`]s on one integer grid: each part
+//! a closed solid (a validated [`apart_mesh::Mesh`]), with the convex pieces
+//! ([`apart_pieces::Polytope`]) whose union it is when they are known. [`load`] accepts
+//!
+//! - a folder of mesh files, one part per file (name = file stem, parts sorted by
+//!   name), where a sub-folder with a part's name (or alone) holds its convex pieces;
+//! - one mesh file: each object (OBJ `o`/`g` group, glTF mesh node) is a part;
+//! - an `assembly.json` manifest, or a folder containing one (see [`manifest`]).
+//!
+//! The grid is chosen once from every coordinate of every part and piece (after
+//! transforms). Loading collects every problem rather than stopping at the first: the
+//! validity of each part as a solid, of each declared piece (closed, convex), of the
+//! pieces of a part (disjoint interiors, volumes adding up to the part's), and of the
+//! parts together (disjoint interiors, each overlap with a witness point strictly
+//! inside both, verified exactly).
+//!
+//! ```no_run
+//! use apart_assembly::{load, LoadOptions};
+//! let loaded = load(std::path::Path::new("examples/split-star"), &LoadOptions::default()).unwrap();
+//! assert!(loaded.is_valid());
+//! for part in &loaded.assembly.parts {
+//!     println!("{}: volume {}", part.name, part.volume_units(&loaded.assembly.grid));
+//! }
+//! ```
+
+mod error;
+mod inputs;
+mod load;
+pub mod manifest;
+mod model;
+mod options;
+mod overlap;
+mod pieces;
+mod witness;
+
+pub use error::LoadError;
+pub use load::load;
+pub use model::{Assembly, Loaded, Part};
+pub use options::{LoadOptions, Progress, ProgressFn, Stage};
+pub use witness::{fmt_witness, witness_units};
+
+use apart_kernel::{Grid, Rational};
+
+/// A volume in grid units, printed in input units as `exact (≈ decimal)`.
+pub fn fmt_volume(v: &Rational, grid: &Grid) -> String {
+    let u = apart_mesh::validate::volume_in_units(v, grid);
+    if u.denom() == &apart_kernel::Int::ONE {
+        u.to_string()
+    } else {
+        format!("{u} (≈ {})", u.to_f64())
+    }
+}
+
+/// The point strictly inside both parts, when their interiors overlap (exact, grid
+/// units); `None` when they are disjoint or only touch. Exposed for the planners and
+/// for tests; [`load`] already reports overlaps.
+pub fn parts_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
+    overlap::part_overlap(a, b)
+}

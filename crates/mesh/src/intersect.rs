@@ -80,8 +80,8 @@ pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
     hit.then_some(Contact::Intersect)
 }
 
-/// True when two coplanar (projected) triangles share interior points.
-fn coplanar_overlap_area(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
+/// True when two coplanar triangles (projected to the same plane) share interior points.
+pub fn coplanar_overlap_area(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
     // Separating axis on the six edge lines: the interiors are disjoint exactly when
     // some edge line has one triangle weakly on each side.
     let side = |a: &[i64; 2], b: &[i64; 2], p: &[i64; 2]| orient2d(a, b, p);

@@ -1,0 +1,43 @@
+//! Why an assembly could not be loaded at all (problems with single parts are
+//! [`apart_mesh::Problem`]s instead, collected in [`crate::Loaded`]).
+
+use apart_mesh::formats::ReadError;
+use std::path::PathBuf;
+
+/// A failure that leaves nothing to show.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    /// The path does not exist.
+    #[error("{}: no such file or folder", .0.display())]
+    NotFound(PathBuf),
+    /// A folder could not be listed.
+    #[error("cannot read folder {}: {source}", path.display())]
+    Folder {
+        /// The folder.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// The single mesh file given could not be read.
+    #[error("{}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: ReadError,
+    },
+    /// The manifest is not valid.
+    #[error("{}: {detail}", path.display())]
+    Manifest {
+        /// The manifest file.
+        path: PathBuf,
+        /// What is wrong.
+        detail: String,
+    },
+    /// Nothing to load.
+    #[error("{}: no parts found (expected mesh files .off .obj .stl .ply .gltf .glb, or assembly.json)", .0.display())]
+    NoParts(PathBuf),
+    /// No grid fits the coordinates.
+    #[error("cannot choose the grid: {0}")]
+    Grid(#[from] apart_kernel::GridError),
+}

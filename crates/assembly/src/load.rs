@@ -1,0 +1,263 @@
+//! Loading: read every file once (in parallel), apply transforms, choose one grid for
+//! all coordinates, then snap and validate every part and piece (in parallel), then
+//! check the parts against each other.
+
+use crate::error::LoadError;
+use crate::inputs::{self, PartSpec, SourceRef};
+use crate::model::{Assembly, Loaded, Part};
+use crate::options::{LoadOptions, Stage, Tracker};
+use crate::{overlap, pieces};
+use apart_kernel::{Grid, Int, Rational};
+use apart_mesh::formats::{read_file, ReadError};
+use apart_mesh::validate::check_solid;
+use apart_mesh::{Aabb, Problem, RawObject};
+use apart_pieces::Polytope;
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Loads an assembly from a folder, a mesh file or a manifest (see the crate docs).
+/// Fails only when nothing can be loaded; every problem with parts, pieces or their
+/// relations is collected in [`Loaded::problems`].
+pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
+    let plan = inputs::plan(path)?;
+    let mut problems = plan.problems;
+
+    // Read every file once.
+    let mut files: Vec<&Path> = plan
+        .parts
+        .iter()
+        .flat_map(|p| p.mesh.iter().chain(&p.pieces))
+        .map(|s| s.path.as_path())
+        .filter(|p| !plan.preloaded.contains_key(*p))
+        .collect();
+    files.sort();
+    files.dedup();
+    let tracker = Tracker::start(opts, Stage::Reading, files.len());
+    let read: HashMap<PathBuf, Result<Vec<RawObject>, ReadError>> = files
+        .par_iter()
+        .map(|p| {
+            let r = read_file(p);
+            tracker.tick();
+            (p.to_path_buf(), r)
+        })
+        .collect();
+    let objects_of = |path: &Path| -> Result<&Vec<RawObject>, &ReadError> {
+        match plan.preloaded.get(path) {
+            Some(o) => Ok(o),
+            None => read[path].as_ref(),
+        }
+    };
+
+    // The raw solids of every part, transformed.
+    let raw: Vec<RawPart> = plan
+        .parts
+        .iter()
+        .map(|spec| {
+            let mut probs = Vec::new();
+            let mut get = |s: &SourceRef| match resolve(s, objects_of(&s.path)) {
+                Ok(o) => Some(o),
+                Err(p) => {
+                    probs.push(p.in_file(&s.path).in_part(&spec.name));
+                    None
+                }
+            };
+            let mesh = spec.mesh.as_ref().and_then(&mut get);
+            let pieces = spec
+                .pieces
+                .iter()
+                .map(|s| (s.path.clone(), get(s)))
+                .collect();
+            RawPart {
+                spec,
+                mesh,
+                pieces,
+                problems: probs,
+            }
+        })
+        .collect();
+
+    // One grid for everything.
+    let all = || {
+        raw.iter()
+            .flat_map(|r| {
+                r.mesh
+                    .iter()
+                    .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
+            })
+            .flat_map(|o| o.vertices.iter().flatten().copied())
+            .filter(|v| v.is_finite())
+    };
+    let grid = Grid::choose(all(), opts.grid_bits)?;
+    let max_snap_displacement = all().map(|v| grid.displacement(v)).fold(0.0, f64::max);
+
+    // Parts, in parallel.
+    let tracker = Tracker::start(opts, Stage::Validating, raw.len());
+    let built: Vec<(Part, Vec<Problem>)> = raw
+        .into_par_iter()
+        .map(|r| {
+            let out = build_part(r, &grid);
+            tracker.tick();
+            out
+        })
+        .collect();
+    let mut parts = Vec::with_capacity(built.len());
+    for (part, probs) in built {
+        parts.push(part);
+        problems.extend(probs);
+    }
+    let assembly = Assembly {
+        name: plan.name,
+        grid,
+        max_snap_displacement,
+        parts,
+    };
+    problems.extend(overlap::check_parts(&assembly, opts));
+    Ok(Loaded { assembly, problems })
+}
+
+struct RawPart<'a> {
+    spec: &'a PartSpec,
+    mesh: Option<RawObject>,
+    pieces: Vec<(PathBuf, Option<RawObject>)>,
+    problems: Vec<Problem>,
+}
+
+/// One object (or all merged) of a file, with the transform applied; a mirroring
+/// transform reverses the faces so that they stay outward.
+fn resolve(
+    s: &SourceRef,
+    objects: Result<&Vec<RawObject>, &ReadError>,
+) -> Result<RawObject, Problem> {
+    let objects = objects.map_err(|e| Problem::error(e.to_string()))?;
+    let mut o = match s.object {
+        Some(k) => objects
+            .get(k)
+            .cloned()
+            .ok_or_else(|| Problem::error(format!("the file has no object {k}")))?,
+        None if objects.is_empty() => return Err(Problem::error("the file holds no mesh")),
+        None if objects.len() == 1 => objects[0].clone(),
+        None => RawObject::merged(objects, None),
+    };
+    if !s.transform.is_identity() {
+        o.map_vertices(|v| s.transform.apply(v));
+        if s.transform.det() < 0.0 {
+            o.faces.reverse_each();
+        }
+    }
+    Ok(o)
+}
+
+/// The bounding box of a polytope's vertices.
+pub(crate) fn polytope_bbox(p: &Polytope) -> Aabb {
+    p.vertices().iter().fold(Aabb::EMPTY, |b, v| {
+        let c = v.as_small().copied().unwrap_or([0; 3]);
+        b.with(&c)
+    })
+}
+
+fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
+    let spec = r.spec;
+    let name = &spec.name;
+    let mut problems = r.problems;
+    let mut part = Part {
+        name: name.clone(),
+        source: spec.source.clone(),
+        mesh: None,
+        info: None,
+        pieces: Vec::new(),
+        piece_sources: Vec::new(),
+        declared_pieces: !spec.pieces.is_empty(),
+        convex: false,
+        volume: Rational::zero(),
+        reflex_edges: 0,
+        bbox: None,
+    };
+    let mut mesh_ok = false;
+    if let (Some(raw), Some(src)) = (&r.mesh, &spec.mesh) {
+        let (mesh, info, probs) = check_solid(raw, grid);
+        mesh_ok = mesh.is_some()
+            && info.as_ref().is_some_and(|i| i.volume6.is_some())
+            && !probs.iter().any(Problem::is_error);
+        problems.extend(
+            probs
+                .into_iter()
+                .map(|p| p.in_file(&src.path).in_part(name)),
+        );
+        if let Some(info) = &info {
+            part.reflex_edges = info.reflex_edges;
+            part.convex = mesh_ok && info.convex;
+            part.bbox = info.bbox;
+            if let (true, Some(v)) = (mesh_ok, info.volume()) {
+                part.volume = v;
+            }
+        }
+        part.mesh = mesh;
+        part.info = info;
+    }
+    // Declared pieces.
+    let mut pieces_ok = !r.pieces.is_empty();
+    for (path, raw) in &r.pieces {
+        let Some(raw) = raw else {
+            pieces_ok = false;
+            continue;
+        };
+        match pieces::convex_piece(raw, grid) {
+            Ok(p) => {
+                part.pieces.push(p);
+                part.piece_sources.push(path.clone());
+            }
+            Err(probs) => {
+                pieces_ok = false;
+                problems.extend(probs.into_iter().map(|p| p.in_file(path).in_part(name)));
+            }
+        }
+    }
+    if part.declared_pieces {
+        if pieces_ok {
+            problems.extend(
+                pieces::overlapping_pieces(&part.pieces, &part.piece_sources, grid)
+                    .into_iter()
+                    .map(|p| p.in_part(name)),
+            );
+            let sum = part.pieces.iter().fold(Rational::zero(), |s, p| {
+                &s + &Rational::new(p.volume6(), Int::from(6))
+            });
+            if mesh_ok && sum != part.volume {
+                problems.push(
+                    Problem::error(format!(
+                        "the pieces do not make up the part: their volumes add up to {} but the part's volume is {}",
+                        crate::fmt_volume(&sum, grid),
+                        crate::fmt_volume(&part.volume, grid)
+                    ))
+                    .in_part(name),
+                );
+            }
+            if r.mesh.is_none() {
+                part.volume = sum;
+                part.convex = part.pieces.len() == 1;
+            }
+        }
+        if part.bbox.is_none() {
+            let b = part
+                .pieces
+                .iter()
+                .fold(Aabb::EMPTY, |b, p| b.union(&polytope_bbox(p)));
+            part.bbox = (!b.is_empty()).then_some(b);
+        }
+    } else if part.convex {
+        if let Some(mesh) = &part.mesh {
+            match Polytope::from_triangles(&mesh.points(), &mesh.triangles) {
+                Ok(p) => part.pieces.push(p),
+                Err(e) => problems.push(
+                    Problem::error(format!("convex part rejected by the polytope builder: {e}"))
+                        .in_part(name),
+                ),
+            }
+        }
+    }
+    if spec.mesh.is_none() && spec.pieces.is_empty() {
+        problems.push(Problem::error("the part has neither a mesh nor pieces").in_part(name));
+    }
+    (part, problems)
+}

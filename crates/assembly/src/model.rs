@@ -1,0 +1,85 @@
+//! The assembly model: an ordered list of named parts on one integer grid.
+
+use apart_kernel::{Grid, Rational};
+use apart_mesh::validate::{volume_in_units, MeshInfo};
+use apart_mesh::{Aabb, Mesh, Problem};
+use apart_pieces::Polytope;
+use std::path::PathBuf;
+
+/// One part: a closed solid, with the convex pieces whose union it is when known.
+#[derive(Clone, Debug)]
+pub struct Part {
+    /// The part's name (unique in the assembly).
+    pub name: String,
+    /// Where the part came from: its mesh file, or its pieces' folder or manifest.
+    pub source: PathBuf,
+    /// The boundary, snapped and validated; `None` when only pieces were given (or the
+    /// mesh could not be read).
+    pub mesh: Option<Mesh>,
+    /// What validating the boundary learnt (counts, volume, bounding box, convexity).
+    pub info: Option<MeshInfo>,
+    /// Convex pieces with disjoint interiors whose union is the part: the declared
+    /// pieces, or the part itself when it is convex, or empty for a non-convex part
+    /// without declared pieces.
+    pub pieces: Vec<Polytope>,
+    /// The file of each declared piece (empty when the pieces were not declared).
+    pub piece_sources: Vec<PathBuf>,
+    /// The pieces were declared in the input (not derived from a convex part).
+    pub declared_pieces: bool,
+    /// The part is convex.
+    pub convex: bool,
+    /// Exact volume in grid units (zero when unknown because the input is invalid).
+    pub volume: Rational,
+    /// Edges whose dihedral angle inside the part exceeds 180 degrees.
+    pub reflex_edges: usize,
+    /// Bounding box in grid units (of the mesh, or of the pieces).
+    pub bbox: Option<Aabb>,
+}
+
+impl Part {
+    /// The exact volume in input units.
+    pub fn volume_units(&self, grid: &Grid) -> Rational {
+        volume_in_units(&self.volume, grid)
+    }
+
+    /// True when the volume is known (a valid closed mesh, or declared pieces).
+    pub fn volume_known(&self) -> bool {
+        self.info.as_ref().is_some_and(|i| i.volume6.is_some()) || !self.pieces.is_empty()
+    }
+}
+
+/// An assembly in its assembled pose, snapped to one grid.
+#[derive(Clone, Debug)]
+pub struct Assembly {
+    /// Its name (from the manifest, or the file or folder name).
+    pub name: String,
+    /// The grid every coordinate was snapped to.
+    pub grid: Grid,
+    /// The largest distance (in input units) snapping moved any coordinate.
+    pub max_snap_displacement: f64,
+    /// The parts, in input order (by name for a folder).
+    pub parts: Vec<Part>,
+}
+
+impl Assembly {
+    /// The part named `name`.
+    pub fn part(&self, name: &str) -> Option<&Part> {
+        self.parts.iter().find(|p| p.name == name)
+    }
+}
+
+/// A loaded assembly and every problem found while loading it.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The assembly (possibly with invalid parts: see `problems`).
+    pub assembly: Assembly,
+    /// Every problem, in the order found (per part in part order, then across parts).
+    pub problems: Vec<Problem>,
+}
+
+impl Loaded {
+    /// True when no problem is an error: the assembly can be partitioned.
+    pub fn is_valid(&self) -> bool {
+        !self.problems.iter().any(Problem::is_error)
+    }
+}

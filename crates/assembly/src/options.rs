@@ -1,0 +1,105 @@
+//! Options of the loader, and the progress hook a program can drive a bar with.
+
+use std::sync::Arc;
+
+/// A long step of loading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Reading mesh files (`total` = files).
+    Reading,
+    /// Snapping and validating parts and pieces (`total` = parts).
+    Validating,
+    /// Checking pairs of parts and pieces for overlap (`total` = pairs).
+    Overlaps,
+}
+
+impl Stage {
+    /// A short label for a progress bar.
+    pub fn label(self) -> &'static str {
+        match self {
+            Stage::Reading => "reading",
+            Stage::Validating => "validating",
+            Stage::Overlaps => "overlaps",
+        }
+    }
+}
+
+/// How far a stage has come: `done` of `total` items.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// The stage.
+    pub stage: Stage,
+    /// Items finished.
+    pub done: usize,
+    /// Items in the stage.
+    pub total: usize,
+}
+
+/// Called from any thread as the loader advances (first with `done = 0` for each
+/// stage); must be cheap.
+pub type ProgressFn = Arc<dyn Fn(Progress) + Send + Sync>;
+
+/// How to load an assembly.
+#[derive(Clone)]
+pub struct LoadOptions {
+    /// Bits of a snapped coordinate (see [`apart_kernel::grid`]).
+    pub grid_bits: u32,
+    /// Progress reports; `None` (the default) is silent.
+    pub progress: Option<ProgressFn>,
+}
+
+impl Default for LoadOptions {
+    fn default() -> LoadOptions {
+        LoadOptions {
+            grid_bits: apart_kernel::grid::DEFAULT_BITS,
+            progress: None,
+        }
+    }
+}
+
+impl std::fmt::Debug for LoadOptions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LoadOptions")
+            .field("grid_bits", &self.grid_bits)
+            .field("progress", &self.progress.is_some())
+            .finish()
+    }
+}
+
+/// Counts finished items of one stage and reports them.
+pub(crate) struct Tracker<'a> {
+    hook: Option<&'a ProgressFn>,
+    stage: Stage,
+    total: usize,
+    done: std::sync::atomic::AtomicUsize,
+}
+
+impl<'a> Tracker<'a> {
+    pub(crate) fn start(opts: &'a LoadOptions, stage: Stage, total: usize) -> Tracker<'a> {
+        let hook = opts.progress.as_ref();
+        if let Some(h) = hook {
+            h(Progress {
+                stage,
+                done: 0,
+                total,
+            });
+        }
+        Tracker {
+            hook,
+            stage,
+            total,
+            done: 0.into(),
+        }
+    }
+
+    pub(crate) fn tick(&self) {
+        let done = self.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if let Some(h) = self.hook {
+            h(Progress {
+                stage: self.stage,
+                done,
+                total: self.total,
+            });
+        }
+    }
+}

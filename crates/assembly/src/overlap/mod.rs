@@ -1,0 +1,145 @@
+//! Parts whose interiors overlap. Every pair of usable parts whose bounding boxes
+//! overlap in volume is tested, in parallel; an overlap is reported with a point
+//! strictly inside both parts, verified exactly.
+//!
+//! - Both parts have convex pieces (declared, or the part itself when convex): every
+//!   pair of pieces is tested with [`interior_witness`] (separating axes; complete).
+//! - Otherwise the boundaries are compared ([`boundary::overlap`]): complete up to the
+//!   degenerate case described there.
+
+pub(crate) mod boundary;
+
+use crate::load::polytope_bbox;
+use crate::model::{Assembly, Part};
+use crate::options::{LoadOptions, Stage, Tracker};
+use crate::witness::{fmt_witness, verified_in_polytopes};
+use apart_kernel::Rational;
+use apart_mesh::{Mesh, Problem};
+use apart_pieces::interference::interior_witness;
+use apart_pieces::Polytope;
+use rayon::prelude::*;
+use std::borrow::Cow;
+
+/// True when the part can take part in overlap tests: convex pieces, or a closed,
+/// non-self-intersecting boundary.
+fn usable(p: &Part) -> bool {
+    !p.pieces.is_empty() || mesh_usable(p)
+}
+
+fn mesh_usable(p: &Part) -> bool {
+    p.mesh.is_some()
+        && p.info
+            .as_ref()
+            .is_some_and(|i| i.closed && i.volume6.is_some() && i.self_intersections == 0)
+}
+
+/// A polytope as an outward triangle mesh (fans over its facets).
+pub(crate) fn polytope_mesh(p: &Polytope) -> Mesh {
+    let vertices: Vec<[i64; 3]> = p
+        .vertices()
+        .iter()
+        .map(|v| v.as_small().copied().unwrap_or([0; 3]))
+        .collect();
+    let mut triangles = Vec::new();
+    let mut source_faces = Vec::new();
+    for (f, facet) in p.facets().iter().enumerate() {
+        let c = &facet.cycle;
+        for k in 1..c.len() - 1 {
+            triangles.push([c[0], c[k], c[k + 1]]);
+            source_faces.push(f as u32);
+        }
+    }
+    Mesh {
+        source_vertices: (0..vertices.len() as u32).collect(),
+        vertices,
+        triangles,
+        source_faces,
+    }
+}
+
+/// A point strictly inside both parts, if their interiors overlap.
+pub(crate) fn part_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
+    if !a.pieces.is_empty() && !b.pieces.is_empty() {
+        let bb: Vec<_> = b.pieces.iter().map(polytope_bbox).collect();
+        for pa in &a.pieces {
+            let ba = polytope_bbox(pa);
+            for (pb, bbox) in b.pieces.iter().zip(&bb) {
+                if !ba.overlaps_open(bbox) {
+                    continue;
+                }
+                if let Some(w) = interior_witness(pa, pb) {
+                    if verified_in_polytopes(&w, pa, pb) {
+                        return Some(w);
+                    }
+                }
+            }
+        }
+        return None;
+    }
+    let (sa, sb) = (solids(a), solids(b));
+    for ma in &sa {
+        for mb in &sb {
+            let (Some(ba), Some(bb)) = (ma.bbox(), mb.bbox()) else {
+                continue;
+            };
+            if !ba.overlaps_open(&bb) {
+                continue;
+            }
+            if let Some(w) = boundary::overlap(ma, mb) {
+                return Some(w.to_rationals());
+            }
+        }
+    }
+    None
+}
+
+/// The solids standing for a part in the boundary test: its mesh when usable, else its
+/// pieces as meshes.
+fn solids(p: &Part) -> Vec<Cow<'_, Mesh>> {
+    match (&p.mesh, mesh_usable(p)) {
+        (Some(m), true) => vec![Cow::Borrowed(m)],
+        _ => p
+            .pieces
+            .iter()
+            .map(|q| Cow::Owned(polytope_mesh(q)))
+            .collect(),
+    }
+}
+
+/// Problems for every pair of parts whose interiors overlap.
+pub(crate) fn check_parts(asm: &Assembly, opts: &LoadOptions) -> Vec<Problem> {
+    let parts = &asm.parts;
+    let mut pairs = Vec::new();
+    for i in 0..parts.len() {
+        for j in i + 1..parts.len() {
+            let (a, b) = (&parts[i], &parts[j]);
+            if !usable(a) || !usable(b) {
+                continue;
+            }
+            if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
+                if ba.overlaps_open(&bb) {
+                    pairs.push((i, j));
+                }
+            }
+        }
+    }
+    let tracker = Tracker::start(opts, Stage::Overlaps, pairs.len());
+    pairs
+        .par_iter()
+        .map(|&(i, j)| {
+            let w = part_overlap(&parts[i], &parts[j]);
+            tracker.tick();
+            w.map(|w| {
+                Problem::error(format!(
+                    "overlaps part \"{}\": {} lies strictly inside both",
+                    parts[j].name,
+                    fmt_witness(&w, &asm.grid)
+                ))
+                .in_part(parts[i].name.clone())
+            })
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect()
+}

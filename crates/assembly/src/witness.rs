@@ -1,0 +1,127 @@
+//! Witnesses of overlaps: exact rational points strictly inside two solids, found by
+//! moving a point of one solid's boundary (that is strictly inside the other) a little
+//! into the first, and always verified by exact point location before being reported.
+
+use apart_kernel::int::{bit_len, gcd};
+use apart_kernel::{Grid, Int, Rational, Sign};
+use apart_mesh::exact::normal;
+use apart_mesh::locate::{Locator, QPoint};
+use apart_pieces::Polytope;
+
+/// Step exponents tried when moving a point: 2^-k for k in this list.
+const STEPS: [u32; 16] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256];
+
+/// `[Rational; 3]` as a [`QPoint`] with a common denominator.
+pub(crate) fn to_qpoint(r: &[Rational; 3]) -> QPoint {
+    let mut den = Int::ONE;
+    for c in r {
+        let g = gcd(&den, c.denom());
+        den = &den / &g * c.denom();
+    }
+    let num = [0, 1, 2].map(|k| r[k].numer() * &(&den / r[k].denom()));
+    QPoint::new(num, den)
+}
+
+fn pow2(k: u32) -> Rational {
+    Rational::new(Int::ONE, Int::ONE << k as usize)
+}
+
+fn add(a: &[Rational; 3], b: &[Rational; 3], s: &Rational) -> [Rational; 3] {
+    [0, 1, 2].map(|k| &a[k] + &(&b[k] * s))
+}
+
+fn sub(a: &[Rational; 3], b: &[Rational; 3]) -> [Rational; 3] {
+    [0, 1, 2].map(|k| &a[k] - &b[k])
+}
+
+/// A point strictly inside both solids near `c`, where `c` lies on the boundary of `a`
+/// and strictly inside `b`: `c` is moved towards the centre of a face of `a` through it
+/// and then slightly below that face, with ever smaller steps, until exact point
+/// location confirms it is inside both.
+pub(crate) fn into_both(a: &Locator, b: &Locator, c: &QPoint) -> Option<QPoint> {
+    let mesh = a.mesh();
+    let mut faces = Vec::new();
+    a.bvh().query(&c.bbox(), |t| {
+        let [p, q, r] = mesh.corners(t as usize);
+        if faces.len() < 8 && c.on_triangle(p, q, r) {
+            faces.push(t);
+        }
+    });
+    let cr = c.to_rationals();
+    for t in faces {
+        let [p, q, r] = mesh.corners(t as usize);
+        let g = [0, 1, 2].map(|k| Rational::new(Int::from(p[k]) + q[k] + r[k], Int::from(3)));
+        let n = normal(p, q, r).map(Int::from);
+        let nb = n.iter().map(bit_len).max().unwrap_or(0);
+        let n = n.map(Rational::from_int);
+        for k in STEPS {
+            let c1 = add(&cr, &sub(&g, &cr), &pow2(k));
+            let c2 = add(&c1, &n, &(-&pow2(2 * k + nb)));
+            let w = to_qpoint(&c2);
+            if a.strictly_inside(&w) && b.strictly_inside(&w) {
+                return Some(w);
+            }
+        }
+    }
+    None
+}
+
+/// A point strictly inside both solids just below `c`, a point in the relative interior
+/// of coincident faces of both with the same outward normal `n`.
+pub(crate) fn below_both(
+    a: &Locator,
+    b: &Locator,
+    c: &[Rational; 3],
+    n: [i128; 3],
+) -> Option<QPoint> {
+    let n = n.map(Int::from);
+    let nb = n.iter().map(bit_len).max().unwrap_or(0);
+    let n = n.map(Rational::from_int);
+    for k in STEPS {
+        let w = to_qpoint(&add(c, &n, &(-&pow2(k + nb))));
+        if a.strictly_inside(&w) && b.strictly_inside(&w) {
+            return Some(w);
+        }
+    }
+    None
+}
+
+/// True when `w` lies strictly inside both polytopes (every facet inequality strict).
+pub(crate) fn verified_in_polytopes(w: &[Rational; 3], a: &Polytope, b: &Polytope) -> bool {
+    let (num, den) = to_qpoint(w).homogeneous();
+    [a, b].iter().all(|p| {
+        p.facets().iter().all(|f| {
+            let mut s = -(&f.offset * &den);
+            for (k, x) in num.iter().enumerate() {
+                s += f.normal.get(k) * x;
+            }
+            apart_kernel::int::sign_of(&s) == Sign::Negative
+        })
+    })
+}
+
+/// The point in input units, exactly.
+pub fn witness_units(w: &[Rational; 3], grid: &Grid) -> [Rational; 3] {
+    let e = grid.exp;
+    let p = Int::ONE << e.unsigned_abs() as usize;
+    let scale = if e >= 0 {
+        Rational::from_int(p)
+    } else {
+        Rational::new(Int::ONE, p)
+    };
+    w.clone().map(|c| &c * &scale)
+}
+
+/// `(x, y, z)` in input units (decimals, rounded to `f64` for display).
+pub fn fmt_witness(w: &[Rational; 3], grid: &Grid) -> String {
+    let u = witness_units(w, grid);
+    let s = u.map(|c| {
+        let v = c.to_f64();
+        if v == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{v}")
+        }
+    });
+    format!("({}, {}, {})", s[0], s[1], s[2])
+}

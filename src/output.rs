@@ -1,0 +1,115 @@
+//! Output shared by the commands: numbers in input units, tables, problems, JSON, the
+//! progress bar, and the one-line failure message.
+
+use crate::Global;
+use apart::assembly::{Progress, ProgressFn};
+use apart::kernel::Grid;
+use apart::mesh::{Aabb, Problem};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::sync::Arc;
+
+/// A coordinate in input units, as the shortest decimal of its `f64`.
+pub fn units(grid: &Grid, q: i64) -> String {
+    let v = grid.to_units(q);
+    if v == 0.0 {
+        "0".into()
+    } else {
+        format!("{v}")
+    }
+}
+
+/// A point in input units: `(x, y, z)`.
+pub fn point(grid: &Grid, p: &[i64; 3]) -> String {
+    format!(
+        "({}, {}, {})",
+        units(grid, p[0]),
+        units(grid, p[1]),
+        units(grid, p[2])
+    )
+}
+
+/// A box in input units: `(x, y, z)-(x, y, z)`.
+pub fn bbox(grid: &Grid, b: &Option<Aabb>) -> String {
+    match b {
+        Some(b) => format!("{}-{}", point(grid, &b.min), point(grid, &b.max)),
+        None => "-".into(),
+    }
+}
+
+/// The grid step as a power of two.
+pub fn step(grid: &Grid) -> String {
+    format!("2^{}", grid.exp)
+}
+
+/// Prints rows as left-aligned columns separated by two spaces.
+pub fn table(header: &[&str], rows: &[Vec<String>]) {
+    let mut width: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
+    for r in rows {
+        for (w, c) in width.iter_mut().zip(r) {
+            *w = (*w).max(c.chars().count());
+        }
+    }
+    let line = |cells: Vec<String>| {
+        let n = cells.len();
+        let mut s = String::new();
+        for (i, (c, w)) in cells.into_iter().zip(&width).enumerate() {
+            s.push_str(&c);
+            if i + 1 < n {
+                s.push_str(&" ".repeat(w - c.chars().count() + 2));
+            }
+        }
+        println!("{s}");
+    };
+    line(header.iter().map(|h| h.to_string()).collect());
+    for r in rows {
+        line(r.clone());
+    }
+}
+
+/// Prints problems, one per line, skipping notes when quiet.
+pub fn problems(global: &Global, problems: &[Problem]) {
+    for p in problems {
+        if global.quiet && p.severity == apart::mesh::Severity::Note {
+            continue;
+        }
+        println!("{p}");
+    }
+}
+
+/// Prints a value as pretty JSON on standard output.
+pub fn json<T: serde::Serialize>(value: &T) -> anyhow::Result<()> {
+    println!("{}", serde_json::to_string_pretty(value)?);
+    Ok(())
+}
+
+/// A progress bar on standard error when it is a terminal and not quiet; `None` (no
+/// hook, silence) otherwise.
+pub fn progress(global: &Global) -> Option<(ProgressBar, ProgressFn)> {
+    if global.quiet || global.json || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:>10} [{bar:30}] {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let b = bar.clone();
+    let hook: ProgressFn = Arc::new(move |p: Progress| {
+        b.set_message(p.stage.label());
+        b.set_length(p.total as u64);
+        b.set_position(p.done as u64);
+    });
+    Some((bar, hook))
+}
+
+/// Reports a failure that stopped a command: one clear line on standard error (and a
+/// JSON object on standard output with `--json`).
+pub fn fail(global: &Global, e: &anyhow::Error) {
+    let msg = format!("{e:#}");
+    if global.json {
+        let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
+    }
+    eprintln!("error: {msg}");
+}
