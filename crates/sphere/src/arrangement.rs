@@ -19,7 +19,7 @@
 
 use crate::arc::{point_bbox, Arc};
 use apart_kernel::predicates::{det3_sign, dot_sign};
-use apart_kernel::spherical::{arc_position, circle_intersection, ArcPosition};
+use apart_kernel::spherical::circle_intersection;
 use apart_kernel::{Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -373,74 +373,70 @@ fn build_once<L: ArcLabel, P: Clone>(
         })
         .collect();
 
-    // 3. Points strictly inside each arc.
-    let mut splits: Vec<Vec<u32>> = vec![Vec::new(); canon.len()];
-    let boxes: Vec<[[f64; 2]; 3]> = canon
-        .iter()
-        .map(|c| {
-            Arc {
-                normal: circles[c.circle as usize].clone(),
-                start: c.start.clone(),
-                end: c.end.clone(),
-            }
-            .bbox()
+    // 3. Per circle: its end points in counter-clockwise order and which of the gaps
+    //    between consecutive points its arcs cover.
+    let mut rings: Vec<Ring> = circles.iter().map(|_| Ring::default()).collect();
+    for (i, c) in canon.iter().enumerate() {
+        let ring = &mut rings[c.circle as usize];
+        ring.arcs.push(i);
+        ring.order.push(ends[i][0]);
+        ring.order.push(ends[i][1]);
+    }
+    for (c, ring) in rings.iter_mut().enumerate() {
+        ring.sort(&circles[c], &table.vertices);
+        ring.cover(&ends);
+    }
+
+    // 4. Crossings: each pair of circles with arcs whose boxes meet is intersected once;
+    //    a crossing point counts when an arc of each circle covers it.
+    // Boxes of the covered runs of each circle (overlapping arcs collapse into one run).
+    let mut run_circle: Vec<u32> = Vec::new();
+    let mut run_boxes: Vec<[[f64; 2]; 3]> = Vec::new();
+    let mut run_ends: Vec<Option<[u32; 2]>> = Vec::new();
+    for (c, ring) in rings.iter().enumerate() {
+        ring.runs(&circles[c], &table.vertices, |b, ends| {
+            run_circle.push(c as u32);
+            run_boxes.push(b);
+            run_ends.push(ends);
+        });
+    }
+    // A run shorter than a half circle meets another circle only if its end points are
+    // not strictly on one side of it (two cheap dot products before any construction).
+    let apart = |run: usize, other: &Vec3, vertices: &[Vertex<P>]| -> bool {
+        run_ends[run].is_some_and(|[a, b]| {
+            let s = dot_sign(other, &vertices[a as usize].point);
+            s != Sign::Zero && s == dot_sign(other, &vertices[b as usize].point)
         })
-        .collect();
-    let mut crossings: HashMap<(u32, u32), Option<Vec3>> = HashMap::default();
-    let pairs = candidate_pairs(&boxes);
+    };
+    let pairs = candidate_pairs(&run_boxes);
     stats.candidate_pairs += pairs.len();
+    let mut seen: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+    let mut extra: Vec<Vec<u32>> = vec![Vec::new(); circles.len()];
     for (i, j) in pairs {
-        let (a, b) = (&canon[i], &canon[j]);
-        let (na, nb) = (&circles[a.circle as usize], &circles[b.circle as usize]);
-        if a.circle == b.circle {
-            // Overlapping arcs of one circle: each is cut at the other's end points.
-            for (x, y, target) in [(a, b, i), (b, a, j)] {
-                for p in [&y.start, &y.end] {
-                    if arc_position(na, &x.start, &x.end, p) == ArcPosition::Interior {
-                        splits[target].push(table.get_or_insert(p));
-                    }
-                }
-            }
+        let (ca, cb) = (run_circle[i], run_circle[j]);
+        if ca == cb {
             continue;
         }
-        // An arc meets another circle only if its end points are not strictly on one
-        // side of it (two cheap dot products before any construction).
-        let apart = |n: &Vec3, x: &Canon<L>| {
-            let s = dot_sign(n, &x.start);
-            s != Sign::Zero && s == dot_sign(n, &x.end)
-        };
-        if apart(nb, a) || apart(na, b) {
-            continue;
-        }
-        let key = (a.circle.min(b.circle), a.circle.max(b.circle));
-        let p = crossings
-            .entry(key)
-            .or_insert_with(|| circle_intersection(na, nb))
-            .clone();
-        let Some(p) = p else { continue };
-        // At most one of ±p lies on the minor arc a; find it from two determinants.
-        let Some(q) = point_on_arc(na, &a.start, &a.end, &p) else {
-            continue;
-        };
+        let (na, nb) = (&circles[ca as usize], &circles[cb as usize]);
+        if apart(i, nb, &table.vertices)
+            || apart(j, na, &table.vertices)
+            || !seen.insert((ca.min(cb), ca.max(cb)))
         {
-            let pa = arc_position(na, &a.start, &a.end, &q);
-            if pa == ArcPosition::Outside {
-                continue;
-            }
-            let pb = arc_position(nb, &b.start, &b.end, &q);
-            if pb == ArcPosition::Outside {
-                continue;
-            }
-            let id = table.get_or_insert(&q);
-            if pa == ArcPosition::Interior {
-                splits[i].push(id);
-            }
-            if pb == ArcPosition::Interior {
-                splits[j].push(id);
+            continue;
+        }
+        let Some(p) = circle_intersection(na, nb) else {
+            continue;
+        };
+        for q in [p.neg(), p] {
+            let (ra, rb) = (&rings[ca as usize], &rings[cb as usize]);
+            if ra.covers(na, &q, &table) && rb.covers(nb, &q, &table) {
+                let id = table.get_or_insert(&q);
+                extra[ca as usize].push(id);
+                extra[cb as usize].push(id);
             }
         }
     }
-    // Input points (other than arc end points) lying inside arcs.
+    // Input points (other than arc end points) lying on arcs.
     let lone: Vec<u32> = point_ids
         .iter()
         .copied()
@@ -451,66 +447,46 @@ fn build_once<L: ArcLabel, P: Clone>(
             .iter()
             .map(|&id| point_bbox(&table.vertices[id as usize].point))
             .collect();
-        for (i, k) in candidate_pairs_between(&boxes, &pboxes) {
-            let c = &canon[i];
+        for (i, k) in candidate_pairs_between(&run_boxes, &pboxes) {
+            let c = run_circle[i] as usize;
             let id = lone[k];
-            let p = &table.vertices[id as usize].point;
-            let n = &circles[c.circle as usize];
-            if dot_sign(n, p) == Sign::Zero
-                && arc_position(n, &c.start, &c.end, p) == ArcPosition::Interior
-            {
-                splits[i].push(id);
+            let p = table.vertices[id as usize].point.clone();
+            if dot_sign(&circles[c], &p) == Sign::Zero && rings[c].covers(&circles[c], &p, &table) {
+                extra[c].push(id);
             }
         }
     }
 
-    // 4. Cut arcs into edges, merging identical pieces.
+    // 5. Cut each circle at all its points; every covered gap is an edge carrying the
+    //    labels of the arcs covering it.
     let mut vertices = table.vertices;
-    let mut edge_ids: HashMap<(u32, u32, u32), u32> = HashMap::default();
     let mut edges: Vec<Edge<L>> = Vec::new();
+    for (c, ring) in rings.iter_mut().enumerate() {
+        if !extra[c].is_empty() {
+            ring.order.append(&mut extra[c]);
+            ring.sort(&circles[c], &vertices);
+        }
+        ring.emit_edges(c as u32, &canon, &ends, &mut edges);
+    }
+    // A vertex is real when it is an input point (set above), an end point of a real
+    // arc, or where real edges of two different circles meet; a vertex that exists only
+    // because a structural arc crosses or ends on a real arc stays structural.
     for (i, c) in canon.iter().enumerate() {
-        let n = &circles[c.circle as usize];
-        let mut inner = std::mem::take(&mut splits[i]);
-        inner.sort_unstable();
-        inner.dedup();
-        inner.sort_by(|&x, &y| {
-            match det3_sign(n, &vertices[x as usize].point, &vertices[y as usize].point) {
-                Sign::Positive => std::cmp::Ordering::Less,
-                Sign::Negative => std::cmp::Ordering::Greater,
-                Sign::Zero => std::cmp::Ordering::Equal,
-            }
-        });
-        let mut chain = Vec::with_capacity(inner.len() + 2);
-        chain.push(ends[i][0]);
-        chain.extend(inner);
-        chain.push(ends[i][1]);
-        for w in chain.windows(2) {
-            let key = (c.circle, w[0], w[1]);
-            let id = *edge_ids.entry(key).or_insert_with(|| {
-                edges.push(Edge {
-                    circle: c.circle,
-                    from: w[0],
-                    to: w[1],
-                    labels: Vec::new(),
-                    structural: true,
-                });
-                (edges.len() - 1) as u32
-            });
-            let e = &mut edges[id as usize];
-            if let Some(l) = &c.label {
-                e.labels.push(l.clone());
-                e.structural = false;
+        if c.label.is_some() {
+            vertices[ends[i][0] as usize].structural = false;
+            vertices[ends[i][1] as usize].structural = false;
+        }
+    }
+    let mut real_circle: Vec<Option<u32>> = vec![None; vertices.len()];
+    for e in edges.iter().filter(|e| !e.structural) {
+        for v in [e.from as usize, e.to as usize] {
+            match real_circle[v] {
+                None => real_circle[v] = Some(e.circle),
+                Some(c) if c != e.circle => vertices[v].structural = false,
+                _ => {}
             }
         }
     }
-    for e in &edges {
-        if !e.structural {
-            vertices[e.from as usize].structural = false;
-            vertices[e.to as usize].structural = false;
-        }
-    }
-    // A vertex where a structural arc merely crosses a real edge stays structural; one
-    // where a real edge bends or ends is real (set above); points are real.
 
     // 5. Rotation system.
     for (e, edge) in edges.iter().enumerate() {
@@ -597,22 +573,212 @@ fn build_once<L: ArcLabel, P: Clone>(
     }
 }
 
-/// The one of `p`, `-p` that can lie on the minor arc `s -> e` of circle `n`, if any:
-/// `p` needs `det(n, s, p) >= 0` and `det(n, p, e) >= 0`, and `-p` the reverse.
-fn point_on_arc(n: &Vec3, s: &Vec3, e: &Vec3, p: &Vec3) -> Option<Vec3> {
-    let d1 = det3_sign(n, s, p);
-    let d2 = det3_sign(n, p, e);
-    match (d1, d2) {
-        (Sign::Negative, Sign::Negative) => Some(p.neg()),
-        (Sign::Negative, _) | (_, Sign::Negative) => {
-            // Mixed signs: p is outside; -p is outside too unless the zero is an end point.
-            if d1 == Sign::Zero || d2 == Sign::Zero {
-                Some(p.neg())
+/// The points of one circle in counter-clockwise order around its normal, starting
+/// from a reference point, and the coverage of the gaps between them by its arcs.
+#[derive(Default)]
+struct Ring {
+    arcs: Vec<usize>,
+    /// Vertex ids, sorted counter-clockwise, without repeats.
+    order: Vec<u32>,
+    /// Position of each vertex id in `order`.
+    pos: HashMap<u32, usize>,
+    /// `covered[k]`: some arc covers the open gap from `order[k]` to `order[k + 1]`
+    /// (cyclically).
+    covered: Vec<bool>,
+}
+
+impl Ring {
+    /// Sorts `order` counter-clockwise from its first point and removes repeats.
+    fn sort<P>(&mut self, n: &Vec3, vertices: &[Vertex<P>]) {
+        self.order.sort_unstable();
+        self.order.dedup();
+        if self.order.is_empty() {
+            return;
+        }
+        let r = vertices[self.order[0] as usize].point.clone();
+        let half =
+            |q: &Vec3| -> u8 { u8::from(!(q == &r || det3_sign(n, &r, q) == Sign::Positive)) };
+        let mut keyed: Vec<(u8, u32)> = self
+            .order
+            .iter()
+            .map(|&v| (half(&vertices[v as usize].point), v))
+            .collect();
+        keyed.sort_by(|a, b| {
+            a.0.cmp(&b.0).then_with(|| {
+                match det3_sign(
+                    n,
+                    &vertices[a.1 as usize].point,
+                    &vertices[b.1 as usize].point,
+                ) {
+                    Sign::Positive => std::cmp::Ordering::Less,
+                    Sign::Negative => std::cmp::Ordering::Greater,
+                    Sign::Zero => std::cmp::Ordering::Equal,
+                }
+            })
+        });
+        self.order = keyed.into_iter().map(|(_, v)| v).collect();
+        self.pos = self
+            .order
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| (v, k))
+            .collect();
+    }
+
+    /// The gap indices an arc covers, as (first gap, one past the last), cyclically.
+    fn span(&self, ends: &[u32; 2]) -> (usize, usize) {
+        (self.pos[&ends[0]], self.pos[&ends[1]])
+    }
+
+    fn cover(&mut self, ends: &[[u32; 2]]) {
+        let len = self.order.len();
+        let mut diff = vec![0i64; len + 1];
+        for &a in &self.arcs {
+            let (s, e) = self.span(&ends[a]);
+            if s < e {
+                diff[s] += 1;
+                diff[e] -= 1;
             } else {
-                None
+                diff[s] += 1;
+                diff[len] -= 1;
+                diff[0] += 1;
+                diff[e] -= 1;
             }
         }
-        _ => Some(p.clone()),
+        let mut acc = 0;
+        self.covered = (0..len)
+            .map(|k| {
+                acc += diff[k];
+                acc > 0
+            })
+            .collect();
+    }
+
+    /// Calls `f` with the box of every maximal covered run of the circle, and its end
+    /// points when it is shorter than a half circle.
+    fn runs<P>(
+        &self,
+        n: &Vec3,
+        vertices: &[Vertex<P>],
+        mut f: impl FnMut([[f64; 2]; 3], Option<[u32; 2]>),
+    ) {
+        let len = self.order.len();
+        let gap_box = |k: usize| {
+            let (a, b) = (
+                &vertices[self.order[k] as usize].point,
+                &vertices[self.order[(k + 1) % len] as usize].point,
+            );
+            Arc {
+                normal: n.clone(),
+                start: a.clone(),
+                end: b.clone(),
+            }
+            .bbox()
+        };
+        let join = |x: &mut [[f64; 2]; 3], y: [[f64; 2]; 3]| {
+            for d in 0..3 {
+                x[d][0] = x[d][0].min(y[d][0]);
+                x[d][1] = x[d][1].max(y[d][1]);
+            }
+        };
+        // Start after an uncovered gap so runs are not split at the reference point.
+        let Some(first) = (0..len).find(|&k| !self.covered[k]) else {
+            // The whole circle is covered: one run.
+            let mut b = gap_box(0);
+            (1..len).for_each(|k| join(&mut b, gap_box(k)));
+            f(b, None);
+            return;
+        };
+        let short = |a: usize, b: usize| -> Option<[u32; 2]> {
+            let (pa, pb) = (self.order[a], self.order[b]);
+            (det3_sign(
+                n,
+                &vertices[pa as usize].point,
+                &vertices[pb as usize].point,
+            ) == Sign::Positive)
+                .then_some([pa, pb])
+        };
+        // cur: (box, first point index of the run).
+        let mut cur: Option<([[f64; 2]; 3], usize)> = None;
+        for step in 1..=len {
+            let k = (first + step) % len;
+            if self.covered[k] {
+                let b = gap_box(k);
+                match &mut cur {
+                    Some((c, _)) => join(c, b),
+                    None => cur = Some((b, k)),
+                }
+            } else if let Some((c, start)) = cur.take() {
+                f(c, short(start, k));
+            }
+        }
+        if let Some((c, start)) = cur {
+            f(c, short(start, first));
+        }
+    }
+
+    /// Whether `q` (a point of this circle) lies on a closed arc of the circle.
+    fn covers<P>(&self, n: &Vec3, q: &Vec3, table: &VertexTable<P>) -> bool {
+        if let Some(id) = table.ids.get(q) {
+            if self.pos.contains_key(id) {
+                return true; // an end point of an arc of this circle
+            }
+        }
+        let len = self.order.len();
+        let r = &table.vertices[self.order[0] as usize].point;
+        let half = |x: &Vec3| -> u8 { u8::from(!(x == r || det3_sign(n, r, x) == Sign::Positive)) };
+        let hq = half(q);
+        // Number of points strictly before q in the counter-clockwise order.
+        let before = self.order.partition_point(|&v| {
+            let x = &table.vertices[v as usize].point;
+            let hx = half(x);
+            hx < hq || (hx == hq && det3_sign(n, x, q) == Sign::Positive)
+        });
+        let gap = if before == 0 { len - 1 } else { before - 1 };
+        self.covered[gap]
+    }
+
+    /// Edges of this circle: one per covered gap, with the labels of the covering arcs.
+    fn emit_edges<L: Clone>(
+        &mut self,
+        circle: u32,
+        canon: &[Canon<L>],
+        ends: &[[u32; 2]],
+        edges: &mut Vec<Edge<L>>,
+    ) {
+        let len = self.order.len();
+        let mut starts: Vec<Vec<usize>> = vec![Vec::new(); len];
+        let mut active: Vec<usize> = Vec::new();
+        for &a in &self.arcs {
+            let (s, e) = self.span(&ends[a]);
+            if s > e {
+                active.push(a); // wraps past the reference point: active from gap 0
+            }
+            starts[s].push(a);
+        }
+        for (k, starting) in starts.iter().enumerate() {
+            // Arcs ending at point k stop; arcs starting at point k begin.
+            active.retain(|&a| self.pos[&ends[a][1]] != k);
+            active.extend(starting.iter().copied());
+            if active.is_empty() {
+                continue;
+            }
+            let mut labels = Vec::new();
+            let mut structural = true;
+            for &a in &active {
+                if let Some(l) = &canon[a].label {
+                    labels.push(l.clone());
+                    structural = false;
+                }
+            }
+            edges.push(Edge {
+                circle,
+                from: self.order[k],
+                to: self.order[(k + 1) % len],
+                labels,
+                structural,
+            });
+        }
     }
 }
 
