@@ -5,7 +5,7 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use apart_plan::{partition, Options, PartPieces};
+use apart_plan::{partition_pieces, Options, PartPieces};
 use std::time::Instant;
 
 /// Resets the process's peak resident set size (Linux), so each case reports its own.
@@ -100,7 +100,7 @@ fn run(name: &str, parts: &[PartPieces], reps: usize) -> Row {
             let mut last = None;
             for _ in 0..reps {
                 let t = Instant::now();
-                let r = partition(parts, &Options::default()).unwrap();
+                let r = partition_pieces(parts, &Options::default()).unwrap();
                 best = best.min(t.elapsed().as_secs_f64());
                 last = Some(r);
             }

@@ -3,12 +3,12 @@ mod common;
 fn main() {
     let parts = common::split_star();
     let opts = apart_plan::Options::default();
-    let r = apart_plan::partition(&parts, &opts).unwrap();
+    let r = apart_plan::partition_pieces(&parts, &opts).unwrap();
     println!("{:?}", r.stats);
     let n = 200;
     let t = std::time::Instant::now();
     for _ in 0..n {
-        std::hint::black_box(apart_plan::partition(&parts, &opts).unwrap());
+        std::hint::black_box(apart_plan::partition_pieces(&parts, &opts).unwrap());
     }
     println!(
         "mean {:.3} ms",

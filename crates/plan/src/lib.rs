@@ -7,16 +7,31 @@
 //! blocking graph ([`dbg::Dbg`]); [`partition::partition`] reads off every direction and
 //! minimal subset that separates the assembly.
 //!
+//! With an assembly loaded from files:
+//!
+//! ```no_run
+//! use apart_assembly::{load, LoadOptions};
+//! use apart_plan::{partition, Options};
+//! let loaded = load(std::path::Path::new("examples/split-star-3"), &LoadOptions::default()).unwrap();
+//! let result = partition(&loaded.assembly, &Options::default()).unwrap();
+//! for s in &result.solutions {
+//!     let moving: Vec<&str> = s.moving.iter().map(|&k| result.names[k].as_str()).collect();
+//!     println!("{:?} along {:?} ({})", moving, s.unit, s.cell.name());
+//! }
+//! ```
+//!
+//! With pieces built in code:
+//!
 //! ```
 //! use apart_kernel::Vec3;
 //! use apart_pieces::Polytope;
-//! use apart_plan::{partition, Options, PartPieces, CellKind};
+//! use apart_plan::{partition_pieces, Options, PartPieces, CellKind};
 //! // Two unit cubes, one on top of the other.
 //! let cube = |z: i64| {
 //!     let pts: Vec<Vec3> = (0..8).map(|i| Vec3::new(i & 1, i >> 1 & 1, z + (i >> 2))).collect();
 //!     PartPieces { name: format!("cube{z}"), pieces: vec![Polytope::hull_of_points(&pts).unwrap()] }
 //! };
-//! let result = partition(&[cube(0), cube(1)], &Options::default()).unwrap();
+//! let result = partition_pieces(&[cube(0), cube(1)], &Options::default()).unwrap();
 //! assert!(!result.interlocked);
 //! // The top cube leaves through the open upper hemisphere (a face) ...
 //! let up = result.solutions.iter().find(|s| s.cell == CellKind::Face && s.moving == vec![1]).unwrap();
@@ -33,7 +48,10 @@ pub mod regions;
 
 pub use dbg::Dbg;
 pub use motion_space::{CellKind, MotionSpace};
-pub use partition::{dbg_at, partition, partition_subset, Options, Partitioning, Solution, Stats};
+pub use partition::{
+    dbg_at, partition, partition_pieces, partition_subset, Options, Partitioning, Solution, Stats,
+};
+pub use regions::parts_of;
 pub use regions::{BlockingRegions, PartPieces};
 
 /// Why planning could not run.

@@ -83,8 +83,17 @@ pub struct Partitioning {
     pub stats: Stats,
 }
 
+/// Partitions an assembly loaded by `apart-assembly` (parts without declared pieces must
+/// be convex until automatic decomposition is available).
+pub fn partition(
+    assembly: &apart_assembly::Assembly,
+    opts: &Options,
+) -> Result<Partitioning, PlanError> {
+    partition_pieces(&crate::regions::parts_of(assembly)?, opts)
+}
+
 /// Partitions an assembly given as convex pieces per part.
-pub fn partition(parts: &[PartPieces], opts: &Options) -> Result<Partitioning, PlanError> {
+pub fn partition_pieces(parts: &[PartPieces], opts: &Options) -> Result<Partitioning, PlanError> {
     let regions = BlockingRegions::compute(parts)?;
     let all: Vec<usize> = (0..parts.len()).collect();
     Ok(partition_subset(&regions, &all, opts).0)

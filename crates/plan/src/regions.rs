@@ -25,6 +25,29 @@ pub struct PartPieces {
     pub pieces: Vec<Polytope>,
 }
 
+/// The parts of an assembly as convex pieces: declared pieces, or the part itself when
+/// convex. A non-convex part without declared pieces is an error (decompose it first).
+pub fn parts_of(assembly: &apart_assembly::Assembly) -> Result<Vec<PartPieces>, PlanError> {
+    assembly
+        .parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if p.pieces.is_empty() {
+                Err(PlanError::NoPieces {
+                    part: k,
+                    name: p.name.clone(),
+                })
+            } else {
+                Ok(PartPieces {
+                    name: p.name.clone(),
+                    pieces: p.pieces.clone(),
+                })
+            }
+        })
+        .collect()
+}
+
 /// The blocked region of one unordered pair of parts.
 #[derive(Clone, Debug)]
 pub struct PairRegion {

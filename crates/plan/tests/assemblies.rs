@@ -3,10 +3,10 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_plan::{dbg_at, partition, BlockingRegions, CellKind, Options, Solution};
+use apart_plan::{dbg_at, partition_pieces, BlockingRegions, CellKind, Options, Solution};
 
 fn solutions_of(parts: &[apart_plan::PartPieces]) -> Vec<Solution> {
-    let r = partition(parts, &Options::default()).unwrap();
+    let r = partition_pieces(parts, &Options::default()).unwrap();
     assert_eq!(r.interlocked, r.solutions.is_empty());
     r.solutions
 }
@@ -61,7 +61,11 @@ fn four_cubes_in_a_row() {
     }
     let g = dbg_at(&regions, &all, &Vec3::new(-1, 0, 0));
     assert_eq!(g.minimal_moving_sets(), vec![vec![0]]);
-    assert!(!partition(&parts, &Options::default()).unwrap().interlocked);
+    assert!(
+        !partition_pieces(&parts, &Options::default())
+            .unwrap()
+            .interlocked
+    );
 }
 
 #[test]
@@ -106,15 +110,15 @@ fn peg_leaves_only_along_the_hole_axis() {
 
 #[test]
 fn linked_rings_are_interlocked() {
-    let r = partition(&common::linked_rings(), &Options::default()).unwrap();
+    let r = partition_pieces(&common::linked_rings(), &Options::default()).unwrap();
     assert!(r.interlocked, "{:?}", r.solutions);
 }
 
 #[test]
 fn first_stops_early() {
-    let r = partition(&common::split_star(), &Options { first: true }).unwrap();
+    let r = partition_pieces(&common::split_star(), &Options { first: true }).unwrap();
     assert_eq!(r.solutions.len(), 1);
     assert!(!r.interlocked);
-    let r = partition(&common::linked_rings(), &Options { first: true }).unwrap();
+    let r = partition_pieces(&common::linked_rings(), &Options { first: true }).unwrap();
     assert!(r.interlocked);
 }

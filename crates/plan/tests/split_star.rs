@@ -4,13 +4,13 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_plan::{partition, CellKind, Options};
+use apart_plan::{partition_pieces, CellKind, Options};
 
 #[test]
 fn eight_isolated_directions() {
     let parts = common::split_star();
     let names: Vec<&str> = parts.iter().map(|p| p.name.as_str()).collect();
-    let r = partition(&parts, &Options::default()).unwrap();
+    let r = partition_pieces(&parts, &Options::default()).unwrap();
     assert!(!r.interlocked);
     let mut got: Vec<(Vec3, Vec<&str>)> = r
         .solutions
