@@ -11,20 +11,20 @@ pub enum LoadError {
     #[error("{}: no such file or folder", .0.display())]
     NotFound(PathBuf),
     /// A folder could not be listed.
-    #[error("cannot read folder {}: {source}", path.display())]
+    #[error("cannot read folder {}: {cause}", path.display())]
     Folder {
         /// The folder.
         path: PathBuf,
         /// The operating system's reason.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The single mesh file given could not be read.
-    #[error("{}: {source}", path.display())]
+    #[error("{}", read_message(path, cause))]
     Read {
         /// The file.
         path: PathBuf,
-        /// Why.
-        source: ReadError,
+        /// Why (names the file).
+        cause: ReadError,
     },
     /// The manifest is not valid.
     #[error("{}: {detail}", path.display())]
@@ -40,4 +40,12 @@ pub enum LoadError {
     /// No grid fits the coordinates.
     #[error("cannot choose the grid: {0}")]
     Grid(#[from] apart_kernel::GridError),
+}
+
+fn read_message(path: &std::path::Path, cause: &ReadError) -> String {
+    if cause.names_file() {
+        cause.to_string()
+    } else {
+        format!("{}: {cause}", path.display())
+    }
 }

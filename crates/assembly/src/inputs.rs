@@ -116,12 +116,15 @@ fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
 }
 
 fn list(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
-    let rd = std::fs::read_dir(dir).map_err(|source| LoadError::Folder {
+    let rd = std::fs::read_dir(dir).map_err(|cause| LoadError::Folder {
         path: dir.to_path_buf(),
-        source,
+        cause,
     })?;
     let mut out: Vec<PathBuf> = rd
-        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter_map(|e| {
+            e.ok()
+                .map(|e| crate::manifest::join(dir, Path::new(&e.file_name())))
+        })
         .filter(|p| {
             !p.file_name()
                 .is_some_and(|n| n.to_string_lossy().starts_with('.'))
@@ -203,9 +206,9 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
 }
 
 fn from_file(path: &Path) -> Result<Plan, LoadError> {
-    let objects = read_file(path).map_err(|source| LoadError::Read {
+    let objects = read_file(path).map_err(|cause| LoadError::Read {
         path: path.to_path_buf(),
-        source,
+        cause,
     })?;
     if objects.is_empty() {
         return Err(LoadError::NoParts(path.to_path_buf()));

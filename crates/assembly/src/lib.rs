@@ -56,6 +56,6 @@ pub fn fmt_volume(v: &Rational, grid: &Grid) -> String {
 /// The point strictly inside both parts, when their interiors overlap (exact, grid
 /// units); `None` when they are disjoint or only touch. Exposed for the planners and
 /// for tests; [`load`] already reports overlaps.
-pub fn parts_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
-    overlap::part_overlap(a, b)
+pub fn parts_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational; 3]> {
+    overlap::part_overlap(a, b, grid)
 }

@@ -148,11 +148,27 @@ fn resolve(
     Ok(o)
 }
 
-/// The bounding box of a polytope's vertices.
+/// The bounding box of a polytope's vertices (true coordinates, rounded outwards).
 pub(crate) fn polytope_bbox(p: &Polytope) -> Aabb {
+    let den = p.den();
     p.vertices().iter().fold(Aabb::EMPTY, |b, v| {
-        let c = v.as_small().copied().unwrap_or([0; 3]);
-        b.with(&c)
+        if *den == Int::ONE {
+            if let Some(c) = v.as_small() {
+                return b.with(c);
+            }
+        }
+        let c = v.to_ints();
+        let lo = [0, 1, 2].map(|k| {
+            let q = &c[k] / den;
+            let q = if c[k] < Int::ZERO && &q * den != c[k] {
+                q - Int::ONE
+            } else {
+                q
+            };
+            i64::try_from(&q).unwrap_or(i64::MIN / 2)
+        });
+        let hi = lo.map(|x| x.saturating_add(1));
+        b.with(&lo).with(&hi)
     })
 }
 

@@ -55,6 +55,15 @@ fn numbers<const N: usize>(v: &Value, what: &str) -> Result<[f64; N], String> {
     Ok(out)
 }
 
+/// `dir/name`, or just `name` when `dir` is the current folder (for shorter messages).
+pub(crate) fn join(dir: &Path, name: &Path) -> PathBuf {
+    if dir.as_os_str().is_empty() || dir == Path::new(".") {
+        name.to_path_buf()
+    } else {
+        dir.join(name)
+    }
+}
+
 /// Parses a `transform` object.
 pub fn parse_transform(v: &Value) -> Result<Affine, String> {
     let obj = v.as_object().ok_or("transform must be an object")?;
@@ -129,7 +138,7 @@ pub fn parse(text: &str, dir: &Path) -> Result<Manifest, String> {
         let path = |v: &Value, what: &str| -> Result<PathBuf, String> {
             v.as_str()
                 .filter(|s| !s.is_empty())
-                .map(|s| dir.join(s))
+                .map(|s| join(dir, Path::new(s)))
                 .ok_or_else(|| ctx(format!("{what} must be a file name")))
         };
         let mesh = match p.get("mesh") {

@@ -86,14 +86,55 @@ pub(crate) fn below_both(
     None
 }
 
-/// True when `w` lies strictly inside both polytopes (every facet inequality strict).
+/// A simpler point than `w` that still passes `inside`: the first of the points of the
+/// lattice of spacing 2^-j input units (j = 0, 1, ..., 16) nearest to `w` and its 26
+/// lattice neighbours that passes; `w` itself when none does.
+pub(crate) fn simplest(
+    w: [Rational; 3],
+    grid: &Grid,
+    inside: impl Fn(&[Rational; 3]) -> bool,
+) -> [Rational; 3] {
+    let e = grid.exp;
+    for j in 0..=16i32 {
+        // Multiples of 2^-j input units = 2^(-j - e) grid units.
+        let k = -j - e;
+        let step = if k >= 0 {
+            Rational::from_int(Int::ONE << k as usize)
+        } else {
+            Rational::new(Int::ONE, Int::ONE << (-k) as usize)
+        };
+        let inv = Rational::new(step.denom().clone(), step.numer().clone());
+        let nearest = w.clone().map(|c| {
+            let q = &c * &inv;
+            // floor(q + 1/2)
+            let twice = q.numer() * Int::from(2) + q.denom();
+            let d = q.denom() * Int::from(2);
+            let mut n = &twice / &d;
+            if twice < Int::ZERO && (&n * &d) != twice {
+                n -= Int::ONE;
+            }
+            n
+        });
+        for o in 0..27i64 {
+            let off = [o % 3, o / 3 % 3, o / 9].map(|d| [0, 1, -1][d as usize]);
+            let r = [0, 1, 2].map(|c| &Rational::from_int(&nearest[c] + Int::from(off[c])) * &step);
+            if inside(&r) {
+                return r;
+            }
+        }
+    }
+    w
+}
+
+/// True when `w` lies strictly inside both polytopes (every facet inequality strict:
+/// `n · (den w) < offset` with the polytope's denominator `den`).
 pub(crate) fn verified_in_polytopes(w: &[Rational; 3], a: &Polytope, b: &Polytope) -> bool {
     let (num, den) = to_qpoint(w).homogeneous();
     [a, b].iter().all(|p| {
         p.facets().iter().all(|f| {
             let mut s = -(&f.offset * &den);
             for (k, x) in num.iter().enumerate() {
-                s += f.normal.get(k) * x;
+                s += f.normal.get(k) * x * p.den();
             }
             apart_kernel::int::sign_of(&s) == Sign::Negative
         })

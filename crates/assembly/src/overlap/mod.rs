@@ -12,8 +12,10 @@ pub(crate) mod boundary;
 use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
-use crate::witness::{fmt_witness, verified_in_polytopes};
+use crate::witness::{fmt_witness, simplest, to_qpoint, verified_in_polytopes};
+use apart_kernel::Grid;
 use apart_kernel::Rational;
+use apart_mesh::locate::Locator;
 use apart_mesh::{Mesh, Problem};
 use apart_pieces::interference::interior_witness;
 use apart_pieces::Polytope;
@@ -33,8 +35,10 @@ fn mesh_usable(p: &Part) -> bool {
             .is_some_and(|i| i.closed && i.volume6.is_some() && i.self_intersections == 0)
 }
 
-/// A polytope as an outward triangle mesh (fans over its facets).
+/// A polytope with grid vertices (denominator 1, as every declared or convex piece
+/// the loader builds) as an outward triangle mesh (fans over its facets).
 pub(crate) fn polytope_mesh(p: &Polytope) -> Mesh {
+    debug_assert!(*p.den() == apart_kernel::Int::ONE);
     let vertices: Vec<[i64; 3]> = p
         .vertices()
         .iter()
@@ -58,7 +62,7 @@ pub(crate) fn polytope_mesh(p: &Polytope) -> Mesh {
 }
 
 /// A point strictly inside both parts, if their interiors overlap.
-pub(crate) fn part_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
+pub(crate) fn part_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational; 3]> {
     if !a.pieces.is_empty() && !b.pieces.is_empty() {
         let bb: Vec<_> = b.pieces.iter().map(polytope_bbox).collect();
         for pa in &a.pieces {
@@ -69,7 +73,7 @@ pub(crate) fn part_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
                 }
                 if let Some(w) = interior_witness(pa, pb) {
                     if verified_in_polytopes(&w, pa, pb) {
-                        return Some(w);
+                        return Some(simplest(w, grid, |r| verified_in_polytopes(r, pa, pb)));
                     }
                 }
             }
@@ -86,7 +90,11 @@ pub(crate) fn part_overlap(a: &Part, b: &Part) -> Option<[Rational; 3]> {
                 continue;
             }
             if let Some(w) = boundary::overlap(ma, mb) {
-                return Some(w.to_rationals());
+                let (la, lb) = (Locator::new(ma), Locator::new(mb));
+                return Some(simplest(w.to_rationals(), grid, |r| {
+                    let q = to_qpoint(r);
+                    la.strictly_inside(&q) && lb.strictly_inside(&q)
+                }));
             }
         }
     }
@@ -127,7 +135,7 @@ pub(crate) fn check_parts(asm: &Assembly, opts: &LoadOptions) -> Vec<Problem> {
     pairs
         .par_iter()
         .map(|&(i, j)| {
-            let w = part_overlap(&parts[i], &parts[j]);
+            let w = part_overlap(&parts[i], &parts[j], &asm.grid);
             tracker.tick();
             w.map(|w| {
                 Problem::error(format!(

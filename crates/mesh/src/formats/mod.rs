@@ -93,12 +93,12 @@ impl fmt::Display for Format {
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
     /// The file could not be opened or read.
-    #[error("cannot read {}: {source}", path.display())]
+    #[error("cannot read {}: {cause}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
         /// The operating system's reason.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The extension names no supported format.
     #[error("unsupported file extension of {} (supported: .off, .obj, .stl, .ply, .gltf, .glb)", path.display())]
@@ -117,6 +117,11 @@ pub enum ReadError {
 }
 
 impl ReadError {
+    /// True when the message already names the file (not for malformed content).
+    pub fn names_file(&self) -> bool {
+        !matches!(self, ReadError::Malformed { .. })
+    }
+
     pub(crate) fn malformed(format: Format, detail: impl Into<String>) -> ReadError {
         ReadError::Malformed {
             format,
@@ -130,9 +135,9 @@ pub fn read_file(path: &Path) -> Result<Vec<RawObject>, ReadError> {
     let format = Format::from_path(path).ok_or_else(|| ReadError::Unsupported {
         path: path.to_path_buf(),
     })?;
-    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+    let bytes = std::fs::read(path).map_err(|cause| ReadError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     })?;
     read_bytes(&bytes, format, path.parent())
 }
