@@ -216,3 +216,86 @@ fn common_point(t: [&[i64; 3]; 3], u: [&[i64; 3]; 3], k: usize) -> [Rational; 3]
     }
     sum.map(|s| &s * &n)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::overlap::polytope_mesh;
+    use apart_kernel::Vec3;
+    use apart_pieces::interference::interior_witness;
+    use apart_pieces::Polytope;
+    use proptest::prelude::*;
+
+    fn box_poly(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+        let pts: Vec<Vec3> = (0..8)
+            .map(|i| {
+                Vec3::new(
+                    if i & 1 == 1 { hi[0] } else { lo[0] },
+                    if i & 2 == 2 { hi[1] } else { lo[1] },
+                    if i & 4 == 4 { hi[2] } else { lo[2] },
+                )
+            })
+            .collect();
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    fn check(a: &Polytope, b: &Polytope) -> Option<QPoint> {
+        let (ma, mb) = (polytope_mesh(a), polytope_mesh(b));
+        let w = overlap(&ma, &mb);
+        if let Some(w) = &w {
+            // The witness is strictly inside both, by an independent test.
+            let (num, den) = w.homogeneous();
+            for p in [a, b] {
+                for f in p.facets() {
+                    let mut s = -(&f.offset * &den);
+                    for (k, x) in num.iter().enumerate() {
+                        s += f.normal.get(k) * x;
+                    }
+                    assert!(s < Int::ZERO, "witness not strictly inside");
+                }
+            }
+        }
+        w
+    }
+
+    #[test]
+    fn boxes_touching_or_overlapping() {
+        let a = box_poly([0, 0, 0], [2, 2, 2]);
+        assert!(check(&a, &box_poly([2, 0, 0], [4, 2, 2])).is_none()); // face contact
+        assert!(check(&a, &box_poly([2, 2, 2], [3, 3, 3])).is_none()); // vertex contact
+        assert!(check(&a, &box_poly([1, 1, 1], [3, 3, 3])).is_some());
+        assert!(check(&a, &a).is_some()); // identical: coincident faces, same side
+        assert!(check(&a, &box_poly([0, 0, 0], [1, 2, 2])).is_some()); // inside, sharing faces
+        assert!(check(&box_poly([-4, -1, 0], [4, 1, 1]), &box_poly([-1, -4, 0], [1, 4, 1])).is_some()); // plus sign
+    }
+
+    fn small_point() -> impl Strategy<Value = [i64; 3]> {
+        [0i64..4, 0i64..4, 0i64..4]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Random boxes on a small lattice (many touching and coincident cases): the
+        /// boundary test agrees with comparing intervals.
+        #[test]
+        fn boxes_agree_with_intervals(a in small_point(), da in [1i64..3, 1i64..3, 1i64..3],
+                                      b in small_point(), db in [1i64..3, 1i64..3, 1i64..3]) {
+            let ha = [a[0] + da[0], a[1] + da[1], a[2] + da[2]];
+            let hb = [b[0] + db[0], b[1] + db[1], b[2] + db[2]];
+            let expect = (0..3).all(|k| a[k] < hb[k] && b[k] < ha[k]);
+            prop_assert_eq!(check(&box_poly(a, ha), &box_poly(b, hb)).is_some(), expect);
+        }
+
+        /// Random convex polytopes (hulls of lattice points): the boundary test agrees
+        /// with the separating-axis test of the pieces crate.
+        #[test]
+        fn hulls_agree_with_separating_axes(pa in prop::collection::vec(small_point(), 5..9),
+                                            pb in prop::collection::vec(small_point(), 5..9)) {
+            let hull = |p: &[[i64; 3]]| Polytope::hull_of_points(&p.iter().map(|&c| Vec3::from_i64(c)).collect::<Vec<_>>()).ok();
+            if let (Some(a), Some(b)) = (hull(&pa), hull(&pb)) {
+                let expect = interior_witness(&a, &b).is_some();
+                prop_assert_eq!(check(&a, &b).is_some(), expect);
+            }
+        }
+    }
+}
