@@ -47,6 +47,11 @@ pub struct FArc {
 }
 
 impl FArc {
+    /// The arc from unit `a` to unit `b` with unit normal `n` (counter-clockwise).
+    pub fn new(a: V3, b: V3, n: V3) -> FArc {
+        FArc { a, b, n }
+    }
+
     /// Squared chord distance from unit point `p` to the closed arc.
     pub fn distance2(&self, p: &V3) -> f64 {
         let s = dot(&self.n, p);

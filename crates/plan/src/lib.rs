@@ -45,6 +45,7 @@ pub mod dbg;
 pub mod motion_space;
 pub mod partition;
 pub mod regions;
+pub mod sequence;
 
 pub use dbg::Dbg;
 pub use motion_space::{CellKind, MotionSpace};
@@ -53,6 +54,7 @@ pub use partition::{
 };
 pub use regions::parts_of;
 pub use regions::{BlockingRegions, PartPieces};
+pub use sequence::{sequence, Sequence, SequenceOptions, Step, Tolerance};
 
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]

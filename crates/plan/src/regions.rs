@@ -60,6 +60,8 @@ pub struct PairRegion {
     pub polygons: Vec<SphericalPolygon>,
     /// Their union, simplified.
     pub region: RegionMap,
+    /// The parts touch (some piece pair's sum has the origin on its boundary).
+    pub contact: bool,
 }
 
 impl PairRegion {
@@ -97,6 +99,7 @@ pub struct RegionStats {
 #[derive(Clone, Debug)]
 pub struct BlockingRegions {
     names: Vec<String>,
+    pieces: Vec<Vec<Polytope>>,
     pairs: Vec<PairRegion>,
     index: Vec<usize>,
     /// Timings and sizes.
@@ -161,11 +164,18 @@ impl BlockingRegions {
         stats.sums_seconds = t.elapsed().as_secs_f64();
 
         let t = Instant::now();
-        let polys: Vec<SphericalPolygon> = sums
+        let polys: Vec<(SphericalPolygon, bool)> = sums
             .par_iter()
             .zip(&jobs)
             .map(|(m, &(i, j, a, b))| match project(m) {
-                Ok(Projection::Polygon(p)) => Ok(p),
+                Ok(Projection::Polygon(p)) => {
+                    // Touching: no facet has the origin strictly outside.
+                    let contact = m
+                        .facets()
+                        .iter()
+                        .all(|f| f.offset >= apart_kernel::Int::ZERO);
+                    Ok((p, contact))
+                }
                 Ok(Projection::Everything) => Err(PlanError::Overlap {
                     parts: (i, j),
                     names: (parts[i].name.clone(), parts[j].name.clone()),
@@ -182,23 +192,28 @@ impl BlockingRegions {
 
         let t = Instant::now();
         let mut grouped: Vec<Vec<SphericalPolygon>> = vec![Vec::new(); pairs.len()];
+        let mut contact = vec![false; pairs.len()];
         let mut pair_index = vec![usize::MAX; n * n];
         for (k, &(i, j)) in pairs.iter().enumerate() {
             pair_index[i * n + j] = k;
         }
-        for (p, &(i, j, _, _)) in polys.into_iter().zip(&jobs) {
-            grouped[pair_index[i * n + j]].push(p);
+        for ((p, touch), &(i, j, _, _)) in polys.into_iter().zip(&jobs) {
+            let k = pair_index[i * n + j];
+            grouped[k].push(p);
+            contact[k] |= touch;
         }
         let regions: Vec<PairRegion> = pairs
             .par_iter()
             .zip(grouped)
-            .map(|(&(i, j), polygons)| {
+            .zip(contact)
+            .map(|((&(i, j), polygons), contact)| {
                 let region = union_of(&polygons);
                 PairRegion {
                     i,
                     j,
                     polygons,
                     region,
+                    contact,
                 }
             })
             .collect();
@@ -210,6 +225,7 @@ impl BlockingRegions {
         }
         Ok(BlockingRegions {
             names: parts.iter().map(|p| p.name.clone()).collect(),
+            pieces: parts.iter().map(|p| p.pieces.clone()).collect(),
             pairs: regions,
             index,
             stats,
@@ -226,6 +242,11 @@ impl BlockingRegions {
         &self.names
     }
 
+    /// The convex pieces of part `k`.
+    pub fn pieces(&self, k: usize) -> &[Polytope] {
+        &self.pieces[k]
+    }
+
     /// All pair regions.
     pub fn pairs(&self) -> &[PairRegion] {
         &self.pairs
@@ -235,6 +256,11 @@ impl BlockingRegions {
     pub fn pair(&self, i: usize, j: usize) -> &PairRegion {
         let (a, b) = (i.min(j), i.max(j));
         &self.pairs[self.index[a * self.names.len() + b]]
+    }
+
+    /// True when parts `i` and `j` touch.
+    pub fn touch(&self, i: usize, j: usize) -> bool {
+        i != j && self.pair(i, j).contact
     }
 
     /// Exactly: does part `i` moving along `d` hit part `j`?

@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+pub mod oracle;
+
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use apart_plan::PartPieces;

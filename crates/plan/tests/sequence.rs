@@ -1,0 +1,231 @@
+//! Disassembly sequences: every step re-checked by the brute-force oracle.
+
+mod common;
+
+use apart_kernel::Vec3;
+use apart_plan::{
+    sequence, BlockingRegions, CellKind, PartPieces, Sequence, SequenceOptions, Tolerance,
+};
+use common::oracle::Oracle;
+use proptest::prelude::*;
+
+/// Checks every step: the moving side is free along the direction against the rest of
+/// its subassembly (oracle), it is a proper non-empty subset, the steps split exactly the
+/// subassemblies the tree produces, and a complete plan ends with single parts.
+fn check_plan(parts: &[PartPieces], plan: &Sequence) {
+    let oracle = Oracle::new(parts);
+    let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
+    for step in &plan.steps {
+        assert!(
+            !step.moving.is_empty() && step.moving.len() < step.subassembly.len(),
+            "{step:?}"
+        );
+        let rest: Vec<usize> = step
+            .subassembly
+            .iter()
+            .copied()
+            .filter(|k| !step.moving.contains(k))
+            .collect();
+        assert!(
+            oracle.free(&step.moving, &rest, &step.direction),
+            "step blocked: {step:?}"
+        );
+        // The subassembly is one still waiting to be split.
+        let k = open
+            .iter()
+            .position(|s| s == &step.subassembly)
+            .expect("step splits an open subassembly");
+        open.remove(k);
+        open.push(step.moving.clone());
+        open.push(rest);
+    }
+    if plan.complete() {
+        assert!(open.iter().all(|s| s.len() == 1), "{open:?}");
+    }
+    for s in plan.stuck.iter().chain(&plan.unsplit) {
+        assert!(open.contains(s));
+    }
+}
+
+fn plan(parts: &[PartPieces], opts: &SequenceOptions) -> Sequence {
+    let regions = BlockingRegions::compute(parts).unwrap();
+    let p = sequence(&regions, opts);
+    check_plan(parts, &p);
+    p
+}
+
+#[test]
+fn split_star_comes_apart_completely() {
+    let p = plan(&common::split_star(), &SequenceOptions::default());
+    assert!(p.complete());
+    assert_eq!(p.steps.len(), 5);
+    // The first split can only be one of the eight isolated directions.
+    let first = &p.steps[0];
+    assert_eq!(first.cell, CellKind::Vertex);
+    assert_eq!(first.moving.len(), 3);
+}
+
+#[test]
+fn linked_rings_are_stuck() {
+    let p = plan(&common::linked_rings(), &SequenceOptions::default());
+    assert!(p.steps.is_empty());
+    assert_eq!(p.stuck, vec![vec![0, 1]]);
+    assert!(!p.complete());
+}
+
+#[test]
+fn plans_are_deterministic() {
+    let parts = common::split_star();
+    let regions = BlockingRegions::compute(&parts).unwrap();
+    let a = sequence(&regions, &SequenceOptions::default());
+    let b = sequence(&regions, &SequenceOptions::default());
+    assert_eq!(a.steps, b.steps);
+}
+
+#[test]
+fn base_part_never_moves() {
+    for base in 0..4 {
+        let p = plan(
+            &common::cubes_in_a_row(4),
+            &SequenceOptions {
+                base: Some(base),
+                ..Default::default()
+            },
+        );
+        assert!(p.complete());
+        assert!(
+            p.steps.iter().all(|s| !s.moving.contains(&base)),
+            "base {base}: {:?}",
+            p.steps
+        );
+    }
+}
+
+#[test]
+fn preferences() {
+    // Single parts: cubes in a row come apart one at a time.
+    let p = plan(
+        &common::cubes_in_a_row(4),
+        &SequenceOptions {
+            prefer_single: true,
+            ..Default::default()
+        },
+    );
+    assert!(p.steps.iter().all(|s| s.moving.len() == 1));
+    // Robust first: the stacked cubes split through the open hemisphere (a face).
+    let p = plan(&common::stacked_cubes(), &SequenceOptions::default());
+    assert_eq!(p.steps[0].cell, CellKind::Face);
+    // Axes: the same split along ±z exactly.
+    let p = plan(
+        &common::stacked_cubes(),
+        &SequenceOptions {
+            prefer_axes: true,
+            ..Default::default()
+        },
+    );
+    let d = &p.steps[0].direction;
+    assert!(
+        *d == Vec3::new(0, 0, 1) || *d == Vec3::new(0, 0, -1),
+        "{d:?}"
+    );
+    assert_eq!(p.steps[0].cell, CellKind::Face);
+    assert!((p.steps[0].clearance_deg - 90.0).abs() < 1e-6);
+    // Connected sides: in a row of four, taking out a middle cube would leave the rest
+    // in two pieces; with the preference every side stays connected.
+    let p = plan(
+        &common::cubes_in_a_row(4),
+        &SequenceOptions {
+            prefer_connected: true,
+            ..Default::default()
+        },
+    );
+    for s in &p.steps {
+        let rest: Vec<usize> = s
+            .subassembly
+            .iter()
+            .copied()
+            .filter(|k| !s.moving.contains(k))
+            .collect();
+        for side in [&s.moving, &rest] {
+            let (lo, hi) = (side.iter().min().unwrap(), side.iter().max().unwrap());
+            assert_eq!(
+                hi - lo + 1,
+                side.len(),
+                "side {side:?} of {s:?} is not contiguous"
+            );
+        }
+    }
+}
+
+#[test]
+fn growth_tolerance_of_a_peg_with_play() {
+    // A peg of width 2 in a hole of width 4: 1 unit of play on each side.
+    let block = vec![
+        common::cuboid([-4, -4, 0], [4, 4, 1]),
+        common::cuboid([-4, -4, 1], [-2, 4, 4]),
+        common::cuboid([2, -4, 1], [4, 4, 4]),
+        common::cuboid([-2, -4, 1], [2, -2, 4]),
+        common::cuboid([-2, 2, 1], [2, 4, 4]),
+    ];
+    let peg = vec![common::cuboid([-1, -1, 1], [1, 1, 6])];
+    let parts = vec![common::part("block", block), common::part("peg", peg)];
+    let p = plan(
+        &parts,
+        &SequenceOptions {
+            tolerance: true,
+            prefer_axes: true,
+            ..Default::default()
+        },
+    );
+    let step = &p.steps[0];
+    assert_eq!(
+        step.direction.primitive().to_strings()[2].trim_start_matches('-'),
+        "1"
+    );
+    // The peg rests on the floor (left at once going up): only the play limits growth.
+    match step.tolerance {
+        Some(Tolerance::Finite(s)) => assert!((s - 0.5).abs() < 1e-6, "{s}"),
+        t => panic!("{t:?}"),
+    }
+    // Tight peg in a tight hole: zero tolerance; stacked cubes lifted apart: unbounded.
+    let p = plan(
+        &common::peg_in_hole(),
+        &SequenceOptions {
+            tolerance: true,
+            ..Default::default()
+        },
+    );
+    assert_eq!(p.steps[0].tolerance, Some(Tolerance::Finite(0.0)));
+    let p = plan(
+        &common::stacked_cubes(),
+        &SequenceOptions {
+            tolerance: true,
+            ..Default::default()
+        },
+    );
+    assert_eq!(p.steps[0].tolerance, Some(Tolerance::Unbounded));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Random box assemblies (several boxes per part, touching on a grid): every step is
+    /// valid by the oracle.
+    #[test]
+    fn random_box_plans_are_valid(owners in prop::collection::vec(0usize..5, 12), k in 2usize..=4) {
+        let mut parts: Vec<Vec<apart_pieces::Polytope>> = vec![Vec::new(); k];
+        for (c, &o) in owners.iter().enumerate() {
+            if o >= k {
+                continue;
+            }
+            let (x, y, z) = ((c % 3) as i64, ((c / 3) % 2) as i64, (c / 6) as i64);
+            parts[o].push(common::cuboid([x, y, z], [x + 1, y + 1, z + 1]));
+        }
+        let parts: Vec<PartPieces> =
+            parts.into_iter().enumerate().filter(|(_, p)| !p.is_empty()).map(|(i, p)| common::part(&format!("p{i}"), p)).collect();
+        prop_assume!(parts.len() >= 2);
+        let regions = BlockingRegions::compute(&parts).unwrap();
+        let p = sequence(&regions, &SequenceOptions::default());
+        check_plan(&parts, &p);
+    }
+}
