@@ -45,6 +45,7 @@ pub mod dbg;
 pub mod motion_space;
 pub mod partition;
 pub mod regions;
+pub mod separate;
 pub mod sequence;
 
 pub use dbg::Dbg;
@@ -54,6 +55,7 @@ pub use partition::{
 };
 pub use regions::parts_of;
 pub use regions::{BlockingRegions, PartPieces};
+pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{sequence, Sequence, SequenceOptions, Step, Tolerance};
 
 /// Why planning could not run.

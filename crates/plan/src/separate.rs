@@ -1,0 +1,259 @@
+//! Two-part separation: every direction along which part `a` leaves part `b`.
+//!
+//! The free set is the complement of the open blocked set `Q_ab`: open spherical regions
+//! (faces, with their exact boundary arcs), sliding arcs (free arcs between blocked
+//! regions) and isolated directions (free points inside blocked regions).
+
+use crate::clearance::{climb, isolated_points, starting_points, to_angle, FArc};
+use crate::regions::BlockingRegions;
+use apart_kernel::Vec3;
+use apart_sphere::overlay::{cell_statuses, RegionArrangement};
+use apart_sphere::region::arrangement_of;
+use apart_sphere::{Arc, BitSet};
+
+/// An open region of separating directions.
+#[derive(Clone, Debug)]
+pub struct FreeFace {
+    /// Boundary loops, each a cycle of exact arcs with the region on their left.
+    pub loops: Vec<Vec<Arc>>,
+    /// Area in steradians (floating point, by Gauss–Bonnet).
+    pub area: f64,
+    /// An exact direction deep inside.
+    pub direction: Vec3,
+    /// Its angular distance to the region's boundary, in degrees.
+    pub clearance_deg: f64,
+}
+
+/// All directions along which `a` separates from `b`.
+#[derive(Clone, Debug)]
+pub struct Separation {
+    /// The moving part.
+    pub a: usize,
+    /// The fixed part.
+    pub b: usize,
+    /// Open regions of free directions.
+    pub faces: Vec<FreeFace>,
+    /// Free arcs between blocked regions (sliding motions), as chains of arcs.
+    pub sliding: Vec<Arc>,
+    /// Free directions isolated inside blocked regions.
+    pub isolated: Vec<Vec3>,
+}
+
+impl Separation {
+    /// The fraction of the sphere of directions that separates (faces only: arcs and
+    /// points have no area).
+    pub fn area_fraction(&self) -> f64 {
+        self.faces.iter().map(|f| f.area).sum::<f64>() / (4.0 * std::f64::consts::PI)
+    }
+
+    /// The direction with the largest clearance and that clearance (degrees), if any
+    /// region is free; otherwise a sliding or isolated direction with clearance 0.
+    pub fn best(&self) -> Option<(Vec3, f64)> {
+        if let Some(f) = self
+            .faces
+            .iter()
+            .max_by(|x, y| x.clearance_deg.total_cmp(&y.clearance_deg))
+        {
+            return Some((f.direction.clone(), f.clearance_deg));
+        }
+        if let Some(a) = self.sliding.first() {
+            return Some((a.interior_point().primitive(), 0.0));
+        }
+        self.isolated.first().map(|d| (d.clone(), 0.0))
+    }
+}
+
+/// Computes the separating directions of part `a` (moving) from part `b`.
+pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
+    let pair = regions.pair(a, b);
+    let map = if a < b {
+        pair.region.clone()
+    } else {
+        pair.region.antipodal()
+    };
+    let blocks = |x: &Vec3, y: &Vec3| {
+        if a < b {
+            pair.blocks_perturbed(x, y)
+        } else {
+            pair.blocks_perturbed(&x.neg(), &y.neg())
+        }
+    };
+    let arr = arrangement_of(&map);
+    let st = cell_statuses(&arr, 1, |x, y| {
+        let mut s = BitSet::new(1);
+        s.set(0, blocks(x, y));
+        s
+    });
+    let blocked = |s: &BitSet| s.get(0);
+    let isolated_pts = isolated_points(&arr);
+    let mut faces = Vec::new();
+    for f in 0..arr.faces().len() {
+        if blocked(&st.faces[f]) {
+            continue;
+        }
+        let loops: Vec<Vec<Arc>> = arr
+            .boundary_loops(f as u32)
+            .into_iter()
+            .map(|lp| lp.into_iter().map(|h| arr.half_edge_arc(h)).collect())
+            .collect();
+        let area = face_area(&loops);
+        let (direction, clearance) = deep_direction(&arr, f as u32, &isolated_pts[f], &|d| {
+            !blocks(d, &Vec3::ZERO) && on_no_arc(&arr, d)
+        });
+        faces.push(FreeFace {
+            loops,
+            area,
+            direction,
+            clearance_deg: clearance.to_degrees(),
+        });
+    }
+    let mut sliding = Vec::new();
+    for (e, edge) in arr.edges().iter().enumerate() {
+        if edge.structural || blocked(&st.edges[e]) {
+            continue;
+        }
+        let (l, r) = (arr.cycle_of(2 * e as u32), arr.cycle_of(2 * e as u32 + 1));
+        if blocked(&st.cycles[l as usize]) && blocked(&st.cycles[r as usize]) {
+            sliding.push(arr.edge_arc(e as u32));
+        }
+    }
+    let mut isolated = Vec::new();
+    for (v, vert) in arr.vertices().iter().enumerate() {
+        if vert.structural || blocked(&st.vertices[v]) {
+            continue;
+        }
+        let all_blocked = vert.around.iter().all(|&h| {
+            let e = (h / 2) as usize;
+            (arr.edges()[e].structural || blocked(&st.edges[e]))
+                && blocked(&st.cycles[arr.cycle_of(h) as usize])
+        });
+        if all_blocked {
+            isolated.push(vert.point.clone());
+        }
+    }
+    Separation {
+        a,
+        b,
+        faces,
+        sliding,
+        isolated,
+    }
+}
+
+fn on_no_arc(arr: &RegionArrangement, d: &Vec3) -> bool {
+    let p = d.primitive();
+    arr.vertices().iter().all(|v| v.point != p)
+        && (0..arr.edges().len() as u32).all(|e| {
+            arr.edges()[e as usize].structural
+                || arr
+                    .edge_arc(e)
+                    .locate(&p)
+                    .is_none_or(|x| x == apart_kernel::spherical::ArcPosition::Outside)
+        })
+}
+
+/// A deep exact direction of face `f` and its clearance (radians); `ok` verifies a
+/// candidate exactly.
+fn deep_direction(
+    arr: &RegionArrangement,
+    f: u32,
+    points: &[[f64; 3]],
+    ok: &dyn Fn(&Vec3) -> bool,
+) -> (Vec3, f64) {
+    let arcs: Vec<FArc> = arr
+        .boundary_loops(f)
+        .into_iter()
+        .flatten()
+        .map(|h| {
+            let a = arr.half_edge_arc(h);
+            FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64())
+        })
+        .collect();
+    if arcs.is_empty() && points.is_empty() {
+        return (Vec3::new(0, 0, 1), std::f64::consts::PI);
+    }
+    let mut starts: Vec<[f64; 3]> = starting_points(&arcs, points, 8)
+        .into_iter()
+        .take(2)
+        .map(|(p, _)| p)
+        .collect();
+    if arcs.is_empty() {
+        starts.push(points[0].map(|x| -x));
+    }
+    let mut best: Option<([f64; 3], f64)> = None;
+    for p in starts {
+        let (q, c) = climb(p, &arcs, points);
+        if best.is_none_or(|(_, bc)| c > bc) {
+            best = Some((q, c));
+        }
+    }
+    if let Some((p, c)) = best {
+        for bits in [20, 30, 40] {
+            let s = (1u64 << bits) as f64;
+            let d = Vec3::new(
+                (p[0] * s).round() as i64,
+                (p[1] * s).round() as i64,
+                (p[2] * s).round() as i64,
+            )
+            .primitive();
+            if !d.is_zero() && ok(&d) {
+                return (d, c);
+            }
+        }
+    }
+    // Exact fallback next to a boundary edge (see MotionSpace::face_sample).
+    let h = arr
+        .boundary_loops(f)
+        .into_iter()
+        .flatten()
+        .next()
+        .expect("boundary");
+    let arc = arr.half_edge_arc(h);
+    let m = arc.interior_point();
+    let mut k = apart_kernel::Int::from(1u64 << 20);
+    loop {
+        let d = m.scale(&k).add(&arc.normal).primitive();
+        if ok(&d) {
+            let u = d.unit_f64();
+            let c2 = arcs.iter().map(|a| a.distance2(&u)).fold(4.0, f64::min);
+            return (d, to_angle(c2));
+        }
+        k = &k * apart_kernel::Int::from(1u64 << 16);
+    }
+}
+
+/// Area of a spherical region from its boundary loops (Gauss–Bonnet):
+/// `area = 2π(2 − loops) − Σ turning angles`, the turning angle at each corner being the
+/// signed change of direction (positive when turning left, towards the region).
+pub fn face_area(loops: &[Vec<Arc>]) -> f64 {
+    use std::f64::consts::PI;
+    if loops.is_empty() {
+        return 4.0 * PI;
+    }
+    let mut turning = 0.0;
+    for lp in loops {
+        for (k, arc) in lp.iter().enumerate() {
+            let next = &lp[(k + 1) % lp.len()];
+            // Tangents at the shared corner v: incoming n1 × v, outgoing n2 × v.
+            let v = arc.end.unit_f64();
+            let t1 = cross(&arc.normal.unit_f64(), &v);
+            let t2 = cross(&next.normal.unit_f64(), &v);
+            let sin = dot(&v, &cross(&t1, &t2));
+            let cos = dot(&t1, &t2);
+            turning += sin.atan2(cos);
+        }
+    }
+    2.0 * PI * (2.0 - loops.len() as f64) - turning
+}
+
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
