@@ -87,7 +87,7 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
     let blocked = |s: &BitSet| s.get(0);
     let isolated_pts = isolated_points(&arr);
     let mut faces = Vec::new();
-    for f in 0..arr.faces().len() {
+    for (f, points) in isolated_pts.iter().enumerate() {
         if blocked(&st.faces[f]) {
             continue;
         }
@@ -97,7 +97,7 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
             .map(|lp| lp.into_iter().map(|h| arr.half_edge_arc(h)).collect())
             .collect();
         let area = face_area(&loops);
-        let (direction, clearance) = deep_direction(&arr, f as u32, &isolated_pts[f], &|d| {
+        let (direction, clearance) = deep_direction(&arr, f as u32, points, &|d| {
             !blocks(d, &Vec3::ZERO) && on_no_arc(&arr, d)
         });
         faces.push(FreeFace {
