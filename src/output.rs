@@ -9,6 +9,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::Arc;
 
+/// Prints one line on standard output; a closed pipe (`apart check x | head`) is not
+/// an error worth a panic, so write failures are ignored.
+pub fn line(text: impl std::fmt::Display) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stdout().lock(), "{text}");
+}
+
 /// A coordinate in input units, as the shortest decimal of its `f64`.
 pub fn units(grid: &Grid, q: i64) -> String {
     let v = grid.to_units(q);
@@ -59,7 +66,7 @@ pub fn table(header: &[&str], rows: &[Vec<String>]) {
                 s.push_str(&" ".repeat(w - c.chars().count() + 2));
             }
         }
-        println!("{s}");
+        line(s);
     };
     line(header.iter().map(|h| h.to_string()).collect());
     for r in rows {
@@ -73,13 +80,13 @@ pub fn problems(global: &Global, problems: &[Problem]) {
         if global.quiet && p.severity == apart::mesh::Severity::Note {
             continue;
         }
-        println!("{p}");
+        line(p);
     }
 }
 
 /// Prints a value as pretty JSON on standard output.
 pub fn json<T: serde::Serialize>(value: &T) -> anyhow::Result<()> {
-    println!("{}", serde_json::to_string_pretty(value)?);
+    line(serde_json::to_string_pretty(value)?);
     Ok(())
 }
 
@@ -111,5 +118,6 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
     if global.json {
         let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
     }
-    eprintln!("error: {msg}");
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "error: {msg}");
 }

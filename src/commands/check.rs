@@ -128,19 +128,19 @@ fn print_text(l: &Loaded, global: &Global) {
     let a = &l.assembly;
     let g = &a.grid;
     if !global.quiet {
-        println!(
+        output::line(format_args!(
             "assembly \"{}\": {} part{}",
             a.name,
             a.parts.len(),
             if a.parts.len() == 1 { "" } else { "s" }
-        );
-        println!(
+        ));
+        output::line(format_args!(
             "grid: h = {} ({} bits), largest snap displacement {}",
             output::step(g),
             g.bits,
             a.max_snap_displacement
-        );
-        println!();
+        ));
+        output::line("");
         let rows: Vec<Vec<String>> = a
             .parts
             .iter()
@@ -183,12 +183,14 @@ fn print_text(l: &Loaded, global: &Global) {
             ],
             &rows,
         );
-        println!();
+        output::line("");
     }
     output::problems(global, &l.problems);
     let count = |s| l.problems.iter().filter(|p| p.severity == s).count();
     use apart::mesh::Severity::*;
     let (e, w, n) = (count(Error), count(Warning), count(Note));
     let verdict = if l.is_valid() { "valid" } else { "invalid" };
-    println!("{verdict}: {e} error(s), {w} warning(s), {n} note(s)");
+    output::line(format_args!(
+        "{verdict}: {e} error(s), {w} warning(s), {n} note(s)"
+    ));
 }

@@ -35,6 +35,8 @@ mod overlap;
 mod pieces;
 mod witness;
 
+/// Problems are defined with the meshes and shared by the loader.
+pub use apart_mesh::{Problem, Severity};
 pub use error::LoadError;
 pub use load::load;
 pub use model::{Assembly, Loaded, Part};

@@ -43,9 +43,10 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         })
         .collect();
     let objects_of = |path: &Path| -> Result<&Vec<RawObject>, &ReadError> {
-        match plan.preloaded.get(path) {
-            Some(o) => Ok(o),
-            None => read[path].as_ref(),
+        match (plan.preloaded.get(path), read.get(path)) {
+            (Some(o), _) => Ok(o),
+            (None, Some(r)) => r.as_ref(),
+            (None, None) => unreachable!("every file of the plan was read"),
         }
     };
 

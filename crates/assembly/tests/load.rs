@@ -1,7 +1,7 @@
 //! Loading folders, multi-object files and manifests, written to temporary folders.
 //! Expected values are computed by hand from the boxes written.
 
-use apart_assembly::{load, LoadOptions, LoadError, Stage};
+use apart_assembly::{load, LoadError, LoadOptions, Stage};
 use apart_kernel::{Int, Rational};
 use apart_mesh::formats::{obj, off, stl};
 use apart_mesh::{Polygons, RawObject, Severity};
@@ -33,7 +33,11 @@ fn boxed(name: Option<&str>, lo: [f64; 3], hi: [f64; 3]) -> RawObject {
         vec![0, 4, 6, 2],
         vec![1, 3, 7, 5],
     ]);
-    RawObject { name: name.map(str::to_string), vertices, faces }
+    RawObject {
+        name: name.map(str::to_string),
+        vertices,
+        faces,
+    }
 }
 
 fn write_off(path: &Path, o: &RawObject) {
@@ -51,11 +55,23 @@ fn folder_with_piece_folders() {
     let d = tmp("folder");
     write_off(&d.join("b.off"), &boxed(None, [0.0; 3], [1.0; 3]));
     // Part "a": pieces only (a sub-folder alone), two boxes making a 2 x 1 x 1 bar.
-    write_off(&d.join("a/p1.off"), &boxed(None, [2.0, 0.0, 0.0], [3.0, 1.0, 1.0]));
-    write_off(&d.join("a/p0.off"), &boxed(None, [1.0, 0.0, 0.0], [2.0, 1.0, 1.0]));
+    write_off(
+        &d.join("a/p1.off"),
+        &boxed(None, [2.0, 0.0, 0.0], [3.0, 1.0, 1.0]),
+    );
+    write_off(
+        &d.join("a/p0.off"),
+        &boxed(None, [1.0, 0.0, 0.0], [2.0, 1.0, 1.0]),
+    );
     // Part "c": a mesh with its pieces, the mesh in half-units.
-    write_off(&d.join("c.off"), &boxed(None, [0.0, 2.0, 0.0], [1.0, 2.5, 1.0]));
-    write_off(&d.join("c/only.off"), &boxed(None, [0.0, 2.0, 0.0], [1.0, 2.5, 1.0]));
+    write_off(
+        &d.join("c.off"),
+        &boxed(None, [0.0, 2.0, 0.0], [1.0, 2.5, 1.0]),
+    );
+    write_off(
+        &d.join("c/only.off"),
+        &boxed(None, [0.0, 2.0, 0.0], [1.0, 2.5, 1.0]),
+    );
     std::fs::write(d.join("README.txt"), "not a part").unwrap();
     let l = load(&d, &LoadOptions::default()).unwrap();
     assert!(l.is_valid(), "{:?}", l.problems);
@@ -64,7 +80,10 @@ fn folder_with_piece_folders() {
     assert_eq!(names, ["a", "b", "c"]);
     let pa = &a.parts[0];
     assert!(pa.mesh.is_none() && pa.declared_pieces && !pa.convex);
-    assert_eq!(pa.piece_sources, vec![d.join("a/p0.off"), d.join("a/p1.off")]);
+    assert_eq!(
+        pa.piece_sources,
+        vec![d.join("a/p0.off"), d.join("a/p1.off")]
+    );
     assert_eq!(pa.volume_units(&a.grid), rat(2, 1));
     let pb = &a.parts[1];
     assert!(pb.convex && !pb.declared_pieces && pb.pieces.len() == 1);
@@ -79,7 +98,14 @@ fn one_file_with_several_objects() {
     let d = tmp("obj");
     let p = d.join("two.obj");
     let mut f = std::fs::File::create(&p).unwrap();
-    obj::write(&mut f, &[boxed(Some("left"), [0.0; 3], [1.0; 3]), boxed(Some("right"), [1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]).unwrap();
+    obj::write(
+        &mut f,
+        &[
+            boxed(Some("left"), [0.0; 3], [1.0; 3]),
+            boxed(Some("right"), [1.0, 0.0, 0.0], [2.0, 1.0, 1.0]),
+        ],
+    )
+    .unwrap();
     drop(f);
     let l = load(&p, &LoadOptions::default()).unwrap();
     assert!(l.is_valid(), "{:?}", l.problems);
@@ -89,11 +115,22 @@ fn one_file_with_several_objects() {
     // Overlapping objects of one file are two overlapping parts.
     let p = d.join("clash.obj");
     let mut f = std::fs::File::create(&p).unwrap();
-    obj::write(&mut f, &[boxed(Some("x"), [0.0; 3], [2.0; 3]), boxed(Some("y"), [1.0; 3], [3.0; 3])]).unwrap();
+    obj::write(
+        &mut f,
+        &[
+            boxed(Some("x"), [0.0; 3], [2.0; 3]),
+            boxed(Some("y"), [1.0; 3], [3.0; 3]),
+        ],
+    )
+    .unwrap();
     drop(f);
     let l = load(&p, &LoadOptions::default()).unwrap();
     assert!(!l.is_valid());
-    assert!(l.problems[0].message.contains("overlaps part \"y\""), "{:?}", l.problems);
+    assert!(
+        l.problems[0].message.contains("overlaps part \"y\""),
+        "{:?}",
+        l.problems
+    );
 }
 
 #[test]
@@ -134,7 +171,9 @@ fn manifest_transforms_and_progress() {
     let seen: Arc<Mutex<Vec<(Stage, usize, usize)>>> = Arc::default();
     let s = seen.clone();
     let opts = LoadOptions {
-        progress: Some(Arc::new(move |p| s.lock().unwrap().push((p.stage, p.done, p.total)))),
+        progress: Some(Arc::new(move |p| {
+            s.lock().unwrap().push((p.stage, p.done, p.total))
+        })),
         ..LoadOptions::default()
     };
     let l = load(&d, &opts).unwrap();
@@ -151,7 +190,10 @@ fn manifest_transforms_and_progress() {
     assert_eq!(a.part("m").unwrap().volume_units(&a.grid), rat(2, 1));
     let seen = seen.lock().unwrap();
     for stage in [Stage::Reading, Stage::Validating, Stage::Overlaps] {
-        assert!(seen.iter().any(|&(s, d, _)| s == stage && d == 0), "{stage:?} not started");
+        assert!(
+            seen.iter().any(|&(s, d, _)| s == stage && d == 0),
+            "{stage:?} not started"
+        );
     }
     assert!(seen.contains(&(Stage::Validating, 4, 4)));
 }
@@ -159,8 +201,14 @@ fn manifest_transforms_and_progress() {
 #[test]
 fn grid_spans_all_parts_and_bad_parts_do_not_stop_the_rest() {
     let d = tmp("grid");
-    write_off(&d.join("big.off"), &boxed(None, [1000.0, 0.0, 0.0], [1001.0, 1.0, 1.0]));
-    write_off(&d.join("small.off"), &boxed(None, [0.0; 3], [0.1, 0.1, 0.1]));
+    write_off(
+        &d.join("big.off"),
+        &boxed(None, [1000.0, 0.0, 0.0], [1001.0, 1.0, 1.0]),
+    );
+    write_off(
+        &d.join("small.off"),
+        &boxed(None, [0.0; 3], [0.1, 0.1, 0.1]),
+    );
     let mut nan = boxed(None, [5.0; 3], [6.0; 3]);
     nan.vertices[2][0] = f64::NAN;
     write_off(&d.join("nan.off"), &nan);
@@ -170,7 +218,11 @@ fn grid_spans_all_parts_and_bad_parts_do_not_stop_the_rest() {
     assert!(a.grid.snap(1001.0).unsigned_abs() < 1 << 30);
     assert!(a.max_snap_displacement > 0.0 && a.max_snap_displacement <= h / 2.0);
     assert_eq!(a.parts.len(), 3);
-    let errors: Vec<_> = l.problems.iter().filter(|p| p.severity == Severity::Error).collect();
+    let errors: Vec<_> = l
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Error)
+        .collect();
     assert_eq!(errors.len(), 1, "{errors:?}");
     assert_eq!(errors[0].part.as_deref(), Some("nan"));
     assert!(a.part("big").unwrap().convex && a.part("small").unwrap().convex);
@@ -179,14 +231,32 @@ fn grid_spans_all_parts_and_bad_parts_do_not_stop_the_rest() {
 #[test]
 fn load_errors() {
     let d = tmp("errors");
-    assert!(matches!(load(&d.join("missing"), &LoadOptions::default()), Err(LoadError::NotFound(_))));
-    assert!(matches!(load(&d, &LoadOptions::default()), Err(LoadError::NoParts(_))));
+    assert!(matches!(
+        load(&d.join("missing"), &LoadOptions::default()),
+        Err(LoadError::NotFound(_))
+    ));
+    assert!(matches!(
+        load(&d, &LoadOptions::default()),
+        Err(LoadError::NoParts(_))
+    ));
     std::fs::write(d.join("x.step"), "ISO").unwrap();
-    assert!(matches!(load(&d.join("x.step"), &LoadOptions::default()), Err(LoadError::Read { .. })));
+    assert!(matches!(
+        load(&d.join("x.step"), &LoadOptions::default()),
+        Err(LoadError::Read { .. })
+    ));
     std::fs::write(d.join("assembly.json"), "{\"parts\": 3}").unwrap();
     let e = load(&d, &LoadOptions::default()).unwrap_err().to_string();
-    assert!(e.contains("assembly.json") && e.contains("\"parts\""), "{e}");
-    let opts = LoadOptions { grid_bits: 99, ..LoadOptions::default() };
+    assert!(
+        e.contains("assembly.json") && e.contains("\"parts\""),
+        "{e}"
+    );
+    let opts = LoadOptions {
+        grid_bits: 99,
+        ..LoadOptions::default()
+    };
     write_off(&d.join("sub/a.off"), &boxed(None, [0.0; 3], [1.0; 3]));
-    assert!(matches!(load(&d.join("sub"), &opts), Err(LoadError::Grid(_))));
+    assert!(matches!(
+        load(&d.join("sub"), &opts),
+        Err(LoadError::Grid(_))
+    ));
 }

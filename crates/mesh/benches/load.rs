@@ -35,6 +35,7 @@ fn bench(c: &mut Criterion) {
     );
     let mut g = c.benchmark_group("load");
     g.sample_size(10);
+    g.measurement_time(std::time::Duration::from_secs(20));
     g.throughput(Throughput::Bytes(bytes));
     g.bench_function("stl_1m_triangles_load_weld_validate", |b| {
         b.iter(|| load(&path))

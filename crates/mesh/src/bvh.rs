@@ -35,6 +35,11 @@ impl Bvh {
     pub fn new(boxes: Vec<Aabb>) -> Bvh {
         let n = boxes.len();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
+        // Centres quantised to 10 bits per axis (in floating point: the order only
+        // affects speed, never results).
+        let lo = all.min.map(|v| v as f64);
+        let scale: [f64; 3] =
+            [0, 1, 2].map(|k| 1023.0 / (2.0 * ((all.max[k] as f64 - lo[k]).max(1.0))));
         let mut keys: Vec<u64> = boxes
             .par_iter()
             .enumerate()
@@ -42,9 +47,8 @@ impl Bvh {
             .map(|(i, b)| {
                 let mut code = 0u64;
                 for k in 0..3 {
-                    let span = (all.max[k] as i128 - all.min[k] as i128).max(1);
-                    let c = b.min[k] as i128 + b.max[k] as i128 - 2 * all.min[k] as i128;
-                    let q = (c * 1023 / (2 * span)).clamp(0, 1023) as u64;
+                    let c = b.min[k] as f64 + b.max[k] as f64 - 2.0 * lo[k];
+                    let q = (c * scale[k]).clamp(0.0, 1023.0) as u64;
                     code |= spread(q) << k;
                 }
                 code << 32 | i as u64

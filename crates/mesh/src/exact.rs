@@ -1,9 +1,10 @@
 //! Exact predicates on snapped grid points (`[i64; 3]` with fewer than 54 bits).
 //!
 //! Bit bounds, for coordinates below 2^B: differences below 2^(B+1); `orient3d` is a
-//! degree-3 polynomial below 6 · 2^(3B+3) (96 bits for the default B = 30), evaluated in
-//! `i128` when the differences fit 41 bits and by the kernel's filtered exact
-//! [`det3_sign`] otherwise; `orient2d` and cross products are degree 2 (at most 110 bits
+//! degree-3 polynomial below 6 · 2^(3B+3) (96 bits for the default B = 30), evaluated
+//! with an `i64` cross product and `i128` dot product when the differences fit 30 bits,
+//! in `i128` when they fit 41 bits, and by the kernel's filtered exact [`det3_sign`]
+//! otherwise; `orient2d` and cross products are degree 2 (at most 110 bits
 //! for B = 53) and always fit `i128`.
 
 use apart_kernel::predicates::{det3_i128, det3_sign};
@@ -30,7 +31,20 @@ fn bits3(vs: [&P3; 3]) -> u32 {
 /// Sign of det[u; v; w] for difference vectors.
 #[inline]
 pub fn det3(u: &P3, v: &P3, w: &P3) -> Sign {
-    if bits3([u, v, w]) <= 41 {
+    let bits = bits3([u, v, w]);
+    if bits <= 30 {
+        // v × w in i64 (each product below 2^60, each difference below 2^61), then
+        // u · (v × w) with 64 x 64 -> 128-bit products.
+        let c = [
+            v[1] * w[2] - v[2] * w[1],
+            v[2] * w[0] - v[0] * w[2],
+            v[0] * w[1] - v[1] * w[0],
+        ];
+        return Sign::of_i128(
+            u[0] as i128 * c[0] as i128 + u[1] as i128 * c[1] as i128 + u[2] as i128 * c[2] as i128,
+        );
+    }
+    if bits <= 41 {
         Sign::of_i128(det3_i128(u, v, w))
     } else {
         det3_sign(
@@ -179,6 +193,33 @@ mod tests {
             let n = normal(&a, &b, &c);
             let s = orient2d(&project(&a, k), &project(&b, k), &project(&c, k));
             assert_eq!(s, Sign::of_i128(n[k]));
+        }
+    }
+
+    fn oracle(a: &P3, b: &P3, c: &P3, d: &P3) -> Sign {
+        let v = |p: &P3| apart_kernel::Vec3::from_i64(*p);
+        let (u, w, x) = (v(b).sub(&v(a)), v(c).sub(&v(a)), v(d).sub(&v(a)));
+        apart_kernel::int::sign_of(&u.dot(&w.cross(&x)))
+    }
+
+    proptest::proptest! {
+        /// orient3d against a big-integer evaluation, over every evaluation path
+        /// (differences of 30, 41 and 53 bits), on random and on exactly coplanar points.
+        #[test]
+        fn orient3d_matches_big_integers(bits in proptest::sample::select(vec![8u32, 29, 30, 31, 40, 41, 42, 52]),
+                                         raw in proptest::array::uniform12(proptest::num::i64::ANY),
+                                         k in -3i64..4, l in -3i64..4) {
+            let m = (1i64 << bits) - 1;
+            let p = |i: usize| [raw[i] % m, raw[i + 1] % m, raw[i + 2] % m];
+            let (a, b, c, d) = (p(0), p(3), p(6), p(9));
+            proptest::prop_assert_eq!(orient3d(&a, &b, &c, &d), oracle(&a, &b, &c, &d));
+            // d on the plane: a + k (b - a) + l (c - a), when it stays in range.
+            let e = [0, 1, 2].map(|i| a[i] as i128 + k as i128 * (b[i] - a[i]) as i128 + l as i128 * (c[i] - a[i]) as i128);
+            if e.iter().all(|v| v.unsigned_abs() < 1 << 53) {
+                let e = e.map(|v| v as i64);
+                proptest::prop_assert_eq!(orient3d(&a, &b, &c, &e), Sign::Zero);
+                proptest::prop_assert_eq!(oracle(&a, &b, &c, &e), Sign::Zero);
+            }
         }
     }
 

@@ -8,8 +8,7 @@ use crate::exact::{
     cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project,
     segments_meet_2d, sub, P3,
 };
-use apart_kernel::predicates::det3_sign;
-use apart_kernel::{Int, Sign, Vec3};
+use apart_kernel::{Int, Sign};
 
 /// How two triangles of a mesh meet beyond what they share.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -151,8 +150,8 @@ fn shared_vertex(v: &[P3], t: [u32; 3], u: [u32; 3], (i, j): (usize, usize)) -> 
     if se != Sign::Zero && se == sf {
         return None;
     }
-    let (u1, u2, w1, w2) = (sub(b, o), sub(c, o), sub(e, o), sub(f, o));
     if sb == Sign::Zero && sc == Sign::Zero {
+        let (u1, u2, w1, w2) = (sub(b, o), sub(c, o), sub(e, o), sub(f, o));
         // Coplanar: 2-D cones at the shared vertex.
         let k = dominant_axis(&cross(&u1, &u2));
         let [u1, u2, w1, w2] = [u1, u2, w1, w2].map(|x| project(&x, k));
@@ -185,24 +184,26 @@ fn shared_vertex(v: &[P3], t: [u32; 3], u: [u32; 3], (i, j): (usize, usize)) -> 
             Contact::Intersect
         });
     }
-    // Different planes: the cones can only share directions along ±l, l = n1 × n2.
-    let big = |x: &P3| Vec3::from_i64(*x);
-    let n1 = big(&u1).cross(&big(&u2));
-    let n2 = big(&w1).cross(&big(&w2));
-    let l = n1.cross(&n2);
-    let side = |a: &Vec3, b: &Vec3, n: &Vec3| det3_sign(a, b, n);
-    // r in cone(a, b) (normal n = a × b) iff (a × r)·n >= 0 and (r × b)·n >= 0.
-    let (p1, q1) = (side(&big(&u1), &l, &n1), side(&l, &big(&u2), &n1));
-    let (p2, q2) = (side(&big(&w1), &l, &n2), side(&l, &big(&w2), &n2));
-    let plus = p1 != Sign::Negative
-        && q1 != Sign::Negative
-        && p2 != Sign::Negative
-        && q2 != Sign::Negative;
-    let minus = p1 != Sign::Positive
-        && q1 != Sign::Positive
-        && p2 != Sign::Positive
-        && q2 != Sign::Positive;
-    (plus || minus).then_some(Contact::Intersect)
+    // Different planes: T1 ∩ T2 is a segment [o, p] of the line where the planes meet.
+    // If p ≠ o, it lies on the boundary of one triangle: on its far edge (which then
+    // meets the other triangle), or on one of its edges from o (whose far end then lies
+    // in the other's plane, with its direction inside the other's corner at o). Each
+    // test is an orientation in 3-D or, within one plane, in a 2-D projection.
+    if segment_meets_triangle(b, c, o, e, f) || segment_meets_triangle(e, f, o, b, c) {
+        return Some(Contact::Intersect);
+    }
+    let in_corner = |x: &P3, p: &P3, q: &P3| {
+        // x lies in the plane of (o, p, q): is x - o in the closed cone of p - o, q - o?
+        let k = dominant_axis(&normal(o, p, q));
+        let [o2, p2, q2, x2] = [o, p, q, x].map(|v| project(v, k));
+        let s = orient2d(&o2, &p2, &q2);
+        orient2d(&o2, &p2, &x2) != -s && orient2d(&o2, &x2, &q2) != -s
+    };
+    let hit = (sb == Sign::Zero && in_corner(b, e, f))
+        || (sc == Sign::Zero && in_corner(c, e, f))
+        || (se == Sign::Zero && in_corner(e, b, c))
+        || (sf == Sign::Zero && in_corner(f, b, c));
+    hit.then_some(Contact::Intersect)
 }
 
 /// Where the closed segment `p q` meets the closed triangle `a b c`, as parameters
@@ -391,5 +392,59 @@ mod tests {
             vec![(Int::from(1), Int::from(6)), (Int::from(2), Int::from(3))]
         );
         assert!(segment_triangle_params(&[9, 9, -1], &[9, 9, 1], &a, &b, &c).is_empty());
+    }
+}
+
+#[cfg(test)]
+mod oracle {
+    //! An independent derivation of the shared-vertex test: the corner cones at the
+    //! shared vertex meet outside it exactly when both contain +l or both contain -l,
+    //! l = n1 × n2 (non-coplanar case), or by 2-D cone tests (coplanar case), with big
+    //! integers.
+    use super::*;
+    use apart_kernel::predicates::det3_sign;
+    use apart_kernel::Vec3;
+    use proptest::prelude::*;
+
+    fn cones_meet(o: &P3, b: &P3, c: &P3, e: &P3, f: &P3) -> bool {
+        let v = |x: &P3| Vec3::from_i64(sub(x, o));
+        let (u1, u2, w1, w2) = (v(b), v(c), v(e), v(f));
+        let n1 = u1.cross(&u2);
+        let n2 = w1.cross(&w2);
+        let l = n1.cross(&n2);
+        if l.is_zero() {
+            // Coplanar: some boundary ray of one cone in the other (closed) cone.
+            let inside = |r: &Vec3, a: &Vec3, b: &Vec3, n: &Vec3| {
+                det3_sign(a, r, n) != Sign::Negative && det3_sign(r, b, n) != Sign::Negative
+            };
+            return inside(&w1, &u1, &u2, &n1)
+                || inside(&w2, &u1, &u2, &n1)
+                || inside(&u1, &w1, &w2, &n2)
+                || inside(&u2, &w1, &w2, &n2);
+        }
+        let (p1, q1) = (det3_sign(&u1, &l, &n1), det3_sign(&l, &u2, &n1));
+        let (p2, q2) = (det3_sign(&w1, &l, &n2), det3_sign(&l, &w2, &n2));
+        let plus = [p1, q1, p2, q2].iter().all(|s| *s != Sign::Negative);
+        let minus = [p1, q1, p2, q2].iter().all(|s| *s != Sign::Positive);
+        plus || minus
+    }
+
+    fn pt() -> impl Strategy<Value = [i64; 3]> {
+        [-2i64..3, -2i64..3, -2i64..3]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #[test]
+        fn shared_vertex_matches_the_cone_oracle(b in pt(), c in pt(), e in pt(), f in pt()) {
+            let o = [0i64, 0, 0];
+            let v = vec![o, b, c, e, f];
+            if crate::exact::collinear(&o, &b, &c) || crate::exact::collinear(&o, &e, &f)
+                || [b, c].contains(&e) || [b, c].contains(&f) {
+                return Ok(()); // not two triangles sharing exactly one vertex
+            }
+            let got = triangle_pair(&v, [0, 1, 2], [0, 3, 4]).is_some();
+            prop_assert_eq!(got, cones_meet(&o, &b, &c, &e, &f));
+        }
     }
 }

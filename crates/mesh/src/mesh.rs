@@ -46,18 +46,8 @@ impl Mesh {
             problems.push(Problem::error("more than 2^32 vertices"));
             return (None, problems);
         }
-        // Coordinates: finite and inside the grid.
-        let limit = 1u64 << grid.bits;
-        let bad: Vec<usize> = raw
-            .vertices
-            .par_iter()
-            .enumerate()
-            .filter(|(_, v)| {
-                v.iter()
-                    .any(|&c| !c.is_finite() || grid.snap(c).unsigned_abs() >= limit)
-            })
-            .map(|(i, _)| i)
-            .collect();
+        // Snap; coordinates must be finite and inside the grid.
+        let (snapped, bad) = snap_all(&raw.vertices, grid);
         let mut capped = Capped::new(LIST);
         for &i in &bad {
             let v = raw.vertices[i];
@@ -80,7 +70,6 @@ impl Mesh {
         if !problems.is_empty() {
             return (None, problems);
         }
-        let snapped = snap_all(&raw.vertices, grid);
         let welded = weld(&snapped);
         // Triangulate in parallel chunks, keeping the input order.
         const CHUNK: usize = 4096;

@@ -19,14 +19,62 @@ pub(crate) struct Welded {
     pub first: Vec<u32>,
 }
 
-/// Snaps every coordinate with `grid.snap` (the values must be finite and within the
-/// grid's range).
-pub(crate) fn snap_all(vertices: &[[f64; 3]], grid: &Grid) -> Vec<[i64; 3]> {
-    vertices
+/// `grid.snap(v)`, fast: for the usual exponents, multiplying by `2^-exp` is exact (as
+/// is the kernel's two-step scaling), and rounding half away from zero is done with a
+/// truncating conversion rather than a libm call. `None` for a non-finite value or one
+/// outside the grid (`|q| >= 2^bits`).
+#[inline]
+fn snap_one(v: f64, inv_h: Option<f64>, grid: &Grid, limit: u64) -> Option<i64> {
+    if !v.is_finite() {
+        return None;
+    }
+    let q = match inv_h {
+        Some(s) => {
+            let x = v * s;
+            if x.abs() >= 4503599627370496.0 {
+                return None; // beyond 2^52, hence beyond every grid's range
+            }
+            let i = x as i64; // truncates towards zero
+            let frac = x - i as f64; // exact
+            if frac >= 0.5 {
+                i + 1
+            } else if frac <= -0.5 {
+                i - 1
+            } else {
+                i
+            }
+        }
+        None => grid.snap(v),
+    };
+    (q.unsigned_abs() < limit).then_some(q)
+}
+
+/// Snaps every coordinate as `grid.snap` does. Vertices with a non-finite coordinate, or
+/// outside the grid's range, are returned in the second list (and snapped to 0).
+pub(crate) fn snap_all(vertices: &[[f64; 3]], grid: &Grid) -> (Vec<[i64; 3]>, Vec<usize>) {
+    let inv_h = (-1000..=1000)
+        .contains(&grid.exp)
+        .then(|| f64::from_bits(((1023 - grid.exp as i64) as u64) << 52));
+    let limit = 1u64 << grid.bits.min(53);
+    let snapped: Vec<Option<[i64; 3]>> = vertices
         .par_iter()
         .with_min_len(8192)
-        .map(|v| v.map(|c| grid.snap(c)))
-        .collect()
+        .map(|v| {
+            Some([
+                snap_one(v[0], inv_h, grid, limit)?,
+                snap_one(v[1], inv_h, grid, limit)?,
+                snap_one(v[2], inv_h, grid, limit)?,
+            ])
+        })
+        .collect();
+    let bad: Vec<usize> = snapped
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.is_none())
+        .map(|(i, _)| i)
+        .collect();
+    let points = snapped.into_iter().map(|p| p.unwrap_or([0; 3])).collect();
+    (points, bad)
 }
 
 /// Welds equal grid points.
@@ -160,9 +208,42 @@ mod tests {
     }
 
     #[test]
+    fn fast_snapping_matches_the_kernel() {
+        let mut x = 0x2545F4914F6CDD1Du64;
+        for bits in [4u32, 20, 30, 45, 53] {
+            for _ in 0..2000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let scale = [1e-9, 0.37, 3.0, 1e6, 1e15][(x % 5) as usize];
+                let v = ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * scale;
+                let g = Grid::choose([v, scale], bits).unwrap();
+                // Values exactly halfway between grid points, and their neighbours.
+                let h = g.step();
+                for w in [
+                    v,
+                    (v / h).trunc() * h + h / 2.0,
+                    -(v / h).trunc() * h - h / 2.0,
+                ] {
+                    let (s, bad) = snap_all(&[[w, 0.0, 0.0]], &g);
+                    if bad.is_empty() {
+                        assert_eq!(s[0][0], g.snap(w), "{w} on {g:?}");
+                    }
+                }
+            }
+        }
+        let g = Grid::unit(30);
+        let (_, bad) = snap_all(
+            &[[f64::NAN, 0.0, 0.0], [0.0, 2e9, 0.0], [1.0, 2.0, 3.0]],
+            &g,
+        );
+        assert_eq!(bad, vec![0, 1]);
+    }
+
+    #[test]
     fn snapping_merges_nearby_values() {
         let g = Grid::choose([1.0, 0.1], 4).unwrap(); // h = 2^-3
-        let s = snap_all(&[[0.1, 0.0, 0.0], [0.11, 0.0, 0.0], [1.0, 0.0, 0.0]], &g);
+        let (s, _) = snap_all(&[[0.1, 0.0, 0.0], [0.11, 0.0, 0.0], [1.0, 0.0, 0.0]], &g);
         let w = weld(&s);
         assert_eq!(w.points.len(), 2); // 0.1 and 0.11 both snap to 1/8
         assert_eq!(w.points[0], [1, 0, 0]);

@@ -21,7 +21,11 @@ fn cube() -> RawObject {
         vec![0, 4, 6, 2],
         vec![1, 3, 7, 5],
     ]);
-    RawObject { name: None, vertices, faces }
+    RawObject {
+        name: None,
+        vertices,
+        faces,
+    }
 }
 
 fn tri_faces(o: &RawObject) -> Vec<[u32; 3]> {
@@ -39,7 +43,17 @@ fn samples() -> Vec<(Format, Vec<u8>)> {
     off::write(&mut b, &c.vertices, &c.faces).unwrap();
     out.push((Format::Off, b));
     let mut b = Vec::new();
-    apart_mesh::formats::obj::write(&mut b, &[c.clone(), RawObject { name: Some("two".into()), ..c.clone() }]).unwrap();
+    apart_mesh::formats::obj::write(
+        &mut b,
+        &[
+            c.clone(),
+            RawObject {
+                name: Some("two".into()),
+                ..c.clone()
+            },
+        ],
+    )
+    .unwrap();
     out.push((Format::Obj, b));
     let mut b = Vec::new();
     stl::write(&mut b, &c.vertices, &tri_faces(&c)).unwrap();
@@ -63,7 +77,14 @@ fn samples() -> Vec<(Format, Vec<u8>)> {
         p.push_str(&format!("{} {} {}\n", v[0], v[1], v[2]));
     }
     for f in c.faces.iter() {
-        p.push_str(&format!("{} {}\n", f.len(), f.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" ")));
+        p.push_str(&format!(
+            "{} {}\n",
+            f.len(),
+            f.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
     }
     out.push((Format::Ply, p.into_bytes()));
     let mut pb = format!(
@@ -125,17 +146,30 @@ fn base64(bin: &[u8]) -> String {
     const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::new();
     for chunk in bin.chunks(3) {
-        let n = chunk.iter().enumerate().fold(0u32, |a, (i, &b)| a | (b as u32) << (16 - 8 * i));
+        let n = chunk
+            .iter()
+            .enumerate()
+            .fold(0u32, |a, (i, &b)| a | (b as u32) << (16 - 8 * i));
         for k in 0..4 {
-            s.push(if k <= chunk.len() { T[(n >> (18 - 6 * k) & 63) as usize] as char } else { '=' });
+            s.push(if k <= chunk.len() {
+                T[(n >> (18 - 6 * k) & 63) as usize] as char
+            } else {
+                '='
+            });
         }
     }
     s
 }
 
 fn gltf_with_data_uri(json: &str, bin: &[u8]) -> Vec<u8> {
-    json.replace("URI", &format!(",\"uri\":\"data:application/octet-stream;base64,{}\"", base64(bin)))
-        .into_bytes()
+    json.replace(
+        "URI",
+        &format!(
+            ",\"uri\":\"data:application/octet-stream;base64,{}\"",
+            base64(bin)
+        ),
+    )
+    .into_bytes()
 }
 
 fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
@@ -160,7 +194,12 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
 fn exercise(format: Format, bytes: &[u8]) {
     if let Ok(objects) = read_bytes(bytes, format, None) {
         for o in objects.iter().take(4) {
-            let finite = o.vertices.iter().flatten().copied().filter(|v| v.is_finite());
+            let finite = o
+                .vertices
+                .iter()
+                .flatten()
+                .copied()
+                .filter(|v| v.is_finite());
             if let Ok(grid) = Grid::choose(finite, 30) {
                 let _ = check_solid(o, &grid);
             }
@@ -178,7 +217,11 @@ fn samples_are_valid_solids() {
             let grid = Grid::choose(o.vertices.iter().flatten().copied(), 30).unwrap();
             let (_, info, problems) = check_solid(o, &grid);
             assert!(problems.is_empty(), "{format}: {problems:?}");
-            assert_eq!(info.unwrap().volume_units(&grid).unwrap().to_string(), "1/2", "{format}");
+            assert_eq!(
+                info.unwrap().volume_units(&grid).unwrap().to_string(),
+                "1/2",
+                "{format}"
+            );
         }
     }
 }
@@ -221,10 +264,23 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<usize>(), any::<u8>()).prop_map(|(i, x)| Mutation::Flip(i, x)),
         any::<usize>().prop_map(Mutation::Truncate),
-        (any::<usize>(), prop::collection::vec(any::<u8>(), 1..16)).prop_map(|(i, g)| Mutation::Insert(i, g)),
+        (any::<usize>(), prop::collection::vec(any::<u8>(), 1..16))
+            .prop_map(|(i, g)| Mutation::Insert(i, g)),
         (any::<usize>(), any::<usize>()).prop_map(|(i, g)| {
             // Digits and separators stress the text parsers more than random bytes.
-            let text = ["-", "1e308", "nan", " ", "\n", "9", ".", "#", "999999999", "-0", "inf"];
+            let text = [
+                "-",
+                "1e308",
+                "nan",
+                " ",
+                "\n",
+                "9",
+                ".",
+                "#",
+                "999999999",
+                "-0",
+                "inf",
+            ];
             Mutation::Insert(i, text[g % text.len()].as_bytes().to_vec())
         }),
         (any::<usize>(), 1usize..8).prop_map(|(i, n)| Mutation::Delete(i, n)),

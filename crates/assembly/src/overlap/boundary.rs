@@ -266,7 +266,11 @@ mod tests {
         assert!(check(&a, &box_poly([1, 1, 1], [3, 3, 3])).is_some());
         assert!(check(&a, &a).is_some()); // identical: coincident faces, same side
         assert!(check(&a, &box_poly([0, 0, 0], [1, 2, 2])).is_some()); // inside, sharing faces
-        assert!(check(&box_poly([-4, -1, 0], [4, 1, 1]), &box_poly([-1, -4, 0], [1, 4, 1])).is_some()); // plus sign
+        assert!(check(
+            &box_poly([-4, -1, 0], [4, 1, 1]),
+            &box_poly([-1, -4, 0], [1, 4, 1])
+        )
+        .is_some()); // plus sign
     }
 
     fn small_point() -> impl Strategy<Value = [i64; 3]> {

@@ -34,6 +34,7 @@ use crate::locate::Locator;
 use crate::mesh::{fmt_point, Mesh, LIST};
 use crate::problem::{Capped, Problem};
 use apart_kernel::{Grid, Int, Rational, Sign};
+use rayon::prelude::*;
 
 /// What validation learnt about a mesh.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -226,6 +227,8 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
 
     // Self-intersection.
     let boxes: Vec<Aabb> = (0..mesh.triangles.len())
+        .into_par_iter()
+        .with_min_len(8192)
         .map(|t| Aabb::of(mesh.corners(t)))
         .collect();
     let bvh = Bvh::new(boxes);
