@@ -7,6 +7,7 @@
 
 use apart_kernel::Grid;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Snapped and welded vertices.
 #[derive(Debug)]
@@ -80,110 +81,133 @@ pub(crate) fn snap_all(vertices: &[[f64; 3]], grid: &Grid) -> (Vec<[i64; 3]>, Ve
 /// Welds equal grid points.
 pub(crate) fn weld(points: &[[i64; 3]]) -> Welded {
     let n = points.len();
-    // Group heads: head[i] = the smallest input index with the same coordinates as i.
-    let mut head = vec![0u32; n];
     let max = points
         .par_iter()
         .map(|p| p.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0))
         .max()
         .unwrap_or(0);
-    if max < 1 << 30 {
-        // Pack (x, y, z, index) into one u128: 31 + 31 + 31 + 32 bits, order-preserving.
-        // Partition the keys into buckets by a hash of the coordinates (equal points land
-        // in the same bucket), then sort each cache-sized bucket in parallel.
-        let off = 1i64 << 30;
-        let pack = |i: usize, p: &[i64; 3]| {
-            ((p[0] + off) as u128) << 94
-                | ((p[1] + off) as u128) << 63
-                | ((p[2] + off) as u128) << 32
-                | i as u128
-        };
-        let bits = (usize::BITS - (n / 2048).leading_zeros()).min(16);
-        let bucket = |p: &[i64; 3]| -> usize {
-            if bits == 0 {
-                return 0;
-            }
-            let h = (p[0] as u64)
-                .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-                .wrapping_add((p[1] as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F))
-                .wrapping_add((p[2] as u64).wrapping_mul(0x1656_67B1_9E37_79F9));
-            (h.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize
-        };
-        let ids: Vec<u32> = points
-            .par_iter()
-            .with_min_len(8192)
-            .map(|p| bucket(p) as u32)
-            .collect();
-        let mut offsets = vec![0usize; (1 << bits) + 1];
-        for &b in &ids {
-            offsets[b as usize + 1] += 1;
-        }
-        for b in 0..1 << bits {
-            offsets[b + 1] += offsets[b];
-        }
-        let mut cursor = offsets.clone();
-        let mut keys = vec![0u128; n];
-        for (i, p) in points.iter().enumerate() {
-            let b = ids[i] as usize;
-            keys[cursor[b]] = pack(i, p);
-            cursor[b] += 1;
-        }
-        drop(ids);
-        let mut slices: Vec<&mut [u128]> = Vec::with_capacity(1 << bits);
-        let mut rest: &mut [u128] = &mut keys;
-        for b in 0..1 << bits {
-            let (head, tail) = rest.split_at_mut(offsets[b + 1] - offsets[b]);
-            slices.push(head);
-            rest = tail;
-        }
-        slices.par_iter_mut().for_each(|s| s.sort_unstable());
-        let mut current = u128::MAX;
-        let mut h = 0u32;
-        for k in keys {
-            let coords = k >> 32;
-            let i = (k & 0xffff_ffff) as u32;
-            if coords != current {
-                current = coords;
-                h = i;
-            }
-            head[i as usize] = h;
-        }
+    // head[i] = the smallest input index with the same coordinates as i.
+    let head: Vec<u32> = if max < 1 << 30 {
+        heads_packed(points)
     } else {
-        let mut keys: Vec<([i64; 3], u32)> = points
-            .par_iter()
-            .enumerate()
-            .map(|(i, p)| (*p, i as u32))
-            .collect();
-        keys.par_sort_unstable();
-        let mut current: Option<[i64; 3]> = None;
-        let mut h = 0u32;
-        for (p, i) in keys {
-            if current != Some(p) {
-                current = Some(p);
-                h = i;
-            }
-            head[i as usize] = h;
-        }
-    }
+        heads_general(points)
+    };
     // Number the heads in input order; every vertex takes its head's number.
-    let mut remap = vec![0u32; n];
+    let mut number = vec![u32::MAX; n];
     let mut first = Vec::new();
     let mut out = Vec::new();
     for i in 0..n {
-        let h = head[i] as usize;
-        if h == i {
-            remap[i] = first.len() as u32;
+        if head[i] as usize == i {
+            number[i] = first.len() as u32;
             first.push(i as u32);
             out.push(points[i]);
-        } else {
-            remap[i] = remap[h];
         }
     }
+    let remap = head
+        .par_iter()
+        .with_min_len(8192)
+        .map(|&h| number[h as usize])
+        .collect();
     Welded {
         points: out,
         remap,
         first,
     }
+}
+
+/// Group heads for coordinates below 2^30: (x, y, z, index) packed into one u128
+/// (31 + 31 + 31 + 32 bits, order-preserving), partitioned by a hash of the coordinates
+/// into cache-sized buckets (equal points share a bucket) in parallel chunks, and each
+/// bucket sorted and scanned in parallel.
+fn heads_packed(points: &[[i64; 3]]) -> Vec<u32> {
+    let n = points.len();
+    let off = 1i64 << 30;
+    let pack = |i: usize, p: &[i64; 3]| {
+        ((p[0] + off) as u128) << 94
+            | ((p[1] + off) as u128) << 63
+            | ((p[2] + off) as u128) << 32
+            | i as u128
+    };
+    let bits = (usize::BITS - (n / 1024).leading_zeros()).min(16);
+    let nb = 1usize << bits;
+    let bucket = |p: &[i64; 3]| -> usize {
+        if bits == 0 {
+            return 0;
+        }
+        let h = (p[0] as u64)
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add((p[1] as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F))
+            .wrapping_add((p[2] as u64).wrapping_mul(0x1656_67B1_9E37_79F9));
+        (h.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize
+    };
+    // Each chunk sorts its keys by bucket (a counting sort) on its own.
+    let chunk = n.div_ceil(2 * rayon::current_num_threads()).max(1 << 14);
+    let chunks: Vec<(Vec<usize>, Vec<u128>)> = points
+        .par_chunks(chunk)
+        .enumerate()
+        .map(|(c, ps)| {
+            let base = c * chunk;
+            let ids: Vec<u32> = ps.iter().map(|p| bucket(p) as u32).collect();
+            let mut offsets = vec![0usize; nb + 1];
+            for &b in &ids {
+                offsets[b as usize + 1] += 1;
+            }
+            for b in 0..nb {
+                offsets[b + 1] += offsets[b];
+            }
+            let mut cursor = offsets.clone();
+            let mut keys = vec![0u128; ps.len()];
+            for (k, p) in ps.iter().enumerate() {
+                let b = ids[k] as usize;
+                keys[cursor[b]] = pack(base + k, p);
+                cursor[b] += 1;
+            }
+            (offsets, keys)
+        })
+        .collect();
+    let head: Vec<AtomicU32> = (0..n).map(|_| AtomicU32::new(0)).collect();
+    (0..nb)
+        .into_par_iter()
+        .with_min_len(64)
+        .for_each_init(Vec::new, |all: &mut Vec<u128>, b| {
+            all.clear();
+            for (offsets, keys) in &chunks {
+                all.extend_from_slice(&keys[offsets[b]..offsets[b + 1]]);
+            }
+            all.sort_unstable();
+            let mut current = u128::MAX;
+            let mut h = 0u32;
+            for &k in all.iter() {
+                let i = (k & 0xffff_ffff) as u32;
+                if k >> 32 != current {
+                    current = k >> 32;
+                    h = i;
+                }
+                head[i as usize].store(h, Ordering::Relaxed);
+            }
+        });
+    head.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// Group heads for any coordinates: a parallel sort of (point, index).
+fn heads_general(points: &[[i64; 3]]) -> Vec<u32> {
+    let mut keys: Vec<([i64; 3], u32)> = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| (*p, i as u32))
+        .collect();
+    keys.par_sort_unstable();
+    let mut head = vec![0u32; points.len()];
+    let mut current: Option<[i64; 3]> = None;
+    let mut h = 0u32;
+    for (p, i) in keys {
+        if current != Some(p) {
+            current = Some(p);
+            h = i;
+        }
+        head[i as usize] = h;
+    }
+    head
 }
 
 #[cfg(test)]
@@ -197,6 +221,39 @@ mod tests {
         assert_eq!(w.points, vec![[5, 0, 0], [0, 0, 0], [-3, 2, 1]]);
         assert_eq!(w.remap, vec![0, 1, 0, 2, 1]);
         assert_eq!(w.first, vec![0, 1, 3]);
+    }
+
+    #[test]
+    fn matches_a_hash_map_on_many_duplicates() {
+        use std::collections::HashMap;
+        let mut x = 88172645463325252u64;
+        for (range, n) in [(7i64, 100_000usize), (1 << 29, 50_000), (1 << 45, 30_000)] {
+            let pts: Vec<[i64; 3]> = (0..n)
+                .map(|_| {
+                    let mut c = [0i64; 3];
+                    for v in &mut c {
+                        x ^= x << 13;
+                        x ^= x >> 7;
+                        x ^= x << 17;
+                        // Few distinct values per axis: many duplicates.
+                        *v = ((x % 5) as i64 - 2) * (range / 3);
+                    }
+                    c
+                })
+                .collect();
+            let w = weld(&pts);
+            let mut seen: HashMap<[i64; 3], u32> = HashMap::new();
+            let mut order = Vec::new();
+            for (i, p) in pts.iter().enumerate() {
+                let id = *seen.entry(*p).or_insert_with(|| {
+                    order.push(i as u32);
+                    order.len() as u32 - 1
+                });
+                assert_eq!(w.remap[i], id);
+            }
+            assert_eq!(w.first, order);
+            assert_eq!(w.points.len(), seen.len());
+        }
     }
 
     #[test]

@@ -1,0 +1,241 @@
+//! Convex cells in H-representation with exact vertices, and their splitting by a plane.
+//!
+//! A cell keeps its facet planes (outward) and its vertices, each with the complete list
+//! of facets through it. A vertex created by a split is the intersection of the crossed
+//! edge's two facet planes with the cutting plane, computed from those three planes
+//! (never from the edge's end points), so vertex sizes stay bounded however deep the
+//! partition goes.
+
+use crate::exact::{HPoint, Plane};
+use apart_kernel::{int, Int, Sign, Vec3};
+use apart_pieces::hull2d::hull_in_plane;
+use apart_pieces::{Polytope, PolytopeError};
+use rustc_hash::FxHashMap;
+
+/// A vertex of a cell and the (sorted) indices of the facets through it.
+#[derive(Clone, Debug)]
+pub(crate) struct CVert {
+    pub p: HPoint,
+    pub on: Vec<u32>,
+}
+
+/// A full-dimensional convex polytope: facets `n · x <= c` and its vertices.
+#[derive(Clone, Debug)]
+pub(crate) struct Cell {
+    pub facets: Vec<Plane>,
+    pub verts: Vec<CVert>,
+}
+
+impl Cell {
+    /// The box `[lo, hi]`.
+    pub fn boxed(lo: [i64; 3], hi: [i64; 3]) -> Cell {
+        let mut facets = Vec::with_capacity(6);
+        for a in 0..3 {
+            let mut n = [0i128; 3];
+            n[a] = 1;
+            facets.push(Plane {
+                n,
+                c: hi[a] as i128,
+            });
+            n[a] = -1;
+            facets.push(Plane {
+                n,
+                c: -(lo[a] as i128),
+            });
+        }
+        let verts = (0..8)
+            .map(|i| {
+                let pick = |a: usize| (i >> a) & 1 == 1;
+                let p = [0, 1, 2].map(|a| if pick(a) { hi[a] } else { lo[a] });
+                let on = (0..3)
+                    .map(|a| (2 * a + if pick(a) { 0 } else { 1 }) as u32)
+                    .collect();
+                CVert {
+                    p: HPoint::int(p),
+                    on,
+                }
+            })
+            .collect();
+        Cell { facets, verts }
+    }
+
+    /// The edges as `(vertex, vertex, facet, facet)`: pairs of vertices sharing two facets.
+    pub fn edges(&self) -> Vec<(u32, u32, u32, u32)> {
+        let mut map: FxHashMap<(u32, u32), (u32, u32, u8)> = FxHashMap::default();
+        for (i, v) in self.verts.iter().enumerate() {
+            for x in 0..v.on.len() {
+                for y in x + 1..v.on.len() {
+                    let e = map
+                        .entry((v.on[x], v.on[y]))
+                        .or_insert((i as u32, u32::MAX, 0));
+                    if e.2 == 1 {
+                        e.1 = i as u32;
+                    }
+                    e.2 += 1;
+                }
+            }
+        }
+        let mut out: Vec<(u32, u32, u32, u32)> = map
+            .into_iter()
+            .filter(|(_, e)| e.2 == 2)
+            .map(|((fa, fb), (a, b, _))| (a, b, fa, fb))
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The parts of the cell below (`n · x <= c`) and above the plane `h`; `None` for a part
+    /// without interior. With `keep_above = false` only the part below is built.
+    pub fn split(&self, h: &Plane, keep_above: bool) -> (Option<Cell>, Option<Cell>) {
+        let s: Vec<Sign> = self.verts.iter().map(|v| h.side(&v.p)).collect();
+        let pos = s.contains(&Sign::Positive);
+        let neg = s.contains(&Sign::Negative);
+        if !pos {
+            return (neg.then(|| self.clone()), None);
+        }
+        if !neg {
+            return (None, keep_above.then(|| self.clone()));
+        }
+        let mut fresh: Vec<CVert> = Vec::new();
+        for (a, b, fa, fb) in self.edges() {
+            if s[a as usize] * s[b as usize] == Sign::Negative {
+                let p = HPoint::meet(&self.facets[fa as usize], &self.facets[fb as usize], h)
+                    .expect("an edge crossing a plane meets it in one point");
+                fresh.push(CVert {
+                    p,
+                    on: vec![fa, fb],
+                });
+            }
+        }
+        let below = self.part(&s, Sign::Negative, &fresh, *h);
+        let above = keep_above.then(|| self.part(&s, Sign::Positive, &fresh, h.flipped()));
+        (Some(below), above)
+    }
+
+    fn part(&self, s: &[Sign], keep: Sign, fresh: &[CVert], cut: Plane) -> Cell {
+        let nf = self.facets.len();
+        let mut alive = vec![false; nf];
+        for (v, &sv) in self.verts.iter().zip(s) {
+            if sv == keep {
+                for &f in &v.on {
+                    alive[f as usize] = true;
+                }
+            }
+        }
+        let mut remap = vec![u32::MAX; nf];
+        let mut facets = Vec::with_capacity(nf + 1);
+        for f in 0..nf {
+            if alive[f] {
+                remap[f] = facets.len() as u32;
+                facets.push(self.facets[f]);
+            }
+        }
+        let cut_id = facets.len() as u32;
+        facets.push(cut);
+        let mut verts = Vec::with_capacity(self.verts.len() + fresh.len());
+        for (v, &sv) in self.verts.iter().zip(s) {
+            if sv == -keep {
+                continue;
+            }
+            let mut on: Vec<u32> =
+                v.on.iter()
+                    .map(|&f| remap[f as usize])
+                    .filter(|&f| f != u32::MAX)
+                    .collect();
+            if sv == Sign::Zero {
+                on.push(cut_id);
+            }
+            verts.push(CVert { p: v.p.clone(), on });
+        }
+        for v in fresh {
+            verts.push(CVert {
+                p: v.p.clone(),
+                on: vec![remap[v.on[0] as usize], remap[v.on[1] as usize], cut_id],
+            });
+        }
+        Cell { facets, verts }
+    }
+
+    /// The floating-point bounding box of the vertices (for filters only).
+    pub fn bbox(&self) -> [[f64; 3]; 2] {
+        let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+        for v in &self.verts {
+            let f = v.p.approx();
+            for a in 0..3 {
+                b[0][a] = b[0][a].min(f[a]);
+                b[1][a] = b[1][a].max(f[a]);
+            }
+        }
+        b
+    }
+
+    /// Bits of the largest vertex denominator.
+    pub fn max_den_bits(&self) -> u32 {
+        self.verts
+            .iter()
+            .map(|v| int::bit_len(v.p.den()))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The cell as a [`Polytope`] with the common denominator of its vertices.
+    pub fn to_polytope(&self) -> Result<Polytope, PolytopeError> {
+        let mut den = Int::ONE;
+        for v in &self.verts {
+            let w = v.p.den();
+            let g = int::gcd(&den, w);
+            den = &den / &g * w;
+        }
+        let pts: Vec<Vec3> = self
+            .verts
+            .iter()
+            .map(|v| {
+                let k = &den / v.p.den();
+                let x = v.p.num();
+                Vec3::from_ints([&x[0] * &k, &x[1] * &k, &x[2] * &k])
+            })
+            .collect();
+        let mut facets = Vec::with_capacity(self.facets.len());
+        for (f, pl) in self.facets.iter().enumerate() {
+            let ids: Vec<u32> = (0..self.verts.len() as u32)
+                .filter(|&v| self.verts[v as usize].on.contains(&(f as u32)))
+                .collect();
+            let sub: Vec<Vec3> = ids.iter().map(|&v| pts[v as usize].clone()).collect();
+            let normal = Vec3::from_i128(pl.n);
+            let hull = hull_in_plane(&normal, &sub);
+            if hull.len() < 3 {
+                return Err(PolytopeError::Flat);
+            }
+            facets.push((normal, hull.into_iter().map(|i| ids[i]).collect()));
+        }
+        Ok(Polytope::from_facets(&pts, facets)?.with_den(den))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use apart_kernel::Rational;
+
+    #[test]
+    fn box_split_diagonally() {
+        let c = Cell::boxed([0, 0, 0], [2, 2, 2]);
+        assert_eq!(c.edges().len(), 12);
+        let h = Plane::through(&[0, 0, 0], &[0, 0, 2], &[2, 2, 0]).unwrap(); // x = y
+        let (a, b) = c.split(&h, true);
+        let (a, b) = (a.unwrap(), b.unwrap());
+        let (pa, pb) = (a.to_polytope().unwrap(), b.to_polytope().unwrap());
+        assert_eq!(pa.volume(), Rational::from_int(4));
+        assert_eq!(pb.volume(), Rational::from_int(4));
+        // A plane creating a rational vertex (0, 0, 1/2): x + y + 2z = 1.
+        let g = Plane { n: [1, 1, 2], c: 1 };
+        let (lo, hi) = c.split(&g, true);
+        let (lo, hi) = (
+            lo.unwrap().to_polytope().unwrap(),
+            hi.unwrap().to_polytope().unwrap(),
+        );
+        assert_eq!(lo.den(), &Int::from(2));
+        assert_eq!(lo.volume(), Rational::new(Int::from(1), Int::from(12)));
+        assert_eq!(&lo.volume() + &hi.volume(), Rational::from_int(8));
+    }
+}

@@ -1,0 +1,218 @@
+//! Fragments: the part of an input triangle inside the closed cell, as an exact convex
+//! polygon, and their distribution when a cell is split.
+//!
+//! Why polygons rather than the separating-axis test "does the closed triangle meet the
+//! open cell": clipping is exact with the same single predicate as cell splitting, it
+//! keeps each fragment's vertices defined from input data (an input vertex, an input
+//! segment crossed by a plane, or the triangle's plane and two cut planes), and it
+//! records which pieces of the triangle's sides and corners lie on the cell boundary.
+//! That last fact is what the partition needs: an input edge meets the open cell exactly
+//! when some fragment keeps a piece of it that lies in no cut plane.
+//!
+//! Invariant: a fragment is a two-dimensional polygon meeting the open cell (it has a
+//! point off every cell facet plane). Splitting keeps it: the part on one side of a plane
+//! is kept only when some vertex is strictly on that side, and a fragment lying in the
+//! cutting plane is on the boundary of both parts and is dropped.
+
+use crate::exact::{HPoint, Plane};
+use crate::solid::Solid;
+use apart_kernel::Sign;
+use std::sync::Arc;
+
+/// No input vertex.
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// Where a fragment's edge comes from.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Origin {
+    /// Part of side `k` of the triangle (corner `k` to corner `k + 1`).
+    Side(u8),
+    /// The intersection of the triangle's plane with a cut plane.
+    Cut(Plane),
+}
+
+/// A fragment vertex.
+#[derive(Clone, Debug)]
+pub(crate) struct FPt {
+    pub p: HPoint,
+    /// The input vertex it is, or [`NONE`].
+    pub vertex: u32,
+    /// It lies on the cell boundary.
+    pub bnd: bool,
+}
+
+/// A fragment edge, from vertex `i` to vertex `i + 1`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FEdge {
+    pub origin: Origin,
+    /// It lies on the cell boundary (in some cut plane).
+    pub bnd: bool,
+}
+
+/// The part of triangle `tri` in the closed cell.
+#[derive(Clone, Debug)]
+pub(crate) struct Frag {
+    pub tri: u32,
+    pub pts: Vec<FPt>,
+    pub edges: Vec<FEdge>,
+}
+
+/// Where a fragment goes when its cell is split.
+pub(crate) enum Placement {
+    Below(Arc<Frag>),
+    Above(Arc<Frag>),
+    Both(Arc<Frag>, Arc<Frag>),
+    /// In the cutting plane: on the boundary of both parts.
+    On,
+}
+
+impl Frag {
+    /// The whole triangle `t`.
+    pub fn whole(solid: &Solid, t: u32) -> Frag {
+        let tri = solid.tris[t as usize];
+        Frag {
+            tri: t,
+            pts: tri
+                .iter()
+                .map(|&v| FPt {
+                    p: HPoint::int(solid.pts[v as usize]),
+                    vertex: v,
+                    bnd: false,
+                })
+                .collect(),
+            edges: (0..3)
+                .map(|k| FEdge {
+                    origin: Origin::Side(k),
+                    bnd: false,
+                })
+                .collect(),
+        }
+    }
+
+    /// Whether some vertex is strictly below and some strictly above `h`.
+    pub fn straddle(&self, h: &Plane) -> (bool, bool) {
+        let (mut below, mut above) = (false, false);
+        for p in &self.pts {
+            match h.side(&p.p) {
+                Sign::Negative => below = true,
+                Sign::Positive => above = true,
+                Sign::Zero => {}
+            }
+            if below && above {
+                break;
+            }
+        }
+        (below, above)
+    }
+}
+
+/// Splits fragment `f` by `h`.
+pub(crate) fn place(f: &Arc<Frag>, h: &Plane, solid: &Solid) -> Placement {
+    let s: Vec<Sign> = f.pts.iter().map(|p| h.side(&p.p)).collect();
+    let pos = s.contains(&Sign::Positive);
+    let neg = s.contains(&Sign::Negative);
+    let zero = s.contains(&Sign::Zero);
+    match (neg, pos) {
+        (false, false) => Placement::On,
+        (true, false) => Placement::Below(touching(f, &s, zero)),
+        (false, true) => Placement::Above(touching(f, &s, zero)),
+        (true, true) => {
+            let m = f.pts.len();
+            let cross: Vec<Option<HPoint>> = (0..m)
+                .map(|i| {
+                    let j = (i + 1) % m;
+                    (s[i] * s[j] == Sign::Negative).then(|| crossing(f, i, h, solid))
+                })
+                .collect();
+            Placement::Both(
+                Arc::new(part(f, &s, Sign::Negative, &cross, h)),
+                Arc::new(part(f, &s, Sign::Positive, &cross, h)),
+            )
+        }
+    }
+}
+
+/// The fragment unchanged but for boundary marks where it touches the cutting plane.
+fn touching(f: &Arc<Frag>, s: &[Sign], zero: bool) -> Arc<Frag> {
+    if !zero {
+        return f.clone();
+    }
+    let mut g = (**f).clone();
+    let m = g.pts.len();
+    for i in 0..m {
+        if s[i] == Sign::Zero {
+            g.pts[i].bnd = true;
+            if s[(i + 1) % m] == Sign::Zero {
+                g.edges[i].bnd = true;
+            }
+        }
+    }
+    Arc::new(g)
+}
+
+fn crossing(f: &Frag, i: usize, h: &Plane, solid: &Solid) -> HPoint {
+    match f.edges[i].origin {
+        Origin::Side(k) => {
+            let (a, b) = solid.side_ends(f.tri, k);
+            HPoint::on_segment(a, b, h)
+        }
+        Origin::Cut(g) => HPoint::meet(&solid.planes[f.tri as usize], &g, h),
+    }
+    .expect("a fragment edge crossing a plane meets it in one point")
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Src {
+    Vertex(usize),
+    Cross(usize),
+}
+
+fn part(f: &Frag, s: &[Sign], keep: Sign, cross: &[Option<HPoint>], h: &Plane) -> Frag {
+    let m = f.pts.len();
+    let mut out: Vec<(FPt, Src)> = Vec::with_capacity(m + 2);
+    for i in 0..m {
+        if s[i] != -keep {
+            let mut p = f.pts[i].clone();
+            if s[i] == Sign::Zero {
+                p.bnd = true;
+            }
+            out.push((p, Src::Vertex(i)));
+        }
+        if let Some(x) = &cross[i] {
+            out.push((
+                FPt {
+                    p: x.clone(),
+                    vertex: NONE,
+                    bnd: true,
+                },
+                Src::Cross(i),
+            ));
+        }
+    }
+    let n = out.len();
+    let edges = (0..n)
+        .map(|a| {
+            let (sa, sb) = (out[a].1, out[(a + 1) % n].1);
+            let along = |i: usize, extra: bool| FEdge {
+                origin: f.edges[i].origin,
+                bnd: f.edges[i].bnd || extra,
+            };
+            match (sa, sb) {
+                (Src::Vertex(i), Src::Vertex(j)) if j == (i + 1) % m => {
+                    along(i, s[i] == Sign::Zero && s[j] == Sign::Zero)
+                }
+                (Src::Vertex(i), Src::Cross(j)) if j == i => along(i, false),
+                (Src::Cross(i), Src::Vertex(j)) if j == (i + 1) % m => along(i, false),
+                _ => FEdge {
+                    origin: Origin::Cut(*h),
+                    bnd: true,
+                },
+            }
+        })
+        .collect();
+    Frag {
+        tri: f.tri,
+        pts: out.into_iter().map(|(p, _)| p).collect(),
+        edges,
+    }
+}

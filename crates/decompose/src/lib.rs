@@ -1,0 +1,245 @@
+//! Exact convex decomposition of polyhedral solids.
+//!
+//! A part given as integer points and outward triangles (closed, consistently oriented,
+//! not self-intersecting; it may touch itself along edges or at vertices, have any genus
+//! and many coplanar triangles) is cut into convex [`Polytope`] pieces whose union is
+//! exactly the part and whose interiors are pairwise disjoint. Nothing is approximated:
+//! every decision is the sign of an integer polynomial, and every piece vertex is the
+//! intersection of three planes through input points (or of the bounding box).
+//!
+//! Method: a binary space partition of a box around the part (see `partition`), cutting
+//! at reflex edges with planes through input points, until the part is convex in each
+//! cell; then greedy merging of pieces whose union is convex (see `merge`).
+//!
+//! ```
+//! use apart_kernel::Vec3;
+//! use apart_decompose::{decompose, verify, Options};
+//! // An L-shaped block: the unit cubes (0,0,0), (1,0,0) and (0,1,0), two high in z.
+//! let p = |x, y, z| Vec3::new(x, y, z);
+//! let pts = vec![
+//!     p(0, 0, 0), p(2, 0, 0), p(2, 1, 0), p(1, 1, 0), p(1, 2, 0), p(0, 2, 0),
+//!     p(0, 0, 2), p(2, 0, 2), p(2, 1, 2), p(1, 1, 2), p(1, 2, 2), p(0, 2, 2),
+//! ];
+//! let mut tris = vec![];
+//! // Bottom and top as fans around the reflex corner, sides as quads.
+//! for i in [0u32, 1, 4, 5] {
+//!     tris.push([3, (i + 1) % 6, i]);
+//!     tris.push([9, i + 6, (i + 1) % 6 + 6]);
+//! }
+//! for i in 0..6u32 {
+//!     let j = (i + 1) % 6;
+//!     tris.push([i, j, j + 6]);
+//!     tris.push([i, j + 6, i + 6]);
+//! }
+//! let d = decompose(&pts, &tris, &Options::default()).unwrap();
+//! assert_eq!((d.reflex_edges, d.pieces.len()), (1, 2));
+//! verify(&pts, &tris, &d.pieces).unwrap();
+//! ```
+
+mod cell;
+mod exact;
+mod fragments;
+mod merge;
+mod partition;
+mod reflex;
+mod solid;
+mod split;
+mod verify;
+
+pub use exact::MAX_COORD_BITS;
+pub use reflex::reflex_edges;
+pub use verify::verify;
+
+use apart_kernel::Vec3;
+use apart_pieces::Polytope;
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+/// Settings of [`decompose`].
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Merge pieces whose union is convex after the partition (default true).
+    pub merge: bool,
+    /// Process independent cells in parallel with rayon (default true).
+    pub parallel: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            merge: true,
+            parallel: true,
+        }
+    }
+}
+
+/// Counters and timing of one decomposition.
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    /// Cells split by a plane.
+    pub splits: usize,
+    /// Cells visited (split, leaf, or empty).
+    pub cells: usize,
+    /// Pieces produced by the partition, before merging.
+    pub partition_pieces: usize,
+    /// Pairs of pieces merged.
+    pub merges: usize,
+    /// `floor(log2)` of the largest vertex denominator `W` over the pieces (0 when every
+    /// vertex is an integer point); a piece's common denominator can be larger.
+    pub max_den_bits: u32,
+    /// Wall-clock time.
+    pub seconds: f64,
+}
+
+/// The convex pieces of a solid.
+#[derive(Clone, Debug)]
+pub struct Decomposition {
+    /// Convex pieces with pairwise disjoint interiors whose union is the solid.
+    pub pieces: Vec<Polytope>,
+    /// Number of reflex edges of the solid (see [`reflex_edges`]).
+    pub reflex_edges: usize,
+    /// Counters and timing.
+    pub stats: Stats,
+}
+
+/// Why a mesh cannot be decomposed.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DecomposeError {
+    /// No triangles.
+    #[error("the mesh has no triangles")]
+    Empty,
+    /// A triangle refers to a point that does not exist.
+    #[error("triangle {triangle} refers to a missing point")]
+    BadIndex {
+        /// The triangle.
+        triangle: usize,
+    },
+    /// A coordinate is too large (at least 2^MAX_COORD_BITS in magnitude).
+    #[error("point {point} has a coordinate beyond 2^{}", MAX_COORD_BITS)]
+    CoordinateTooLarge {
+        /// The point.
+        point: usize,
+    },
+    /// A triangle has collinear corners.
+    #[error("triangle {triangle} has collinear corners")]
+    DegenerateTriangle {
+        /// The triangle.
+        triangle: usize,
+    },
+    /// An edge is not used equally often in both directions (open or inconsistently
+    /// oriented surface).
+    #[error(
+        "edge {edge:?} is not used once each way: the surface is open or inconsistently oriented"
+    )]
+    NotClosed {
+        /// The edge's end points.
+        edge: [u32; 2],
+    },
+    /// The triangles around a non-manifold edge do not alternate in orientation, or two
+    /// of them coincide.
+    #[error("the triangles around edge {edge:?} do not bound a solid")]
+    BadNonManifoldEdge {
+        /// The edge's end points.
+        edge: [u32; 2],
+    },
+    /// The enclosed volume is not positive (inward orientation or no volume).
+    #[error("the enclosed volume is not positive: triangles are oriented inward, or flat")]
+    NotPositive,
+    /// A failure of the algorithm on input it should handle (a bug: please report).
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+/// Why a set of pieces is not a decomposition of a solid.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum VerifyError {
+    /// The solid itself is invalid.
+    #[error("invalid solid: {0}")]
+    Input(DecomposeError),
+    /// A piece is not a convex full-dimensional polytope.
+    #[error("piece {piece} is not convex: {reason}")]
+    NotConvex {
+        /// The piece.
+        piece: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Two pieces overlap.
+    #[error("pieces {a} and {b} overlap")]
+    Overlap {
+        /// First piece.
+        a: usize,
+        /// Second piece.
+        b: usize,
+    },
+    /// The pieces' volumes do not add up to the solid's.
+    #[error("the pieces' volumes add up to {found}, the solid's volume is {expected}")]
+    VolumeMismatch {
+        /// The solid's volume.
+        expected: String,
+        /// The sum over the pieces.
+        found: String,
+    },
+    /// A triangle of the solid passes through the interior of a piece.
+    #[error("triangle {triangle} passes through the interior of piece {piece}")]
+    CrossesBoundary {
+        /// The piece.
+        piece: usize,
+        /// The triangle.
+        triangle: usize,
+    },
+    /// A piece lies outside the solid.
+    #[error("piece {piece} lies outside the solid")]
+    Outside {
+        /// The piece.
+        piece: usize,
+    },
+    /// Every ray tried from the piece's interior point was degenerate.
+    #[error("could not classify an interior point of piece {piece}")]
+    Undecided {
+        /// The piece.
+        piece: usize,
+    },
+}
+
+/// Decomposes the closed solid bounded by `triangles` (outward, over `points`) into
+/// convex pieces, exactly.
+pub fn decompose(
+    points: &[Vec3],
+    triangles: &[[u32; 3]],
+    opts: &Options,
+) -> Result<Decomposition, DecomposeError> {
+    let start = Instant::now();
+    let solid = solid::Solid::new(points, triangles)?;
+    let reflex = solid.edges.iter().filter(|e| e.reflex).count();
+    let part = partition::Partition::new(&solid, opts.parallel);
+    let cells = part.run()?;
+    let partition_pieces = cells.len();
+    let (cells, merges) = if opts.merge {
+        merge::merge(cells)
+    } else {
+        (cells, 0)
+    };
+    let max_den_bits = cells
+        .iter()
+        .map(|c| c.max_den_bits().saturating_sub(1))
+        .max()
+        .unwrap_or(0);
+    let pieces = cells
+        .iter()
+        .map(|c| c.to_polytope())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| DecomposeError::Internal(format!("a piece is not a polytope: {e}")))?;
+    Ok(Decomposition {
+        pieces,
+        reflex_edges: reflex,
+        stats: Stats {
+            splits: part.counters.splits.load(Ordering::Relaxed),
+            cells: part.counters.cells.load(Ordering::Relaxed),
+            partition_pieces,
+            merges,
+            max_den_bits,
+            seconds: start.elapsed().as_secs_f64(),
+        },
+    })
+}

@@ -1,0 +1,319 @@
+//! Exact verification of a decomposition.
+//!
+//! Beyond the three checks that define a partition by volume (pieces convex and
+//! full-dimensional, interiors pairwise disjoint, volumes summing to the solid's), it
+//! checks that every piece lies in the solid: no input triangle meets a piece's open
+//! interior (so the open piece is entirely inside or entirely outside), and one interior
+//! point of each piece is inside (exact ray parity). Together these prove that the union
+//! of the pieces is the solid: the pieces are closed subsets of it, and a point of the
+//! solid missed by all would leave an open set of missing volume.
+
+use crate::exact::{meet_big, on_segment_big, side_big, HPoint};
+use crate::solid::Solid;
+use crate::VerifyError;
+use apart_kernel::predicates::det3_sign;
+use apart_kernel::{int, Int, Rational, Sign, Vec3};
+use apart_pieces::interference::interiors_disjoint;
+use apart_pieces::Polytope;
+
+/// Checks exactly that `pieces` decompose the solid bounded by `triangles`: every piece
+/// convex and full-dimensional, interiors pairwise disjoint (bounding-box filter, then an
+/// exact separating-axis test), every piece inside the solid, and the sum of piece
+/// volumes equal to the solid's volume.
+pub fn verify(
+    points: &[Vec3],
+    triangles: &[[u32; 3]],
+    pieces: &[Polytope],
+) -> Result<(), VerifyError> {
+    let solid = Solid::new(points, triangles).map_err(VerifyError::Input)?;
+    for (i, p) in pieces.iter().enumerate() {
+        check_convex(p).map_err(|reason| VerifyError::NotConvex { piece: i, reason })?;
+    }
+    let mut total = Rational::zero();
+    for p in pieces {
+        total = &total + &p.volume();
+    }
+    let expected = Rational::new(solid.volume6.clone(), Int::from(6));
+    if total != expected {
+        return Err(VerifyError::VolumeMismatch {
+            expected: expected.to_string(),
+            found: total.to_string(),
+        });
+    }
+    let boxes: Vec<[[f64; 3]; 2]> = pieces.iter().map(piece_box).collect();
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
+    for (x, &i) in order.iter().enumerate() {
+        for &j in &order[x + 1..] {
+            if boxes[j][0][0] > boxes[i][1][0] {
+                break;
+            }
+            if overlap(&boxes[i], &boxes[j]) && !interiors_disjoint(&pieces[i], &pieces[j]) {
+                return Err(VerifyError::Overlap {
+                    a: i.min(j),
+                    b: i.max(j),
+                });
+            }
+        }
+    }
+    let tri_boxes: Vec<[[f64; 3]; 2]> = solid
+        .tris
+        .iter()
+        .map(|t| {
+            let mut b = EMPTY_BOX;
+            for &v in t {
+                grow(&mut b, solid.pts[v as usize].map(|c| c as f64));
+            }
+            b
+        })
+        .collect();
+    for (i, p) in pieces.iter().enumerate() {
+        for (t, tb) in tri_boxes.iter().enumerate() {
+            if overlap(&boxes[i], tb) && triangle_meets_interior(&solid, t, p) {
+                return Err(VerifyError::CrossesBoundary {
+                    piece: i,
+                    triangle: t,
+                });
+            }
+        }
+        match interior_point_inside(&solid, &tri_boxes, p) {
+            Some(true) => {}
+            Some(false) => return Err(VerifyError::Outside { piece: i }),
+            None => return Err(VerifyError::Undecided { piece: i }),
+        }
+    }
+    Ok(())
+}
+
+/// Convex, closed and full-dimensional: every vertex on the inner side of every facet,
+/// each facet's cycle on its plane and strictly convex counter-clockwise, volume > 0.
+fn check_convex(p: &Polytope) -> Result<(), String> {
+    if p.volume6() <= Int::ZERO {
+        return Err("no volume".into());
+    }
+    let v = p.vertices();
+    for (fi, f) in p.facets().iter().enumerate() {
+        if f.cycle.len() < 3 {
+            return Err(format!("facet {fi} has fewer than three vertices"));
+        }
+        for (k, &i) in f.cycle.iter().enumerate() {
+            if f.normal.dot(&v[i as usize]) != f.offset {
+                return Err(format!("vertex {i} is off the plane of facet {fi}"));
+            }
+            let (a, b, c) = (
+                &v[i as usize],
+                &v[f.cycle[(k + 1) % f.cycle.len()] as usize],
+                &v[f.cycle[(k + 2) % f.cycle.len()] as usize],
+            );
+            if det3_sign(&f.normal, &b.sub(a), &c.sub(b)) != Sign::Positive {
+                return Err(format!("facet {fi} is not strictly convex at vertex {i}"));
+            }
+        }
+        for (i, x) in v.iter().enumerate() {
+            if f.normal.dot(x) > f.offset {
+                return Err(format!("vertex {i} lies outside facet {fi}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Floating-point bounding box in true coordinates, widened far beyond rounding errors
+/// (a filter only).
+fn piece_box(p: &Polytope) -> [[f64; 3]; 2] {
+    let mut b = EMPTY_BOX;
+    for v in p.vertices() {
+        grow(
+            &mut b,
+            [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()),
+        );
+    }
+    let [lo, hi] = b;
+    let slack = |k: usize| 1e-9 * (lo[k].abs() + hi[k].abs() + 1.0);
+    [
+        [0, 1, 2].map(|k| lo[k] - slack(k)),
+        [0, 1, 2].map(|k| hi[k] + slack(k)),
+    ]
+}
+
+const EMPTY_BOX: [[f64; 3]; 2] = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+
+fn grow(b: &mut [[f64; 3]; 2], p: [f64; 3]) {
+    for (k, c) in p.into_iter().enumerate() {
+        b[0][k] = b[0][k].min(c);
+        b[1][k] = b[1][k].max(c);
+    }
+}
+
+fn overlap(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
+    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
+}
+
+#[derive(Clone, Copy)]
+enum EdgeFrom {
+    Side(usize),
+    Facet(usize),
+}
+
+/// Whether triangle `t` meets the open interior of `p`, by exact clipping in the
+/// piece's stored coordinates (true coordinates times its denominator).
+fn triangle_meets_interior(s: &Solid, t: usize, p: &Polytope) -> bool {
+    let den = p.den();
+    let corners: Vec<[Int; 3]> = s.tris[t]
+        .iter()
+        .map(|&v| s.pts[v as usize].map(|c| Int::from(c) * den))
+        .collect();
+    let tn = s.planes[t].normal_ints();
+    let tc = Int::from(s.planes[t].c) * den;
+    let mut poly: Vec<(HPoint, EdgeFrom)> = (0..3)
+        .map(|k| {
+            (
+                HPoint::from_big(corners[k].clone(), Int::ONE),
+                EdgeFrom::Side(k),
+            )
+        })
+        .collect();
+    let facets: Vec<([Int; 3], Int)> = p
+        .facets()
+        .iter()
+        .map(|f| (f.normal.to_ints(), f.offset.clone()))
+        .collect();
+    for (fi, (n, c)) in facets.iter().enumerate() {
+        let signs: Vec<Sign> = poly.iter().map(|(q, _)| side_big(n, c, q)).collect();
+        if !signs.contains(&Sign::Negative) {
+            return false;
+        }
+        if !signs.contains(&Sign::Positive) {
+            continue;
+        }
+        let m = poly.len();
+        // Kept vertices and crossing points, tagged by where they come from.
+        let mut out: Vec<(HPoint, bool, usize)> = Vec::with_capacity(m + 1);
+        for i in 0..m {
+            let j = (i + 1) % m;
+            if signs[i] != Sign::Positive {
+                out.push((poly[i].0.clone(), false, i));
+            }
+            if signs[i] * signs[j] == Sign::Negative {
+                let x = match poly[i].1 {
+                    EdgeFrom::Side(k) => on_segment_big(&corners[k], &corners[(k + 1) % 3], n, c),
+                    EdgeFrom::Facet(g) => {
+                        let (gn, gc) = &facets[g];
+                        meet_big(
+                            &[tn.clone(), gn.clone(), n.clone()],
+                            &[tc.clone(), gc.clone(), c.clone()],
+                        )
+                    }
+                }
+                .expect("a crossing edge meets the plane");
+                out.push((x, true, i));
+            }
+        }
+        // The edge after each output point: along the old edge it lies on, or along
+        // this facet's plane where the polygon was cut.
+        let k = out.len();
+        let mut next: Vec<(HPoint, EdgeFrom)> = Vec::with_capacity(k);
+        for a in 0..k {
+            let (cross_a, i) = (out[a].1, out[a].2);
+            let (cross_b, j) = (out[(a + 1) % k].1, out[(a + 1) % k].2);
+            let along = match (cross_a, cross_b) {
+                (false, false) => j == (i + 1) % m,
+                (false, true) => j == i,
+                (true, false) => j == (i + 1) % m,
+                (true, true) => false,
+            };
+            let from = if along {
+                poly[i].1
+            } else {
+                EdgeFrom::Facet(fi)
+            };
+            next.push((out[a].0.clone(), from));
+        }
+        let out = next;
+        poly = out;
+    }
+    true
+}
+
+/// Whether an interior point of `p` (its vertex average) is inside the solid, by the
+/// parity of exact ray crossings; `None` if every tried ray was degenerate.
+fn interior_point_inside(s: &Solid, boxes: &[[[f64; 3]; 2]], p: &Polytope) -> Option<bool> {
+    let mut x = [Int::ZERO, Int::ZERO, Int::ZERO];
+    for v in p.vertices() {
+        for (k, xk) in x.iter_mut().enumerate() {
+            *xk += v.get(k);
+        }
+    }
+    let w = Int::from(p.vertices().len()) * p.den();
+    let qf: Vec<f64> = x
+        .iter()
+        .map(|c| Rational::new(c.clone(), w.clone()).to_f64())
+        .collect();
+    let dirs: [[i64; 3]; 12] = [
+        [1, 0, 0],
+        [1, 2, 3],
+        [-3, 7, 2],
+        [5, -11, 13],
+        [-17, -4, 9],
+        [23, 29, -31],
+        [2, -37, -41],
+        [43, 3, 47],
+        [-53, 59, 6],
+        [61, -67, -71],
+        [-73, 79, 83],
+        [89, 97, -101],
+    ];
+    'dirs: for d in dirs {
+        let dv = Vec3::from_i64(d);
+        let mut hits = 0usize;
+        for (t, tri) in s.tris.iter().enumerate() {
+            if d == [1, 0, 0] {
+                let b = &boxes[t];
+                let slack = |v: f64| 1e-9 * (v.abs() + 1.0);
+                if b[1][0] < qf[0] - slack(qf[0])
+                    || b[0][1] > qf[1] + slack(qf[1])
+                    || b[1][1] < qf[1] - slack(qf[1])
+                    || b[0][2] > qf[2] + slack(qf[2])
+                    || b[1][2] < qf[2] - slack(qf[2])
+                {
+                    continue;
+                }
+            }
+            let rel: Vec<Vec3> = tri
+                .iter()
+                .map(|&v| {
+                    let a = s.pts[v as usize];
+                    Vec3::from_ints([0, 1, 2].map(|k| Int::from(a[k]) * &w - &x[k]))
+                })
+                .collect();
+            let n = Vec3::from_i128(s.planes[t].n);
+            let na = int::sign_of(&n.dot(&rel[0]));
+            let nd = int::sign_of(&n.dot(&dv));
+            if nd == Sign::Zero {
+                if na == Sign::Zero {
+                    continue 'dirs;
+                }
+                continue;
+            }
+            if na != nd {
+                continue; // behind the start, or the start is on the plane off the triangle
+            }
+            let e = [
+                det3_sign(&rel[0], &rel[1], &dv),
+                det3_sign(&rel[1], &rel[2], &dv),
+                det3_sign(&rel[2], &rel[0], &dv),
+            ];
+            let pos = e.contains(&Sign::Positive);
+            let neg = e.contains(&Sign::Negative);
+            if pos && neg {
+                continue;
+            }
+            if e.contains(&Sign::Zero) {
+                continue 'dirs; // through an edge or a vertex
+            }
+            hits += 1;
+        }
+        return Some(hits % 2 == 1);
+    }
+    None
+}

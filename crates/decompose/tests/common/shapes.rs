@@ -1,0 +1,689 @@
+//! Test solids with known structure, and independent truths about them (volumes by hand
+//! formulas, point membership from their definitions).
+#![allow(dead_code)]
+
+use apart_kernel::{Int, Rational, Sign, Vec3};
+use apart_pieces::{Containment, Polytope};
+use std::collections::HashMap;
+
+/// A closed mesh with independent facts about it.
+pub struct Shape {
+    pub name: &'static str,
+    pub points: Vec<Vec3>,
+    pub tris: Vec<[u32; 3]>,
+    /// The volume, from a formula independent of the decomposition code.
+    pub volume: Rational,
+    /// Reflex edges counted by hand, when known.
+    pub reflex: Option<usize>,
+    /// Sample points `x / w` with their membership: `Some(true)` strictly inside,
+    /// `Some(false)` strictly outside.
+    pub samples: Vec<([i128; 3], i128, bool)>,
+}
+
+/// Welds points given by key into indices.
+#[derive(Default)]
+struct Welder {
+    ids: HashMap<[i64; 3], u32>,
+    points: Vec<Vec3>,
+}
+
+impl Welder {
+    fn id(&mut self, p: [i64; 3]) -> u32 {
+        let n = self.points.len() as u32;
+        *self.ids.entry(p).or_insert_with(|| {
+            self.points.push(Vec3::from_i64(p));
+            n
+        })
+    }
+}
+
+/// The union of the filled cells of the rectilinear grid `xs × ys × zs` (strictly
+/// increasing coordinates): its boundary faces, two triangles per grid rectangle.
+pub fn rectilinear(
+    name: &'static str,
+    g: [&[i64]; 3],
+    filled: impl Fn([usize; 3]) -> bool,
+    reflex: Option<usize>,
+) -> Shape {
+    let n = [g[0].len() - 1, g[1].len() - 1, g[2].len() - 1];
+    let full = |c: [i64; 3]| -> bool {
+        (0..3).all(|a| c[a] >= 0 && (c[a] as usize) < n[a])
+            && filled([c[0] as usize, c[1] as usize, c[2] as usize])
+    };
+    let mut w = Welder::default();
+    let mut tris = Vec::new();
+    let coord = |i: [usize; 3]| [g[0][i[0]], g[1][i[1]], g[2][i[2]]];
+    for a in 0..3 {
+        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
+        for p in 0..=n[a] {
+            for iu in 0..n[u] {
+                for iv in 0..n[v] {
+                    let mut lo = [0i64; 3];
+                    lo[a] = p as i64 - 1;
+                    lo[u] = iu as i64;
+                    lo[v] = iv as i64;
+                    let mut hi = lo;
+                    hi[a] += 1;
+                    let (fl, fh) = (full(lo), full(hi));
+                    if fl == fh {
+                        continue;
+                    }
+                    let mut base = [0usize; 3];
+                    base[a] = p;
+                    base[u] = iu;
+                    base[v] = iv;
+                    let mut c1 = base;
+                    c1[u] += 1;
+                    let mut c2 = c1;
+                    c2[v] += 1;
+                    let mut c3 = base;
+                    c3[v] += 1;
+                    let q = [base, c1, c2, c3].map(|c| w.id(coord(c)));
+                    if fl {
+                        tris.push([q[0], q[1], q[2]]);
+                        tris.push([q[0], q[2], q[3]]);
+                    } else {
+                        tris.push([q[0], q[2], q[1]]);
+                        tris.push([q[0], q[3], q[2]]);
+                    }
+                }
+            }
+        }
+    }
+    let mut volume = Int::ZERO;
+    let mut samples = Vec::new();
+    for i in 0..n[0] {
+        for j in 0..n[1] {
+            for k in 0..n[2] {
+                let c = [i, j, k];
+                let f = filled(c);
+                if f {
+                    volume += (0..3)
+                        .map(|a| Int::from(g[a][c[a] + 1] - g[a][c[a]]))
+                        .fold(Int::ONE, |x, y| x * y);
+                }
+                let mid = [0, 1, 2].map(|a| (g[a][c[a]] + g[a][c[a] + 1]) as i128);
+                samples.push((mid, 2, f));
+            }
+        }
+    }
+    // Points just outside each face of the bounding box.
+    let lo = [g[0][0], g[1][0], g[2][0]];
+    let hi = [g[0][n[0]], g[1][n[1]], g[2][n[2]]];
+    for a in 0..3 {
+        let mut p = [0, 1, 2].map(|b| (lo[b] + hi[b]) as i128);
+        p[a] = 2 * lo[a] as i128 - 1;
+        samples.push((p, 2, false));
+        p[a] = 2 * hi[a] as i128 + 1;
+        samples.push((p, 2, false));
+    }
+    Shape {
+        name,
+        points: w.points,
+        tris,
+        volume: Rational::from_int(volume),
+        reflex,
+        samples,
+    }
+}
+
+pub fn l_block() -> Shape {
+    rectilinear(
+        "L-block",
+        [&[0, 10, 20], &[0, 10, 20], &[0, 10]],
+        |c| !(c[0] == 1 && c[1] == 1),
+        Some(1),
+    )
+}
+
+pub fn u_channel() -> Shape {
+    rectilinear(
+        "U-channel",
+        [&[0, 10, 20, 30], &[0, 10, 30], &[0, 40]],
+        |c| c[1] == 0 || c[0] != 1,
+        Some(2),
+    )
+}
+
+pub fn box_with_hole() -> Shape {
+    rectilinear(
+        "box with through-hole",
+        [&[0, 10, 20, 30], &[0, 10, 20, 30], &[0, 15]],
+        |c| !(c[0] == 1 && c[1] == 1),
+        Some(4),
+    )
+}
+
+pub fn comb(teeth: usize) -> Shape {
+    let xs: Vec<i64> = (0..=(2 * teeth - 1) as i64).map(|i| 10 * i).collect();
+    rectilinear(
+        "comb",
+        [&xs, &[0, 10, 40], &[0, 10]],
+        |c| c[1] == 0 || c[0] % 2 == 0,
+        Some(2 * (teeth - 1)),
+    )
+}
+
+/// A plus-shaped prism: the arms' side faces are coplanar in pairs across the centre,
+/// and each such plane holds two reflex edges.
+pub fn plus_prism() -> Shape {
+    rectilinear(
+        "plus prism (coplanar faces at reflex edges)",
+        [&[0, 10, 20, 30], &[0, 10, 20, 30], &[0, 10]],
+        |c| c[0] == 1 || c[1] == 1,
+        Some(4),
+    )
+}
+
+/// An I-beam: two flanges and a web, with coplanar flange undersides.
+pub fn i_beam() -> Shape {
+    rectilinear(
+        "I-beam (coplanar faces at reflex edges)",
+        [&[0, 40, 50, 90], &[0, 8, 92, 100], &[0, 300]],
+        |c| c[1] != 1 || c[0] == 1,
+        Some(4),
+    )
+}
+
+pub fn two_cubes_edge() -> Shape {
+    rectilinear(
+        "two cubes sharing an edge",
+        [&[0, 10, 20], &[0, 10, 20], &[0, 10]],
+        |c| c[0] == c[1],
+        Some(0),
+    )
+}
+
+pub fn two_cubes_vertex() -> Shape {
+    rectilinear(
+        "two cubes sharing a vertex",
+        [&[0, 10, 20], &[0, 10, 20], &[0, 10, 20]],
+        |c| c[0] == c[1] && c[1] == c[2],
+        Some(0),
+    )
+}
+
+/// Sheet metal: a 1500 x 1000 plate 2 units thick with two bent-up flanges 300 high,
+/// three rectangular holes in the plate and one in a flange.
+pub fn sheet_metal() -> Shape {
+    let xs = [0, 2, 300, 340, 700, 760, 1498, 1500];
+    let ys = [0, 200, 260, 400, 600, 800, 860, 1000];
+    let zs = [0, 2, 100, 200, 300];
+    rectilinear(
+        "sheet metal (t = 2, flanges, holes)",
+        [&xs, &ys, &zs],
+        |c| {
+            let [i, j, k] = c;
+            if k == 0 {
+                let hole = (i == 2 && j == 1) || (i == 4 && j == 5) || (i == 2 && j == 5);
+                !hole
+            } else {
+                (i == 0 || i == 6) && !(i == 0 && j == 3 && k == 2)
+            }
+        },
+        None,
+    )
+}
+
+/// The cells of a `dims` voxel grid listed in `on` (unit cubes).
+pub fn voxels(dims: [usize; 3], on: &[bool]) -> Shape {
+    let axis = |n: usize| (0..=n as i64).collect::<Vec<_>>();
+    let (xs, ys, zs) = (axis(dims[0]), axis(dims[1]), axis(dims[2]));
+    rectilinear(
+        "voxels",
+        [&xs, &ys, &zs],
+        |c| on[(c[0] * dims[1] + c[1]) * dims[2] + c[2]],
+        None,
+    )
+}
+
+/// Six times the volume by the divergence theorem, written independently of the crate.
+fn volume_by_divergence(points: &[Vec3], tris: &[[u32; 3]]) -> Rational {
+    let mut v = Int::ZERO;
+    for t in tris {
+        let [a, b, c] = t.map(|i| points[i as usize].clone());
+        v += a.dot(&b.cross(&c));
+    }
+    Rational::new(v, Int::from(6))
+}
+
+/// Integer points `(x, y)` with `x² + y² = r2`.
+fn lattice_circle(r2: i64) -> Vec<[i64; 2]> {
+    let r = (r2 as f64).sqrt() as i64 + 1;
+    let mut out = Vec::new();
+    for x in -r..=r {
+        let y2 = r2 - x * x;
+        if y2 < 0 {
+            continue;
+        }
+        let y = (y2 as f64).sqrt().round() as i64;
+        for y in [y - 1, y, y + 1] {
+            if y >= 0 && y * y == y2 {
+                out.push([x, y]);
+                if y != 0 {
+                    out.push([x, -y]);
+                }
+            }
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// A polygonal torus: `stations` planes through the z axis (integer directions of equal
+/// length R = 32045, chosen among the lattice points of that circle), each holding the
+/// same 16-gon cross-section (the lattice points of x² + z² = 65 around s = 20, scaled by
+/// R). Consecutive cross-sections are exact rotations of each other, so the quads between
+/// them are planar trapezoids: every segment is convex.
+pub struct Ring {
+    pub dirs: Vec<[i64; 2]>,
+    pub section: Vec<[i64; 2]>,
+    pub radius: i64,
+}
+
+impl Ring {
+    pub fn new(stations: usize) -> Ring {
+        assert!(stations % 2 == 0);
+        let radius: i64 = 5 * 13 * 17 * 29;
+        let circle = lattice_circle(radius * radius);
+        let half = stations / 2;
+        let mut dirs = Vec::new();
+        for j in 0..half {
+            let t = std::f64::consts::TAU * j as f64 / stations as f64;
+            let best = circle
+                .iter()
+                .max_by(|a, b| {
+                    let da = a[0] as f64 * t.cos() + a[1] as f64 * t.sin();
+                    let db = b[0] as f64 * t.cos() + b[1] as f64 * t.sin();
+                    da.total_cmp(&db)
+                })
+                .unwrap();
+            dirs.push(*best);
+        }
+        for j in 0..half {
+            dirs.push([-dirs[j][0], -dirs[j][1]]);
+        }
+        let mut section: Vec<[i64; 2]> = lattice_circle(65);
+        section.sort_by(|a, b| {
+            (a[1] as f64)
+                .atan2(a[0] as f64)
+                .total_cmp(&(b[1] as f64).atan2(b[0] as f64))
+        });
+        let section = section.into_iter().map(|[a, b]| [20 + a, b]).collect();
+        Ring {
+            dirs,
+            section,
+            radius,
+        }
+    }
+
+    fn point(&self, j: usize, k: usize) -> [i64; 3] {
+        let d = self.dirs[j % self.dirs.len()];
+        let [s, z] = self.section[k % self.section.len()];
+        [s * d[0], s * d[1], z * self.radius]
+    }
+
+    /// The planes `(n, c)` (inside `n · x <= c`) of segment `j`'s trapezoids.
+    fn segment_planes(&self, j: usize) -> Vec<([i128; 3], i128)> {
+        (0..self.section.len())
+            .map(|k| {
+                let (a, b, c) = (
+                    self.point(j, k),
+                    self.point(j + 1, k),
+                    self.point(j + 1, k + 1),
+                );
+                let u = [0, 1, 2].map(|i| (b[i] - a[i]) as i128);
+                let v = [0, 1, 2].map(|i| (c[i] - a[i]) as i128);
+                let n = [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ];
+                let off = n[0] * a[0] as i128 + n[1] * a[1] as i128 + n[2] * a[2] as i128;
+                (n, off)
+            })
+            .collect()
+    }
+
+    /// Membership of the point `x / w` (`None` on a boundary or an internal station
+    /// plane), from the definition: the sector between two stations, then the segment's
+    /// trapezoid planes.
+    pub fn inside(&self, x: [i128; 3], w: i128) -> Option<bool> {
+        let m = self.dirs.len();
+        let cross = |d: [i64; 2]| d[0] as i128 * x[1] - d[1] as i128 * x[0];
+        for j in 0..m {
+            let (a, b) = (cross(self.dirs[j]), -cross(self.dirs[(j + 1) % m]));
+            if a == 0 || b == 0 {
+                return None;
+            }
+            if a > 0 && b > 0 {
+                let mut inside = true;
+                for (n, c) in self.segment_planes(j) {
+                    let v = n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - c * w;
+                    if v == 0 {
+                        return None;
+                    }
+                    if v > 0 {
+                        inside = false;
+                    }
+                }
+                return Some(inside);
+            }
+        }
+        None
+    }
+
+    pub fn shape(&self) -> Shape {
+        let (m, q) = (self.dirs.len(), self.section.len());
+        let mut w = Welder::default();
+        let mut tris = Vec::new();
+        for j in 0..m {
+            for k in 0..q {
+                let a = w.id(self.point(j, k));
+                let b = w.id(self.point(j + 1, k));
+                let c = w.id(self.point(j + 1, k + 1));
+                let d = w.id(self.point(j, k + 1));
+                tris.push([a, b, c]);
+                tris.push([a, c, d]);
+            }
+        }
+        let volume = volume_by_divergence(&w.points, &tris);
+        // Sample points on a lattice through the ring's box, classified by definition.
+        let mut samples = Vec::new();
+        let ext = 29 * self.radius;
+        let h = 9 * self.radius;
+        let steps = 9i64;
+        for a in 0..=steps {
+            for b in 0..=steps {
+                for c in 0..=4 {
+                    let p = [
+                        (-ext + 2 * ext * a / steps) as i128 * 7 + 1,
+                        (-ext + 2 * ext * b / steps) as i128 * 7 + 2,
+                        (-h + 2 * h * c / 4) as i128 * 7 + 3,
+                    ];
+                    if let Some(inside) = self.inside(p, 7) {
+                        samples.push((p, 7, inside));
+                    }
+                }
+            }
+        }
+        Shape {
+            name: "ring (64 segments, 16-gon section)",
+            points: w.points,
+            tris,
+            volume,
+            reflex: None,
+            samples,
+        }
+    }
+}
+
+/// The Schönhardt twisted prism: the top triangle turned by 30 degrees against the
+/// bottom one, each side quad split along its reflex diagonal. Volume by the prismatoid
+/// formula `h / 6 (A_bottom + A_top + 4 A_mid)`.
+pub fn schonhardt() -> Shape {
+    let h = 100i64;
+    let a = [[100i64, 0], [-50, 87], [-50, -87]];
+    let b = [[87i64, 50], [-87, 50], [0, -100]];
+    let pa = |i: usize| [a[i % 3][0], a[i % 3][1], 0];
+    let pb = |i: usize| [b[i % 3][0], b[i % 3][1], h];
+    let points: Vec<Vec3> = (0..3)
+        .map(|i| Vec3::from_i64(pa(i)))
+        .chain((0..3).map(|i| Vec3::from_i64(pb(i))))
+        .collect();
+    let above = |p: [i64; 3], q: [i64; 3], r: [i64; 3], s: [i64; 3]| {
+        let (p, q, r, s) = (
+            Vec3::from_i64(p),
+            Vec3::from_i64(q),
+            Vec3::from_i64(r),
+            Vec3::from_i64(s),
+        );
+        apart_kernel::predicates::det3_sign(&q.sub(&p), &r.sub(&p), &s.sub(&p))
+    };
+    let mut tris = vec![[0u32, 2, 1], [3, 4, 5]];
+    let mut lateral = Vec::new(); // lateral edges in cyclic order, as point pairs
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        let (ai, aj, bi, bj) = (i as u32, j as u32, 3 + i as u32, 3 + j as u32);
+        lateral.push((pa(i), pb(i)));
+        // Diagonal a_i b_j is reflex when b_i is above the plane of (a_i, a_j, b_j).
+        if above(pa(i), pa(j), pb(j), pb(i)) == Sign::Positive {
+            tris.push([ai, aj, bj]);
+            tris.push([ai, bj, bi]);
+            lateral.push((pa(i), pb(j)));
+        } else {
+            tris.push([ai, aj, bi]);
+            tris.push([aj, bj, bi]);
+            lateral.push((pa(j), pb(i)));
+        }
+    }
+    let area2 = |poly: &[[i64; 2]]| -> i64 {
+        (0..poly.len())
+            .map(|k| {
+                let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+                p[0] * q[1] - p[1] * q[0]
+            })
+            .sum()
+    };
+    // Mid-section vertices are midpoints of the lateral edges: doubled coordinates.
+    let mid: Vec<[i64; 2]> = lateral
+        .iter()
+        .map(|(p, q)| [p[0] + q[0], p[1] + q[1]])
+        .collect();
+    let (ab, at, am) = (area2(&a), area2(&b), area2(&mid)); // 2A, 2A, 8A
+                                                            // V = h/6 (A_b + A_t + 4 A_m) = h/6 (ab/2 + at/2 + am/2)
+    let volume = Rational::new(Int::from(h * (ab + at + am)), Int::from(12));
+    let samples = vec![
+        ([0, 0, 100], 2, true),
+        ([0, 0, 1], 1, true),
+        ([0, 0, -1], 1, false),
+        ([0, 0, 101], 1, false),
+    ];
+    Shape {
+        name: "Schönhardt twisted prism",
+        points,
+        tris,
+        volume,
+        reflex: Some(3),
+        samples,
+    }
+}
+
+/// The red part of the Split Star (faces from `split_star/0_red.off`).
+pub fn split_star_red() -> Shape {
+    let pts: [[i64; 3]; 10] = [
+        [-1, -1, 1],
+        [-2, 0, 2],
+        [-2, 0, 0],
+        [-1, 1, 1],
+        [1, -1, 1],
+        [2, 0, 0],
+        [2, 0, 2],
+        [1, 1, 1],
+        [0, 0, 0],
+        [0, 0, 2],
+    ];
+    let tris: Vec<[u32; 3]> = vec![
+        [0, 1, 2],
+        [2, 1, 3],
+        [2, 3, 0],
+        [4, 5, 6],
+        [7, 6, 5],
+        [4, 7, 5],
+        [0, 8, 4],
+        [0, 3, 8],
+        [7, 4, 8],
+        [7, 8, 3],
+        [1, 0, 9],
+        [9, 0, 4],
+        [9, 4, 6],
+        [6, 7, 9],
+        [9, 7, 3],
+        [9, 3, 1],
+    ];
+    let points: Vec<Vec3> = pts.iter().map(|&p| Vec3::from_i64(p)).collect();
+    let volume = volume_by_divergence(&points, &tris);
+    Shape {
+        name: "Split Star red part",
+        points,
+        tris,
+        volume,
+        reflex: None,
+        samples: vec![
+            ([0, 0, 1], 1, true),
+            ([0, 0, 3], 1, false),
+            ([0, 0, -1], 1, false),
+        ],
+    }
+}
+
+/// Ear clipping of a simple counter-clockwise polygon (exact orientation tests).
+fn ear_clip(poly: &[[i64; 2]]) -> Vec<[usize; 3]> {
+    let orient = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| -> i128 {
+        (b[0] - a[0]) as i128 * (c[1] - a[1]) as i128
+            - (b[1] - a[1]) as i128 * (c[0] - a[0]) as i128
+    };
+    let mut idx: Vec<usize> = (0..poly.len()).collect();
+    let mut out = Vec::new();
+    while idx.len() > 3 {
+        let n = idx.len();
+        let ear = (0..n)
+            .find(|&k| {
+                let (i, j, l) = (idx[(k + n - 1) % n], idx[k], idx[(k + 1) % n]);
+                if orient(poly[i], poly[j], poly[l]) <= 0 {
+                    return false;
+                }
+                idx.iter().all(|&m| {
+                    m == i
+                        || m == j
+                        || m == l
+                        || orient(poly[i], poly[j], poly[m]) < 0
+                        || orient(poly[j], poly[l], poly[m]) < 0
+                        || orient(poly[l], poly[i], poly[m]) < 0
+                })
+            })
+            .expect("a simple polygon has an ear");
+        out.push([idx[(ear + n - 1) % n], idx[ear], idx[(ear + 1) % n]]);
+        idx.remove(ear);
+    }
+    out.push([idx[0], idx[1], idx[2]]);
+    out
+}
+
+/// A prism over a simple counter-clockwise polygon in the xy plane, `z` in `[0, h]`.
+pub fn extrusion(name: &'static str, poly: &[[i64; 2]], h: i64, reflex: Option<usize>) -> Shape {
+    let n = poly.len() as u32;
+    let points: Vec<Vec3> = poly
+        .iter()
+        .map(|p| Vec3::new(p[0], p[1], 0))
+        .chain(poly.iter().map(|p| Vec3::new(p[0], p[1], h)))
+        .collect();
+    let mut tris = Vec::new();
+    for t in ear_clip(poly) {
+        let t = t.map(|i| i as u32);
+        tris.push([t[0], t[2], t[1]]);
+        tris.push([t[0] + n, t[1] + n, t[2] + n]);
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        tris.push([i, j, j + n]);
+        tris.push([i, j + n, i + n]);
+    }
+    let area2: i64 = (0..poly.len())
+        .map(|k| {
+            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            p[0] * q[1] - p[1] * q[0]
+        })
+        .sum();
+    Shape {
+        name,
+        points,
+        tris,
+        volume: Rational::new(Int::from(area2 * h), Int::from(2)),
+        reflex,
+        samples: vec![
+            ([1000, 1, 400], 1, true),
+            ([1000, 3, 400], 1, false),
+            ([2000, 601, 400], 1, true),
+        ],
+    }
+}
+
+/// A sheet 2 units thick bent twice by 45 degrees (a Z profile), 800 deep.
+pub fn bent_sheet() -> Shape {
+    let poly = [
+        [0, 0],
+        [1000, 0],
+        [1600, 600],
+        [2600, 600],
+        [2600, 602],
+        [1600, 602],
+        [1000, 2],
+        [0, 2],
+    ];
+    extrusion("bent sheet (t = 2, two 45° bends)", &poly, 800, Some(2))
+}
+
+/// All test shapes, in table order.
+pub fn all() -> Vec<Shape> {
+    vec![
+        l_block(),
+        u_channel(),
+        box_with_hole(),
+        Ring::new(64).shape(),
+        comb(8),
+        plus_prism(),
+        i_beam(),
+        schonhardt(),
+        sheet_metal(),
+        bent_sheet(),
+        two_cubes_edge(),
+        two_cubes_vertex(),
+        split_star_red(),
+    ]
+}
+
+/// Where the point `x / w` lies in a polytope, exactly.
+pub fn locate(p: &Polytope, x: &[i128; 3], w: i128) -> Containment {
+    let stored = Vec3::from_i128(*x).scale(p.den());
+    let w = Int::from(w);
+    let mut on = false;
+    for f in p.facets() {
+        let v = f.normal.dot(&stored) - &f.offset * &w;
+        if v > Int::ZERO {
+            return Containment::Outside;
+        }
+        if v == Int::ZERO {
+            on = true;
+        }
+    }
+    if on {
+        Containment::Boundary
+    } else {
+        Containment::Inside
+    }
+}
+
+/// Checks the sample points against the pieces: a point strictly inside the solid is in
+/// some closed piece and in at most one open piece; a point outside is in no piece.
+pub fn check_samples(shape: &Shape, pieces: &[Polytope]) {
+    for (x, w, inside) in &shape.samples {
+        let loc: Vec<Containment> = pieces.iter().map(|p| locate(p, x, *w)).collect();
+        let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
+        let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
+        if *inside {
+            assert!(
+                closed >= 1 && interior <= 1,
+                "{}: inside point {x:?}/{w} in {closed} closed, {interior} open pieces",
+                shape.name
+            );
+        } else {
+            assert_eq!(
+                closed, 0,
+                "{}: outside point {x:?}/{w} is in a piece",
+                shape.name
+            );
+        }
+    }
+}
