@@ -25,6 +25,7 @@
 //! }
 //! ```
 
+mod convex;
 mod error;
 mod inputs;
 mod load;

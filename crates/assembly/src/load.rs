@@ -264,7 +264,7 @@ fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
         }
     } else if part.convex {
         if let Some(mesh) = &part.mesh {
-            match Polytope::from_triangles(&mesh.points(), &mesh.triangles) {
+            match crate::convex::convex_polytope(mesh) {
                 Ok(p) => part.pieces.push(p),
                 Err(e) => problems.push(
                     Problem::error(format!("convex part rejected by the polytope builder: {e}"))

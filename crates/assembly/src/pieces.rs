@@ -1,6 +1,7 @@
 //! Declared convex pieces: each must be a valid closed solid and convex, and the pieces
 //! of one part must have disjoint interiors.
 
+use crate::convex::{convex_polytope, QUADRATIC_LIMIT};
 use crate::load::polytope_bbox;
 use crate::witness::{fmt_witness, verified_in_polytopes};
 use apart_kernel::Grid;
@@ -19,7 +20,20 @@ pub(crate) fn convex_piece(raw: &RawObject, grid: &Grid) -> Result<Polytope, Vec
     if problems.iter().any(Problem::is_error) || info.volume6.is_none() {
         return Err(problems);
     }
-    match Polytope::from_triangles(&mesh.points(), &mesh.triangles) {
+    if mesh.triangles.len() > QUADRATIC_LIMIT && !info.convex {
+        let mut out = problems;
+        out.push(Problem::error(format!(
+            "declared piece is not convex: it has {} reflex edges{}",
+            info.reflex_edges,
+            if info.shells > 1 {
+                " and several shells"
+            } else {
+                ""
+            }
+        )));
+        return Err(out);
+    }
+    match convex_polytope(&mesh) {
         Ok(p) => Ok(p),
         Err(e) => {
             let face = |t: usize| format!("face {}", mesh.source_faces[t]);
