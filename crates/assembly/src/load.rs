@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// relations is collected in [`Loaded::problems`].
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     let plan = inputs::plan(path)?;
-    let mut problems = plan.problems;
+    let mut problems = plan.problems.clone();
 
     // Read every file once.
     let mut files: Vec<&Path> = plan
@@ -34,7 +34,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     files.sort();
     files.dedup();
     let tracker = Tracker::start(opts, Stage::Reading, files.len());
-    let read: HashMap<PathBuf, Result<Vec<RawObject>, ReadError>> = files
+    let mut read: HashMap<PathBuf, Result<Vec<RawObject>, ReadError>> = files
         .par_iter()
         .map(|p| {
             let r = read_file(p);
@@ -42,13 +42,12 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
             (p.to_path_buf(), r)
         })
         .collect();
-    let objects_of = |path: &Path| -> Result<&Vec<RawObject>, &ReadError> {
-        match (plan.preloaded.get(path), read.get(path)) {
-            (Some(o), _) => Ok(o),
-            (None, Some(r)) => r.as_ref(),
-            (None, None) => unreachable!("every file of the plan was read"),
-        }
-    };
+    read.extend(plan.preloaded.into_iter().map(|(p, o)| (p, Ok(o))));
+    // How often each object is used: the last use takes it instead of copying it.
+    let mut uses: HashMap<(PathBuf, Option<usize>), usize> = HashMap::new();
+    for s in plan.parts.iter().flat_map(|p| p.mesh.iter().chain(&p.pieces)) {
+        *uses.entry((s.path.clone(), s.object)).or_default() += 1;
+    }
 
     // The raw solids of every part, transformed.
     let raw: Vec<RawPart> = plan
@@ -56,11 +55,22 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         .iter()
         .map(|spec| {
             let mut probs = Vec::new();
-            let mut get = |s: &SourceRef| match resolve(s, objects_of(&s.path)) {
-                Ok(o) => Some(o),
-                Err(p) => {
-                    probs.push(p.in_file(&s.path).in_part(&spec.name));
-                    None
+            let mut get = |s: &SourceRef| {
+                let left = uses.get_mut(&(s.path.clone(), s.object)).map(|n| {
+                    *n -= 1;
+                    *n
+                });
+                let objects = match read.get_mut(&s.path) {
+                    Some(Ok(o)) => Ok(o),
+                    Some(Err(e)) => Err(&*e),
+                    None => unreachable!("every file of the plan was read"),
+                };
+                match resolve(s, objects, left == Some(0)) {
+                    Ok(o) => Some(o),
+                    Err(p) => {
+                        probs.push(p.in_file(&s.path).in_part(&spec.name));
+                        None
+                    }
                 }
             };
             let mesh = spec.mesh.as_ref().and_then(&mut get);
@@ -77,6 +87,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
             }
         })
         .collect();
+    drop(read);
 
     // One grid for everything.
     let all = || {
@@ -125,19 +136,23 @@ struct RawPart<'a> {
 }
 
 /// One object (or all merged) of a file, with the transform applied; a mirroring
-/// transform reverses the faces so that they stay outward.
+/// transform reverses the faces so that they stay outward. `last` use takes the object
+/// out of the file's list rather than copying it.
 fn resolve(
     s: &SourceRef,
-    objects: Result<&Vec<RawObject>, &ReadError>,
+    objects: Result<&mut Vec<RawObject>, &ReadError>,
+    last: bool,
 ) -> Result<RawObject, Problem> {
     let objects = objects.map_err(|e| Problem::error(e.to_string()))?;
+    let take = |o: &mut RawObject| if last { std::mem::take(o) } else { o.clone() };
     let mut o = match s.object {
-        Some(k) => objects
-            .get(k)
-            .cloned()
-            .ok_or_else(|| Problem::error(format!("the file has no object {k}")))?,
+        Some(k) => take(
+            objects
+                .get_mut(k)
+                .ok_or_else(|| Problem::error(format!("the file has no object {k}")))?,
+        ),
         None if objects.is_empty() => return Err(Problem::error("the file holds no mesh")),
-        None if objects.len() == 1 => objects[0].clone(),
+        None if objects.len() == 1 => take(&mut objects[0]),
         None => RawObject::merged(objects, None),
     };
     if !s.transform.is_identity() {
