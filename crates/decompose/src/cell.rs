@@ -33,15 +33,9 @@ impl Cell {
         for a in 0..3 {
             let mut n = [0i128; 3];
             n[a] = 1;
-            facets.push(Plane {
-                n,
-                c: hi[a] as i128,
-            });
+            facets.push(Plane::new(n, hi[a] as i128));
             n[a] = -1;
-            facets.push(Plane {
-                n,
-                c: -(lo[a] as i128),
-            });
+            facets.push(Plane::new(n, -(lo[a] as i128)));
         }
         let verts = (0..8)
             .map(|i| {
@@ -228,7 +222,7 @@ mod tests {
         assert_eq!(pa.volume(), Rational::from_int(4));
         assert_eq!(pb.volume(), Rational::from_int(4));
         // A plane creating a rational vertex (0, 0, 1/2): x + y + 2z = 1.
-        let g = Plane { n: [1, 1, 2], c: 1 };
+        let g = Plane::new([1, 1, 2], 1);
         let (lo, hi) = c.split(&g, true);
         let (lo, hi) = (
             lo.unwrap().to_polytope().unwrap(),

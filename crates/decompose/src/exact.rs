@@ -24,12 +24,30 @@ const U: f64 = f64::EPSILON / 2.0;
 const SIDE_ERR: f64 = 32.0 * U;
 
 /// The plane `n · x = c`; as a half-space, `n · x <= c` is its inner side.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+///
+/// Equality and hashing are those of `(n, c)`; the floating-point shadow only serves
+/// the filter.
+#[derive(Clone, Copy, Debug)]
 pub struct Plane {
     /// Normal, a primitive integer vector.
     pub n: [i128; 3],
     /// Offset.
     pub c: i128,
+    nf: [f64; 3],
+    cf: f64,
+}
+
+impl PartialEq for Plane {
+    fn eq(&self, o: &Self) -> bool {
+        self.n == o.n && self.c == o.c
+    }
+}
+impl Eq for Plane {}
+impl Hash for Plane {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        self.n.hash(h);
+        self.c.hash(h);
+    }
 }
 
 fn gcd3(v: &[i128; 3]) -> u128 {
@@ -38,6 +56,16 @@ fn gcd3(v: &[i128; 3]) -> u128 {
 }
 
 impl Plane {
+    /// The plane `n · x = c` (`n` primitive).
+    pub fn new(n: [i128; 3], c: i128) -> Plane {
+        Plane {
+            n,
+            c,
+            nf: n.map(|v| v as f64),
+            cf: c as f64,
+        }
+    }
+
     /// The plane through `a`, `b`, `c` with normal `(b - a) × (c - a)` made primitive, or
     /// `None` when the points are collinear. Coordinates must be below `2^41`.
     pub fn through(a: &[i64; 3], b: &[i64; 3], c: &[i64; 3]) -> Option<Plane> {
@@ -61,14 +89,16 @@ impl Plane {
         let g = g as i128;
         let n = [n[0] / g, n[1] / g, n[2] / g];
         let c = n[0] * a[0] as i128 + n[1] * a[1] as i128 + n[2] * a[2] as i128;
-        Some(Plane { n, c })
+        Some(Plane::new(n, c))
     }
 
     /// The same plane with the opposite orientation.
     pub fn flipped(&self) -> Plane {
         Plane {
-            n: [-self.n[0], -self.n[1], -self.n[2]],
+            n: self.n.map(|v| -v),
             c: -self.c,
+            nf: self.nf.map(|v| -v),
+            cf: -self.cf,
         }
     }
 
@@ -98,8 +128,7 @@ impl Plane {
             return self.side_int(q);
         }
         if p.filterable {
-            let n = self.n.map(|v| v as f64);
-            let c = self.c as f64;
+            let (n, c) = (self.nf, self.cf);
             let t = [n[0] * p.f[0], n[1] * p.f[1], n[2] * p.f[2]];
             let v = t[0] + t[1] + t[2] - c;
             let bound = SIDE_ERR * (t[0].abs() + t[1].abs() + t[2].abs() + c.abs());
@@ -202,7 +231,11 @@ impl HPoint {
         } else {
             (x, w)
         };
-        let g = int::gcd(&int::gcd(&int::gcd(&x[0], &x[1]), &x[2]), &w);
+        let g = if w == Int::ONE {
+            Int::ONE
+        } else {
+            int::gcd(&int::gcd(&int::gcd(&x[0], &x[1]), &x[2]), &w)
+        };
         let (x, w) = if g > Int::ONE {
             (x.map(|v| v / &g), w / &g)
         } else {
@@ -366,9 +399,48 @@ pub fn on_segment_big(a: &[Int; 3], b: &[Int; 3], n: &[Int; 3], c: &Int) -> Opti
     Some(HPoint::from_big(x, den))
 }
 
-/// Exact sign of `n · X - c · W` for an arbitrary-precision plane.
-pub fn side_big(n: &[Int; 3], c: &Int, p: &HPoint) -> Sign {
-    int::sign_of(&(dot_big(n, &p.x) - c * &p.w))
+/// An arbitrary-precision plane `n · x = c` with its floating-point shadow.
+#[derive(Clone, Debug)]
+pub struct BigPlane {
+    pub n: [Int; 3],
+    pub c: Int,
+    nf: [f64; 3],
+    cf: f64,
+    filterable: bool,
+}
+
+impl BigPlane {
+    /// The plane `n · x = c`.
+    pub fn new(n: [Int; 3], c: Int) -> BigPlane {
+        let nf = [0, 1, 2].map(|i| int::to_f64(&n[i]));
+        let cf = int::to_f64(&c);
+        let filterable = nf.iter().all(|v| v.is_finite()) && cf.is_finite();
+        BigPlane {
+            n,
+            c,
+            nf,
+            cf,
+            filterable,
+        }
+    }
+
+    /// Exact sign of `n · X - c · W` (filtered as [`Plane::side`]).
+    pub fn side(&self, p: &HPoint) -> Sign {
+        if self.filterable && p.filterable {
+            let t = [0, 1, 2].map(|i| self.nf[i] * p.f[i]);
+            let v = t[0] + t[1] + t[2] - self.cf;
+            let bound = SIDE_ERR * (t[0].abs() + t[1].abs() + t[2].abs() + self.cf.abs());
+            if bound.is_finite() {
+                if v > bound {
+                    return Sign::Positive;
+                }
+                if v < -bound {
+                    return Sign::Negative;
+                }
+            }
+        }
+        int::sign_of(&(dot_big(&self.n, &p.x) - &self.c * &p.w))
+    }
 }
 
 /// Exact sign of `det[a; b; c]` of three plane normals (zero when they are dependent).
@@ -386,21 +458,21 @@ mod tests {
     #[test]
     fn planes_and_points() {
         let p = Plane::through(&[0, 0, 0], &[2, 0, 0], &[0, 2, 0]).unwrap();
-        assert_eq!(p, Plane { n: [0, 0, 1], c: 0 });
+        assert_eq!(p, Plane::new([0, 0, 1], 0));
         assert_eq!(p.side_int(&[5, 5, 1]), Sign::Positive);
         assert!(Plane::through(&[0, 0, 0], &[1, 1, 1], &[2, 2, 2]).is_none());
-        let x = Plane { n: [1, 0, 0], c: 1 };
-        let y = Plane { n: [0, 1, 0], c: 2 };
-        let d = Plane { n: [1, 1, 1], c: 4 };
+        let x = Plane::new([1, 0, 0], 1);
+        let y = Plane::new([0, 1, 0], 2);
+        let d = Plane::new([1, 1, 1], 4);
         let q = HPoint::meet(&x, &y, &d).unwrap();
         assert_eq!(q.int, Some([1, 2, 1]));
         // A rational point: x = 1, y = 2, 3z = 4.
-        let z = Plane { n: [1, 1, 3], c: 7 };
+        let z = Plane::new([1, 1, 3], 7);
         let q = HPoint::meet(&x, &y, &z).unwrap();
         assert_eq!(q.den(), &Int::from(3));
         assert_eq!(z.side(&q), Sign::Zero);
         assert_eq!(d.side(&q), Sign::Positive);
-        let s = HPoint::on_segment(&[0, 0, 0], &[3, 3, 3], &Plane { n: [1, 0, 0], c: 1 });
+        let s = HPoint::on_segment(&[0, 0, 0], &[3, 3, 3], &Plane::new([1, 0, 0], 1));
         assert_eq!(s.unwrap().int, Some([1, 1, 1]));
     }
 
@@ -408,23 +480,14 @@ mod tests {
     fn big_path_agrees() {
         // Normals near 2^80 force the arbitrary-precision path.
         let big = 1i128 << 80;
-        let a = Plane {
-            n: [big + 1, 3, 0],
-            c: 7,
-        };
-        let b = Plane {
-            n: [1, big - 1, 5],
-            c: -11,
-        };
-        let c = Plane {
-            n: [0, 2, big + 3],
-            c: 13,
-        };
+        let a = Plane::new([big + 1, 3, 0], 7);
+        let b = Plane::new([1, big - 1, 5], -11);
+        let c = Plane::new([0, 2, big + 3], 13);
         let p = HPoint::meet(&a, &b, &c).unwrap();
         for pl in [&a, &b, &c] {
             assert_eq!(pl.side(&p), Sign::Zero);
         }
-        let shifted = Plane { n: a.n, c: a.c + 1 };
+        let shifted = Plane::new(a.n, a.c + 1);
         assert_eq!(shifted.side(&p), Sign::Negative);
     }
 }

@@ -138,9 +138,9 @@ mod tests {
     #[test]
     fn halves_of_a_box_merge_back() {
         let c = Cell::boxed([0, 0, 0], [4, 2, 2]);
-        let h = Plane { n: [1, 0, 0], c: 1 };
+        let h = Plane::new([1, 0, 0], 1);
         let (a, b) = c.split(&h, true);
-        let g = Plane { n: [0, 1, 1], c: 1 };
+        let g = Plane::new([0, 1, 1], 1);
         let (b1, b2) = b.unwrap().split(&g, true);
         let (cells, merges) = merge(vec![a.unwrap(), b1.unwrap(), b2.unwrap()]);
         // The three parts of the box merge back into one piece.

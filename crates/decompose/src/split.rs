@@ -280,7 +280,10 @@ pub(crate) fn for_live(
             .cmp(&x.0.key().0)
             .then_with(|| x.1.n.cmp(&y.1.n))
     });
-    scored.truncate(10);
+    // Fragments only break ties of the primary criterion.
+    let top = scored.first().map(|s| s.0.key().0);
+    scored.retain(|s| Some(s.0.key().0) == top);
+    scored.truncate(6);
     let mut best: Option<(Score, Plane, Witness)> = None;
     for (mut s, p, w) in scored {
         fragment_score(frags, &p, &mut s);

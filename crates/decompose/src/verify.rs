@@ -8,7 +8,7 @@
 //! of the pieces is the solid: the pieces are closed subsets of it, and a point of the
 //! solid missed by all would leave an open set of missing volume.
 
-use crate::exact::{meet_big, on_segment_big, side_big, HPoint};
+use crate::exact::{meet_big, on_segment_big, BigPlane, HPoint};
 use crate::solid::Solid;
 use crate::VerifyError;
 use apart_kernel::predicates::det3_sign;
@@ -68,8 +68,13 @@ pub fn verify(
         })
         .collect();
     for (i, p) in pieces.iter().enumerate() {
+        let facets: Vec<BigPlane> = p
+            .facets()
+            .iter()
+            .map(|f| BigPlane::new(f.normal.to_ints(), f.offset.clone()))
+            .collect();
         for (t, tb) in tri_boxes.iter().enumerate() {
-            if overlap(&boxes[i], tb) && triangle_meets_interior(&solid, t, p) {
+            if overlap(&boxes[i], tb) && triangle_meets_interior(&solid, t, &facets, p.den()) {
                 return Err(VerifyError::CrossesBoundary {
                     piece: i,
                     triangle: t,
@@ -155,10 +160,9 @@ enum EdgeFrom {
     Facet(usize),
 }
 
-/// Whether triangle `t` meets the open interior of `p`, by exact clipping in the
-/// piece's stored coordinates (true coordinates times its denominator).
-fn triangle_meets_interior(s: &Solid, t: usize, p: &Polytope) -> bool {
-    let den = p.den();
+/// Whether triangle `t` meets the open interior of the piece with facets `n · x <= c`
+/// (`facets`) in stored coordinates (true coordinates times `den`), by exact clipping.
+fn triangle_meets_interior(s: &Solid, t: usize, facets: &[BigPlane], den: &Int) -> bool {
     let corners: Vec<[Int; 3]> = s.tris[t]
         .iter()
         .map(|&v| s.pts[v as usize].map(|c| Int::from(c) * den))
@@ -173,13 +177,9 @@ fn triangle_meets_interior(s: &Solid, t: usize, p: &Polytope) -> bool {
             )
         })
         .collect();
-    let facets: Vec<([Int; 3], Int)> = p
-        .facets()
-        .iter()
-        .map(|f| (f.normal.to_ints(), f.offset.clone()))
-        .collect();
-    for (fi, (n, c)) in facets.iter().enumerate() {
-        let signs: Vec<Sign> = poly.iter().map(|(q, _)| side_big(n, c, q)).collect();
+    for (fi, plane) in facets.iter().enumerate() {
+        let (n, c) = (&plane.n, &plane.c);
+        let signs: Vec<Sign> = poly.iter().map(|(q, _)| plane.side(q)).collect();
         if !signs.contains(&Sign::Negative) {
             return false;
         }
@@ -198,10 +198,10 @@ fn triangle_meets_interior(s: &Solid, t: usize, p: &Polytope) -> bool {
                 let x = match poly[i].1 {
                     EdgeFrom::Side(k) => on_segment_big(&corners[k], &corners[(k + 1) % 3], n, c),
                     EdgeFrom::Facet(g) => {
-                        let (gn, gc) = &facets[g];
+                        let gp = &facets[g];
                         meet_big(
-                            &[tn.clone(), gn.clone(), n.clone()],
-                            &[tc.clone(), gc.clone(), c.clone()],
+                            &[tn.clone(), gp.n.clone(), n.clone()],
+                            &[tc.clone(), gp.c.clone(), c.clone()],
                         )
                     }
                 }
@@ -233,6 +233,31 @@ fn triangle_meets_interior(s: &Solid, t: usize, p: &Polytope) -> bool {
         poly = out;
     }
     true
+}
+
+/// A conservative floating-point slab test: false only when the ray from `q` along `d`
+/// misses the box by far more than any rounding error (a filter).
+fn ray_may_hit(q: &[f64], d: &[i64; 3], b: &[[f64; 3]; 2]) -> bool {
+    let (mut t0, mut t1) = (0f64, f64::INFINITY);
+    for k in 0..3 {
+        let slack = 1e-7 * (q[k].abs() + b[0][k].abs() + b[1][k].abs() + 1.0);
+        let (lo, hi) = (b[0][k] - slack - q[k], b[1][k] + slack - q[k]);
+        if d[k] == 0 {
+            if lo > 0.0 || hi < 0.0 {
+                return false;
+            }
+            continue;
+        }
+        let dk = d[k] as f64;
+        let (a, c) = if dk > 0.0 {
+            (lo / dk, hi / dk)
+        } else {
+            (hi / dk, lo / dk)
+        };
+        t0 = t0.max(a);
+        t1 = t1.min(c);
+    }
+    t0 <= t1 * (1.0 + 1e-9) + 1e-9
 }
 
 /// Whether an interior point of `p` (its vertex average) is inside the solid, by the
@@ -267,17 +292,8 @@ fn interior_point_inside(s: &Solid, boxes: &[[[f64; 3]; 2]], p: &Polytope) -> Op
         let dv = Vec3::from_i64(d);
         let mut hits = 0usize;
         for (t, tri) in s.tris.iter().enumerate() {
-            if d == [1, 0, 0] {
-                let b = &boxes[t];
-                let slack = |v: f64| 1e-9 * (v.abs() + 1.0);
-                if b[1][0] < qf[0] - slack(qf[0])
-                    || b[0][1] > qf[1] + slack(qf[1])
-                    || b[1][1] < qf[1] - slack(qf[1])
-                    || b[0][2] > qf[2] + slack(qf[2])
-                    || b[1][2] < qf[2] - slack(qf[2])
-                {
-                    continue;
-                }
+            if !ray_may_hit(&qf, &d, &boxes[t]) {
+                continue;
             }
             let rel: Vec<Vec3> = tri
                 .iter()

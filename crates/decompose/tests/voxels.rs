@@ -100,3 +100,50 @@ fn voxel_stress() {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Height fields over a 3 x 3 grid: generic planes, rational vertices.
+    #[test]
+    fn random_terrains_decompose_exactly(h in proptest::collection::vec(1i64..60, 16)) {
+        let shape = shapes::terrain(3, 20, &h);
+        let d = decompose(&shape.points, &shape.tris, &Options::default()).expect("decompose");
+        verify(&shape.points, &shape.tris, &d.pieces).expect("verify");
+        let mut total = Rational::zero();
+        for p in &d.pieces {
+            total = &total + &p.volume();
+        }
+        prop_assert_eq!(&total, &shape.volume);
+        shapes::check_samples(&shape, &d.pieces);
+    }
+}
+
+/// A longer run of random terrains up to 6 x 6: `cargo test --release -- --ignored`.
+#[test]
+#[ignore]
+fn terrain_stress() {
+    let mut seed = 0x2545f4914f6cdd1du64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for case in 0..400 {
+        let n = 2 + (next() % 5) as usize;
+        let range = 1 + (next() % 1000) as i64;
+        let h: Vec<i64> = (0..(n + 1) * (n + 1))
+            .map(|_| 1 + (next() % range as u64) as i64)
+            .collect();
+        let shape = shapes::terrain(n, 1 + (next() % 500) as i64, &h);
+        let d = decompose(&shape.points, &shape.tris, &Options::default()).expect("decompose");
+        verify(&shape.points, &shape.tris, &d.pieces)
+            .unwrap_or_else(|e| panic!("case {case}: {e}"));
+        let mut total = Rational::zero();
+        for p in &d.pieces {
+            total = &total + &p.volume();
+        }
+        assert_eq!(total, shape.volume, "case {case}");
+        shapes::check_samples(&shape, &d.pieces);
+    }
+}

@@ -284,8 +284,13 @@ pub struct Ring {
 
 impl Ring {
     pub fn new(stations: usize) -> Ring {
+        Ring::with_section(stations, 65, 20, 5 * 13 * 17 * 29)
+    }
+
+    /// `stations` stations of direction length `radius`, cross-section the lattice
+    /// points of `a² + b² = r2` around `s = s0`.
+    pub fn with_section(stations: usize, r2: i64, s0: i64, radius: i64) -> Ring {
         assert!(stations % 2 == 0);
-        let radius: i64 = 5 * 13 * 17 * 29;
         let circle = lattice_circle(radius * radius);
         let half = stations / 2;
         let mut dirs = Vec::new();
@@ -304,13 +309,17 @@ impl Ring {
         for j in 0..half {
             dirs.push([-dirs[j][0], -dirs[j][1]]);
         }
-        let mut section: Vec<[i64; 2]> = lattice_circle(65);
+        let mut distinct = dirs.clone();
+        distinct.sort();
+        distinct.dedup();
+        assert_eq!(distinct.len(), stations, "too few lattice directions");
+        let mut section: Vec<[i64; 2]> = lattice_circle(r2);
         section.sort_by(|a, b| {
             (a[1] as f64)
                 .atan2(a[0] as f64)
                 .total_cmp(&(b[1] as f64).atan2(b[0] as f64))
         });
-        let section = section.into_iter().map(|[a, b]| [20 + a, b]).collect();
+        let section = section.into_iter().map(|[a, b]| [s0 + a, b]).collect();
         Ring {
             dirs,
             section,
@@ -391,8 +400,10 @@ impl Ring {
         let volume = volume_by_divergence(&w.points, &tris);
         // Sample points on a lattice through the ring's box, classified by definition.
         let mut samples = Vec::new();
-        let ext = 29 * self.radius;
-        let h = 9 * self.radius;
+        let smax = self.section.iter().map(|p| p[0]).max().unwrap() + 1;
+        let zmax = self.section.iter().map(|p| p[1]).max().unwrap() + 1;
+        let ext = smax * self.radius;
+        let h = zmax * self.radius;
         let steps = 9i64;
         for a in 0..=steps {
             for b in 0..=steps {
@@ -409,7 +420,11 @@ impl Ring {
             }
         }
         Shape {
-            name: "ring (64 segments, 16-gon section)",
+            name: if m == 64 && q == 16 {
+                "ring (64 segments, 16-gon section)"
+            } else {
+                "ring (256 segments, 32-gon section)"
+            },
             points: w.points,
             tris,
             volume,
@@ -686,4 +701,155 @@ pub fn check_samples(shape: &Shape, pieces: &[Polytope]) {
             );
         }
     }
+}
+
+/// The image of `shape` under the integer linear map `m` (rows), `det m > 0`: the same
+/// structure with generic planes. Volumes scale by `det m`, samples map along.
+pub fn transformed(shape: &Shape, m: [[i64; 3]; 3]) -> Shape {
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    assert!(det > 0);
+    let apply = |p: [i128; 3]| -> [i128; 3] {
+        [0, 1, 2].map(|r| (0..3).map(|c| m[r][c] as i128 * p[c]).sum())
+    };
+    let points = shape
+        .points
+        .iter()
+        .map(|p| {
+            let c = p.as_small().unwrap();
+            let q = apply(c.map(|v| v as i128));
+            Vec3::from_i128(q)
+        })
+        .collect();
+    Shape {
+        name: shape.name,
+        points,
+        tris: shape.tris.clone(),
+        volume: &shape.volume * &Rational::from_int(det),
+        reflex: shape.reflex,
+        samples: shape
+            .samples
+            .iter()
+            .map(|(x, w, i)| (apply(*x), *w, *i))
+            .collect(),
+    }
+}
+
+/// A block over an `n × n` grid of cells of side `cell` whose top is the triangulated
+/// height field `h` (`(n + 1)²` heights, row-major in x, then y), bottom at z = 0. Each
+/// cell is split along its diagonal from (i, j) to (i + 1, j + 1). Volume: the sum over
+/// top triangles of their projected area times their mean height.
+pub fn terrain(n: usize, cell: i64, h: &[i64]) -> Shape {
+    assert_eq!(h.len(), (n + 1) * (n + 1));
+    let at = |i: usize, j: usize| h[i * (n + 1) + j];
+    let top = |i: usize, j: usize| [i as i64 * cell, j as i64 * cell, at(i, j)];
+    let bottom = |i: usize, j: usize| [i as i64 * cell, j as i64 * cell, 0];
+    let mut w = Welder::default();
+    let mut tris = Vec::new();
+    let mut top_tris: Vec<[[i64; 3]; 3]> = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let t = [top(i, j), top(i + 1, j), top(i + 1, j + 1), top(i, j + 1)];
+            for tri in [[t[0], t[1], t[2]], [t[0], t[2], t[3]]] {
+                tris.push(tri.map(|p| w.id(p)));
+                top_tris.push(tri);
+            }
+            let b = [
+                bottom(i, j),
+                bottom(i + 1, j),
+                bottom(i + 1, j + 1),
+                bottom(i, j + 1),
+            ];
+            tris.push([w.id(b[0]), w.id(b[2]), w.id(b[1])]);
+            tris.push([w.id(b[0]), w.id(b[3]), w.id(b[2])]);
+        }
+    }
+    // Walls, counter-clockwise around the boundary seen from above.
+    let mut ring: Vec<(usize, usize)> = Vec::new();
+    ring.extend((0..n).map(|i| (i, 0)));
+    ring.extend((0..n).map(|j| (n, j)));
+    ring.extend((0..n).map(|i| (n - i, n)));
+    ring.extend((0..n).map(|j| (0, n - j)));
+    for k in 0..ring.len() {
+        let (p, q) = (ring[k], ring[(k + 1) % ring.len()]);
+        let (bp, bq, tq, tp) = (
+            w.id(bottom(p.0, p.1)),
+            w.id(bottom(q.0, q.1)),
+            w.id(top(q.0, q.1)),
+            w.id(top(p.0, p.1)),
+        );
+        tris.push([bp, bq, tq]);
+        tris.push([bp, tq, tp]);
+    }
+    let area = cell * cell; // twice the projected area of a triangle
+    let mut volume = Int::ZERO;
+    for t in &top_tris {
+        volume += Int::from(area * (t[0][2] + t[1][2] + t[2][2]));
+    }
+    let volume = Rational::new(volume, Int::from(6));
+    // Samples: a lattice of points classified against the top triangle above them.
+    let hmax = h.iter().max().unwrap() + 5;
+    let mut samples = Vec::new();
+    let steps = 4 * n as i64 + 1;
+    for a in 0..=steps {
+        for b in 0..=steps {
+            for c in 0..=6 {
+                let w = 13i128;
+                let p = [
+                    (a * n as i64 * cell / steps) as i128 * w + 3,
+                    (b * n as i64 * cell / steps) as i128 * w + 5,
+                    (c * hmax / 6) as i128 * w + 7,
+                ];
+                if let Some(inside) = terrain_inside(n, cell, &top_tris, p, w) {
+                    samples.push((p, w, inside));
+                }
+            }
+        }
+    }
+    Shape {
+        name: "terrain",
+        points: w.points,
+        tris,
+        volume,
+        reflex: None,
+        samples,
+    }
+}
+
+/// Membership of `x / w` in a terrain block (`None` on a boundary or ambiguous).
+fn terrain_inside(
+    n: usize,
+    cell: i64,
+    top: &[[[i64; 3]; 3]],
+    x: [i128; 3],
+    w: i128,
+) -> Option<bool> {
+    let size = n as i128 * cell as i128 * w;
+    if x[0] <= 0 || x[1] <= 0 || x[0] >= size || x[1] >= size || x[2] <= 0 {
+        return Some(false);
+    }
+    let orient = |a: [i64; 3], b: [i64; 3]| -> i128 {
+        (b[0] - a[0]) as i128 * (x[1] - a[1] as i128 * w)
+            - (b[1] - a[1]) as i128 * (x[0] - a[0] as i128 * w)
+    };
+    for t in top {
+        let o = [orient(t[0], t[1]), orient(t[1], t[2]), orient(t[2], t[0])];
+        if o.contains(&0) && o.iter().all(|&v| v >= 0) {
+            return None; // over a triangle edge: skip
+        }
+        if o.iter().all(|&v| v > 0) {
+            let u = [0, 1, 2].map(|k| (t[1][k] - t[0][k]) as i128);
+            let v = [0, 1, 2].map(|k| (t[2][k] - t[0][k]) as i128);
+            let nrm = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let c = nrm[0] * t[0][0] as i128 + nrm[1] * t[0][1] as i128 + nrm[2] * t[0][2] as i128;
+            let s = nrm[0] * x[0] + nrm[1] * x[1] + nrm[2] * x[2] - c * w;
+            return if s == 0 { None } else { Some(s < 0) };
+        }
+    }
+    None
 }
