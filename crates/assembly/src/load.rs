@@ -45,7 +45,11 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     read.extend(plan.preloaded.into_iter().map(|(p, o)| (p, Ok(o))));
     // How often each object is used: the last use takes it instead of copying it.
     let mut uses: HashMap<(PathBuf, Option<usize>), usize> = HashMap::new();
-    for s in plan.parts.iter().flat_map(|p| p.mesh.iter().chain(&p.pieces)) {
+    for s in plan
+        .parts
+        .iter()
+        .flat_map(|p| p.mesh.iter().chain(&p.pieces))
+    {
         *uses.entry((s.path.clone(), s.object)).or_default() += 1;
     }
 

@@ -22,6 +22,8 @@
 //! assert_eq!(mesh.unwrap().triangles.len(), 4);
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod aabb;
 pub mod bvh;
 pub mod exact;

@@ -99,10 +99,46 @@ fn mesh_object(
     Ok(object)
 }
 
+/// `%XX` escapes of a URI replaced by their bytes.
+fn percent_decoded(uri: &str) -> String {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%' && i + 2 < b.len() {
+            if let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2])) {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
 /// Parses a glTF or GLB file; `base_dir` resolves external buffer files.
 pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<Vec<RawObject>, ReadError> {
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| malformed(e.to_string()))?;
     let document = gltf.document;
+    // External buffers must be regular files (not devices or pipes that never end).
+    for b in document.buffers() {
+        if let gltf::buffer::Source::Uri(uri) = b.source() {
+            if uri.starts_with("data:") {
+                continue;
+            }
+            let path = base_dir
+                .unwrap_or(Path::new("."))
+                .join(percent_decoded(uri));
+            if !path.is_file() {
+                return Err(malformed(format!(
+                    "buffer \"{uri}\" is not a readable file"
+                )));
+            }
+        }
+    }
     let buffers = gltf::import_buffers(&document, base_dir, gltf.blob)
         .map_err(|e| malformed(format!("cannot load buffers: {e}")))?;
     let mut objects = Vec::new();
@@ -208,6 +244,18 @@ mod tests {
         assert_eq!(objs[1].vertices[1], [10.0, 1.0, 0.0]);
         assert_eq!(objs[1].vertices[2], [9.0, 0.0, 0.0]);
         assert_eq!(objs[1].faces.get(0), &[0, 1, 2]);
+    }
+
+    #[test]
+    fn external_buffers_must_be_files() {
+        assert_eq!(percent_decoded("a%20b.bin"), "a b.bin");
+        assert_eq!(percent_decoded("100%"), "100%");
+        let j = String::from_utf8(two_node_gltf()).unwrap();
+        let start = j.find("data:").unwrap();
+        let end = start + j[start..].find('"').unwrap();
+        let devzero = format!("{}/dev/zero{}", &j[..start], &j[end..]);
+        let e = read(devzero.as_bytes(), None).unwrap_err().to_string();
+        assert!(e.contains("not a readable file"), "{e}");
     }
 
     #[test]
