@@ -204,6 +204,11 @@ pub enum VerifyError {
 
 /// Decomposes the closed solid bounded by `triangles` (outward, over `points`) into
 /// convex pieces, exactly.
+///
+/// The mesh is checked for closure, orientation, degenerate triangles, the pairing at
+/// non-manifold edges and positive volume, but not for self-intersection (the mesh
+/// crate's validation does that); on a self-intersecting mesh the pieces are
+/// meaningless, and [`verify`] rejects them.
 pub fn decompose(
     points: &[Vec3],
     triangles: &[[u32; 3]],
