@@ -53,7 +53,7 @@ pub use motion_space::{CellKind, MotionSpace};
 pub use partition::{
     dbg_at, partition, partition_pieces, partition_subset, Options, Partitioning, Solution, Stats,
 };
-pub use regions::parts_of;
+pub use regions::{decompose_part, parts_of, parts_of_with};
 pub use regions::{BlockingRegions, PartPieces};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{sequence, Sequence, SequenceOptions, Step, Tolerance};
@@ -61,12 +61,21 @@ pub use sequence::{sequence, Sequence, SequenceOptions, Step, Tolerance};
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PlanError {
-    /// A part has no convex pieces (a non-convex part without declared pieces).
+    /// A part has neither declared pieces nor a valid mesh to decompose.
     NoPieces {
         /// Part index.
         part: usize,
         /// Part name.
         name: String,
+    },
+    /// A part could not be decomposed into convex pieces.
+    Decompose {
+        /// Part index.
+        part: usize,
+        /// Part name.
+        name: String,
+        /// What went wrong.
+        message: String,
     },
     /// Two parts' interiors overlap (pieces `pieces.0` of the first and `pieces.1` of the
     /// second).
@@ -87,13 +96,16 @@ impl std::fmt::Display for PlanError {
         match self {
             PlanError::NoPieces { name, .. } => write!(
                 f,
-                "part \"{name}\" is not convex and declares no convex pieces; declare its pieces (a sub-folder or \"pieces\" in assembly.json)"
+                "part \"{name}\" has no valid mesh to decompose and declares no convex pieces"
             ),
             PlanError::Overlap { names, pieces, .. } => write!(
                 f,
                 "parts \"{}\" and \"{}\" overlap (piece {} of the first and piece {} of the second share interior points)",
                 names.0, names.1, pieces.0, pieces.1
             ),
+            PlanError::Decompose { name, message, .. } => {
+                write!(f, "part \"{name}\" could not be decomposed into convex pieces: {message}")
+            }
             PlanError::Internal(m) => write!(f, "internal error: {m}"),
         }
     }
