@@ -3,7 +3,6 @@
 
 mod common;
 
-#[allow(dead_code)]
 #[path = "../../decompose/tests/common/shapes.rs"]
 mod shapes;
 
