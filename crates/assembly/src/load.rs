@@ -93,19 +93,53 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         .collect();
     drop(read);
 
-    // One grid for everything.
-    let all = || {
-        raw.iter()
-            .flat_map(|r| {
-                r.mesh
-                    .iter()
-                    .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
-            })
-            .flat_map(|o| o.vertices.iter().flatten().copied())
-            .filter(|v| v.is_finite())
+    // One grid for everything. `Grid::choose` depends only on the largest magnitude and
+    // on whether some value is not an integer, so both are found in parallel and the
+    // grid is chosen from that value and one non-integer witness.
+    let solids: Vec<&RawObject> = raw
+        .iter()
+        .flat_map(|r| {
+            r.mesh
+                .iter()
+                .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
+        })
+        .collect();
+    let scan = |o: &&RawObject| {
+        o.vertices
+            .par_iter()
+            .with_min_len(8192)
+            .fold(
+                || (0f64, None),
+                |(m, f): (f64, Option<f64>), v| {
+                    v.iter()
+                        .filter(|c| c.is_finite())
+                        .fold((m, f), |(m, f), &c| {
+                            (m.max(c.abs()), f.or((c.fract() != 0.0).then_some(c)))
+                        })
+                },
+            )
+            .reduce(|| (0f64, None), |(m, f), (n, g)| (m.max(n), f.or(g)))
     };
-    let grid = Grid::choose(all(), opts.grid_bits)?;
-    let max_snap_displacement = all().map(|v| grid.displacement(v)).fold(0.0, f64::max);
+    let (max_abs, non_integer) = solids
+        .iter()
+        .map(scan)
+        .fold((0f64, None), |(m, f), (n, g)| (m.max(n), f.or(g)));
+    let grid = Grid::choose(std::iter::once(max_abs).chain(non_integer), opts.grid_bits)?;
+    let max_snap_displacement = solids
+        .iter()
+        .map(|o| {
+            o.vertices
+                .par_iter()
+                .with_min_len(8192)
+                .map(|v| {
+                    v.iter()
+                        .filter(|c| c.is_finite())
+                        .map(|&c| grid.displacement(c))
+                        .fold(0.0, f64::max)
+                })
+                .reduce(|| 0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
 
     // Parts, in parallel.
     let tracker = Tracker::start(opts, Stage::Validating, raw.len());
