@@ -1,11 +1,57 @@
-//! Pictures of apart's results, for people.
+//! Pictures and exports of apart's results, for people.
 //!
-//! [`sphere_svg::motion_space_svg`] draws the sphere of directions of a (sub)assembly:
-//! both hemispheres in Lambert equal-area projection, every face shaded by how many
-//! ordered pairs of parts block it, the arcs of the blocked regions, and the solutions
-//! (isolated directions as dots, sliding edges as thick arcs, faces as dots at their
-//! deepest direction), coloured by moving subset.
+//! Every picture gives a part the same colour ([`colors::part_colors`]: a part named
+//! after a colour gets that colour, the others distinct palette colours).
+//!
+//! - **The motion-space sphere** of a (sub)assembly, for any step:
+//!   [`motion_space_svg`] / [`motion_space_png`], or [`step_motion_space_svg`] /
+//!   [`step_motion_space_png`] for a step of a plan. Both hemispheres in Lambert
+//!   equal-area or orthographic projection ([`SphereProjection`]), faces shaded by how
+//!   many ordered pairs of parts block them, region boundaries drawn, the solutions
+//!   (isolated directions as dots, sliding edges as thick arcs, faces as dots at their
+//!   deepest direction) coloured by moving subset, a legend naming the parts of each
+//!   subset, and the chosen direction ringed.
+//! - **Renders without a GPU** ([`raster`]): [`assembly_png`] draws the assembly with
+//!   some parts highlighted and the rest grey; [`step_pngs`] draws one picture per step
+//!   (the subassembly being split, its moving side pulled out, a caption and an arrow).
+//! - **An animated glTF 2.0 file** ([`disassembly_glb`]): one node and mesh per part, and
+//!   an animation moving each step's side out along its direction, in order.
+//! - **A self-contained HTML viewer** ([`disassembly_html`]): the assembly in 3-D with a
+//!   small canvas renderer, orbit and zoom, play and step buttons, and the list of steps.
+//!
+//! ```no_run
+//! use apart_assembly::{load, LoadOptions};
+//! use apart_plan::{parts_of, sequence, BlockingRegions, SequenceOptions};
+//! let loaded = load(std::path::Path::new("examples/split-star-3"), &LoadOptions::default()).unwrap();
+//! let assembly = &loaded.assembly;
+//! let regions = BlockingRegions::compute(&parts_of(assembly).unwrap()).unwrap();
+//! let plan = sequence(&regions, &SequenceOptions::default());
+//! std::fs::write("plan.glb", apart_draw::disassembly_glb(assembly, &plan)).unwrap();
+//! std::fs::write("plan.html", apart_draw::disassembly_html(assembly, &plan)).unwrap();
+//! for (k, png) in apart_draw::step_pngs(assembly, &plan, &Default::default(), 800, 600)
+//!     .iter()
+//!     .enumerate()
+//! {
+//!     std::fs::write(format!("step-{}.png", k + 1), png).unwrap();
+//! }
+//! let sphere = apart_draw::step_motion_space_svg(&regions, &plan.steps[0], &Default::default());
+//! std::fs::write("step-1-sphere.svg", sphere).unwrap();
+//! ```
 
+pub mod colors;
+pub mod gltf_export;
+pub mod html_viewer;
+pub mod motion;
+pub mod raster;
+pub mod shapes;
 pub mod sphere_svg;
+pub mod svg_png;
 
-pub use sphere_svg::{motion_space_svg, SphereSvgOptions};
+pub use gltf_export::{disassembly_glb, disassembly_glb_with};
+pub use html_viewer::{disassembly_html, disassembly_html_with};
+pub use motion::AnimationOptions;
+pub use raster::{assembly_png, step_pngs, View};
+pub use sphere_svg::{
+    motion_space_png, motion_space_svg, step_motion_space_png, step_motion_space_svg,
+    SphereProjection, SphereSvgOptions,
+};

@@ -1,12 +1,28 @@
-//! The motion-space sphere as an SVG picture: both hemispheres in Lambert equal-area
-//! projection, faces shaded by how many ordered pairs of parts block them, arcs drawn,
-//! and solutions marked.
+//! The motion-space sphere as an SVG (or PNG) picture: both hemispheres in Lambert
+//! equal-area or orthographic projection, faces shaded by how many ordered pairs of
+//! parts block them, arcs drawn, solutions marked in the colour of their moving subset,
+//! a legend naming the parts of each subset, and the chosen direction ringed.
 
+use crate::colors::part_colors;
+use crate::raster::{direction_label, names_list};
+use crate::svg_png::{escape, png_bytes, svg_to_pixmap, FONT_FAMILY};
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
-use apart_plan::{BlockingRegions, CellKind, MotionSpace, Solution};
+use apart_plan::{partition_subset, BlockingRegions, CellKind, MotionSpace, Solution, Step};
 use apart_sphere::Arc;
 use std::fmt::Write;
+
+/// How each hemisphere is flattened onto its disk.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SphereProjection {
+    /// Lambert azimuthal equal-area: areas on the disk are proportional to solid
+    /// angles, so the share of free directions reads off directly.
+    #[default]
+    EqualArea,
+    /// Orthographic: the hemisphere as seen from far away along the axis; shapes near
+    /// the pole are true, the rim is compressed.
+    Orthographic,
+}
 
 /// Choices for [`motion_space_svg`].
 #[derive(Clone, Debug)]
@@ -17,6 +33,8 @@ pub struct SphereSvgOptions {
     pub title: String,
     /// A direction to mark specially (e.g. the one chosen for a step).
     pub highlight: Option<Vec3>,
+    /// How the hemispheres are flattened.
+    pub projection: SphereProjection,
 }
 
 impl Default for SphereSvgOptions {
@@ -25,29 +43,23 @@ impl Default for SphereSvgOptions {
             radius: 220.0,
             title: "motion space".into(),
             highlight: None,
+            projection: SphereProjection::EqualArea,
         }
     }
 }
 
-/// Colours for moving subsets, cycled.
-const PALETTE: [&str; 10] = [
-    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2",
-    "#bcbd22", "#7f7f7f",
-];
-
 type V3 = [f64; 3];
 
-/// Lambert azimuthal equal-area projection of unit `p` for the upper (`up`) or lower
-/// hemisphere, seen from outside the sphere; the hemisphere maps to a disk of radius √2.
-fn project(p: &V3, up: bool) -> (f64, f64) {
-    if up {
-        let k = (2.0 / (1.0 + p[2]).max(1e-12)).sqrt();
-        (p[0] * k, p[1] * k)
-    } else {
-        // Seen from below: mirror x so the picture is what one sees looking up at it.
-        let k = (2.0 / (1.0 - p[2]).max(1e-12)).sqrt();
-        (-p[0] * k, p[1] * k)
-    }
+/// Projection of unit `p` for the upper (`up`) or lower hemisphere, seen from outside
+/// the sphere; the hemisphere maps to a disk of radius √2.
+fn project(p: &V3, up: bool, projection: SphereProjection) -> (f64, f64) {
+    let z = if up { p[2] } else { -p[2] };
+    let k = match projection {
+        SphereProjection::EqualArea => (2.0 / (1.0 + z).max(1e-12)).sqrt(),
+        SphereProjection::Orthographic => std::f64::consts::SQRT_2,
+    };
+    // Seen from below: mirror x so the picture is what one sees looking up at it.
+    (if up { p[0] * k } else { -p[0] * k }, p[1] * k)
 }
 
 fn slerp_points(a: &V3, b: &V3, steps: usize) -> Vec<V3> {
@@ -84,11 +96,12 @@ fn arc_points(arc: &Arc) -> Vec<V3> {
 struct Frame {
     r: f64,
     centers: [(f64, f64); 2],
+    projection: SphereProjection,
 }
 
 impl Frame {
     fn screen(&self, p: &V3, up: bool) -> (f64, f64) {
-        let (x, y) = project(p, up);
+        let (x, y) = project(p, up, self.projection);
         let (cx, cy) = self.centers[if up { 0 } else { 1 }];
         let s = self.r / std::f64::consts::SQRT_2;
         (cx + x * s, cy - y * s)
@@ -113,7 +126,8 @@ fn face_is_upper(ms: &MotionSpace, f: u32) -> bool {
     h.is_none_or(|h| dot_sign(&z, &arr.half_edge_arc(h).normal) != Sign::Negative)
 }
 
-/// Draws the motion space of the parts `subset` as SVG.
+/// Draws the motion space of the parts `subset` (global part indices) as SVG, with the
+/// `solutions` of partitioning it (e.g. from [`apart_plan::partition_subset`]).
 pub fn motion_space_svg(
     regions: &BlockingRegions,
     subset: &[usize],
@@ -130,7 +144,7 @@ pub fn motion_space_svg(
     let names = regions.names();
     let r = opts.radius;
     let margin = 60.0;
-    let legend_w = 460.0;
+    let legend_w = 470.0;
     let width = 4.0 * r + 3.0 * margin + legend_w;
     let frame = Frame {
         r,
@@ -138,29 +152,57 @@ pub fn motion_space_svg(
             (margin + r, margin + 40.0 + r),
             (2.0 * margin + 3.0 * r, margin + 40.0 + r),
         ],
+        projection: opts.projection,
     };
-    let height = (2.0 * r + 2.0 * margin + 80.0)
-        .max(160.0 + 22.0 * (solutions.len().min(30) as f64 + names.len() as f64));
     let max_count = (0..arr.faces().len())
         .map(|f| ms.blocked_pairs(&st.faces[f]))
         .max()
         .unwrap_or(0)
         .max(1);
 
+    // Moving subsets in order of first appearance; a subset is drawn in the colours of
+    // its parts (a pie for a mark, alternating dashes for an edge).
+    let mut subsets: Vec<Vec<usize>> = Vec::new();
+    for s in solutions {
+        if !subsets.contains(&s.moving) {
+            subsets.push(s.moving.clone());
+        }
+    }
+    let part_hex: Vec<String> = part_colors(names).iter().map(|c| c.hex()).collect();
+    let colour = |m: &[usize]| -> Vec<String> { m.iter().map(|&k| part_hex[k].clone()).collect() };
+
+    // The legend first, to know the picture's height.
+    let legend = legend(
+        names,
+        subset,
+        solutions,
+        &subsets,
+        &subsets.iter().map(|m| colour(m)).collect::<Vec<_>>(),
+        opts.highlight.as_ref(),
+        max_count,
+        4.0 * r + 3.0 * margin,
+        margin + 40.0,
+    );
+    let height = (2.0 * r + 2.0 * margin + 80.0).max(legend.1 + 30.0);
+
     let mut svg = String::new();
     let _ = writeln!(
         svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="{FONT_FAMILY}">"#
     );
     let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
     let _ = writeln!(
         svg,
-        r#"<text x="{margin}" y="28" font-size="18">{}</text>"#,
+        r#"<text x="{margin}" y="30" font-size="18" font-weight="bold">{}</text>"#,
         escape(&opts.title)
     );
+    let projection = match opts.projection {
+        SphereProjection::EqualArea => "equal-area",
+        SphereProjection::Orthographic => "orthographic",
+    };
     for (k, label) in [
-        "upper hemisphere (z ≥ 0), seen from above",
-        "lower hemisphere (z ≤ 0), seen from below",
+        format!("upper hemisphere (z ≥ 0) from above, {projection}"),
+        format!("lower hemisphere (z ≤ 0) from below, {projection}"),
     ]
     .iter()
     .enumerate()
@@ -169,7 +211,7 @@ pub fn motion_space_svg(
         let _ = writeln!(
             svg,
             r#"<text x="{cx:.1}" y="{:.1}" font-size="13" text-anchor="middle">{label}</text>"#,
-            cy + r + 24.0
+            cy + r + 26.0
         );
         let _ = writeln!(
             svg,
@@ -181,16 +223,7 @@ pub fn motion_space_svg(
     for f in 0..arr.faces().len() as u32 {
         let count = ms.blocked_pairs(&st.faces[f as usize]);
         let up = face_is_upper(&ms, f);
-        let shade = 245.0 - 165.0 * count as f64 / max_count as f64;
-        let fill = if count == 0 {
-            "#ffffff".to_string()
-        } else {
-            format!(
-                "rgb({0:.0},{0:.0},{1:.0})",
-                shade,
-                (shade + 20.0).min(255.0)
-            )
-        };
+        let fill = shade(count, max_count);
         let mut d = String::new();
         for lp in arr.boundary_loops(f) {
             let mut first = true;
@@ -231,49 +264,48 @@ pub fn motion_space_svg(
             svg,
             r##"<circle cx="{cx:.2}" cy="{cy:.2}" r="{r:.2}" fill="none" stroke="#000" stroke-width="1.2"/>"##
         );
-        // Axis hints.
+        // Axis hints: +x to the right from above, to the left from below; +y up in both.
         let sx = if k == 0 { 1.0 } else { -1.0 };
         let _ = writeln!(
             svg,
-            r##"<text x="{:.1}" y="{:.1}" font-size="11" fill="#555">+x</text>"##,
-            cx + sx * (r + 6.0) - if k == 1 { 14.0 } else { 0.0 },
-            cy + 4.0
+            r##"<text x="{:.1}" y="{:.1}" font-size="12" fill="#555" text-anchor="{}">+x</text>"##,
+            cx + sx * (r + 5.0),
+            cy + 4.0,
+            if k == 0 { "start" } else { "end" }
         );
         let _ = writeln!(
             svg,
-            r##"<text x="{:.1}" y="{:.1}" font-size="11" fill="#555">+y</text>"##,
-            cx - 6.0,
-            cy - r - 6.0
+            r##"<text x="{:.1}" y="{:.1}" font-size="12" fill="#555" text-anchor="middle">+y</text>"##,
+            cx,
+            cy - r - 10.0
         );
     }
 
     // Solutions.
-    let mut subsets: Vec<Vec<usize>> = Vec::new();
-    for s in solutions {
-        if !subsets.contains(&s.moving) {
-            subsets.push(s.moving.clone());
-        }
-    }
-    let colour =
-        |m: &Vec<usize>| PALETTE[subsets.iter().position(|x| x == m).unwrap_or(0) % PALETTE.len()];
     for s in solutions {
         let c = colour(&s.moving);
+        let who = names_list(names, &s.moving, 8);
         let u = s.unit;
         match s.cell {
-            CellKind::Vertex => mark(&mut svg, &frame, &u, c, 5.0, "vertex"),
+            CellKind::Vertex => mark(&mut svg, &frame, &u, &c, 5.0, &format!("{who}: vertex")),
             CellKind::Face => mark(
                 &mut svg,
                 &frame,
                 &u,
-                c,
+                &c,
                 7.0,
-                &format!("face, clearance {:.1}°", s.clearance_deg),
+                &format!("{who}: face, clearance {:.1}°", s.clearance_deg),
             ),
             CellKind::Edge => {
                 // Thicken the whole edge through the representative direction.
                 for e in edge_run(&ms, &s.direction) {
                     let pts = arc_points(&arr.edge_arc(e));
-                    draw_polyline(&mut svg, &frame, &pts, c, 4.0, Some("edge (sliding)"));
+                    let title = format!("{who}: edge (sliding)");
+                    let n = c.len() as f64;
+                    for (i, c) in c.iter().enumerate() {
+                        let dash = (n > 1.0).then(|| (8.0, 8.0 * (n - 1.0), -8.0 * i as f64));
+                        draw_polyline_dashed(&mut svg, &frame, &pts, c, 4.5, Some(&title), dash);
+                    }
                 }
             }
         }
@@ -285,69 +317,226 @@ pub fn motion_space_svg(
                 let (x, y) = frame.screen(&u, up);
                 let _ = writeln!(
                     svg,
-                    r##"<circle cx="{x:.2}" cy="{y:.2}" r="11" fill="none" stroke="#000" stroke-width="2.5"><title>chosen direction</title></circle>"##
+                    r##"<circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#fff" stroke-width="5"/><circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#000" stroke-width="2.5"><title>chosen direction</title></circle>"##
                 );
             }
         }
     }
-
-    // Legend.
-    let lx = 4.0 * r + 3.0 * margin;
-    let mut ly = margin + 40.0;
-    let _ = writeln!(
-        svg,
-        r#"<text x="{lx}" y="{ly}" font-size="14" font-weight="bold">shade: blocked ordered pairs (max {max_count})</text>"#
-    );
-    ly += 22.0;
-    let _ = writeln!(
-        svg,
-        r#"<text x="{lx}" y="{ly}" font-size="12">white: no pair blocks; darker: more pairs block</text>"#
-    );
-    ly += 26.0;
-    let _ = writeln!(
-        svg,
-        r#"<text x="{lx}" y="{ly}" font-size="14" font-weight="bold">{}</text>"#,
-        if solutions.is_empty() {
-            "interlocked: no solution".to_string()
-        } else {
-            format!("solutions ({})", solutions.len())
-        }
-    );
-    ly += 20.0;
-    for m in &subsets {
-        let kinds: Vec<&str> = solutions
-            .iter()
-            .filter(|s| &s.moving == m)
-            .map(|s| s.cell.name())
-            .collect();
-        let count = |k: &str, plural: &str| {
-            let n = kinds.iter().filter(|x| **x == k).count();
-            format!("{n} {}", if n == 1 { k } else { plural })
-        };
-        let label: Vec<&str> = m.iter().map(|&k| names[k].as_str()).collect();
-        let _ = writeln!(
-            svg,
-            r#"<circle cx="{}" cy="{}" r="6" fill="{}"/>"#,
-            lx + 6.0,
-            ly - 4.0,
-            colour(m)
-        );
-        let _ = writeln!(
-            svg,
-            r#"<text x="{}" y="{ly}" font-size="12">{} moves: {}, {}, {}</text>"#,
-            lx + 18.0,
-            escape(&label.join(", ")),
-            count("face", "faces"),
-            count("edge", "edges"),
-            count("vertex", "vertices")
-        );
-        ly += 20.0;
-        if ly > height - 20.0 {
-            break;
-        }
-    }
+    svg.push_str(&legend.0);
     svg.push_str("</svg>\n");
     svg
+}
+
+/// The fill of a face blocked by `count` of at most `max` ordered pairs.
+fn shade(count: usize, max: usize) -> String {
+    if count == 0 {
+        return "#ffffff".to_string();
+    }
+    let shade = 235.0 - 155.0 * count as f64 / max as f64;
+    format!(
+        "rgb({0:.0},{0:.0},{1:.0})",
+        shade,
+        (shade + 20.0).min(255.0)
+    )
+}
+
+/// The legend (SVG elements) at `(x, y)` and the y where it ends.
+#[allow(clippy::too_many_arguments)]
+fn legend(
+    names: &[String],
+    subset: &[usize],
+    solutions: &[Solution],
+    subsets: &[Vec<usize>],
+    colors: &[Vec<String>],
+    highlight: Option<&Vec3>,
+    max_count: usize,
+    x: f64,
+    mut y: f64,
+) -> (String, f64) {
+    let mut svg = String::new();
+    let wrap = |text: &str| wrap_words(text, 62);
+    for line in wrap(&format!("parts: {}", names_list(names, subset, 40))) {
+        let _ = writeln!(
+            svg,
+            r#"<text x="{x}" y="{y}" font-size="13">{}</text>"#,
+            escape(&line)
+        );
+        y += 18.0;
+    }
+    y += 12.0;
+    let _ = writeln!(
+        svg,
+        r#"<text x="{x}" y="{y}" font-size="14" font-weight="bold">shade: blocked ordered pairs</text>"#
+    );
+    y += 12.0;
+    let steps = max_count.min(8);
+    for k in 0..=steps {
+        let count = (k * max_count).checked_div(steps).unwrap_or(0);
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{:.1}" y="{y}" width="28" height="14" fill="{}" stroke="#999" stroke-width="0.5"/>"##,
+            x + 28.0 * k as f64,
+            shade(count, max_count)
+        );
+    }
+    y += 28.0;
+    let _ = writeln!(
+        svg,
+        r#"<text x="{x}" y="{y}" font-size="12">white: free of every pair; darkest: {max_count} pairs block</text>"#
+    );
+    y += 30.0;
+    let _ = writeln!(
+        svg,
+        r#"<text x="{x}" y="{y}" font-size="14" font-weight="bold">{}</text>"#,
+        if solutions.is_empty() {
+            "interlocked: no subset can move".to_string()
+        } else {
+            format!("solutions ({}), by moving parts", solutions.len())
+        }
+    );
+    y += 8.0;
+    let _ = writeln!(
+        svg,
+        r##"<text x="{x}" y="{:.0}" font-size="11" fill="#555">dot: vertex or deepest point of a face; thick arc: sliding edge</text>"##,
+        y + 12.0
+    );
+    y += 32.0;
+    const MAX_ROWS: usize = 24;
+    for (i, m) in subsets.iter().enumerate() {
+        if i == MAX_ROWS {
+            let _ = writeln!(
+                svg,
+                r#"<text x="{x}" y="{y}" font-size="12">… and {} more subsets</text>"#,
+                subsets.len() - MAX_ROWS
+            );
+            y += 20.0;
+            break;
+        }
+        let count = |k: CellKind, one: &str, many: &str| {
+            let n = solutions
+                .iter()
+                .filter(|s| &s.moving == m && s.cell == k)
+                .count();
+            (n > 0).then(|| format!("{n} {}", if n == 1 { one } else { many }))
+        };
+        let kinds: Vec<String> = [
+            count(CellKind::Face, "face", "faces"),
+            count(CellKind::Edge, "edge", "edges"),
+            count(CellKind::Vertex, "vertex", "vertices"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        pie(&mut svg, x + 6.0, y - 4.0, 6.5, &colors[i], "");
+        let text = format!(
+            "{} {}: {}",
+            names_list(names, m, 12),
+            if m.len() == 1 { "moves" } else { "move" },
+            kinds.join(", ")
+        );
+        for line in wrap_words(&text, 58) {
+            let _ = writeln!(
+                svg,
+                r#"<text x="{}" y="{y}" font-size="12">{}</text>"#,
+                x + 18.0,
+                escape(&line)
+            );
+            y += 16.0;
+        }
+        y += 4.0;
+    }
+    if let Some(h) = highlight {
+        y += 10.0;
+        let _ = writeln!(
+            svg,
+            r##"<circle cx="{}" cy="{}" r="8" fill="none" stroke="#000" stroke-width="2.5"/>"##,
+            x + 6.0,
+            y - 4.0
+        );
+        let u = h.unit_f64();
+        let exact = h.to_strings();
+        let label = if exact.iter().all(|s| s.len() <= 6) {
+            format!("({})", exact.join(", "))
+        } else {
+            format!("({:.3}, {:.3}, {:.3})", u[0], u[1], u[2])
+        };
+        let _ = writeln!(
+            svg,
+            r#"<text x="{}" y="{y}" font-size="12">chosen direction {}</text>"#,
+            x + 18.0,
+            escape(&label)
+        );
+        y += 20.0;
+    }
+    (svg, y)
+}
+
+/// Splits `text` into lines of at most about `width` characters at spaces.
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split(' ') {
+        let line = lines.last_mut().expect("non-empty");
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            lines.push(word.to_string());
+        } else {
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+    }
+    lines
+}
+
+/// [`motion_space_svg`] rendered to PNG bytes (1 SVG pixel = 1 PNG pixel).
+pub fn motion_space_png(
+    regions: &BlockingRegions,
+    subset: &[usize],
+    solutions: &[Solution],
+    opts: &SphereSvgOptions,
+) -> Vec<u8> {
+    svg_png(&motion_space_svg(regions, subset, solutions, opts))
+}
+
+/// The motion space of the subassembly a plan step splits, its solutions, and the
+/// step's direction ringed. When `opts.title` is left at its default, the title says
+/// which parts move along which direction.
+pub fn step_motion_space_svg(
+    regions: &BlockingRegions,
+    step: &Step,
+    opts: &SphereSvgOptions,
+) -> String {
+    let (p, _) = partition_subset(regions, &step.subassembly, &Default::default());
+    let mut opts = opts.clone();
+    if opts.title == SphereSvgOptions::default().title {
+        opts.title = format!(
+            "{} {} along {} ({} cell)",
+            names_list(regions.names(), &step.moving, 6),
+            if step.moving.len() == 1 {
+                "moves"
+            } else {
+                "move"
+            },
+            direction_label(step),
+            step.cell.name()
+        );
+    }
+    opts.highlight = Some(step.direction.clone());
+    motion_space_svg(regions, &step.subassembly, &p.solutions, &opts)
+}
+
+/// [`step_motion_space_svg`] rendered to PNG bytes.
+pub fn step_motion_space_png(
+    regions: &BlockingRegions,
+    step: &Step,
+    opts: &SphereSvgOptions,
+) -> Vec<u8> {
+    svg_png(&step_motion_space_svg(regions, step, opts))
+}
+
+fn svg_png(svg: &str) -> Vec<u8> {
+    let pixmap = svg_to_pixmap(svg, 1.0).expect("the sphere SVG is well formed");
+    png_bytes(&pixmap)
 }
 
 /// The arrangement edges of the edge cell through point `d`: the edge containing it,
@@ -394,18 +583,49 @@ fn edge_run(ms: &MotionSpace, d: &Vec3) -> Vec<u32> {
     run
 }
 
-fn mark(svg: &mut String, frame: &Frame, u: &V3, colour: &str, radius: f64, title: &str) {
+fn mark(svg: &mut String, frame: &Frame, u: &V3, colours: &[String], radius: f64, title: &str) {
     for up in [true, false] {
         if (u[2] > 0.0 && !up) || (u[2] < 0.0 && up) {
             continue;
         }
         let (x, y) = frame.screen(u, up);
-        let _ = writeln!(
-            svg,
-            r##"<circle cx="{x:.2}" cy="{y:.2}" r="{radius}" fill="{colour}" stroke="#000" stroke-width="0.8"><title>{}</title></circle>"##,
-            escape(title)
-        );
+        pie(svg, x, y, radius, colours, title);
     }
+}
+
+/// A disk at `(x, y)` split into equal slices of `colours` (one colour: a plain disk).
+fn pie(svg: &mut String, x: f64, y: f64, r: f64, colours: &[String], title: &str) {
+    let title = if title.is_empty() {
+        String::new()
+    } else {
+        format!("<title>{}</title>", escape(title))
+    };
+    let _ = write!(svg, "<g>{title}");
+    if colours.len() <= 1 {
+        let c = colours.first().map_or("#000", |c| c.as_str());
+        let _ = write!(
+            svg,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{r}" fill="{c}"/>"#
+        );
+    } else {
+        let n = colours.len() as f64;
+        for (i, c) in colours.iter().enumerate() {
+            // Slices clockwise from the top.
+            let a0 = std::f64::consts::TAU * i as f64 / n - std::f64::consts::FRAC_PI_2;
+            let a1 = std::f64::consts::TAU * (i + 1) as f64 / n - std::f64::consts::FRAC_PI_2;
+            let (x0, y0) = (x + r * a0.cos(), y + r * a0.sin());
+            let (x1, y1) = (x + r * a1.cos(), y + r * a1.sin());
+            let large = if a1 - a0 > std::f64::consts::PI { 1 } else { 0 };
+            let _ = write!(
+                svg,
+                r#"<path d="M{x:.2},{y:.2} L{x0:.2},{y0:.2} A{r},{r} 0 {large} 1 {x1:.2},{y1:.2} Z" fill="{c}"/>"#
+            );
+        }
+    }
+    let _ = writeln!(
+        svg,
+        r##"<circle cx="{x:.2}" cy="{y:.2}" r="{r}" fill="none" stroke="#000" stroke-width="0.9"/></g>"##
+    );
 }
 
 fn draw_polyline(
@@ -415,6 +635,19 @@ fn draw_polyline(
     colour: &str,
     width: f64,
     title: Option<&str>,
+) {
+    draw_polyline_dashed(svg, frame, pts, colour, width, title, None);
+}
+
+/// A polyline on the sphere, optionally dashed: `(dash, gap, offset)` in pixels.
+fn draw_polyline_dashed(
+    svg: &mut String,
+    frame: &Frame,
+    pts: &[V3],
+    colour: &str,
+    width: f64,
+    title: Option<&str>,
+    dash: Option<(f64, f64, f64)>,
 ) {
     // Split where the polyline changes hemisphere; draw each run in its view.
     let mut runs: Vec<(bool, Vec<V3>)> = Vec::new();
@@ -441,17 +674,13 @@ fn draw_polyline(
         let t = title
             .map(|t| format!("<title>{}</title>", escape(t)))
             .unwrap_or_default();
+        let dashes = dash.map_or(String::new(), |(on, off, offset)| {
+            format!(r#" stroke-dasharray="{on} {off}" stroke-dashoffset="{offset}""#)
+        });
         let _ = writeln!(
             svg,
-            r#"<path d="{d}" fill="none" stroke="{colour}" stroke-width="{width}" clip-path="url(#disk{})">{t}</path>"#,
+            r#"<path d="{d}" fill="none" stroke="{colour}" stroke-width="{width}"{dashes} clip-path="url(#disk{})">{t}</path>"#,
             if up { 0 } else { 1 }
         );
     }
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }

@@ -1,0 +1,705 @@
+//! Renders of the assembly without a GPU: a z-buffer rasterizer of our own, flat
+//! shading, 2×2 supersampling, outlines where the visible part or face plane changes,
+//! and a caption drawn over it with resvg.
+//!
+//! Highlighted parts are opaque, in their colours; the others are grey and slightly
+//! transparent (the nearest grey surface is blended over what lies behind it), so a
+//! highlighted part inside the assembly still shows through.
+
+use crate::colors::{mix, part_colors, Rgb, BACKGROUND, GREY};
+use crate::shapes::{add, bounds_of, cross, dot, normalize, part_shapes, scale, sub, PartShape};
+use crate::svg_png::{escape, overlay, png_bytes, FONT_FAMILY};
+use apart_assembly::Assembly;
+use apart_plan::{Sequence, Step};
+use resvg::tiny_skia::{Pixmap, PremultipliedColorU8};
+use std::fmt::Write;
+
+/// An orthographic camera looking at the assembly's centre, and what to write on the
+/// picture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct View {
+    /// Angle of the eye around the up axis, in degrees (0: the eye on the +x side for a
+    /// z-up view; 90: on the +y side).
+    pub azimuth_deg: f64,
+    /// Height of the eye above the horizontal plane, in degrees (90: from straight
+    /// above).
+    pub elevation_deg: f64,
+    /// The input axis pointing up in the picture.
+    pub up: [f64; 3],
+    /// Write part names (a legend) and, for steps, a caption and an arrow.
+    pub labels: bool,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            azimuth_deg: -60.0,
+            elevation_deg: 25.0,
+            up: [0.0, 0.0, 1.0],
+            labels: true,
+        }
+    }
+}
+
+/// A render of the whole assembly in place as PNG bytes: the parts listed in
+/// `highlight` (part indices) in their colours, the others grey; an empty `highlight`
+/// draws every part in its colour. With `view.labels`, a legend names the coloured
+/// parts.
+pub fn assembly_png(
+    assembly: &Assembly,
+    highlight: &[usize],
+    view: &View,
+    width: u32,
+    height: u32,
+) -> Vec<u8> {
+    let shapes = part_shapes(assembly);
+    let colors = part_colors(&part_names(assembly));
+    let items: Vec<Item> = (0..shapes.len())
+        .map(|k| {
+            let lit = highlight.is_empty() || highlight.contains(&k);
+            Item {
+                part: k,
+                offset: [0.0; 3],
+                color: if lit { colors[k] } else { GREY },
+                ghost: !lit,
+            }
+        })
+        .collect();
+    let legend_w = if view.labels {
+        legend_width(width)
+    } else {
+        0.0
+    };
+    let points = item_points(&shapes, &items);
+    let camera = Camera::fit(
+        view,
+        &points,
+        width,
+        height,
+        [12.0, 12.0, 12.0, legend_w + 12.0],
+    );
+    let mut pixmap = render(&shapes, &items, &camera, width, height);
+    if view.labels {
+        let lit: Vec<usize> = items.iter().filter(|i| !i.ghost).map(|i| i.part).collect();
+        let svg = legend_svg(assembly, &colors, &lit, width, height, legend_w);
+        overlay(&mut pixmap, &svg);
+    }
+    png_bytes(&pixmap)
+}
+
+/// One render per step of `sequence`, as PNG bytes, all with the same camera: the
+/// subassembly being split, its moving side in colour and pulled a little way out along
+/// the step's direction, the side that stays in grey; with `view.labels`, a caption
+/// (step number, moving and staying parts, direction, cell kind, clearance) and an
+/// arrow along the direction.
+pub fn step_pngs(
+    assembly: &Assembly,
+    sequence: &Sequence,
+    view: &View,
+    width: u32,
+    height: u32,
+) -> Vec<Vec<u8>> {
+    let shapes = part_shapes(assembly);
+    let colors = part_colors(&part_names(assembly));
+    let scenes: Vec<Vec<Item>> = sequence
+        .steps
+        .iter()
+        .map(|s| step_items(&shapes, &colors, s))
+        .collect();
+    let top = if view.labels { 58.0 } else { 12.0 };
+    sequence
+        .steps
+        .iter()
+        .zip(&scenes)
+        .enumerate()
+        .map(|(k, (step, items))| {
+            // Fit the subassembly, its pulled-out side, and room for the arrow beyond.
+            let mut points = item_points(&shapes, items);
+            let ahead: Vec<Item> = items
+                .iter()
+                .filter(|i| !i.ghost)
+                .map(|i| Item {
+                    offset: scale(i.offset, 1.8),
+                    ..i.clone()
+                })
+                .collect();
+            points.extend(item_points(&shapes, &ahead));
+            let camera = Camera::fit(view, &points, width, height, [top, 12.0, 12.0, 12.0]);
+            let mut pixmap = render(&shapes, items, &camera, width, height);
+            if view.labels {
+                let svg = step_svg(
+                    &shapes, sequence, k, step, items, &colors, &camera, width, height,
+                );
+                overlay(&mut pixmap, &svg);
+            }
+            png_bytes(&pixmap)
+        })
+        .collect()
+}
+
+fn part_names(assembly: &Assembly) -> Vec<&str> {
+    assembly.parts.iter().map(|p| p.name.as_str()).collect()
+}
+
+/// The parts of a step's subassembly: the moving ones in colour, pulled out by a third
+/// of the subassembly's diagonal; the others grey.
+fn step_items(shapes: &[PartShape], colors: &[Rgb], step: &Step) -> Vec<Item> {
+    let sub: Vec<PartShape> = step
+        .subassembly
+        .iter()
+        .filter_map(|&k| shapes.get(k).cloned())
+        .collect();
+    let pull = scale(step.unit, bounds_of(&sub, None).diagonal() / 3.0);
+    step.subassembly
+        .iter()
+        .filter(|&&k| k < shapes.len())
+        .map(|&k| {
+            let moving = step.moving.contains(&k);
+            Item {
+                part: k,
+                offset: if moving { pull } else { [0.0; 3] },
+                color: if moving { colors[k] } else { GREY },
+                ghost: !moving,
+            }
+        })
+        .collect()
+}
+
+/// A part placed in a picture.
+#[derive(Clone, Debug)]
+struct Item {
+    part: usize,
+    offset: [f64; 3],
+    color: Rgb,
+    /// Grey and see-through (not highlighted).
+    ghost: bool,
+}
+
+fn item_points(shapes: &[PartShape], items: &[Item]) -> Vec<[f64; 3]> {
+    items
+        .iter()
+        .flat_map(|it| {
+            shapes[it.part]
+                .triangles
+                .iter()
+                .flatten()
+                .map(move |p| add(*p, it.offset))
+        })
+        .collect()
+}
+
+/// Orthographic projection onto the picture.
+#[derive(Clone, Debug)]
+struct Camera {
+    right: [f64; 3],
+    up: [f64; 3],
+    /// Unit vector from the scene towards the eye.
+    eye: [f64; 3],
+    center: [f64; 3],
+    scale: f64,
+    /// Picture coordinates of `center`.
+    origin: (f64, f64),
+}
+
+impl Camera {
+    /// The camera of `view` scaled and centred so that `points` fill the picture less
+    /// the margins (top, bottom, left, right).
+    fn fit(view: &View, points: &[[f64; 3]], width: u32, height: u32, margins: [f64; 4]) -> Camera {
+        let u = normalize(view.up);
+        let u = if u == [0.0; 3] { [0.0, 0.0, 1.0] } else { u };
+        let reference = if u[0].abs() < 0.9 {
+            [1.0, 0.0, 0.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        let x = normalize(sub(reference, scale(u, dot(reference, u))));
+        let y = cross(u, x);
+        let (az, el) = (
+            view.azimuth_deg.to_radians(),
+            view.elevation_deg.to_radians(),
+        );
+        let eye = normalize(add(
+            add(scale(x, el.cos() * az.cos()), scale(y, el.cos() * az.sin())),
+            scale(u, el.sin()),
+        ));
+        let mut right = normalize(cross(scale(eye, -1.0), u));
+        if right == [0.0; 3] {
+            // Looking along the up axis: keep x to the right.
+            right = x;
+        }
+        let up = cross(right, scale(eye, -1.0));
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in points {
+            let (a, b) = (dot(*p, right), dot(*p, up));
+            lo = [lo[0].min(a), lo[1].min(b)];
+            hi = [hi[0].max(a), hi[1].max(b)];
+        }
+        if points.is_empty() {
+            (lo, hi) = ([-1.0; 2], [1.0; 2]);
+        }
+        let [top, bottom, left, right_margin] = margins;
+        let avail_w = (width as f64 - left - right_margin).max(1.0);
+        let avail_h = (height as f64 - top - bottom).max(1.0);
+        let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
+        let s = (avail_w / span[0]).min(avail_h / span[1]);
+        let mid = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+        Camera {
+            right,
+            up,
+            eye,
+            center: add(scale(right, mid[0]), scale(up, mid[1])),
+            scale: s,
+            origin: (left + avail_w / 2.0, top + avail_h / 2.0),
+        }
+    }
+
+    /// Picture coordinates (x right, y down) and depth (smaller is nearer).
+    fn project(&self, p: [f64; 3]) -> (f64, f64, f64) {
+        let q = sub(p, self.center);
+        (
+            self.origin.0 + self.scale * dot(q, self.right),
+            self.origin.1 - self.scale * dot(q, self.up),
+            -dot(q, self.eye),
+        )
+    }
+
+    /// The light: from the upper left, in front.
+    fn light(&self) -> [f64; 3] {
+        normalize(add(
+            add(scale(self.eye, 0.75), scale(self.up, 0.55)),
+            scale(self.right, -0.35),
+        ))
+    }
+}
+
+/// Samples per pixel along each axis.
+const SS: usize = 2;
+/// Opacity of the grey parts.
+const GHOST_ALPHA: f64 = 0.72;
+/// Colour of outlines.
+const EDGE: Rgb = Rgb(35, 35, 40);
+
+/// The flat-shaded colour of a face with unit normal `n`.
+fn shade(base: Rgb, n: [f64; 3], light: [f64; 3]) -> Rgb {
+    let s = 0.42 + 0.58 * dot(n, light).max(0.0);
+    let f = |c: u8| (c as f64 * s).round().min(255.0) as u8;
+    Rgb(f(base.0), f(base.1), f(base.2))
+}
+
+/// One depth layer: nearest depth and face id (0 = nothing) per sample.
+struct Layer {
+    depth: Vec<f32>,
+    face: Vec<u32>,
+}
+
+impl Layer {
+    fn new(n: usize) -> Layer {
+        Layer {
+            depth: vec![f32::INFINITY; n],
+            face: vec![0; n],
+        }
+    }
+}
+
+/// A visible face: its shaded colour and the item it belongs to.
+struct Face {
+    color: Rgb,
+    item: u32,
+}
+
+fn render(
+    shapes: &[PartShape],
+    items: &[Item],
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Pixmap {
+    let (w, h) = (width.max(1) as usize * SS, height.max(1) as usize * SS);
+    let mut opaque = Layer::new(w * h);
+    let mut ghost = Layer::new(w * h);
+    let mut faces = vec![Face {
+        color: BACKGROUND,
+        item: u32::MAX,
+    }];
+    let light = camera.light();
+    for (i, it) in items.iter().enumerate() {
+        let shape = &shapes[it.part];
+        let planes = shape.plane.iter().max().map_or(0, |&m| m as usize + 1);
+        let base = faces.len() as u32;
+        let mut shaded = vec![false; planes];
+        faces.extend((0..planes).map(|_| Face {
+            color: it.color,
+            item: i as u32,
+        }));
+        let layer = if it.ghost { &mut ghost } else { &mut opaque };
+        for (t, tri) in shape.triangles.iter().enumerate() {
+            let n = shape.normal(t);
+            if dot(n, camera.eye) <= 0.0 {
+                continue;
+            }
+            let plane = shape.plane[t] as usize;
+            if !shaded[plane] {
+                faces[base as usize + plane].color = shade(it.color, n, light);
+                shaded[plane] = true;
+            }
+            let v = tri.map(|p| {
+                let (x, y, z) = camera.project(add(p, it.offset));
+                (x * SS as f64, y * SS as f64, z)
+            });
+            fill_triangle(layer, w, h, v, base + plane as u32);
+        }
+    }
+
+    // Compose: the grey layer over the coloured one where it is in front.
+    let mut color = vec![BACKGROUND; w * h];
+    let mut front = vec![0u32; w * h];
+    for p in 0..w * h {
+        let (o, g) = (opaque.face[p], ghost.face[p]);
+        let c = faces[o as usize].color;
+        if g != 0 && ghost.depth[p] < opaque.depth[p] {
+            color[p] = mix(c, faces[g as usize].color, GHOST_ALPHA);
+            front[p] = g;
+        } else {
+            color[p] = c;
+            front[p] = o;
+        }
+    }
+    // Outlines: both samples on either side of a change of visible face.
+    let mut edge = vec![0f64; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let p = y * w + x;
+            for q in [(x + 1 < w).then(|| p + 1), (y + 1 < h).then(|| p + w)]
+                .into_iter()
+                .flatten()
+            {
+                let (a, b) = (front[p], front[q]);
+                if a != b {
+                    let strength = if faces[a as usize].item != faces[b as usize].item {
+                        0.9
+                    } else {
+                        0.45
+                    };
+                    edge[p] = edge[p].max(strength);
+                    edge[q] = edge[q].max(strength);
+                }
+            }
+        }
+    }
+    // Average each SS × SS block.
+    let mut pixmap = Pixmap::new(width.max(1), height.max(1)).expect("non-zero size");
+    let out = pixmap.pixels_mut();
+    for py in 0..height.max(1) as usize {
+        for px in 0..width.max(1) as usize {
+            let mut sum = [0f64; 3];
+            for dy in 0..SS {
+                for dx in 0..SS {
+                    let p = (py * SS + dy) * w + px * SS + dx;
+                    let c = mix(color[p], EDGE, edge[p]);
+                    sum[0] += c.0 as f64;
+                    sum[1] += c.1 as f64;
+                    sum[2] += c.2 as f64;
+                }
+            }
+            let n = (SS * SS) as f64;
+            let [r, g, b] = sum.map(|s| (s / n).round() as u8);
+            out[py * width.max(1) as usize + px] =
+                PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
+        }
+    }
+    pixmap
+}
+
+/// Z-buffered fill of one triangle (sample centres at half-integers).
+fn fill_triangle(layer: &mut Layer, w: usize, h: usize, v: [(f64, f64, f64); 3], face: u32) {
+    let [(x0, y0, z0), (x1, y1, z1), (x2, y2, z2)] = v;
+    let area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
+    if area.abs() < 1e-12 || !area.is_finite() {
+        return;
+    }
+    let min_x = x0.min(x1).min(x2).floor().max(0.0) as usize;
+    let max_x = (x0.max(x1).max(x2).ceil() as isize).min(w as isize - 1);
+    let min_y = y0.min(y1).min(y2).floor().max(0.0) as usize;
+    let max_y = (y0.max(y1).max(y2).ceil() as isize).min(h as isize - 1);
+    if max_x < 0 || max_y < 0 {
+        return;
+    }
+    let inv = 1.0 / area;
+    for y in min_y..=max_y as usize {
+        let py = y as f64 + 0.5;
+        for x in min_x..=max_x as usize {
+            let px = x as f64 + 0.5;
+            // Barycentric weights; all of one sign inside (either orientation).
+            let w0 = ((x1 - px) * (y2 - py) - (x2 - px) * (y1 - py)) * inv;
+            let w1 = ((x2 - px) * (y0 - py) - (x0 - px) * (y2 - py)) * inv;
+            let w2 = 1.0 - w0 - w1;
+            if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                continue;
+            }
+            let z = (w0 * z0 + w1 * z1 + w2 * z2) as f32;
+            let p = y * w + x;
+            if z < layer.depth[p] {
+                layer.depth[p] = z;
+                layer.face[p] = face;
+            }
+        }
+    }
+}
+
+/// Width of the legend column for a picture `width` wide.
+fn legend_width(width: u32) -> f64 {
+    (width as f64 * 0.24).clamp(90.0, 200.0)
+}
+
+/// A legend of the coloured parts in the right-hand column.
+fn legend_svg(
+    assembly: &Assembly,
+    colors: &[Rgb],
+    lit: &[usize],
+    width: u32,
+    height: u32,
+    legend_w: f64,
+) -> String {
+    let mut svg = svg_open(width, height);
+    let x = width as f64 - legend_w;
+    let line = 18.0;
+    let fit = ((height as f64 - 24.0) / line).floor().max(1.0) as usize;
+    for (row, &k) in lit.iter().enumerate() {
+        let y = 20.0 + row as f64 * line;
+        if row + 1 == fit && lit.len() > fit {
+            let _ = writeln!(
+                svg,
+                r##"<text x="{x:.1}" y="{y:.1}" font-size="12" fill="#333">… and {} more</text>"##,
+                lit.len() - row
+            );
+            break;
+        }
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x:.1}" y="{:.1}" width="12" height="12" fill="{}" stroke="#333" stroke-width="0.6"/><text x="{:.1}" y="{y:.1}" font-size="13" fill="#222">{}</text>"##,
+            y - 10.5,
+            colors[k].hex(),
+            x + 18.0,
+            escape(&assembly.parts[k].name)
+        );
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+fn svg_open(width: u32, height: u32) -> String {
+    format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="{FONT_FAMILY}">"#
+    ) + "\n"
+}
+
+/// "(0.577, 0.577, 0.577)" with the exact integer direction when it is short.
+pub(crate) fn direction_label(step: &Step) -> String {
+    let exact = step.direction.to_strings();
+    if exact.iter().all(|s| s.len() <= 6) {
+        format!("({})", exact.join(", "))
+    } else {
+        let u = step.unit;
+        format!("({:.3}, {:.3}, {:.3})", u[0], u[1], u[2])
+    }
+}
+
+/// Names of parts `ks` joined by commas, shortened past `max` names.
+pub(crate) fn names_list(names: &[String], ks: &[usize], max: usize) -> String {
+    let mut out: Vec<&str> = ks
+        .iter()
+        .take(max)
+        .map(|&k| names.get(k).map_or("?", |s| s.as_str()))
+        .collect();
+    let more;
+    if ks.len() > max {
+        more = format!("… ({} more)", ks.len() - max);
+        out.push(&more);
+    }
+    out.join(", ")
+}
+
+/// Caption and arrow of step `k`.
+#[allow(clippy::too_many_arguments)]
+fn step_svg(
+    shapes: &[PartShape],
+    sequence: &Sequence,
+    k: usize,
+    step: &Step,
+    items: &[Item],
+    colors: &[Rgb],
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> String {
+    let names = &sequence.names;
+    let rest: Vec<usize> = step
+        .subassembly
+        .iter()
+        .copied()
+        .filter(|p| !step.moving.contains(p))
+        .collect();
+    let mut svg = svg_open(width, height);
+    let verb = if step.moving.len() == 1 {
+        "moves"
+    } else {
+        "move"
+    };
+    let _ = writeln!(
+        svg,
+        r##"<text x="12" y="22" font-size="16" fill="#111"><tspan font-weight="bold">Step {} of {}:</tspan> {} {verb} along {}</text>"##,
+        k + 1,
+        sequence.steps.len(),
+        escape(&names_list(names, &step.moving, 6)),
+        direction_label(step)
+    );
+    let clearance = if step.clearance_deg > 0.0 {
+        format!(", clearance {:.1}°", step.clearance_deg)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        svg,
+        r##"<text x="12" y="42" font-size="13" fill="#444">{} cell{clearance}; {} {} in place</text>"##,
+        step.cell.name(),
+        escape(&names_list(names, &rest, 6)),
+        if rest.len() == 1 { "stays" } else { "stay" }
+    );
+    // Swatches of the moving parts' colours after the caption would crowd it; instead
+    // the arrow takes the colour of the first moving part.
+    let moved: Vec<Item> = items.iter().filter(|i| !i.ghost).cloned().collect();
+    let b = crate::shapes::bounds_of(
+        &moved
+            .iter()
+            .map(|i| shapes[i.part].clone())
+            .collect::<Vec<_>>(),
+        Some(&moved.iter().map(|i| i.offset).collect::<Vec<_>>()),
+    );
+    if !b.is_empty() {
+        let (x0, y0, _) = camera.project(b.center());
+        let tip = add(b.center(), scale(step.unit, 1.0));
+        let (x1, y1, _) = camera.project(tip);
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        let len = (dx * dx + dy * dy).sqrt();
+        let colour = step.moving.first().map_or(EDGE, |&m| colors[m]);
+        let size = (width.min(height) as f64 * 0.16).max(30.0);
+        if len > 0.25 * camera.scale {
+            // Arrow along the projected direction, just outside the moving side's
+            // silhouette when the picture has room, else from its centre.
+            let (ux, uy) = (dx / len, dy / len);
+            let reach = item_points(shapes, &moved)
+                .into_iter()
+                .map(|p| {
+                    let (x, y, _) = camera.project(p);
+                    (x - x0) * ux + (y - y0) * uy
+                })
+                .fold(0.0, f64::max);
+            let room = |t: f64| {
+                let (x, y) = (x0 + ux * t, y0 + uy * t);
+                x >= 8.0 && y >= 52.0 && x <= width as f64 - 8.0 && y <= height as f64 - 8.0
+            };
+            let arrow = size * 0.6;
+            let start = if room(reach + 10.0 + arrow) {
+                reach + 10.0
+            } else {
+                size * 0.1
+            };
+            let (ax, ay) = (x0 + ux * start, y0 + uy * start);
+            let (bx, by) = (x0 + ux * (start + arrow), y0 + uy * (start + arrow));
+            let head = 12.0;
+            let (lx, ly) = (
+                bx - ux * head - uy * head * 0.55,
+                by - uy * head + ux * head * 0.55,
+            );
+            let (rx, ry) = (
+                bx - ux * head + uy * head * 0.55,
+                by - uy * head - ux * head * 0.55,
+            );
+            let _ = writeln!(
+                svg,
+                r##"<g stroke="#111" stroke-linecap="round" stroke-linejoin="round"><line x1="{ax:.1}" y1="{ay:.1}" x2="{bx:.1}" y2="{by:.1}" stroke-width="5"/><path d="M{lx:.1},{ly:.1} L{bx:.1},{by:.1} L{rx:.1},{ry:.1} Z" fill="#111" stroke-width="3"/></g><g stroke="{c}" stroke-linecap="round" stroke-linejoin="round"><line x1="{ax:.1}" y1="{ay:.1}" x2="{bx:.1}" y2="{by:.1}" stroke-width="2.5"/><path d="M{lx:.1},{ly:.1} L{bx:.1},{by:.1} L{rx:.1},{ry:.1} Z" fill="{c}" stroke-width="1"/></g>"##,
+                c = colour.hex()
+            );
+        } else {
+            // Along the line of sight: ⊙ towards the eye, ⊗ away from it.
+            let toward = dot(step.unit, camera.eye) > 0.0;
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x0:.1}" cy="{y0:.1}" r="11" fill="white" stroke="#111" stroke-width="2.5"/>"##
+            );
+            if toward {
+                let _ = writeln!(
+                    svg,
+                    r##"<circle cx="{x0:.1}" cy="{y0:.1}" r="3.5" fill="#111"/>"##
+                );
+            } else {
+                let _ = writeln!(
+                    svg,
+                    r##"<path d="M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1}" stroke="#111" stroke-width="2.5"/>"##,
+                    x0 - 6.0,
+                    y0 - 6.0,
+                    x0 + 6.0,
+                    y0 + 6.0,
+                    x0 - 6.0,
+                    y0 + 6.0,
+                    x0 + 6.0,
+                    y0 - 6.0
+                );
+            }
+        }
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_fills_its_samples_and_keeps_the_nearest() {
+        let mut layer = Layer::new(16);
+        fill_triangle(
+            &mut layer,
+            4,
+            4,
+            [(0.0, 0.0, 1.0), (4.0, 0.0, 1.0), (0.0, 4.0, 1.0)],
+            1,
+        );
+        fill_triangle(
+            &mut layer,
+            4,
+            4,
+            [(0.0, 0.0, 0.5), (0.0, 4.0, 0.5), (4.0, 0.0, 0.5)],
+            2,
+        );
+        fill_triangle(
+            &mut layer,
+            4,
+            4,
+            [(0.0, 0.0, 2.0), (4.0, 0.0, 2.0), (4.0, 4.0, 2.0)],
+            3,
+        );
+        // The lower-left half (x + y < 4) is face 2 (nearer than 1); the upper-right
+        // corner only face 3 covers.
+        assert_eq!(layer.face[0], 2);
+        assert_eq!(layer.face[15], 3);
+        assert_eq!(layer.face.iter().filter(|&&f| f == 1).count(), 0);
+    }
+
+    #[test]
+    fn the_default_camera_keeps_z_up_and_looks_from_the_front_left() {
+        let c = Camera::fit(
+            &View::default(),
+            &[[1.0, 1.0, 1.0], [-1.0, -1.0, -1.0]],
+            100,
+            100,
+            [0.0; 4],
+        );
+        assert!(c.up[2] > 0.8);
+        assert!(dot(c.right, c.up).abs() < 1e-12 && dot(c.eye, c.up).abs() < 1e-12);
+        let (_, y_top, _) = c.project([0.0, 0.0, 1.0]);
+        let (_, y_bottom, _) = c.project([0.0, 0.0, -1.0]);
+        assert!(y_top < y_bottom);
+    }
+}

@@ -1,0 +1,208 @@
+//! The surfaces of the parts as triangles in input units, for drawing and export.
+//!
+//! A part with a mesh is drawn from its mesh; a part given only by convex pieces is
+//! drawn from the facets of its pieces (faces between pieces lie inside and stay hidden
+//! behind the outer ones). Every triangle carries the index of its plane within its part,
+//! found exactly from the integer coordinates, so that pictures outline the real faces
+//! of a part and not the triangulation.
+
+use apart_assembly::Assembly;
+use apart_kernel::int::to_f64;
+use apart_kernel::{Rational, Vec3};
+use std::collections::HashMap;
+
+/// One part's surface.
+#[derive(Clone, Debug, Default)]
+pub struct PartShape {
+    /// Triangles, counter-clockwise seen from outside, in input units.
+    pub triangles: Vec<[[f64; 3]; 3]>,
+    /// For each triangle, the index of its plane among the part's planes (coplanar
+    /// triangles share one).
+    pub plane: Vec<u32>,
+}
+
+impl PartShape {
+    /// The unit outward normal of triangle `t` (zero for a degenerate one).
+    pub fn normal(&self, t: usize) -> [f64; 3] {
+        let [a, b, c] = self.triangles[t];
+        normalize(cross(sub(b, a), sub(c, a)))
+    }
+}
+
+/// Axis-aligned bounds in input units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// Smallest coordinates.
+    pub min: [f64; 3],
+    /// Largest coordinates.
+    pub max: [f64; 3],
+}
+
+impl Bounds {
+    /// Empty bounds (min > max), grown by [`Bounds::add`].
+    pub fn empty() -> Bounds {
+        Bounds {
+            min: [f64::INFINITY; 3],
+            max: [f64::NEG_INFINITY; 3],
+        }
+    }
+
+    /// Grows the bounds to contain `p`.
+    pub fn add(&mut self, p: [f64; 3]) {
+        for (k, &c) in p.iter().enumerate() {
+            self.min[k] = self.min[k].min(c);
+            self.max[k] = self.max[k].max(c);
+        }
+    }
+
+    /// True when nothing was added.
+    pub fn is_empty(&self) -> bool {
+        self.min[0] > self.max[0]
+    }
+
+    /// The centre.
+    pub fn center(&self) -> [f64; 3] {
+        if self.is_empty() {
+            return [0.0; 3];
+        }
+        [0, 1, 2].map(|k| 0.5 * (self.min[k] + self.max[k]))
+    }
+
+    /// The length of the diagonal (0 when empty).
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        norm(sub(self.max, self.min))
+    }
+}
+
+/// The surface of every part, in part order.
+pub fn part_shapes(assembly: &Assembly) -> Vec<PartShape> {
+    let h = assembly.grid.step();
+    assembly
+        .parts
+        .iter()
+        .map(|part| match &part.mesh {
+            Some(mesh) if !mesh.triangles.is_empty() => {
+                let mut planes = Planes::default();
+                let mut shape = PartShape::default();
+                for t in &mesh.triangles {
+                    let v = t.map(|i| mesh.vertices[i as usize]);
+                    let [a, b, c] = v.map(Vec3::from);
+                    let n = b.sub(&a).cross(&c.sub(&a));
+                    if n.is_zero() {
+                        continue;
+                    }
+                    let n = n.primitive();
+                    let offset = Rational::from_int(n.dot(&a));
+                    shape.plane.push(planes.index(n, offset));
+                    shape
+                        .triangles
+                        .push(v.map(|p| p.map(|q| assembly.grid.to_units(q))));
+                }
+                shape
+            }
+            _ => {
+                let mut planes = Planes::default();
+                let mut shape = PartShape::default();
+                for piece in &part.pieces {
+                    let den = piece.den();
+                    let scale = h / to_f64(den);
+                    let pts: Vec<[f64; 3]> = piece
+                        .vertices()
+                        .iter()
+                        .map(|v| v.to_ints().map(|c| to_f64(&c) * scale))
+                        .collect();
+                    for f in piece.facets() {
+                        let plane = planes.index(
+                            f.normal.clone(),
+                            Rational::new(f.offset.clone(), den.clone()),
+                        );
+                        let c = &f.cycle;
+                        for k in 1..c.len().saturating_sub(1) {
+                            shape.triangles.push([
+                                pts[c[0] as usize],
+                                pts[c[k] as usize],
+                                pts[c[k + 1] as usize],
+                            ]);
+                            shape.plane.push(plane);
+                        }
+                    }
+                }
+                shape
+            }
+        })
+        .collect()
+}
+
+/// The bounds of all shapes, each translated by `offsets[k]` when given.
+pub fn bounds_of(shapes: &[PartShape], offsets: Option<&[[f64; 3]]>) -> Bounds {
+    let mut b = Bounds::empty();
+    for (k, s) in shapes.iter().enumerate() {
+        let o = offsets.map_or([0.0; 3], |o| o[k]);
+        for t in &s.triangles {
+            for p in t {
+                b.add(add(*p, o));
+            }
+        }
+    }
+    b
+}
+
+/// Exact plane identities of one part: primitive normal and offset.
+#[derive(Default)]
+struct Planes(HashMap<(Vec3, Rational), u32>);
+
+impl Planes {
+    fn index(&mut self, normal: Vec3, offset: Rational) -> u32 {
+        let n = self.0.len() as u32;
+        *self.0.entry((normal, offset)).or_insert(n)
+    }
+}
+
+// Small vector helpers shared by the renderers.
+
+/// `a - b`.
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `a + b`.
+pub fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// `a * s`.
+pub fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// Dot product.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Cross product.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Euclidean length.
+pub fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `a / |a|`, or zero.
+pub fn normalize(a: [f64; 3]) -> [f64; 3] {
+    let n = norm(a);
+    if n > 0.0 {
+        scale(a, 1.0 / n)
+    } else {
+        [0.0; 3]
+    }
+}

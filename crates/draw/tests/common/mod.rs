@@ -1,0 +1,139 @@
+//! Assemblies, plans and pixel checks shared by the picture tests.
+
+#![allow(dead_code)]
+
+#[path = "../../../plan/tests/common/mod.rs"]
+pub mod plan_common;
+
+use apart_assembly::{load, Assembly, LoadOptions, Part};
+use apart_draw::colors::Rgb;
+use apart_kernel::{Grid, Rational};
+use apart_plan::{parts_of, sequence, BlockingRegions, PartPieces, Sequence, SequenceOptions};
+use resvg::tiny_skia::Pixmap;
+use std::path::PathBuf;
+
+/// A shipped example assembly (loaded through the loader, with meshes).
+pub fn example(name: &str) -> Assembly {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name);
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    assert!(loaded.is_valid(), "{name}: {:?}", loaded.problems);
+    loaded.assembly
+}
+
+/// An assembly of parts given only by convex pieces (no meshes), on the unit grid.
+pub fn assembly_of(name: &str, parts: Vec<PartPieces>) -> Assembly {
+    Assembly {
+        name: name.into(),
+        grid: Grid::unit(30),
+        max_snap_displacement: 0.0,
+        parts: parts
+            .into_iter()
+            .map(|p| Part {
+                name: p.name,
+                source: PathBuf::new(),
+                mesh: None,
+                info: None,
+                pieces: p.pieces,
+                piece_sources: Vec::new(),
+                declared_pieces: true,
+                convex: false,
+                volume: Rational::zero(),
+                reflex_edges: 0,
+                bbox: None,
+            })
+            .collect(),
+    }
+}
+
+/// A 20-part assembly: four rows of five stepped bricks (each brick a slab with a
+/// second slab on top, shifted by half a brick, so that neighbours in a row interlock),
+/// the rows side by side along y.
+pub fn brick_rows() -> Vec<PartPieces> {
+    use plan_common::{cuboid, part};
+    let mut parts = Vec::new();
+    for row in 0..4i64 {
+        for i in 0..5i64 {
+            let y = 2 * row;
+            parts.push(part(
+                &format!("brick-{row}-{i}"),
+                vec![
+                    cuboid([2 * i, y, 0], [2 * i + 2, y + 2, 1]),
+                    cuboid([2 * i + 1, y, 1], [2 * i + 3, y + 2, 2]),
+                ],
+            ));
+        }
+    }
+    parts
+}
+
+/// The shared regions and the default plan of an assembly.
+pub fn plan(assembly: &Assembly) -> (BlockingRegions, Sequence) {
+    let regions = BlockingRegions::compute(&parts_of(assembly).unwrap()).unwrap();
+    let plan = sequence(&regions, &SequenceOptions::default());
+    (regions, plan)
+}
+
+/// The bounding-box diagonal of an assembly in input units, from its meshes (or pieces).
+pub fn diagonal(assembly: &Assembly) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for part in &assembly.parts {
+        let points: Vec<[f64; 3]> = match &part.mesh {
+            Some(m) => m
+                .vertices
+                .iter()
+                .map(|v| v.map(|q| assembly.grid.to_units(q)))
+                .collect(),
+            None => part
+                .pieces
+                .iter()
+                .flat_map(|pc| {
+                    let den = apart_kernel::int::to_f64(pc.den());
+                    pc.vertices()
+                        .iter()
+                        .map(move |v| v.approx().map(|c| c / den))
+                        .collect::<Vec<_>>()
+                })
+                .map(|p| p.map(|c| c * assembly.grid.step()))
+                .collect(),
+        };
+        for p in points {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    ((0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>()).sqrt()
+}
+
+/// RGB of a pixel of a decoded (opaque) PNG.
+pub fn pixel(p: &Pixmap, x: u32, y: u32) -> [u8; 3] {
+    let c = p.pixel(x, y).unwrap();
+    [c.red(), c.green(), c.blue()]
+}
+
+/// True when `c` is `base` shaded by a factor between 0.3 and 1 (flat shading keeps the
+/// ratios of the channels), within rounding.
+pub fn is_shade_of(c: [u8; 3], base: Rgb) -> bool {
+    let b = [base.0 as f64, base.1 as f64, base.2 as f64];
+    let p = c.map(|v| v as f64);
+    let bb: f64 = b.iter().map(|v| v * v).sum();
+    let s = (p[0] * b[0] + p[1] * b[1] + p[2] * b[2]) / bb;
+    (0.3..=1.02).contains(&s) && (0..3).all(|k| (p[k] - s * b[k]).abs() <= 4.0)
+}
+
+/// How many pixels in columns `[0, max_x)` are shades of `base`.
+pub fn count_shades(p: &Pixmap, base: Rgb, max_x: u32) -> usize {
+    let mut n = 0;
+    for y in 0..p.height() {
+        for x in 0..max_x.min(p.width()) {
+            if is_shade_of(pixel(p, x, y), base) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
