@@ -114,7 +114,14 @@ pub fn progress(global: &Global) -> Option<(ProgressBar, ProgressFn)> {
 /// Reports a failure that stopped a command: one clear line on standard error (and a
 /// JSON object on standard output with `--json`).
 pub fn fail(global: &Global, e: &anyhow::Error) {
-    let msg = format!("{e:#}");
+    // The chain of causes, skipping a cause whose text its parent already shows.
+    let mut msg = e.to_string();
+    for cause in e.chain().skip(1) {
+        let c = cause.to_string();
+        if !msg.contains(&c) {
+            msg = format!("{msg}: {c}");
+        }
+    }
     if global.json {
         let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
     }
