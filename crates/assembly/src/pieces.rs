@@ -3,7 +3,7 @@
 
 use crate::convex::{convex_polytope, QUADRATIC_LIMIT};
 use crate::load::polytope_bbox;
-use crate::witness::{fmt_witness, verified_in_polytopes};
+use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_kernel::Grid;
 use apart_mesh::validate::check_solid;
 use apart_mesh::{fmt_point, Problem, RawObject};
@@ -75,8 +75,9 @@ pub(crate) fn overlapping_pieces(
             if !boxes[i].overlaps_open(&boxes[j]) {
                 continue;
             }
-            if let Some(w) = interior_witness(&pieces[i], &pieces[j]) {
-                debug_assert!(verified_in_polytopes(&w, &pieces[i], &pieces[j]));
+            let (a, b) = (&pieces[i], &pieces[j]);
+            if let Some(w) = interior_witness(a, b).filter(|w| verified_in_polytopes(w, a, b)) {
+                let w = simplest(w, grid, |r| verified_in_polytopes(r, a, b));
                 out.push(
                     Problem::error(format!(
                         "the pieces overlap: {} lies strictly inside both",
