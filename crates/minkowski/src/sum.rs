@@ -31,13 +31,30 @@ pub fn minkowski_sum(p: &Polytope, q: &Polytope) -> Result<Polytope, PolytopeErr
 pub struct Summand {
     polytope: Polytope,
     arcs: Vec<GaussArc>,
+    /// Conservative boxes of the Gaussian arcs on the unit sphere, by edge.
+    boxes: Vec<[[f64; 2]; 3]>,
 }
 
 impl Summand {
     /// Prepares `polytope` for [`sum_prepared`].
     pub fn new(polytope: Polytope) -> Summand {
         let arcs = gaussian_arcs(&polytope);
-        Summand { polytope, arcs }
+        let boxes = arcs
+            .iter()
+            .map(|a| {
+                apart_sphere::Arc {
+                    normal: a.c.clone(),
+                    start: a.m0.clone(),
+                    end: a.m1.clone(),
+                }
+                .bbox()
+            })
+            .collect();
+        Summand {
+            polytope,
+            arcs,
+            boxes,
+        }
     }
 
     /// The polytope.
@@ -108,29 +125,83 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
         }
     }
 
-    // Parallelograms of edge pairs whose Gaussian arcs cross.
-    for (ep, ap) in p.edges().iter().zip(&sp.arcs) {
-        for (eq, aq) in q.edges().iter().zip(&sq.arcs) {
-            let Some(n) = crossing(ap, aq) else { continue };
+    // Parallelograms of edge pairs whose Gaussian arcs cross (pairs whose boxes on the
+    // unit sphere overlap, by sort and sweep; then the exact test).
+    for (ip, iq) in overlapping(&sp.boxes, &sq.boxes) {
+        let (ep, ap, eq, aq) = (&p.edges()[ip], &sp.arcs[ip], &q.edges()[iq], &sq.arcs[iq]);
+        {
+            if !crossing(ap, aq) {
+                continue;
+            }
             let [p0, p1] = ep.ends;
             let [q0, q1] = eq.ends;
-            // Counter-clockwise around n: (p0+q0, p1+q0, p1+q1, p0+q1) when
-            // det(n, p1 - p0, q1 - q0) > 0, the reverse otherwise.
+            // The facet's normal is the crossing point of the two arcs, perpendicular to
+            // both edges: ±(dp × dq), far smaller than the cross of the arcs' normals. Its
+            // sign puts it on arc a (counter-clockwise after a's first normal).
             let dp = p.vertices()[p1 as usize].sub(&p.vertices()[p0 as usize]);
             let dq = q.vertices()[q1 as usize].sub(&q.vertices()[q0 as usize]);
+            let n = dp.cross(&dq).primitive();
+            let flip = apart_kernel::predicates::det3_sign(&ap.c, &ap.m0, &n) == Sign::Negative;
+            // Counter-clockwise around n = +(dp × dq): (p0+q0, p1+q0, p1+q1, p0+q1).
             let mut cycle = vec![
                 vertex(p0, q0, &mut points),
                 vertex(p1, q0, &mut points),
                 vertex(p1, q1, &mut points),
                 vertex(p0, q1, &mut points),
             ];
-            if apart_kernel::predicates::det3_sign(&n, &dp, &dq) == Sign::Negative {
+            let n = if flip {
                 cycle.reverse();
-            }
+                n.neg()
+            } else {
+                n
+            };
+            debug_assert_eq!(
+                arc_position(&ap.c, &ap.m0, &ap.m1, &n),
+                ArcPosition::Interior
+            );
+            debug_assert_eq!(
+                arc_position(&aq.c, &aq.m0, &aq.m1, &n),
+                ArcPosition::Interior
+            );
             facets.push((n, cycle));
         }
     }
     Ok(Polytope::from_facets(&points, facets)?.with_den(den))
+}
+
+/// Index pairs `(i, j)` whose boxes `a[i]` and `b[j]` overlap (sort and sweep on x).
+fn overlapping(a: &[[[f64; 2]; 3]], b: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
+    let mut events: Vec<(f64, bool, usize)> = Vec::with_capacity(a.len() + b.len());
+    events.extend(a.iter().enumerate().map(|(i, x)| (x[0][0], false, i)));
+    events.extend(b.iter().enumerate().map(|(j, x)| (x[0][0], true, j)));
+    events.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let overlap = |x: &[[f64; 2]; 3], y: &[[f64; 2]; 3]| {
+        (0..3).all(|k| x[k][0] <= y[k][1] && y[k][0] <= x[k][1])
+    };
+    let (mut act_a, mut act_b): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    let mut out = Vec::new();
+    for (lo, from_b, i) in events {
+        act_a.retain(|&k| a[k][0][1] >= lo);
+        act_b.retain(|&k| b[k][0][1] >= lo);
+        if from_b {
+            out.extend(
+                act_a
+                    .iter()
+                    .filter(|&&k| overlap(&a[k], &b[i]))
+                    .map(|&k| (k, i)),
+            );
+            act_b.push(i);
+        } else {
+            out.extend(
+                act_b
+                    .iter()
+                    .filter(|&&k| overlap(&a[i], &b[k]))
+                    .map(|&k| (i, k)),
+            );
+            act_a.push(i);
+        }
+    }
+    out
 }
 
 /// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal
@@ -154,38 +225,17 @@ fn gaussian_arcs(p: &Polytope) -> Vec<GaussArc> {
         .collect()
 }
 
-/// The common point of two Gaussian arcs when they cross in both relative interiors.
+/// Whether two Gaussian arcs cross in both relative interiors.
 ///
 /// Arcs `(a0, a1)` and `(b0, b1)` (each shorter than a half circle) cross properly iff
 /// `b0`, `b1` lie strictly on opposite sides of circle `a`, `a0`, `a1` strictly on
 /// opposite sides of circle `b`, and `sign(c_a · b0) = −sign(c_b · a0)`.
-fn crossing(a: &GaussArc, b: &GaussArc) -> Option<Vec3> {
+fn crossing(a: &GaussArc, b: &GaussArc) -> bool {
     let s0 = dot_sign(&a.c, &b.m0);
     if s0 == Sign::Zero {
-        return None;
+        return false;
     }
-    let s1 = dot_sign(&a.c, &b.m1);
-    if s1 != -s0 {
-        return None;
-    }
-    let t0 = dot_sign(&b.c, &a.m0);
-    if t0 != -s0 {
-        return None;
-    }
-    let t1 = dot_sign(&b.c, &a.m1);
-    if t1 != s0 {
-        return None;
-    }
-    let x = a.c.cross(&b.c).primitive();
-    // x or -x: the one on arc a.
-    let x = if arc_position(&a.c, &a.m0, &a.m1, &x) == ArcPosition::Interior {
-        x
-    } else {
-        x.neg()
-    };
-    debug_assert_eq!(arc_position(&a.c, &a.m0, &a.m1, &x), ArcPosition::Interior);
-    debug_assert_eq!(arc_position(&b.c, &b.m0, &b.m1, &x), ArcPosition::Interior);
-    Some(x)
+    dot_sign(&a.c, &b.m1) == -s0 && dot_sign(&b.c, &a.m0) == -s0 && dot_sign(&b.c, &a.m1) == s0
 }
 
 /// `max n · v` over the vertices of `p` (the support function).

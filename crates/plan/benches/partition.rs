@@ -5,6 +5,9 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+#[path = "../../decompose/tests/common/shapes.rs"]
+mod shapes;
+
 use apart_plan::{partition_pieces, Options, PartPieces};
 use std::time::Instant;
 
@@ -72,6 +75,50 @@ fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<PartPieces> {
         .enumerate()
         .map(|(i, p)| common::part(&format!("p{i}"), p))
         .collect()
+}
+
+/// Two rings (64 segments, 16-gon section, 2,048 triangles each, decomposed exactly)
+/// stacked around a cone of 158 triangles (paper 000, fig. 2). Returns the parts and
+/// the decomposition time.
+fn ring_and_cone() -> (Vec<PartPieces>, f64) {
+    use apart_kernel::Vec3;
+    let ring = shapes::Ring::new(64);
+    let r = ring.radius;
+    let shape = ring.shape();
+    let t = Instant::now();
+    let lower =
+        apart_decompose::decompose(&shape.points, &shape.tris, &Default::default()).unwrap();
+    let decompose_s = t.elapsed().as_secs_f64();
+    let lift = Vec3::new(0, 0, 16 * r);
+    let upper: Vec<apart_pieces::Polytope> =
+        lower.pieces.iter().map(|p| p.translated(&lift)).collect();
+    // Cone: apex (0, 0, 40R), base radius 14R at z = -20R (0.8R inside the rings' hole).
+    let n = 80;
+    let mut pts: Vec<Vec3> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            Vec3::new(
+                (14.0 * r as f64 * t.cos()).round() as i64,
+                (14.0 * r as f64 * t.sin()).round() as i64,
+                -20 * r,
+            )
+        })
+        .collect();
+    pts.push(Vec3::new(0, 0, 40 * r));
+    let apex = n as u32;
+    let mut tris: Vec<[u32; 3]> = (0..n as u32)
+        .map(|k| [k, (k + 1) % n as u32, apex])
+        .collect();
+    for k in 1..n as u32 - 1 {
+        tris.push([0, k + 1, k]);
+    }
+    let cone = apart_pieces::Polytope::from_triangles(&pts, &tris).unwrap();
+    let parts = vec![
+        common::part("ring_lower", lower.pieces),
+        common::part("ring_upper", upper),
+        common::part("cone", vec![cone]),
+    ];
+    (parts, 2.0 * decompose_s)
 }
 
 struct Row {
@@ -156,6 +203,16 @@ fn main() {
             3,
         ));
     }
+    let (rc, dec) = ring_and_cone();
+    let row = run("ring and cone", &rc, if quick { 1 } else { 3 });
+    println!(
+        "ring and cone: decomposition of the two rings {:.1} ms (64 pieces each), partition {:.1} ms (1 thread), {:.1} ms (2 threads): end to end {:.1} ms",
+        dec * 1000.0,
+        row.t1 * 1000.0,
+        row.t2 * 1000.0,
+        (dec + row.t1) * 1000.0
+    );
+    rows.push(row);
     println!(
         "| assembly | parts | pieces | sums | V/E/F | sums ms | proj ms | unions ms | overlay ms | graphs ms | total 1 thread ms | total 2 threads ms | speed-up | peak MiB | solutions |"
     );
