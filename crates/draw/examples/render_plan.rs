@@ -1,5 +1,10 @@
 //! Plans an assembly folder and writes every picture and export to an output folder:
-//! `cargo run -p apart-draw --release --example render_plan -- examples/split-star-3 /tmp/out`.
+//! `cargo run -p apart-draw --release --example render_plan -- examples/split-star-3 /tmp/out`
+//! (`bricks` instead of a folder: a 20-part assembly built in code, four rows of five
+//! interlocking stepped bricks).
+#[path = "../../plan/tests/common/mod.rs"]
+mod common;
+
 use apart_draw::{SphereProjection, SphereSvgOptions, View};
 use apart_plan::{parts_of, sequence, BlockingRegions, SequenceOptions};
 use std::time::Instant;
@@ -11,9 +16,15 @@ fn main() {
         .unwrap_or_else(|| "examples/split-star-3".into());
     let out = std::path::PathBuf::from(args.next().unwrap_or_else(|| "/tmp/apart-draw".into()));
     std::fs::create_dir_all(&out).unwrap();
-    let loaded = apart_assembly::load(std::path::Path::new(&input), &Default::default()).unwrap();
-    assert!(loaded.is_valid(), "{:?}", loaded.problems);
-    let a = &loaded.assembly;
+    let assembly = if input == "bricks" {
+        bricks()
+    } else {
+        let loaded =
+            apart_assembly::load(std::path::Path::new(&input), &Default::default()).unwrap();
+        assert!(loaded.is_valid(), "{:?}", loaded.problems);
+        loaded.assembly
+    };
+    let a = &assembly;
     let regions = BlockingRegions::compute(&parts_of(a).unwrap()).unwrap();
     let plan = sequence(&regions, &SequenceOptions::default());
     println!(
@@ -77,4 +88,37 @@ fn main() {
         "sphere svg+png for every step in {:.3} s",
         t.elapsed().as_secs_f64()
     );
+}
+
+/// Four rows of five stepped bricks (a slab with a second slab on top shifted by half a
+/// brick), the rows side by side along y: 20 parts given by convex pieces only.
+fn bricks() -> apart_assembly::Assembly {
+    let mut parts = Vec::new();
+    for row in 0..4i64 {
+        for i in 0..5i64 {
+            let y = 2 * row;
+            parts.push(apart_assembly::Part {
+                name: format!("brick-{row}-{i}"),
+                source: Default::default(),
+                mesh: None,
+                info: None,
+                pieces: vec![
+                    common::cuboid([2 * i, y, 0], [2 * i + 2, y + 2, 1]),
+                    common::cuboid([2 * i + 1, y, 1], [2 * i + 3, y + 2, 2]),
+                ],
+                piece_sources: Vec::new(),
+                declared_pieces: true,
+                convex: false,
+                volume: apart_kernel::Rational::zero(),
+                reflex_edges: 0,
+                bbox: None,
+            });
+        }
+    }
+    apart_assembly::Assembly {
+        name: "bricks-20".into(),
+        grid: apart_kernel::Grid::unit(30),
+        max_snap_displacement: 0.0,
+        parts,
+    }
 }

@@ -66,8 +66,8 @@ const NAMED: [(&str, Rgb); 24] = [
 ];
 
 /// Distinct colours for parts without a colour name (no greys: grey means "not
-/// highlighted").
-const PALETTE: [Rgb; 16] = [
+/// highlighted"): strong colours first, then lighter and darker variants.
+const PALETTE: [Rgb; 24] = [
     Rgb(31, 119, 180),
     Rgb(255, 127, 14),
     Rgb(44, 160, 44),
@@ -84,6 +84,14 @@ const PALETTE: [Rgb; 16] = [
     Rgb(197, 176, 213),
     Rgb(196, 156, 148),
     Rgb(219, 219, 141),
+    Rgb(57, 59, 121),
+    Rgb(99, 121, 57),
+    Rgb(140, 109, 49),
+    Rgb(132, 60, 57),
+    Rgb(123, 65, 115),
+    Rgb(0, 128, 128),
+    Rgb(158, 218, 229),
+    Rgb(247, 182, 210),
 ];
 
 /// The colour a part's name asks for, if it is a colour word (case and the prefixes

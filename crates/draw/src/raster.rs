@@ -545,25 +545,44 @@ fn step_svg(
     } else {
         "move"
     };
+    // As many names as fit the width (about 0.6 em per character).
+    let fits =
+        |text: &str, size: f64| text.chars().count() as f64 * 0.6 * size <= width as f64 - 24.0;
+    let head = format!("Step {} of {}: ", k + 1, sequence.steps.len());
+    let line1 = |max: usize| {
+        format!(
+            "{} {verb} along {}",
+            names_list(names, &step.moving, max),
+            direction_label(step)
+        )
+    };
+    let max1 = (1..=6)
+        .rev()
+        .find(|&m| fits(&(head.clone() + &line1(m)), 16.0))
+        .unwrap_or(1);
     let _ = writeln!(
         svg,
-        r##"<text x="12" y="22" font-size="16" fill="#111"><tspan font-weight="bold">Step {} of {}:</tspan> {} {verb} along {}</text>"##,
-        k + 1,
-        sequence.steps.len(),
-        escape(&names_list(names, &step.moving, 6)),
-        direction_label(step)
+        r##"<text x="12" y="22" font-size="16" fill="#111"><tspan font-weight="bold">{head}</tspan>{}</text>"##,
+        escape(&line1(max1))
     );
     let clearance = if step.clearance_deg > 0.0 {
         format!(", clearance {:.1}°", step.clearance_deg)
     } else {
         String::new()
     };
+    let line2 = |max: usize| {
+        format!(
+            "{} cell{clearance}; {} {} in place",
+            step.cell.name(),
+            names_list(names, &rest, max),
+            if rest.len() == 1 { "stays" } else { "stay" }
+        )
+    };
+    let max2 = (1..=6).rev().find(|&m| fits(&line2(m), 13.0)).unwrap_or(1);
     let _ = writeln!(
         svg,
-        r##"<text x="12" y="42" font-size="13" fill="#444">{} cell{clearance}; {} {} in place</text>"##,
-        step.cell.name(),
-        escape(&names_list(names, &rest, 6)),
-        if rest.len() == 1 { "stays" } else { "stay" }
+        r##"<text x="12" y="42" font-size="13" fill="#444">{}</text>"##,
+        escape(&line2(max2))
     );
     // Swatches of the moving parts' colours after the caption would crowd it; instead
     // the arrow takes the colour of the first moving part.
@@ -587,13 +606,14 @@ fn step_svg(
             // Arrow along the projected direction, just outside the moving side's
             // silhouette when the picture has room, else from its centre.
             let (ux, uy) = (dx / len, dy / len);
-            let reach = item_points(shapes, &moved)
+            let outline: Vec<(f64, f64)> = item_points(shapes, &moved)
                 .into_iter()
                 .map(|p| {
                     let (x, y, _) = camera.project(p);
-                    (x - x0) * ux + (y - y0) * uy
+                    (x, y)
                 })
-                .fold(0.0, f64::max);
+                .collect();
+            let reach = ray_exit(&convex_hull(outline), (x0, y0), (ux, uy));
             let room = |t: f64| {
                 let (x, y) = (x0 + ux * t, y0 + uy * t);
                 x >= 8.0 && y >= 52.0 && x <= width as f64 - 8.0 && y <= height as f64 - 8.0
@@ -652,6 +672,60 @@ fn step_svg(
     svg
 }
 
+/// The convex hull of points, counter-clockwise in a y-up frame (Andrew's monotone chain).
+pub(crate) fn convex_hull(mut pts: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    pts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(2 * pts.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for &p in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+/// How far the ray from `c` (inside) along unit `u` runs inside the convex polygon
+/// `hull` (0 when the polygon is degenerate).
+pub(crate) fn ray_exit(hull: &[(f64, f64)], c: (f64, f64), u: (f64, f64)) -> f64 {
+    if hull.len() < 3 {
+        return 0.0;
+    }
+    let mut t = f64::INFINITY;
+    for k in 0..hull.len() {
+        let (a, b) = (hull[k], hull[(k + 1) % hull.len()]);
+        // Outward normal of edge a→b of a counter-clockwise polygon.
+        let n = (b.1 - a.1, a.0 - b.0);
+        let along = n.0 * u.0 + n.1 * u.1;
+        if along > 0.0 {
+            t = t.min((n.0 * (a.0 - c.0) + n.1 * (a.1 - c.1)) / along);
+        }
+    }
+    if t.is_finite() {
+        t.max(0.0)
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -685,6 +759,21 @@ mod tests {
         assert_eq!(layer.face[0], 2);
         assert_eq!(layer.face[15], 3);
         assert_eq!(layer.face.iter().filter(|&&f| f == 1).count(), 0);
+    }
+
+    #[test]
+    fn a_ray_leaves_a_square_at_its_side() {
+        let square = convex_hull(vec![
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (0.0, 2.0),
+            (1.0, 1.0),
+        ]);
+        assert_eq!(square.len(), 4);
+        assert!((ray_exit(&square, (1.0, 1.0), (1.0, 0.0)) - 1.0).abs() < 1e-12);
+        let d = std::f64::consts::FRAC_1_SQRT_2;
+        assert!((ray_exit(&square, (1.0, 1.0), (d, d)) - std::f64::consts::SQRT_2).abs() < 1e-12);
     }
 
     #[test]

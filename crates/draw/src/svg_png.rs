@@ -31,6 +31,11 @@ fn fonts() -> Arc<usvg::fontdb::Database> {
         .clone()
 }
 
+/// True when at least one system font was found (text in the PNGs needs one).
+pub fn fonts_available() -> bool {
+    !fonts().is_empty()
+}
+
 fn parse(svg: &str) -> Option<usvg::Tree> {
     let opts = usvg::Options {
         fontdb: fonts(),
