@@ -211,7 +211,7 @@ pub fn motion_space_svg(
         let _ = writeln!(
             svg,
             r#"<text x="{cx:.1}" y="{:.1}" font-size="13" text-anchor="middle">{label}</text>"#,
-            cy + r + 26.0
+            cy + r + 34.0
         );
         let _ = writeln!(
             svg,
