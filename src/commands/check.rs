@@ -3,7 +3,7 @@
 
 use crate::output;
 use crate::Global;
-use apart::assembly::{fmt_volume, load, LoadOptions, Loaded};
+use apart::assembly::{fmt_volume, Decompose, Loaded};
 use apart::mesh::Problem;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -44,6 +44,8 @@ struct PartJson {
     reflex_edges: usize,
     pieces: usize,
     declared_pieces: bool,
+    /// The pieces come from the exact convex decomposition of a non-convex part.
+    decomposed: bool,
     piece_sources: Vec<PathBuf>,
     bbox: Option<BoxJson>,
 }
@@ -59,16 +61,7 @@ struct CheckJson<'a> {
 
 /// Runs the command.
 pub fn run(args: &CheckArgs, global: &Global) -> anyhow::Result<ExitCode> {
-    let bar = output::progress(global);
-    let opts = LoadOptions {
-        grid_bits: global.grid_bits,
-        progress: bar.as_ref().map(|(_, hook)| hook.clone()),
-    };
-    let loaded = load(&args.assembly, &opts);
-    if let Some((bar, _)) = &bar {
-        bar.finish_and_clear();
-    }
-    let loaded = loaded?;
+    let loaded = crate::commands::load::load_with(&args.assembly, global, Decompose::WhenNeeded)?;
     if global.json {
         output::json(&to_json(&loaded))?;
     } else {
@@ -102,6 +95,7 @@ fn to_json(l: &Loaded) -> CheckJson<'_> {
                 reflex_edges: p.reflex_edges,
                 pieces: p.pieces.len(),
                 declared_pieces: p.declared_pieces,
+                decomposed: p.decomposed,
                 piece_sources: p.piece_sources.clone(),
                 bbox: p.bbox.map(|b| BoxJson {
                     min: b.min.map(|q| g.to_units(q)),
@@ -163,6 +157,8 @@ fn print_text(l: &Loaded, global: &Global) {
                     p.reflex_edges.to_string(),
                     if p.declared_pieces {
                         format!("{} declared", p.pieces.len())
+                    } else if p.decomposed {
+                        format!("{} decomposed", p.pieces.len())
                     } else {
                         p.pieces.len().to_string()
                     },

@@ -43,7 +43,7 @@ pub use apart_mesh::{Problem, Severity};
 pub use error::LoadError;
 pub use load::load;
 pub use model::{Assembly, Loaded, Part};
-pub use options::{LoadOptions, Progress, ProgressFn, Stage};
+pub use options::{Decompose, LoadOptions, Progress, ProgressFn, Stage};
 pub use witness::{fmt_witness, witness_units};
 
 use apart_kernel::{Grid, Rational};

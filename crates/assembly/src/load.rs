@@ -5,7 +5,7 @@
 use crate::error::LoadError;
 use crate::inputs::{self, PartSpec, SourceRef};
 use crate::model::{Assembly, Loaded, Part};
-use crate::options::{LoadOptions, Stage, Tracker};
+use crate::options::{Decompose, LoadOptions, Stage, Tracker};
 use crate::{overlap, pieces};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::formats::{read_file, ReadError};
@@ -156,6 +156,14 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         parts.push(part);
         problems.extend(probs);
     }
+    let decompose = match opts.decompose {
+        Decompose::Never => false,
+        Decompose::WhenNeeded => parts.len() >= 2,
+        Decompose::Always => true,
+    };
+    if decompose {
+        problems.extend(decompose_parts(&mut parts, opts));
+    }
     let assembly = Assembly {
         name: plan.name,
         grid,
@@ -164,6 +172,57 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     };
     problems.extend(overlap::check_parts(&assembly, opts));
     Ok(Loaded { assembly, problems })
+}
+
+/// Decomposes every valid non-convex part without pieces, in parallel.
+fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
+    let todo: Vec<usize> = (0..parts.len())
+        .filter(|&k| {
+            let p = &parts[k];
+            p.pieces.is_empty()
+                && !p.convex
+                && p.mesh.is_some()
+                && p.info
+                    .as_ref()
+                    .is_some_and(|i| i.closed && i.volume6.is_some() && i.self_intersections == 0)
+        })
+        .collect();
+    let tracker = Tracker::start(opts, Stage::Decomposing, todo.len());
+    let results: Vec<(usize, Result<Vec<Polytope>, Problem>)> = todo
+        .par_iter()
+        .map(|&k| {
+            let p = &parts[k];
+            let mesh = p.mesh.as_ref().expect("filtered");
+            let points = mesh.points();
+            let r = apart_decompose::decompose(&points, &mesh.triangles, &Default::default())
+                .map_err(|e| Problem::error(format!("exact convex decomposition failed: {e}")))
+                .and_then(|d| {
+                    if opts.verify {
+                        apart_decompose::verify(&points, &mesh.triangles, &d.pieces).map_err(
+                            |e| {
+                                Problem::error(format!(
+                                    "the convex decomposition did not verify: {e}"
+                                ))
+                            },
+                        )?;
+                    }
+                    Ok(d.pieces)
+                });
+            tracker.tick();
+            (k, r.map_err(|e| e.in_part(p.name.clone())))
+        })
+        .collect();
+    let mut problems = Vec::new();
+    for (k, r) in results {
+        match r {
+            Ok(pieces) => {
+                parts[k].pieces = pieces;
+                parts[k].decomposed = true;
+            }
+            Err(p) => problems.push(p),
+        }
+    }
+    problems
 }
 
 struct RawPart<'a> {
@@ -238,6 +297,7 @@ fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
         pieces: Vec::new(),
         piece_sources: Vec::new(),
         declared_pieces: !spec.pieces.is_empty(),
+        decomposed: false,
         convex: false,
         volume: Rational::zero(),
         reflex_edges: 0,

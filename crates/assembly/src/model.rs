@@ -26,6 +26,8 @@ pub struct Part {
     pub piece_sources: Vec<PathBuf>,
     /// The pieces were declared in the input (not derived from a convex part).
     pub declared_pieces: bool,
+    /// The pieces come from an exact convex decomposition of the mesh.
+    pub decomposed: bool,
     /// The part is convex.
     pub convex: bool,
     /// Exact volume in grid units (zero when unknown because the input is invalid).

@@ -9,6 +9,8 @@ pub enum Stage {
     Reading,
     /// Snapping and validating parts and pieces (`total` = parts).
     Validating,
+    /// Decomposing non-convex parts into convex pieces (`total` = parts).
+    Decomposing,
     /// Checking pairs of parts and pieces for overlap (`total` = pairs).
     Overlaps,
 }
@@ -19,6 +21,7 @@ impl Stage {
         match self {
             Stage::Reading => "reading",
             Stage::Validating => "validating",
+            Stage::Decomposing => "decomposing",
             Stage::Overlaps => "overlaps",
         }
     }
@@ -39,6 +42,19 @@ pub struct Progress {
 /// stage); must be cheap.
 pub type ProgressFn = Arc<dyn Fn(Progress) + Send + Sync>;
 
+/// When to decompose valid non-convex parts that declare no pieces into exact convex
+/// pieces (`apart-decompose`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decompose {
+    /// Never (overlap checks then compare boundaries; planners decompose themselves).
+    Never,
+    /// When the assembly has two parts or more: the overlap check between parts becomes
+    /// complete, and planners reuse the pieces. The default.
+    WhenNeeded,
+    /// Always, also for a single part.
+    Always,
+}
+
 /// How to load an assembly.
 #[derive(Clone)]
 pub struct LoadOptions {
@@ -46,6 +62,11 @@ pub struct LoadOptions {
     pub grid_bits: u32,
     /// Progress reports; `None` (the default) is silent.
     pub progress: Option<ProgressFn>,
+    /// When to decompose non-convex parts without declared pieces.
+    pub decompose: Decompose,
+    /// Verify every decomposition exactly (pieces convex, interiors disjoint, inside the
+    /// part, volumes adding up), reporting a failure as an error.
+    pub verify: bool,
 }
 
 impl Default for LoadOptions {
@@ -53,6 +74,8 @@ impl Default for LoadOptions {
         LoadOptions {
             grid_bits: apart_kernel::grid::DEFAULT_BITS,
             progress: None,
+            decompose: Decompose::WhenNeeded,
+            verify: false,
         }
     }
 }
@@ -62,6 +85,8 @@ impl std::fmt::Debug for LoadOptions {
         f.debug_struct("LoadOptions")
             .field("grid_bits", &self.grid_bits)
             .field("progress", &self.progress.is_some())
+            .field("decompose", &self.decompose)
+            .field("verify", &self.verify)
             .finish()
     }
 }

@@ -108,6 +108,7 @@ fn bricks() -> apart_assembly::Assembly {
                 ],
                 piece_sources: Vec::new(),
                 declared_pieces: true,
+                decomposed: false,
                 convex: false,
                 volume: apart_kernel::Rational::zero(),
                 reflex_edges: 0,

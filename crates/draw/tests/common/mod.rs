@@ -38,6 +38,7 @@ pub fn assembly_of(name: &str, parts: Vec<PartPieces>) -> Assembly {
                 pieces: p.pieces,
                 piece_sources: Vec::new(),
                 declared_pieces: true,
+                decomposed: false,
                 convex: false,
                 volume: Rational::zero(),
                 reflex_edges: 0,
