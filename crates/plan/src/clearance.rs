@@ -223,6 +223,31 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
     (p, c)
 }
 
+/// The simplest integer direction near the unit point `p` (smallest multiplier `k`, then
+/// components of `round(k p)`) that `ok` accepts and whose clearance is at least
+/// `fraction` of `target` (radians); `None` when no small one qualifies.
+pub fn simple_direction(
+    p: &V3,
+    target: f64,
+    fraction: f64,
+    arcs: &[FArc],
+    points: &[V3],
+    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
+) -> Option<(apart_kernel::Vec3, f64)> {
+    for k in 1..=64i64 {
+        let c = p.map(|x| (x * k as f64).round() as i64);
+        let d = apart_kernel::Vec3::new(c[0], c[1], c[2]);
+        if d.is_zero() {
+            continue;
+        }
+        let cl = clearance(&d.unit_f64(), arcs, points);
+        if cl >= fraction * target && ok(&d) {
+            return Some((d.primitive(), cl));
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -230,6 +230,14 @@ fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec
             return out;
         }
     }
+    // Edges and vertices in a stable order: by kind, moving set, then direction.
+    let faces = out.iter().take_while(|s| s.cell == CellKind::Face).count();
+    out[faces..].sort_by(|a, b| {
+        a.cell
+            .cmp(&b.cell)
+            .then_with(|| a.moving.cmp(&b.moving))
+            .then_with(|| a.direction.to_strings().cmp(&b.direction.to_strings()))
+    });
     out
 }
 
@@ -285,6 +293,11 @@ fn face_direction(
         }
     }
     if let Some((p, c)) = best {
+        // A small integer direction with nearly the best clearance reads better.
+        if let Some(found) = crate::clearance::simple_direction(&p, c, 0.9, &arcs, points, &verify)
+        {
+            return found;
+        }
         for bits in [20, 30, 40] {
             let scale = (1u64 << bits) as f64;
             let d = Vec3::new(

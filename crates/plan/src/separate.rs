@@ -43,7 +43,8 @@ impl Separation {
     /// The fraction of the sphere of directions that separates (faces only: arcs and
     /// points have no area).
     pub fn area_fraction(&self) -> f64 {
-        self.faces.iter().map(|f| f.area).sum::<f64>() / (4.0 * std::f64::consts::PI)
+        // (A sum of no floats is -0.0.)
+        0.0 + self.faces.iter().map(|f| f.area).sum::<f64>() / (4.0 * std::f64::consts::PI)
     }
 
     /// The direction with the largest clearance and that clearance (degrees), if any
@@ -188,6 +189,9 @@ fn deep_direction(
         }
     }
     if let Some((p, c)) = best {
+        if let Some(found) = crate::clearance::simple_direction(&p, c, 0.9, &arcs, points, ok) {
+            return found;
+        }
         for bits in [20, 30, 40] {
             let s = (1u64 << bits) as f64;
             let d = Vec3::new(
