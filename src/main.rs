@@ -33,6 +33,10 @@ pub struct Global {
     /// every coordinate below 2^N steps.
     #[arg(long, global = true, value_name = "N", default_value_t = apart::kernel::grid::DEFAULT_BITS)]
     pub grid_bits: u32,
+    /// Verify every automatic convex decomposition exactly (pieces convex, interiors
+    /// disjoint, inside the part, volumes adding up).
+    #[arg(long, global = true)]
+    pub verify: bool,
 }
 
 #[derive(Subcommand)]
@@ -40,6 +44,20 @@ enum Command {
     /// Load an assembly (folder, mesh file or assembly.json), validate every part and
     /// the parts together, and print what was found. Exit code 0 when valid.
     Check(commands::check::CheckArgs),
+    /// Every direction and minimal subset of parts that separates the assembly by one
+    /// infinite translation (exit 2 when interlocked); or, with --direction, the blocking
+    /// graph of one direction.
+    Partition(commands::partition::PartitionArgs),
+    /// Decompose every non-convex part without declared pieces into exact convex pieces
+    /// and write them (one OFF mesh per piece, plus assembly.json).
+    Decompose(commands::decompose::DecomposeArgs),
+    /// A complete disassembly plan by recursive two-handed partitioning (its reverse is
+    /// an assembly plan), with pictures and animated exports; exit 2 when a subassembly
+    /// is interlocked.
+    Sequence(commands::sequence::SequenceArgs),
+    /// Every direction along which one part leaves another: exact regions, sliding arcs,
+    /// isolated directions, free area and the direction of largest clearance.
+    Separate(commands::separate::SeparateArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +77,10 @@ fn main() -> ExitCode {
     }
     let result = match &cli.command {
         Command::Check(args) => commands::check::run(args, &cli.global),
+        Command::Partition(args) => commands::partition::run(args, &cli.global),
+        Command::Decompose(args) => commands::decompose::run(args, &cli.global),
+        Command::Sequence(args) => commands::sequence::run(args, &cli.global),
+        Command::Separate(args) => commands::separate::run(args, &cli.global),
     };
     match result {
         Ok(code) => code,

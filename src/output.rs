@@ -16,6 +16,30 @@ pub fn line(text: impl std::fmt::Display) {
     let _ = writeln!(std::io::stdout().lock(), "{text}");
 }
 
+/// Writes one line on standard error.
+pub fn eline(text: impl std::fmt::Display) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
+}
+
+/// A unit direction as `[x, y, z]` with three decimals.
+pub fn unit(u: &[f64; 3]) -> String {
+    let f = |x: f64| {
+        let r = (x * 1000.0).round() / 1000.0;
+        if r == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{r}")
+        }
+    };
+    format!("[{}, {}, {}]", f(u[0]), f(u[1]), f(u[2]))
+}
+
+/// Writes `bytes` to `path`, with the path in the error.
+pub fn write_file(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
+    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))
+}
+
 /// A coordinate in input units, as the shortest decimal of its `f64`.
 pub fn units(grid: &Grid, q: i64) -> String {
     let v = grid.to_units(q);

@@ -1,3 +1,8 @@
 //! One module per subcommand.
 
 pub mod check;
+pub mod decompose;
+pub mod load;
+pub mod partition;
+pub mod separate;
+pub mod sequence;

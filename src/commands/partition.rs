@@ -1,0 +1,366 @@
+//! `apart partition <assembly>`: every direction and minimal subset that separates the
+//! assembly by one infinite translation; or, with `--direction`, the blocking graph of
+//! one direction. Exit code 0 when some subset can move, 2 when the assembly is
+//! interlocked, 1 on error.
+
+use crate::commands::load::load_valid;
+use crate::output;
+use crate::Global;
+use anyhow::Context;
+use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSvgOptions};
+use apart::kernel::{Grid, Vec3};
+use apart::plan::{
+    dbg_at, partition_subset, parts_of, BlockingRegions, CellKind, Options, Partitioning, Solution,
+};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Arguments of `apart partition`.
+#[derive(clap::Args, Debug)]
+pub struct PartitionArgs {
+    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    pub assembly: PathBuf,
+    /// Stop at the first solution found (faces, then edges, then vertices): decides
+    /// quickly whether the assembly comes apart.
+    #[arg(long)]
+    pub first: bool,
+    /// Evaluate one direction exactly instead ("X,Y,Z", snapped like coordinates): its
+    /// blocking graph, the kind of cell it lies in, and the minimal subsets that move.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub direction: Option<String>,
+    /// Draw the motion-space sphere (both hemispheres, blocked regions shaded by how
+    /// many pairs block them, solutions marked) as SVG.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    /// The same picture as PNG.
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// Projection of the sphere pictures.
+    #[arg(long, value_enum, default_value_t = Projection::EqualArea)]
+    pub projection: Projection,
+    /// In the text summary, list every solution instead of the first few per kind.
+    #[arg(long)]
+    pub all: bool,
+}
+
+/// Sphere projections.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum Projection {
+    /// Lambert azimuthal equal-area.
+    EqualArea,
+    /// Orthographic (as seen from far away).
+    Orthographic,
+}
+
+impl From<Projection> for SphereProjection {
+    fn from(p: Projection) -> SphereProjection {
+        match p {
+            Projection::EqualArea => SphereProjection::EqualArea,
+            Projection::Orthographic => SphereProjection::Orthographic,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct SolutionJson {
+    cell: &'static str,
+    direction: [f64; 3],
+    exact_direction: [String; 3],
+    moving: Vec<String>,
+    clearance_deg: f64,
+}
+
+#[derive(Serialize)]
+struct Seconds {
+    load: f64,
+    sums: f64,
+    projection: f64,
+    unions: f64,
+    overlay: f64,
+    graphs: f64,
+}
+
+#[derive(Serialize)]
+struct StatsJson {
+    pieces: usize,
+    sums: usize,
+    arcs: usize,
+    vertices: usize,
+    edges: usize,
+    faces: usize,
+    seconds: Seconds,
+}
+
+#[derive(Serialize)]
+struct PartitionJson<'a> {
+    interlocked: bool,
+    parts: &'a [String],
+    solutions: Vec<SolutionJson>,
+    stats: StatsJson,
+}
+
+#[derive(Serialize)]
+struct DirectionJson {
+    direction: [f64; 3],
+    exact_direction: [String; 3],
+    cell: &'static str,
+    blocks: Vec<[String; 2]>,
+    moving: Vec<Vec<String>>,
+}
+
+/// Runs the command.
+pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    let t = Instant::now();
+    let loaded = load_valid(&args.assembly, global)?;
+    let load_seconds = t.elapsed().as_secs_f64();
+    let asm = &loaded.assembly;
+    let parts = parts_of(asm)?;
+    let regions = BlockingRegions::compute(&parts)?;
+    let all: Vec<usize> = (0..parts.len()).collect();
+    if let Some(d) = &args.direction {
+        return direction(args, global, &regions, &all, d);
+    }
+    let (p, _) = partition_subset(&regions, &all, &Options { first: args.first });
+    if args.svg.is_some() || args.png.is_some() {
+        let opts = SphereSvgOptions {
+            title: format!("{}: motion space", asm.name),
+            projection: args.projection.into(),
+            ..Default::default()
+        };
+        if let Some(path) = &args.svg {
+            output::write_file(path, motion_space_svg(&regions, &all, &p.solutions, &opts))?;
+        }
+        if let Some(path) = &args.png {
+            output::write_file(path, motion_space_png(&regions, &all, &p.solutions, &opts))?;
+        }
+    }
+    if global.json {
+        output::json(&to_json(&p, load_seconds))?;
+    } else {
+        print_text(&p, asm, args, global, load_seconds);
+    }
+    Ok(if p.interlocked {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
+    set.iter().map(|&k| names[k].clone()).collect()
+}
+
+fn to_json(p: &Partitioning, load: f64) -> PartitionJson<'_> {
+    let s = &p.stats;
+    PartitionJson {
+        interlocked: p.interlocked,
+        parts: &p.names,
+        solutions: p
+            .solutions
+            .iter()
+            .map(|s| SolutionJson {
+                cell: s.cell.name(),
+                direction: s.unit,
+                exact_direction: s.direction.to_strings(),
+                moving: names_of(&p.names, &s.moving),
+                clearance_deg: s.clearance_deg,
+            })
+            .collect(),
+        stats: StatsJson {
+            pieces: s.pieces,
+            sums: s.sums,
+            arcs: s.arcs,
+            vertices: s.vertices,
+            edges: s.edges,
+            faces: s.faces,
+            seconds: Seconds {
+                load,
+                sums: s.seconds.sums,
+                projection: s.seconds.projection,
+                unions: s.seconds.unions,
+                overlay: s.seconds.overlay,
+                graphs: s.seconds.graphs,
+            },
+        },
+    }
+}
+
+fn print_text(
+    p: &Partitioning,
+    asm: &apart::assembly::Assembly,
+    args: &PartitionArgs,
+    global: &Global,
+    load: f64,
+) {
+    let s = &p.stats;
+    if !global.quiet {
+        output::line(format_args!(
+            "assembly \"{}\": {} parts, {} convex pieces, {} Minkowski sums",
+            asm.name,
+            p.names.len(),
+            s.pieces,
+            s.sums
+        ));
+        let n =
+            |k: usize, one: &str, many: &str| format!("{k} {}", if k == 1 { one } else { many });
+        output::line(format_args!(
+            "motion space: {}, {}, {} ({})",
+            n(s.vertices, "vertex", "vertices"),
+            n(s.edges, "edge", "edges"),
+            n(s.faces, "face", "faces"),
+            n(s.arcs, "arc", "arcs")
+        ));
+    }
+    if p.interlocked {
+        output::line("interlocked: no subset of parts can translate away from the rest");
+    } else {
+        output::line(format_args!(
+            "not interlocked: {} solution{}{}",
+            p.solutions.len(),
+            if p.solutions.len() == 1 { "" } else { "s" },
+            if args.first {
+                " (stopped at the first)"
+            } else {
+                ""
+            }
+        ));
+    }
+    // Group by moving subset, in the order of each subset's best solution.
+    let mut groups: Vec<(Vec<usize>, Vec<&Solution>)> = Vec::new();
+    for sol in &p.solutions {
+        match groups.iter_mut().find(|(m, _)| *m == sol.moving) {
+            Some((_, v)) => v.push(sol),
+            None => groups.push((sol.moving.clone(), vec![sol])),
+        }
+    }
+    let limit = if args.all { usize::MAX } else { 5 };
+    for (moving, sols) in &groups {
+        output::line("");
+        output::line(format_args!(
+            "{} move{}:",
+            names_of(&p.names, moving).join(", "),
+            if moving.len() == 1 { "s" } else { "" }
+        ));
+        for kind in [CellKind::Face, CellKind::Edge, CellKind::Vertex] {
+            let of_kind: Vec<&&Solution> = sols.iter().filter(|x| x.cell == kind).collect();
+            for sol in of_kind.iter().take(limit) {
+                let d = sol.direction.to_strings();
+                let extra = match kind {
+                    CellKind::Face => format!("clearance {:.2}°", sol.clearance_deg),
+                    CellKind::Edge => "sliding".into(),
+                    CellKind::Vertex => "isolated direction".into(),
+                };
+                output::line(format_args!(
+                    "  {:6}  {}  ({}, {}, {})  {}",
+                    kind.name(),
+                    output::unit(&sol.unit),
+                    d[0],
+                    d[1],
+                    d[2],
+                    extra
+                ));
+            }
+            if of_kind.len() > limit {
+                output::line(format_args!(
+                    "  ... and {} more {}s (--all or --json)",
+                    of_kind.len() - limit,
+                    kind.name()
+                ));
+            }
+        }
+    }
+    if !global.quiet {
+        let t = &s.seconds;
+        output::line("");
+        output::line(format_args!(
+            "time: load {:.1} ms, sums {:.1} ms, projection {:.1} ms, unions {:.1} ms, overlay {:.1} ms, graphs {:.1} ms",
+            load * 1e3,
+            t.sums * 1e3,
+            t.projection * 1e3,
+            t.unions * 1e3,
+            t.overlay * 1e3,
+            t.graphs * 1e3
+        ));
+    }
+}
+
+/// Parses "X,Y,Z" and snaps it like coordinates to an integer direction.
+pub fn parse_direction(text: &str) -> anyhow::Result<Vec3> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("direction \"{text}\" is not three numbers X,Y,Z"))?;
+    anyhow::ensure!(
+        v.len() == 3,
+        "direction \"{text}\" needs three numbers X,Y,Z"
+    );
+    anyhow::ensure!(
+        v.iter().all(|x| x.is_finite()),
+        "direction \"{text}\" has a non-finite number"
+    );
+    let g = Grid::choose(v.iter().copied(), 30)?;
+    let d = Vec3::new(g.snap(v[0]), g.snap(v[1]), g.snap(v[2])).primitive();
+    anyhow::ensure!(!d.is_zero(), "direction \"{text}\" is zero");
+    Ok(d)
+}
+
+fn direction(
+    args: &PartitionArgs,
+    global: &Global,
+    regions: &BlockingRegions,
+    all: &[usize],
+    text: &str,
+) -> anyhow::Result<ExitCode> {
+    let d = parse_direction(text)?;
+    let names = regions.names();
+    let ms = apart::plan::MotionSpace::build(regions, all);
+    let (cell, _) = ms.locate(&d);
+    let g = dbg_at(regions, all, &d);
+    let moving = g.minimal_moving_sets();
+    let blocks: Vec<[String; 2]> = g
+        .arcs()
+        .iter()
+        .map(|&(a, b)| [names[a].clone(), names[b].clone()])
+        .collect();
+    if global.json {
+        output::json(&DirectionJson {
+            direction: d.unit_f64(),
+            exact_direction: d.to_strings(),
+            cell: cell.name(),
+            blocks,
+            moving: moving.iter().map(|m| names_of(names, m)).collect(),
+        })?;
+    } else {
+        let e = d.to_strings();
+        output::line(format_args!(
+            "direction ({}, {}, {}) ≈ {} lies in a {} of the motion space",
+            e[0],
+            e[1],
+            e[2],
+            output::unit(&d.unit_f64()),
+            cell.name()
+        ));
+        output::line("blocking graph (a -> b: a, moving along the direction, hits b):");
+        if blocks.is_empty() {
+            output::line("  (no arc: every part is free)");
+        }
+        for [a, b] in &blocks {
+            output::line(format_args!("  {a} -> {b}"));
+        }
+        if moving.is_empty() {
+            output::line("no proper subset can move along this direction");
+        }
+        for m in &moving {
+            output::line(format_args!("can move: {}", names_of(names, m).join(", ")));
+        }
+    }
+    let _ = args;
+    Ok(if moving.is_empty() {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

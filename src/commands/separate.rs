@@ -1,0 +1,215 @@
+//! `apart separate`: every direction along which part A leaves part B, as exact
+//! spherical regions, sliding arcs and isolated directions, with the free area and the
+//! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
+
+use crate::commands::load::load_valid;
+use crate::output;
+use crate::Global;
+use apart::plan::{parts_of, separate, BlockingRegions, Separation};
+use apart::sphere::Arc;
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `apart separate`.
+#[derive(clap::Args, Debug)]
+pub struct SeparateArgs {
+    /// Either an assembly and two part names (`ASSEMBLY A B`: A moves, B stays), or two
+    /// mesh files (`A.off B.stl`), each one part in the same coordinates.
+    #[arg(num_args = 2..=3, required = true, value_name = "INPUT")]
+    pub inputs: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct ArcJson {
+    normal: [String; 3],
+    start: [String; 3],
+    end: [String; 3],
+}
+
+#[derive(Serialize)]
+struct RegionJson {
+    area_fraction: f64,
+    direction: [f64; 3],
+    exact_direction: [String; 3],
+    clearance_deg: f64,
+    loops: Vec<Vec<ArcJson>>,
+}
+
+#[derive(Serialize)]
+struct BestJson {
+    direction: [f64; 3],
+    exact_direction: [String; 3],
+    clearance_deg: f64,
+}
+
+#[derive(Serialize)]
+struct SeparateJson {
+    moving: String,
+    fixed: String,
+    separable: bool,
+    area_fraction: f64,
+    best: Option<BestJson>,
+    regions: Vec<RegionJson>,
+    sliding: Vec<ArcJson>,
+    isolated: Vec<[String; 3]>,
+}
+
+fn arc_json(a: &Arc) -> ArcJson {
+    ArcJson {
+        normal: a.normal.to_strings(),
+        start: a.start.to_strings(),
+        end: a.end.to_strings(),
+    }
+}
+
+/// Runs the command.
+pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    let (path, a_name, b_name, _tmp) = match args.inputs.as_slice() {
+        [asm, a, b] => (PathBuf::from(asm), a.clone(), b.clone(), None),
+        [a, b] => {
+            // Two mesh files: a temporary manifest naming them as two parts.
+            let dir = std::env::temp_dir().join(format!("apart-separate-{}", std::process::id()));
+            std::fs::create_dir_all(&dir)?;
+            let abs = |p: &str| {
+                std::fs::canonicalize(p).map_err(|e| anyhow::anyhow!("cannot read {p}: {e}"))
+            };
+            let stem = |p: &str, d: &str| {
+                std::path::Path::new(p)
+                    .file_stem()
+                    .map_or(d.to_string(), |s| s.to_string_lossy().into_owned())
+            };
+            let (na, mut nb) = (stem(a, "A"), stem(b, "B"));
+            if nb == na {
+                nb.push_str("_2");
+            }
+            let manifest = serde_json::json!({
+                "name": format!("{na} and {nb}"),
+                "parts": [{"name": na, "mesh": abs(a)?}, {"name": nb, "mesh": abs(b)?}],
+            });
+            let file = dir.join("assembly.json");
+            std::fs::write(&file, serde_json::to_string(&manifest)?)?;
+            (file, na, nb, Some(TempDir(dir)))
+        }
+        _ => anyhow::bail!("give an assembly and two part names, or two mesh files"),
+    };
+    let loaded = load_valid(&path, global)?;
+    let asm = &loaded.assembly;
+    let index = |n: &str| {
+        asm.parts
+            .iter()
+            .position(|p| p.name == n)
+            .ok_or_else(|| anyhow::anyhow!("the assembly has no part named \"{n}\""))
+    };
+    let (a, b) = (index(&a_name)?, index(&b_name)?);
+    anyhow::ensure!(a != b, "the two parts must differ");
+    let regions = BlockingRegions::compute(&parts_of(asm)?)?;
+    let s = separate(&regions, a, b);
+    let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
+    if global.json {
+        output::json(&to_json(&s, &a_name, &b_name, separable))?;
+    } else {
+        print_text(&s, &a_name, &b_name);
+    }
+    Ok(if separable {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    })
+}
+
+fn to_json(s: &Separation, a: &str, b: &str, separable: bool) -> SeparateJson {
+    SeparateJson {
+        moving: a.to_string(),
+        fixed: b.to_string(),
+        separable,
+        area_fraction: s.area_fraction(),
+        best: s.best().map(|(d, c)| BestJson {
+            direction: d.unit_f64(),
+            exact_direction: d.to_strings(),
+            clearance_deg: c,
+        }),
+        regions: s
+            .faces
+            .iter()
+            .map(|f| RegionJson {
+                area_fraction: f.area / (4.0 * std::f64::consts::PI),
+                direction: f.direction.unit_f64(),
+                exact_direction: f.direction.to_strings(),
+                clearance_deg: f.clearance_deg,
+                loops: f
+                    .loops
+                    .iter()
+                    .map(|lp| lp.iter().map(arc_json).collect())
+                    .collect(),
+            })
+            .collect(),
+        sliding: s.sliding.iter().map(arc_json).collect(),
+        isolated: s.isolated.iter().map(|d| d.to_strings()).collect(),
+    }
+}
+
+fn point(v: &apart::kernel::Vec3) -> String {
+    let c = v.to_strings();
+    format!("({}, {}, {})", c[0], c[1], c[2])
+}
+
+fn print_text(s: &Separation, a: &str, b: &str) {
+    let pct = |x: f64| format!("{:.4}%", 100.0 * x);
+    if s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty() {
+        output::line(format_args!(
+            "\"{a}\" cannot leave \"{b}\" by any single translation"
+        ));
+        return;
+    }
+    output::line(format_args!(
+        "\"{a}\" leaves \"{b}\" along {} of the sphere of directions",
+        pct(s.area_fraction())
+    ));
+    if let Some((d, c)) = s.best() {
+        output::line(format_args!(
+            "best direction {} ≈ {}, clearance {c:.2}°",
+            point(&d),
+            output::unit(&d.unit_f64())
+        ));
+    }
+    for (k, f) in s.faces.iter().enumerate() {
+        output::line(format_args!(
+            "region {}: {} of the sphere, deepest direction {} ({:.2}° clearance), {} boundary loop{}",
+            k + 1,
+            pct(f.area / (4.0 * std::f64::consts::PI)),
+            point(&f.direction),
+            f.clearance_deg,
+            f.loops.len(),
+            if f.loops.len() == 1 { "" } else { "s" }
+        ));
+        for lp in &f.loops {
+            let corners: Vec<String> = lp.iter().map(|arc| point(&arc.start)).collect();
+            output::line(format_args!("  corners: {}", corners.join(" -> ")));
+        }
+    }
+    for arc in &s.sliding {
+        output::line(format_args!(
+            "sliding arc from {} to {} on the circle with normal {}",
+            point(&arc.start),
+            point(&arc.end),
+            point(&arc.normal)
+        ));
+    }
+    for d in &s.isolated {
+        output::line(format_args!(
+            "isolated direction {} ≈ {}",
+            point(d),
+            output::unit(&d.unit_f64())
+        ));
+    }
+}
+
+/// A temporary folder removed when dropped.
+struct TempDir(PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}

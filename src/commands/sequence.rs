@@ -1,0 +1,326 @@
+//! `apart sequence <assembly>`: a complete disassembly plan by recursive two-handed
+//! partitioning (its reverse is an assembly plan), with pictures and animated exports.
+//! Exit code 0 when every part comes apart, 2 when a subassembly is interlocked (the
+//! partial plan is printed and names it), 1 on error.
+
+use crate::commands::load::load_valid;
+use crate::commands::partition::Projection;
+use crate::output;
+use crate::Global;
+use apart::draw::{
+    assembly_png, disassembly_glb, disassembly_html, step_motion_space_png, step_motion_space_svg,
+    step_pngs, SphereSvgOptions, View,
+};
+use apart::plan::{
+    parts_of, sequence, BlockingRegions, Sequence, SequenceOptions, Step, Tolerance,
+};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Arguments of `apart sequence`.
+#[derive(clap::Args, Debug)]
+pub struct SequenceArgs {
+    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    pub assembly: PathBuf,
+    /// Prefer steps that move a single part.
+    #[arg(long)]
+    pub prefer_single: bool,
+    /// Prefer steps whose two sides each stay connected through contacts.
+    #[arg(long)]
+    pub prefer_connected: bool,
+    /// Prefer directions along the coordinate axes when they separate.
+    #[arg(long)]
+    pub prefer_axes: bool,
+    /// A part that never moves (the other side moves instead).
+    #[arg(long, value_name = "NAME")]
+    pub base: Option<String>,
+    /// Split at most this many levels deep (subassemblies below stay whole).
+    #[arg(long, value_name = "N")]
+    pub max_depth: Option<usize>,
+    /// For each step, the largest uniform growth of the parts that keeps it possible
+    /// (compare with manufacturing tolerance).
+    #[arg(long)]
+    pub tolerance: bool,
+    /// Draw the motion-space sphere of step K (see --step) as SVG.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    /// The same picture as PNG.
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// The step (1-based) the sphere pictures show.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    pub step: usize,
+    /// Projection of the sphere pictures.
+    #[arg(long, value_enum, default_value_t = Projection::EqualArea)]
+    pub projection: Projection,
+    /// Write an animated glTF binary (GLB) of the disassembly.
+    #[arg(long, value_name = "FILE")]
+    pub glb: Option<PathBuf>,
+    /// Write a self-contained HTML page that plays the disassembly in 3-D.
+    #[arg(long, value_name = "FILE")]
+    pub html: Option<PathBuf>,
+    /// Write PNG renders (the assembly, then each step with its moving side highlighted)
+    /// into this folder.
+    #[arg(long, value_name = "FOLDER")]
+    pub renders: Option<PathBuf>,
+}
+
+#[derive(Serialize)]
+struct StepJson {
+    subassembly: Vec<String>,
+    moving: Vec<String>,
+    direction: [f64; 3],
+    exact_direction: [String; 3],
+    cell: &'static str,
+    clearance_deg: f64,
+    depth: usize,
+    /// Largest uniform growth in input units; null when unbounded or not computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tolerance: Option<Option<f64>>,
+}
+
+#[derive(Serialize)]
+struct SequenceJson {
+    interlocked: bool,
+    complete: bool,
+    parts: Vec<String>,
+    steps: Vec<StepJson>,
+    /// Subassemblies no single translation can split.
+    stuck: Vec<Vec<String>>,
+    /// Subassemblies left whole by --max-depth.
+    unsplit: Vec<Vec<String>>,
+    seconds: SecondsJson,
+}
+
+#[derive(Serialize)]
+struct SecondsJson {
+    load: f64,
+    regions: f64,
+    steps: f64,
+}
+
+/// Runs the command.
+pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    let t = Instant::now();
+    let loaded = load_valid(&args.assembly, global)?;
+    let load = t.elapsed().as_secs_f64();
+    let asm = &loaded.assembly;
+    let t = Instant::now();
+    let regions = BlockingRegions::compute(&parts_of(asm)?)?;
+    let regions_s = t.elapsed().as_secs_f64();
+    let base =
+        match &args.base {
+            Some(name) => Some(asm.parts.iter().position(|p| &p.name == name).ok_or_else(
+                || anyhow::anyhow!("--base: the assembly has no part named \"{name}\""),
+            )?),
+            None => None,
+        };
+    let opts = SequenceOptions {
+        prefer_single: args.prefer_single,
+        prefer_connected: args.prefer_connected,
+        prefer_axes: args.prefer_axes,
+        base,
+        max_depth: args.max_depth,
+        tolerance: args.tolerance,
+    };
+    let plan = sequence(&regions, &opts);
+    pictures(args, asm, &regions, &plan)?;
+    let step_unit = asm.grid.step();
+    if global.json {
+        output::json(&to_json(&plan, step_unit, load, regions_s))?;
+    } else {
+        print_text(&plan, asm, global, step_unit, load, regions_s);
+    }
+    Ok(if plan.stuck.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    })
+}
+
+fn pictures(
+    args: &SequenceArgs,
+    asm: &apart::assembly::Assembly,
+    regions: &BlockingRegions,
+    plan: &Sequence,
+) -> anyhow::Result<()> {
+    if args.svg.is_some() || args.png.is_some() {
+        let step = plan.steps.get(args.step.wrapping_sub(1)).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--step {}: the plan has {} step(s)",
+                args.step,
+                plan.steps.len()
+            )
+        })?;
+        let opts = SphereSvgOptions {
+            projection: args.projection.into(),
+            ..Default::default()
+        };
+        if let Some(p) = &args.svg {
+            output::write_file(p, step_motion_space_svg(regions, step, &opts))?;
+        }
+        if let Some(p) = &args.png {
+            output::write_file(p, step_motion_space_png(regions, step, &opts))?;
+        }
+    }
+    if let Some(p) = &args.glb {
+        output::write_file(p, disassembly_glb(asm, plan))?;
+    }
+    if let Some(p) = &args.html {
+        output::write_file(p, disassembly_html(asm, plan))?;
+    }
+    if let Some(dir) = &args.renders {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", dir.display()))?;
+        let view = View::default();
+        output::write_file(
+            &dir.join("assembly.png"),
+            assembly_png(asm, &[], &view, 1000, 750),
+        )?;
+        for (k, png) in step_pngs(asm, plan, &view, 1000, 750).iter().enumerate() {
+            output::write_file(&dir.join(format!("step-{}.png", k + 1)), png)?;
+        }
+    }
+    Ok(())
+}
+
+fn names(plan: &Sequence, set: &[usize]) -> Vec<String> {
+    set.iter().map(|&k| plan.names[k].clone()).collect()
+}
+
+fn tolerance_units(t: &Option<Tolerance>, step_unit: f64) -> Option<Option<f64>> {
+    t.map(|t| match t {
+        Tolerance::Finite(s) => Some(s * step_unit),
+        Tolerance::Unbounded => None,
+    })
+}
+
+fn to_json(plan: &Sequence, step_unit: f64, load: f64, regions: f64) -> SequenceJson {
+    SequenceJson {
+        interlocked: !plan.stuck.is_empty(),
+        complete: plan.complete(),
+        parts: plan.names.clone(),
+        steps: plan
+            .steps
+            .iter()
+            .map(|s| StepJson {
+                subassembly: names(plan, &s.subassembly),
+                moving: names(plan, &s.moving),
+                direction: s.unit,
+                exact_direction: s.direction.to_strings(),
+                cell: s.cell.name(),
+                clearance_deg: s.clearance_deg,
+                depth: s.depth,
+                tolerance: tolerance_units(&s.tolerance, step_unit),
+            })
+            .collect(),
+        stuck: plan.stuck.iter().map(|s| names(plan, s)).collect(),
+        unsplit: plan.unsplit.iter().map(|s| names(plan, s)).collect(),
+        seconds: SecondsJson {
+            load,
+            regions,
+            steps: plan.step_seconds,
+        },
+    }
+}
+
+fn describe(plan: &Sequence, s: &Step, step_unit: f64) -> String {
+    let d = s.direction.to_strings();
+    let kind = match s.cell.name() {
+        "face" => format!("face, clearance {:.2}°", s.clearance_deg),
+        "edge" => "edge, sliding".to_string(),
+        _ => "isolated direction".to_string(),
+    };
+    let tol = match tolerance_units(&s.tolerance, step_unit) {
+        Some(Some(x)) => format!("; tolerates growth up to {x:.6}"),
+        Some(None) => "; any growth".to_string(),
+        None => String::new(),
+    };
+    format!(
+        "{} move along ({}, {}, {}) ≈ {} ({kind}{tol})",
+        names(plan, &s.moving).join(", "),
+        d[0],
+        d[1],
+        d[2],
+        output::unit(&s.unit)
+    )
+}
+
+fn print_text(
+    plan: &Sequence,
+    asm: &apart::assembly::Assembly,
+    global: &Global,
+    step_unit: f64,
+    load: f64,
+    regions: f64,
+) {
+    let status = if plan.complete() {
+        "complete".to_string()
+    } else if !plan.stuck.is_empty() {
+        "incomplete: interlocked subassembly".to_string()
+    } else {
+        "stopped at the depth limit".to_string()
+    };
+    output::line(format_args!(
+        "disassembly of \"{}\" ({} parts): {} step{}, {status}",
+        asm.name,
+        plan.names.len(),
+        plan.steps.len(),
+        if plan.steps.len() == 1 { "" } else { "s" }
+    ));
+    output::line("");
+    for (k, s) in plan.steps.iter().enumerate() {
+        let pad = "  ".repeat(s.depth);
+        output::line(format_args!(
+            "{pad}{}. split {{{}}}",
+            k + 1,
+            names(plan, &s.subassembly).join(", ")
+        ));
+        output::line(format_args!("{pad}   {}", describe(plan, s, step_unit)));
+    }
+    for s in &plan.stuck {
+        output::line(format_args!(
+            "interlocked: {{{}}} cannot be split by one translation",
+            names(plan, s).join(", ")
+        ));
+    }
+    for s in &plan.unsplit {
+        output::line(format_args!(
+            "left whole (depth limit): {{{}}}",
+            names(plan, s).join(", ")
+        ));
+    }
+    if !plan.steps.is_empty() {
+        output::line("");
+        output::line("assembly sequence (the reverse):");
+        for (k, s) in plan.steps.iter().rev().enumerate() {
+            let rest: Vec<usize> = s
+                .subassembly
+                .iter()
+                .copied()
+                .filter(|x| !s.moving.contains(x))
+                .collect();
+            let d = s.direction.neg().to_strings();
+            output::line(format_args!(
+                "{}. bring {{{}}} to {{{}}} along ({}, {}, {})",
+                k + 1,
+                names(plan, &s.moving).join(", "),
+                names(plan, &rest).join(", "),
+                d[0],
+                d[1],
+                d[2]
+            ));
+        }
+    }
+    if !global.quiet {
+        output::line("");
+        output::line(format_args!(
+            "time: load {:.1} ms, pair regions {:.1} ms, steps {:.1} ms",
+            load * 1e3,
+            regions * 1e3,
+            plan.step_seconds * 1e3
+        ));
+    }
+}
