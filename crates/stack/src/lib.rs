@@ -1,0 +1,61 @@
+//! Interference-free placement and stacking of polyhedral parts by exact c-space
+//! obstacles (paper 004, Ayyadevara et al.).
+//!
+//! A new part made of convex pieces is placed among fixed parts by translating it after
+//! one of a set of discrete orientations. For a fixed orientation the translations that
+//! make a moving piece `a` overlap a fixed piece `b` form the convex c-space obstacle
+//! `conv{b − a} = b ⊕ (−a)` ([`obstacle`]); the free space is a union of convex cells of
+//! linear inequalities ([`free_space`]); a convex quadratic cost is minimized exactly in
+//! each cell ([`qp`]). Only the obstacles of pairs found interfering at the current
+//! candidate are built (partial c-space, [`partial`]), over all orientations at once
+//! with one priority queue; obstacles are extrapolated between orientations about z
+//! inside constant-topology intervals ([`extrapolate`]). The stacking planner
+//! ([`planner`]) adds identical parts one by one with the cost of paper 004 eq. (1),
+//! accepting a candidate only if it is stable, grippable from above and can be lowered
+//! into place ([`stability`]). Test parts ([`parts`]) and pictures ([`render`]) come
+//! with it.
+//!
+//! Exactness: inputs are integers (grid points); orientations about z are exact rational
+//! rotations from Pythagorean triples ([`orientation`]); positions, costs, obstacles and
+//! cells are exact rationals. No epsilon decides anything; floating point appears only in
+//! the broad phase (conservative boxes), in reported angles and in pictures.
+//!
+//! ```
+//! use apart_stack::exact::{q, QBox};
+//! use apart_stack::orientation::{orientations, Base};
+//! use apart_stack::partial::{place, Cost, Moving, PlaceOptions, Region};
+//! use apart_stack::parts::cube;
+//! use apart_stack::scene::Scene;
+//! // A unit cube on the floor at the origin; place another as close to it as possible.
+//! let part = cube(1);
+//! let mut scene = Scene::new();
+//! scene.add_fixed_part(&part.pieces);
+//! let moving = Moving::new(part, &orientations(90.0, &[Base::IDENTITY], 0.05), true);
+//! let opts = PlaceOptions {
+//!     region: Region::Container(QBox { lo: [q(-5), q(-5), q(0)], hi: [q(5), q(5), q(5)] }),
+//!     cost: Cost::Distance([q(0), q(0), q(0)]),
+//!     clearance: None,
+//!     extrapolate: true,
+//! };
+//! let best = &place(&scene, &moving, &opts, 1).unwrap().candidates[0];
+//! assert_eq!(best.cost, q(1)); // touching a face of the fixed cube
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod bvh;
+pub mod exact;
+pub mod extrapolate;
+pub mod free_space;
+pub mod guide;
+pub mod interference;
+pub mod obstacle;
+pub mod orientation;
+pub mod part;
+pub mod partial;
+pub mod parts;
+pub mod planner;
+pub mod qp;
+pub mod rational;
+pub mod scene;
+pub mod stability;

@@ -1,0 +1,759 @@
+//! Placement by partial c-space obstacles over discrete orientations (paper 004 §V and
+//! §VI-A).
+//!
+//! For each orientation the free space starts as the permissible region Ω (one cell).
+//! A candidate is the lexicographic minimizer of the cost in a cell. Popped from one
+//! priority queue over every orientation and cell (cheapest first), a candidate is
+//! tested for interference with every fixed piece (BVH broad phase, exact separating
+//! axes); the obstacles of the pairs that interfere are added to that orientation's
+//! obstacle list and subtracted from its cells lazily (a cell is brought up to date when
+//! it is popped), and the queue goes on. A candidate without interference is yielded:
+//! it is free, and no free configuration is cheaper, because every queued cost is a lower
+//! bound of its cell (obstacles only remove positions). This is the two-stage priority
+//! queue of §V-C with every free-space cell's optimum kept as a candidate (§VI-A.4):
+//! successive calls yield the optima of further cells in increasing cost, for the
+//! planner's stability and feasibility checks.
+
+use crate::bvh::FBox;
+use crate::exact::{q, Point, QBox, Q};
+use crate::extrapolate::Template;
+use crate::free_space::{subtract, Cell, Split, SplitStats};
+use crate::interference::overlaps;
+use crate::obstacle::{Obstacle, ObstacleShape};
+use crate::orientation::{Base, Orientation};
+use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
+use crate::qp::{lexmin, Objective};
+use crate::scene::Scene;
+use apart_pieces::Polytope;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Where the part may go.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Region {
+    /// The translations themselves lie in this box (Ω given directly; equal `lo` and
+    /// `hi` on z make it a plane: 2-D positions).
+    Translations(QBox),
+    /// The whole part must lie inside this box (Σ: floor area times the maximum
+    /// height); Ω(θ) follows from the part's extent in each orientation.
+    Container(QBox),
+}
+
+/// The cost to minimize, a convex quadratic in the translation for each orientation.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Cost {
+    /// `‖p − p_d‖²` for a desired translation `p_d`.
+    Distance([Q; 3]),
+    /// Paper 004 eq. (1) for the new part: `w [(max X − x0)² + (min X − x0)²] +
+    /// w [(max Y − y0)² + (min Y − y0)²] + 4 (1 − w) (z_cg − z0)²` over the placed
+    /// part's vertices and centre of gravity, with `floor = (x0, y0, z0)`.
+    Stacking {
+        /// Weight of floor-space use against height, in `[0, 1]`.
+        w: Q,
+        /// The floor point `(x0, y0, z0)`.
+        floor: [Q; 3],
+    },
+    /// The same quadratic in the translation for every orientation.
+    Quadratic(Objective),
+}
+
+impl Cost {
+    /// The objective in the translation `p` of the part turned as `part`.
+    pub fn objective(&self, part: &OrientedPart) -> Objective {
+        match self {
+            Cost::Distance(t) => Objective::distance(t),
+            Cost::Quadratic(o) => o.clone(),
+            Cost::Stacking { w, floor } => {
+                let one_w = &q(1) - w;
+                let e = &part.extent;
+                let z = || q(0);
+                let mut h = [[z(), z(), z()], [z(), z(), z()], [z(), z(), z()]];
+                let mut g = [z(), z(), z()];
+                let mut c = q(0);
+                let mut anchor = [z(), z(), z()];
+                for i in 0..2 {
+                    // w[(p + u − x0)² + (p + l − x0)²] = 2w p² + 2w(u + l − 2x0) p + w[(u−x0)² + (l−x0)²]
+                    let (u, l) = (&e.hi[i] - &floor[i], &e.lo[i] - &floor[i]);
+                    h[i][i] = &q(2) * w;
+                    g[i] = &(&q(2) * w) * &(&u + &l);
+                    c = &c + &(w * &(&(&u * &u) + &(&l * &l)));
+                    anchor[i] = &floor[i] - &(&(&e.hi[i] + &e.lo[i]) * &crate::exact::qfrac(1, 2));
+                }
+                // 4(1 − w)(p + cz − z0)²
+                let dz = &part.centroid[2] - &floor[2];
+                let k = &q(4) * &one_w;
+                h[2][2] = k.clone();
+                g[2] = &(&q(2) * &k) * &dz;
+                c = &c + &(&k * &(&dz * &dz));
+                anchor[2] = -&dz;
+                Objective { h, g, c, anchor }
+            }
+        }
+    }
+
+    /// Checks the cost's parameters.
+    pub fn validate(&self) -> Result<(), StackError> {
+        match self {
+            Cost::Stacking { w, .. } => {
+                if *w < q(0) || *w > q(1) {
+                    return Err(StackError::Invalid(format!("weight {w} is not in [0, 1]")));
+                }
+                Ok(())
+            }
+            Cost::Quadratic(o) => Ok(o.validate()?),
+            Cost::Distance(_) => Ok(()),
+        }
+    }
+}
+
+/// Settings of a placement.
+#[derive(Clone, Debug)]
+pub struct PlaceOptions {
+    /// Where the part may go.
+    pub region: Region,
+    /// What to minimize.
+    pub cost: Cost,
+    /// Horizontal clearance to keep from fixed parts (robot positioning error), if any.
+    pub clearance: Option<Q>,
+    /// Reuse obstacle structures inside constant-topology intervals (§IV).
+    pub extrapolate: bool,
+}
+
+/// An interference-free configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Candidate {
+    /// Index into the orientations of the [`Moving`] part.
+    pub orientation: usize,
+    /// The translation applied after turning the part.
+    pub translation: [Q; 3],
+    /// The cost.
+    pub cost: Q,
+    /// The tie-breaker `‖p − anchor‖²`.
+    pub tie: Q,
+}
+
+/// The part to place with its orientations prepared (rotated pieces, boxes, extents).
+#[derive(Clone, Debug)]
+pub struct Moving {
+    /// The part.
+    pub part: PartModel,
+    /// The orientations tried.
+    pub orientations: Vec<Orientation>,
+    /// The part in each orientation.
+    pub oriented: Vec<OrientedPart>,
+    base_pieces: HashMap<Base, Vec<Polytope>>,
+}
+
+impl Moving {
+    /// Prepares `part` in the given orientations; with `dedupe`, orientations giving
+    /// the same shape up to translation are kept once.
+    pub fn new(part: PartModel, orientations: &[Orientation], dedupe: bool) -> Moving {
+        let orientations = if dedupe {
+            distinct_orientations(&part, orientations)
+        } else {
+            orientations.to_vec()
+        };
+        let oriented = orientations.iter().map(|o| part.orient(o)).collect();
+        let mut base_pieces = HashMap::default();
+        for o in &orientations {
+            base_pieces
+                .entry(o.base)
+                .or_insert_with(|| part.base_pieces(o.base));
+        }
+        Moving {
+            part,
+            orientations,
+            oriented,
+            base_pieces,
+        }
+    }
+}
+
+/// Counters and timings of placements (accumulated over every call sharing a cache).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PlaceStats {
+    /// Orientations whose desired position was tested at least once.
+    pub orientations_considered: usize,
+    /// `m_new · m_fixed` summed over the orientations considered (paper 004 Table II,
+    /// column 3: the pairs a complete c-space obstacle would need).
+    pub pairs_total: u64,
+    /// Pairs whose obstacle was added (Table II, column 4).
+    pub pairs_evaluated: u64,
+    /// Exact interference tests (separating axes) after the broad phase.
+    pub interference_tests: u64,
+    /// Seconds in interference detection (broad and narrow phase).
+    pub detect_seconds: f64,
+    /// Seconds subtracting obstacles and minimizing in cells.
+    pub cells_seconds: f64,
+    /// Cells created.
+    pub cells: u64,
+    /// Quadratic programs solved for candidates.
+    pub qps: u64,
+    /// Linear programs and quick rejections of subtractions.
+    pub split: (u64, u64),
+    /// Subtractions past the quick rejections, and pieces they produced.
+    pub subtractions: (u64, u64),
+    /// Candidates yielded.
+    pub candidates: u64,
+}
+
+/// Counters and timings of obstacle construction.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ObstacleStats {
+    /// Obstacles computed from scratch (Minkowski sums).
+    pub fresh: u64,
+    /// Seconds in fresh construction.
+    pub fresh_seconds: f64,
+    /// Obstacles extrapolated from a template.
+    pub extrapolated: u64,
+    /// Seconds in extrapolation (validity test and recomputation).
+    pub extrapolate_seconds: f64,
+    /// Template validity tests that failed (a critical angle in between).
+    pub extrapolation_misses: u64,
+    /// Obstacles reused from the cache (the same pair of shapes and orientation).
+    pub reused: u64,
+}
+
+/// Obstacles of (fixed shape, orientation, moving piece), with the extrapolation
+/// templates; shared by every placement in a plan.
+#[derive(Clone, Debug, Default)]
+pub struct ObstacleCache {
+    exact: HashMap<(usize, usize, usize), Arc<ObstacleShape>>,
+    templates: HashMap<(usize, Base, usize), Template>,
+    /// Counters.
+    pub stats: ObstacleStats,
+}
+
+impl ObstacleCache {
+    /// An empty cache.
+    pub fn new() -> ObstacleCache {
+        ObstacleCache::default()
+    }
+
+    /// The obstacle of fixed shape `s` for moving piece `a` in orientation `o`.
+    pub fn get(
+        &mut self,
+        scene: &Scene,
+        moving: &Moving,
+        s: usize,
+        o: usize,
+        a: usize,
+        extrapolate: bool,
+    ) -> Result<Arc<ObstacleShape>, StackError> {
+        if let Some(x) = self.exact.get(&(s, o, a)) {
+            self.stats.reused += 1;
+            return Ok(x.clone());
+        }
+        let orient = moving.orientations[o];
+        let fixed = &scene.shapes()[s];
+        let key = (s, orient.base, a);
+        if extrapolate {
+            if let Some(t) = self.templates.get(&key) {
+                let t0 = Instant::now();
+                let ok = t.valid_at(orient.theta);
+                let shape = ok.then(|| t.extrapolate(orient.theta));
+                self.stats.extrapolate_seconds += t0.elapsed().as_secs_f64();
+                if let Some(shape) = shape {
+                    self.stats.extrapolated += 1;
+                    let shape = Arc::new(shape);
+                    self.exact.insert((s, o, a), shape.clone());
+                    return Ok(shape);
+                }
+                self.stats.extrapolation_misses += 1;
+            }
+        }
+        let t0 = Instant::now();
+        let shape = ObstacleShape::compute(fixed, &moving.oriented[o].pieces[a])
+            .map_err(|e| StackError::Internal(format!("Minkowski sum: {e}")))?;
+        self.stats.fresh_seconds += t0.elapsed().as_secs_f64();
+        self.stats.fresh += 1;
+        if extrapolate {
+            let base = &moving.base_pieces[&orient.base][a];
+            if let Some(t) = Template::new(fixed, base, orient.theta, &shape) {
+                self.templates.insert(key, t);
+            }
+        }
+        let shape = Arc::new(shape);
+        self.exact.insert((s, o, a), shape.clone());
+        Ok(shape)
+    }
+}
+
+struct Slot {
+    cell: Cell,
+    /// Obstacles `0..verified` do not contain the cell's optimum in their interior.
+    verified: usize,
+    alive: bool,
+    /// The cell's optimum, once computed (children are queued with their parent's cost,
+    /// a lower bound, and solved only when popped).
+    point: Option<[Q; 3]>,
+}
+
+struct OrientState {
+    omega: QBox,
+    objective: Objective,
+    obstacles: Vec<Obstacle>,
+    index: ObstacleIndex,
+    added: HashSet<(usize, usize)>,
+    slots: Vec<Slot>,
+    considered: bool,
+}
+
+#[derive(Clone, Debug)]
+struct Entry {
+    cost: Q,
+    tie: Q,
+    o: usize,
+    cell: usize,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Entry {
+    /// Reversed: the cheapest entry is the greatest (`BinaryHeap` is a max-heap).
+    fn cmp(&self, o: &Self) -> Ordering {
+        (&o.cost, &o.tie, o.o, o.cell).cmp(&(&self.cost, &self.tie, self.o, self.cell))
+    }
+}
+
+/// The placement engine for one part among fixed parts: yields interference-free
+/// candidates in increasing cost.
+pub struct Placer<'a> {
+    scene: &'a Scene,
+    moving: &'a Moving,
+    cache: &'a mut ObstacleCache,
+    opts: &'a PlaceOptions,
+    states: Vec<Option<OrientState>>,
+    heap: BinaryHeap<Entry>,
+    yielded: HashSet<(usize, Point)>,
+    split_stats: SplitStats,
+    /// Counters of this placer.
+    pub stats: PlaceStats,
+}
+
+impl<'a> Placer<'a> {
+    /// Prepares every orientation: Ω(θ), the objective, the first candidate.
+    pub fn new(
+        scene: &'a Scene,
+        moving: &'a Moving,
+        cache: &'a mut ObstacleCache,
+        opts: &'a PlaceOptions,
+    ) -> Result<Placer<'a>, StackError> {
+        opts.cost.validate()?;
+        let mut placer = Placer {
+            scene,
+            moving,
+            cache,
+            opts,
+            states: Vec::new(),
+            heap: BinaryHeap::new(),
+            yielded: HashSet::default(),
+            split_stats: SplitStats::default(),
+            stats: PlaceStats::default(),
+        };
+        for (o, part) in moving.oriented.iter().enumerate() {
+            let omega = match &opts.region {
+                Region::Translations(b) => b.clone(),
+                Region::Container(s) => QBox {
+                    lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
+                    hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
+                },
+            };
+            if omega.is_empty() {
+                placer.states.push(None);
+                continue;
+            }
+            let objective = opts.cost.objective(part);
+            let cell = Cell::of_box(&omega);
+            placer.stats.qps += 1;
+            let Some(p) = lexmin(&cell.constraints, &objective) else {
+                placer.states.push(None);
+                continue;
+            };
+            let key = (objective.value(&p), objective.tie(&p));
+            let mut st = OrientState {
+                omega,
+                objective,
+                obstacles: Vec::new(),
+                index: ObstacleIndex::default(),
+                added: HashSet::default(),
+                slots: Vec::new(),
+                considered: false,
+            };
+            placer.push_cell(o, &mut st, cell, key, Some(p));
+            placer.states.push(Some(st));
+        }
+        Ok(placer)
+    }
+
+    /// Queues a cell under a lower bound of its cost (its parent's), optionally with its
+    /// optimum already known.
+    fn push_cell(
+        &mut self,
+        o: usize,
+        st: &mut OrientState,
+        cell: Cell,
+        key: (Q, Q),
+        point: Option<[Q; 3]>,
+    ) {
+        self.stats.cells += 1;
+        let entry = Entry {
+            cost: key.0,
+            tie: key.1,
+            o,
+            cell: st.slots.len(),
+        };
+        st.slots.push(Slot {
+            cell,
+            verified: 0,
+            alive: true,
+            point,
+        });
+        self.heap.push(entry);
+    }
+
+    /// The next interference-free candidate (cheapest first), or `None` when no free
+    /// space is left in any orientation.
+    pub fn next_candidate(&mut self) -> Result<Option<Candidate>, StackError> {
+        while let Some(e) = self.heap.pop() {
+            let mut st = self.states[e.o]
+                .take()
+                .expect("state of a queued orientation");
+            let out = self.step(&mut st, &e);
+            self.states[e.o] = Some(st);
+            match out? {
+                Step::Continue => continue,
+                Step::Yield(c) => {
+                    self.stats.candidates += 1;
+                    return Ok(Some(c));
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    fn step(&mut self, st: &mut OrientState, e: &Entry) -> Result<Step, StackError> {
+        if !st.slots[e.cell].alive {
+            return Ok(Step::Continue);
+        }
+        let Some(point) = st.slots[e.cell].point.clone() else {
+            // Solve the cell now and queue it under its own cost.
+            let t0 = Instant::now();
+            self.stats.qps += 1;
+            let p = lexmin(&st.slots[e.cell].cell.constraints, &st.objective);
+            self.stats.cells_seconds += t0.elapsed().as_secs_f64();
+            match p {
+                None => st.slots[e.cell].alive = false,
+                Some(p) => {
+                    let entry = Entry {
+                        cost: st.objective.value(&p),
+                        tie: st.objective.tie(&p),
+                        o: e.o,
+                        cell: e.cell,
+                    };
+                    st.slots[e.cell].point = Some(p);
+                    self.heap.push(entry);
+                }
+            }
+            return Ok(Step::Continue);
+        };
+        let n = st.obstacles.len();
+        if st.slots[e.cell].verified < n {
+            // Lazy subtraction: only an obstacle containing the cell's optimum in its
+            // interior matters now; the cell is split by the first such one, and the
+            // pieces are checked again against every obstacle when they come up.
+            let t0 = Instant::now();
+            let p = Point::from_q(&point);
+            let from = st.slots[e.cell].verified;
+            let mut near = st.index.containing(&point, from);
+            near.sort_unstable();
+            let hit = near
+                .into_iter()
+                .find(|&k| st.obstacles[k].contains_open(&p));
+            match hit {
+                None => st.slots[e.cell].verified = n,
+                Some(k) => {
+                    st.slots[e.cell].alive = false;
+                    let cell = st.slots[e.cell].cell.clone();
+                    let split = subtract(
+                        &cell,
+                        &st.obstacles[k],
+                        &st.omega,
+                        std::slice::from_ref(&p),
+                        &mut self.split_stats,
+                    );
+                    let pieces = match split {
+                        Split::Unchanged => vec![(cell, None)],
+                        Split::Pieces(ps) => ps,
+                    };
+                    for (piece, cut) in pieces {
+                        // A lower bound of the piece: its parent's, or the optimum over
+                        // the half-space that cut it off when that is larger.
+                        let mut key = (e.cost.clone(), e.tie.clone());
+                        if let Some(h) = cut {
+                            self.stats.qps += 1;
+                            match lexmin(std::slice::from_ref(&h), &st.objective) {
+                                Some(b) => {
+                                    let b = (st.objective.value(&b), st.objective.tie(&b));
+                                    if b > key {
+                                        key = b;
+                                    }
+                                }
+                                None => continue,
+                            }
+                        }
+                        self.push_cell(e.o, st, piece, key, None);
+                    }
+                    self.stats.split = (
+                        self.split_stats.linear_programs as u64,
+                        self.split_stats.quick_rejects as u64,
+                    );
+                    self.stats.subtractions =
+                        (self.split_stats.full as u64, self.split_stats.pieces as u64);
+                    self.stats.cells_seconds += t0.elapsed().as_secs_f64();
+                    return Ok(Step::Continue);
+                }
+            }
+            self.stats.cells_seconds += t0.elapsed().as_secs_f64();
+        }
+        if !st.considered {
+            st.considered = true;
+            self.stats.orientations_considered += 1;
+            let m = self.moving.oriented[e.o].pieces.len() as u64;
+            self.stats.pairs_total += m * self.scene.pieces().len() as u64;
+        }
+        let p = Point::from_q(&point);
+        let t0 = Instant::now();
+        let pairs = self.detect(e.o, st, &point, &p)?;
+        self.stats.detect_seconds += t0.elapsed().as_secs_f64();
+        if pairs.is_empty() {
+            st.slots[e.cell].alive = false;
+            if !self.yielded.insert((e.o, p)) {
+                return Ok(Step::Continue);
+            }
+            return Ok(Step::Yield(Candidate {
+                orientation: e.o,
+                translation: point,
+                cost: e.cost.clone(),
+                tie: e.tie.clone(),
+            }));
+        }
+        for (obstacle, key) in pairs {
+            st.index.push(obstacle.bbox.as_ref());
+            st.obstacles.push(obstacle);
+            st.added.insert(key);
+            self.stats.pairs_evaluated += 1;
+        }
+        self.heap.push(e.clone());
+        Ok(Step::Continue)
+    }
+
+    /// The pairs (fixed piece, moving piece) interfering at `p` (or closer than the
+    /// clearance) not yet among the orientation's obstacles, with their placed obstacles.
+    fn detect(
+        &mut self,
+        o: usize,
+        st: &OrientState,
+        pq: &[Q; 3],
+        p: &Point,
+    ) -> Result<Vec<(Obstacle, (usize, usize))>, StackError> {
+        let part = &self.moving.oriented[o];
+        let clearance = self.opts.clearance.as_ref().filter(|c| !c.is_zero());
+        let mut out = Vec::new();
+        let mut near = Vec::new();
+        for (a, b) in part.boxes.iter().enumerate() {
+            let mut fb: FBox = b.translated(pq).to_f64();
+            if let Some(c) = clearance {
+                let c = c.to_f64() * (1.0 + 1e-6);
+                for i in 0..2 {
+                    fb[0][i] -= c;
+                    fb[1][i] += c;
+                }
+            }
+            near.clear();
+            self.scene.near(&fb, &mut near);
+            for &k in &near {
+                if st.added.contains(&(k, a)) {
+                    continue;
+                }
+                let sp = &self.scene.pieces()[k];
+                self.stats.interference_tests += 1;
+                let hit = match clearance {
+                    None => overlaps(
+                        &part.pieces[a],
+                        p,
+                        &self.scene.shapes()[sp.shape],
+                        &sp.translation,
+                    ),
+                    Some(c) => {
+                        let shape = self.cache.get(
+                            self.scene,
+                            self.moving,
+                            sp.shape,
+                            o,
+                            a,
+                            self.opts.extrapolate,
+                        )?;
+                        shape.placed(&sp.translation, Some(c)).contains_open(p)
+                    }
+                };
+                if hit {
+                    let shape = self.cache.get(
+                        self.scene,
+                        self.moving,
+                        sp.shape,
+                        o,
+                        a,
+                        self.opts.extrapolate,
+                    )?;
+                    out.push((shape.placed(&sp.translation, clearance), (k, a)));
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The boxes of an orientation's obstacles, for finding those that may contain a point:
+/// a hierarchy rebuilt whenever the list has doubled, and a list of the newer ones.
+#[derive(Default)]
+struct ObstacleIndex {
+    boxes: Vec<FBox>,
+    bvh: crate::bvh::Bvh,
+    built: usize,
+}
+
+impl ObstacleIndex {
+    fn push(&mut self, b: Option<&QBox>) {
+        let inf = f64::INFINITY;
+        self.boxes
+            .push(b.map(QBox::to_f64).unwrap_or([[-inf; 3], [inf; 3]]));
+        if self.boxes.len() >= 2 * self.built.max(16) {
+            self.bvh = crate::bvh::Bvh::build(self.boxes.clone());
+            self.built = self.boxes.len();
+        }
+    }
+
+    /// Indices `>= from` of obstacles whose (outward-rounded) box contains `p`.
+    fn containing(&self, p: &[Q; 3], from: usize) -> Vec<usize> {
+        let f = p.clone().map(|v| v.to_f64());
+        let q: FBox = [f, f];
+        let mut out = Vec::new();
+        if from < self.built {
+            self.bvh.query(&q, &mut out);
+            out.retain(|&k| k >= from);
+        }
+        for k in self.built.max(from)..self.boxes.len() {
+            if crate::bvh::overlap(&self.boxes[k], &q) {
+                out.push(k);
+            }
+        }
+        out
+    }
+}
+
+enum Step {
+    Continue,
+    Yield(Candidate),
+}
+
+/// The result of [`place`].
+#[derive(Clone, Debug)]
+pub struct Placement {
+    /// Interference-free candidates, cheapest first.
+    pub candidates: Vec<Candidate>,
+    /// Counters of the placement.
+    pub stats: PlaceStats,
+    /// Counters of obstacle construction.
+    pub obstacles: ObstacleStats,
+}
+
+/// Up to `count` interference-free configurations of `moving` among the fixed parts of
+/// `scene`, in increasing cost (one per free-space cell).
+pub fn place(
+    scene: &Scene,
+    moving: &Moving,
+    opts: &PlaceOptions,
+    count: usize,
+) -> Result<Placement, StackError> {
+    let mut cache = ObstacleCache::new();
+    let (candidates, stats) = {
+        let mut placer = Placer::new(scene, moving, &mut cache, opts)?;
+        let mut out = Vec::new();
+        while out.len() < count {
+            match placer.next_candidate()? {
+                Some(c) => out.push(c),
+                None => break,
+            }
+        }
+        (out, placer.stats)
+    };
+    Ok(Placement {
+        candidates,
+        stats,
+        obstacles: cache.stats,
+    })
+}
+
+/// The best configuration for one orientation with the complete c-space obstacle (every
+/// pair's obstacle subtracted): the reference partial c-space must agree with (§V-B).
+pub fn best_full(
+    scene: &Scene,
+    moving: &Moving,
+    opts: &PlaceOptions,
+    o: usize,
+) -> Result<Option<Candidate>, StackError> {
+    let part = &moving.oriented[o];
+    let omega = match &opts.region {
+        Region::Translations(b) => b.clone(),
+        Region::Container(s) => QBox {
+            lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
+            hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
+        },
+    };
+    if omega.is_empty() {
+        return Ok(None);
+    }
+    let mut cache = ObstacleCache::new();
+    let clearance = opts.clearance.as_ref().filter(|c| !c.is_zero());
+    let mut cells = vec![Cell::of_box(&omega)];
+    let mut st = SplitStats::default();
+    for sp in scene.pieces() {
+        for a in 0..part.pieces.len() {
+            let shape = cache.get(scene, moving, sp.shape, o, a, false)?;
+            let ob = shape.placed(&sp.translation, clearance);
+            let mut next = Vec::new();
+            for c in cells {
+                match subtract(&c, &ob, &omega, &[], &mut st) {
+                    Split::Unchanged => next.push(c),
+                    Split::Pieces(ps) => next.extend(ps.into_iter().map(|(p, _)| p)),
+                }
+            }
+            cells = next;
+        }
+    }
+    let obj = opts.cost.objective(part);
+    let best = cells
+        .iter()
+        .filter_map(|c| lexmin(&c.constraints, &obj))
+        .map(|p| (obj.value(&p), obj.tie(&p), p))
+        .min_by(|x, y| (&x.0, &x.1).cmp(&(&y.0, &y.1)));
+    Ok(best.map(|(cost, tie, translation)| Candidate {
+        orientation: o,
+        translation,
+        cost,
+        tie,
+    }))
+}

@@ -1,0 +1,316 @@
+//! The stacking planner (paper 004 §II): `n` identical parts, one at a time, each placed
+//! by the placement engine with the cost of eq. (1) and accepted only if it is
+//! interference-free, stable, grippable from above and can be lowered into place.
+//!
+//! Each part is placed in two stages (§II-B): first inside the stack's bounding box
+//! grown by a small slack (room for a nested part), then anywhere in the floor region up
+//! to the maximum height. Within a stage the engine yields interference-free candidates
+//! in increasing cost over all orientations; the first one passing the checks is taken.
+
+use crate::exact::{q, qadd3, qfrac, QBox, Q};
+use crate::orientation::{orientations, Base, Orientation};
+use crate::part::{PartModel, StackError};
+use crate::partial::{
+    Cost, Moving, ObstacleCache, ObstacleStats, PlaceOptions, PlaceStats, Placer, Region,
+};
+use crate::scene::Scene;
+use crate::stability::{contacts, lowerable, placed_pieces, stable, top, up_face_area, Contact};
+use apart_pieces::Polytope;
+use rustc_hash::FxHashMap as HashMap;
+use std::time::Instant;
+
+/// Settings of a stacking plan.
+#[derive(Clone, Debug)]
+pub struct StackOptions {
+    /// Number of parts.
+    pub count: usize,
+    /// Weight `w` of eq. (1): 0 minds only height, 1 only floor space.
+    pub weight: Q,
+    /// Floor region `[x0, y0, x1, y1]`; its centre is eq. (1)'s `(x0, y0)`.
+    pub floor: [Q; 4],
+    /// Height of the floor (eq. (1)'s `z0`).
+    pub floor_z: Q,
+    /// Maximum height of the stack above the floor.
+    pub max_height: Q,
+    /// Step of the orientations about z, in degrees (360 or more: no turn).
+    pub dtheta_deg: f64,
+    /// Base orientations (quarter turns about x and y) to try.
+    pub bases: Vec<Base>,
+    /// Largest accepted error of an exact rotation against its wanted angle, degrees.
+    pub max_angle_error_deg: f64,
+    /// Horizontal clearance between parts (robot positioning error).
+    pub clearance: Option<Q>,
+    /// Smallest exposed upward face area for the suction gripper (must be positive).
+    pub min_grip_area: Q,
+    /// Growth of the stack's bounding box in the first stage (default: a quarter of
+    /// the part's smallest extent).
+    pub slack: Option<Q>,
+    /// Candidates examined per stage before giving up.
+    pub max_candidates: usize,
+    /// Extrapolate obstacles inside constant-topology intervals.
+    pub extrapolate: bool,
+}
+
+impl StackOptions {
+    /// Defaults for `count` parts with weight `w` on a floor region.
+    pub fn new(count: usize, weight: Q, floor: [Q; 4], max_height: Q) -> StackOptions {
+        StackOptions {
+            count,
+            weight,
+            floor,
+            floor_z: q(0),
+            max_height,
+            dtheta_deg: 90.0,
+            bases: vec![Base::IDENTITY],
+            max_angle_error_deg: 0.05,
+            clearance: None,
+            min_grip_area: q(0),
+            slack: None,
+            max_candidates: 500,
+            extrapolate: true,
+        }
+    }
+}
+
+/// One placed part.
+#[derive(Clone, Debug)]
+pub struct Placed {
+    /// Its index in the stack (placing order).
+    pub index: usize,
+    /// Index into the plan's orientations.
+    pub orientation_index: usize,
+    /// Its orientation.
+    pub orientation: Orientation,
+    /// Translation applied after turning the part's mesh about its origin.
+    pub translation: [Q; 3],
+    /// Its term of eq. (1).
+    pub cost: Q,
+    /// 1: inside the stack's (grown) bounding box; 2: anywhere.
+    pub stage: u8,
+    /// Contacts with the floor and earlier parts.
+    pub contacts: Vec<Contact>,
+    /// Candidates examined before this one was accepted (itself included).
+    pub examined: usize,
+}
+
+/// Counters of a plan.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PlanStats {
+    /// Placement engine counters, summed.
+    pub place: PlaceStats,
+    /// Obstacle construction counters.
+    pub obstacles: ObstacleStats,
+    /// Candidates rejected as unstable.
+    pub unstable: usize,
+    /// Candidates rejected because they cannot be lowered into place.
+    pub not_lowerable: usize,
+    /// Orientations kept (distinct, with a gripping face).
+    pub orientations: usize,
+    /// Seconds in stability checks.
+    pub stability_seconds: f64,
+    /// Seconds in lowering checks.
+    pub lowering_seconds: f64,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// A stacking plan.
+#[derive(Clone, Debug)]
+pub struct StackPlan {
+    /// The parts placed, in order.
+    pub placements: Vec<Placed>,
+    /// Height of the stack above the floor.
+    pub stack_height: Q,
+    /// Every part was placed.
+    pub complete: bool,
+    /// The part in its orientations.
+    pub moving: Moving,
+    /// The stack as fixed parts.
+    pub scene: Scene,
+    /// Counters.
+    pub stats: PlanStats,
+}
+
+impl StackPlan {
+    /// The pieces of placed part `k`, in place.
+    pub fn pieces_of(&self, k: usize) -> Vec<Polytope> {
+        let p = &self.placements[k];
+        placed_pieces(
+            &self.moving.oriented[p.orientation_index].pieces,
+            &p.translation,
+        )
+    }
+
+    /// The sum of the parts' costs (eq. (1)).
+    pub fn total_cost(&self) -> Q {
+        self.placements.iter().fold(q(0), |s, p| &s + &p.cost)
+    }
+}
+
+fn add_stats(a: &mut PlaceStats, b: &PlaceStats) {
+    a.orientations_considered += b.orientations_considered;
+    a.pairs_total += b.pairs_total;
+    a.pairs_evaluated += b.pairs_evaluated;
+    a.interference_tests += b.interference_tests;
+    a.detect_seconds += b.detect_seconds;
+    a.cells_seconds += b.cells_seconds;
+    a.cells += b.cells;
+    a.qps += b.qps;
+    a.split.0 += b.split.0;
+    a.split.1 += b.split.1;
+    a.subtractions.0 += b.subtractions.0;
+    a.subtractions.1 += b.subtractions.1;
+    a.candidates += b.candidates;
+}
+
+/// Plans a stack of `opts.count` copies of `part`.
+pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackError> {
+    let start = Instant::now();
+    let [x0, y0, x1, y1] = opts.floor.clone();
+    if x0 >= x1 || y0 >= y1 || opts.max_height <= q(0) {
+        return Err(StackError::Invalid(
+            "the floor region or the maximum height is empty".into(),
+        ));
+    }
+    let half = qfrac(1, 2);
+    let centre = [
+        &(&x0 + &x1) * &half,
+        &(&y0 + &y1) * &half,
+        opts.floor_z.clone(),
+    ];
+    let sigma = QBox {
+        lo: [x0.clone(), y0.clone(), opts.floor_z.clone()],
+        hi: [x1.clone(), y1.clone(), &opts.floor_z + &opts.max_height],
+    };
+    let all = orientations(opts.dtheta_deg, &opts.bases, opts.max_angle_error_deg);
+    // Keep orientations with an upward face for the suction gripper.
+    let mut grip: HashMap<Base, bool> = HashMap::default();
+    let usable: Vec<Orientation> = all
+        .into_iter()
+        .filter(|o| {
+            *grip.entry(o.base).or_insert_with(|| {
+                let a = up_face_area(&part.base_pieces(o.base));
+                a > q(0) && a >= opts.min_grip_area
+            })
+        })
+        .collect();
+    if usable.is_empty() {
+        return Err(StackError::Invalid(
+            "no orientation shows an upward face large enough for the gripper".into(),
+        ));
+    }
+    let moving = Moving::new(part.clone(), &usable, true);
+    let slack = opts.slack.clone().unwrap_or_else(|| {
+        let e = &moving.oriented[0].extent;
+        let m = (0..3)
+            .map(|i| &e.hi[i] - &e.lo[i])
+            .min()
+            .expect("three axes");
+        &m * &qfrac(1, 4)
+    });
+    let cost = Cost::Stacking {
+        w: opts.weight.clone(),
+        floor: centre,
+    };
+    cost.validate()?;
+    let mut scene = Scene::new();
+    let mut shapes: HashMap<(usize, usize), usize> = HashMap::default();
+    let mut cache = ObstacleCache::new();
+    let mut stats = PlanStats {
+        orientations: moving.orientations.len(),
+        ..Default::default()
+    };
+    let mut placements: Vec<Placed> = Vec::new();
+    let mut complete = true;
+    for n in 0..opts.count {
+        let mut accepted = None;
+        let stages: &[u8] = if n == 0 { &[2] } else { &[1, 2] };
+        for &stage in stages {
+            let region = if stage == 1 {
+                let bb = scene.bbox().expect("a stack with parts");
+                QBox {
+                    lo: [0, 1, 2].map(|i| (&bb.lo[i] - &slack).max(sigma.lo[i].clone())),
+                    hi: [0, 1, 2].map(|i| (&bb.hi[i] + &slack).min(sigma.hi[i].clone())),
+                }
+            } else {
+                sigma.clone()
+            };
+            let popts = PlaceOptions {
+                region: Region::Container(region),
+                cost: cost.clone(),
+                clearance: opts.clearance.clone(),
+                extrapolate: opts.extrapolate,
+            };
+            let mut placer = Placer::new(&scene, &moving, &mut cache, &popts)?;
+            let mut examined = 0;
+            while examined < opts.max_candidates {
+                let Some(c) = placer.next_candidate()? else {
+                    break;
+                };
+                examined += 1;
+                let oriented = &moving.oriented[c.orientation];
+                let placed = placed_pieces(&oriented.pieces, &c.translation);
+                let t0 = Instant::now();
+                let cts = contacts(&placed, &opts.floor_z, &scene);
+                let cg = qadd3(&oriented.centroid, &c.translation);
+                let ok = stable(&cg, &cts);
+                stats.stability_seconds += t0.elapsed().as_secs_f64();
+                if !ok {
+                    stats.unstable += 1;
+                    continue;
+                }
+                let t0 = Instant::now();
+                let ok = lowerable(&placed, &scene)?;
+                stats.lowering_seconds += t0.elapsed().as_secs_f64();
+                if !ok {
+                    stats.not_lowerable += 1;
+                    continue;
+                }
+                accepted = Some((c, cts, stage, examined));
+                break;
+            }
+            add_stats(&mut stats.place, &placer.stats);
+            if accepted.is_some() {
+                break;
+            }
+        }
+        let Some((c, cts, stage, examined)) = accepted else {
+            complete = false;
+            break;
+        };
+        let o = c.orientation;
+        let ids: Vec<usize> = (0..moving.oriented[o].pieces.len())
+            .map(|b| {
+                *shapes
+                    .entry((o, b))
+                    .or_insert_with(|| scene.add_shape(moving.oriented[o].pieces[b].clone()))
+            })
+            .collect();
+        scene.add_part(&ids, &c.translation);
+        placements.push(Placed {
+            index: n,
+            orientation_index: o,
+            orientation: moving.orientations[o],
+            translation: c.translation,
+            cost: c.cost,
+            stage,
+            contacts: cts,
+            examined,
+        });
+    }
+    let height = (0..scene.pieces().len())
+        .filter_map(|k| top(&[scene.placed(k)]))
+        .max()
+        .map(|t| &t - &opts.floor_z)
+        .unwrap_or_else(|| q(0));
+    stats.obstacles = cache.stats;
+    stats.seconds = start.elapsed().as_secs_f64();
+    Ok(StackPlan {
+        placements,
+        stack_height: height,
+        complete,
+        moving,
+        scene,
+        stats,
+    })
+}

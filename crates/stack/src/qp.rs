@@ -1,0 +1,488 @@
+//! Exact minimization of a convex quadratic over a convex cell of linear inequalities.
+//!
+//! The cell is `{p : n_k · p <= off_k}` in three variables (closed, possibly flat or a
+//! single point). The objective is a convex quadratic `F(p) = pᵀHp + g·p + c` (`H`
+//! positive semidefinite), and ties among minimizers of `F` (a zero weight, as in paper
+//! 004 eq. (1) with `w = 0` or `w = 1`) are broken by the strictly convex
+//! `G(p) = ‖p − anchor‖²`. The answer is the unique lexicographic minimizer of `(F, G)`.
+//!
+//! Method: Seidel's randomized incremental algorithm for LP-type problems, in exact
+//! rational arithmetic. Constraints are added one at a time; when the current optimum
+//! violates the new constraint, the new optimum lies on its plane, found recursively with
+//! that plane as an equality (at most three levels deep in three variables). The base
+//! case minimizes `(F, G)` over an affine subspace by exact linear algebra. Correctness
+//! rests on the objective being convex with a unique lexicographic minimizer on every
+//! closed convex set, which holds for `(F, G)` (see `DESIGN` in the crate docs). Linear
+//! programs use the same machinery with `F = (n · p − L)²`, `L` a strict lower bound.
+
+use crate::exact::{q, qdot, qz, HalfSpace, Point, Q};
+use apart_kernel::Sign;
+
+/// A convex quadratic `pᵀHp + g·p + c` with the anchor of its tie-breaker
+/// `‖p − anchor‖²`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Objective {
+    /// Symmetric positive semidefinite matrix.
+    pub h: [[Q; 3]; 3],
+    /// Linear part.
+    pub g: [Q; 3],
+    /// Constant.
+    pub c: Q,
+    /// Ties between minimizers of the quadratic go to the point nearest this one.
+    pub anchor: [Q; 3],
+}
+
+/// Why an objective is not a bounded-below convex quadratic.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ObjectiveError {
+    /// `H` is not symmetric.
+    #[error("the quadratic form is not symmetric")]
+    NotSymmetric,
+    /// `H` is not positive semidefinite.
+    #[error("the quadratic form is not convex (not positive semidefinite)")]
+    NotConvex,
+    /// The linear part has a component along a direction where `H` is zero: the
+    /// objective decreases without bound.
+    #[error("the objective is unbounded below (linear part outside the range of the form)")]
+    Unbounded,
+}
+
+impl Objective {
+    /// `‖p − target‖²`.
+    pub fn distance(target: &[Q; 3]) -> Objective {
+        Objective::diagonal(&[q(1), q(1), q(1)], target, &q(0))
+    }
+
+    /// `Σ weight_i (p_i − target_i)² + constant` (weights `>= 0`), ties to `target`.
+    pub fn diagonal(weight: &[Q; 3], target: &[Q; 3], constant: &Q) -> Objective {
+        let z = || q(0);
+        let mut h = [[z(), z(), z()], [z(), z(), z()], [z(), z(), z()]];
+        let mut g = [z(), z(), z()];
+        let mut c = constant.clone();
+        for i in 0..3 {
+            h[i][i] = weight[i].clone();
+            g[i] = &(&q(-2) * &weight[i]) * &target[i];
+            c = &c + &(&weight[i] * &(&target[i] * &target[i]));
+        }
+        Objective {
+            h,
+            g,
+            c,
+            anchor: target.clone(),
+        }
+    }
+
+    /// `(n · p − lower)²` for integer `n`: minimizing it over a set where `n · p >= lower`
+    /// minimizes `n · p`.
+    pub fn linear(n: &[apart_kernel::Int; 3], lower: &Q) -> Objective {
+        let nq = n.clone().map(Q::from_int);
+        let h = [0, 1, 2].map(|i| [0, 1, 2].map(|j| &nq[i] * &nq[j]));
+        let g = [0, 1, 2].map(|i| &(&q(-2) * lower) * &nq[i]);
+        Objective {
+            h,
+            g,
+            c: lower * lower,
+            anchor: [q(0), q(0), q(0)],
+        }
+    }
+
+    /// Checks that the objective is a convex quadratic bounded below.
+    pub fn validate(&self) -> Result<(), ObjectiveError> {
+        for i in 0..3 {
+            for j in 0..3 {
+                if self.h[i][j] != self.h[j][i] {
+                    return Err(ObjectiveError::NotSymmetric);
+                }
+            }
+        }
+        // Positive semidefinite: every principal minor >= 0.
+        let h = &self.h;
+        let m2 = |i: usize, j: usize| &(&h[i][i] * &h[j][j]) - &(&h[i][j] * &h[j][i]);
+        let minors = [
+            h[0][0].clone(),
+            h[1][1].clone(),
+            h[2][2].clone(),
+            m2(0, 1),
+            m2(0, 2),
+            m2(1, 2),
+            det3(h),
+        ];
+        if minors.iter().any(|m| m.sign() == Sign::Negative) {
+            return Err(ObjectiveError::NotConvex);
+        }
+        // Bounded below: 2H x = -g solvable.
+        let a: Vec<Vec<Q>> = (0..3)
+            .map(|i| (0..3).map(|j| &q(2) * &h[i][j]).collect())
+            .collect();
+        let b: Vec<Q> = self.g.iter().map(|v| -v).collect();
+        if affine_solutions(&a, &b, 3).is_none() {
+            return Err(ObjectiveError::Unbounded);
+        }
+        Ok(())
+    }
+
+    /// `F(p)`.
+    pub fn value(&self, p: &[Q; 3]) -> Q {
+        let hp = mat_vec(&self.h, p);
+        &(&qdot(p, &hp) + &qdot(&self.g, p)) + &self.c
+    }
+
+    /// The tie-breaker `‖p − anchor‖²`.
+    pub fn tie(&self, p: &[Q; 3]) -> Q {
+        let d = crate::exact::qsub3(p, &self.anchor);
+        qdot(&d, &d)
+    }
+}
+
+fn det3(h: &[[Q; 3]; 3]) -> Q {
+    let m = |a: &Q, b: &Q, c: &Q, d: &Q| &(a * d) - &(b * c);
+    let t0 = &h[0][0] * &m(&h[1][1], &h[1][2], &h[2][1], &h[2][2]);
+    let t1 = &h[0][1] * &m(&h[1][0], &h[1][2], &h[2][0], &h[2][2]);
+    let t2 = &h[0][2] * &m(&h[1][0], &h[1][1], &h[2][0], &h[2][1]);
+    &(&t0 - &t1) + &t2
+}
+
+fn mat_vec(h: &[[Q; 3]; 3], p: &[Q; 3]) -> [Q; 3] {
+    [0, 1, 2].map(|i| qdot(&h[i], p))
+}
+
+/// All solutions of `a x = b` (`a`: rows of length `k`): a particular solution and a
+/// basis of the null space of `a`; `None` when inconsistent. Exact Gauss–Jordan.
+pub fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q>, Vec<Vec<Q>>)> {
+    let mut rows: Vec<Vec<Q>> = a
+        .iter()
+        .zip(b)
+        .map(|(r, v)| {
+            let mut row = r.clone();
+            row.push(v.clone());
+            row
+        })
+        .collect();
+    let mut pivots: Vec<usize> = Vec::new();
+    let mut r = 0;
+    for col in 0..k {
+        let Some(pr) = (r..rows.len()).find(|&i| !rows[i][col].is_zero()) else {
+            continue;
+        };
+        rows.swap(r, pr);
+        let inv = rows[r][col].recip();
+        for j in col..=k {
+            rows[r][j] = &rows[r][j] * &inv;
+        }
+        for i in 0..rows.len() {
+            if i != r && !rows[i][col].is_zero() {
+                let f = rows[i][col].clone();
+                for j in col..=k {
+                    let t = &f * &rows[r][j];
+                    rows[i][j] = &rows[i][j] - &t;
+                }
+            }
+        }
+        pivots.push(col);
+        r += 1;
+        if r == rows.len() {
+            break;
+        }
+    }
+    // Inconsistent: a zero row with a non-zero right-hand side.
+    if rows[r..].iter().any(|row| !row[k].is_zero()) {
+        return None;
+    }
+    let mut x = vec![q(0); k];
+    for (i, &c) in pivots.iter().enumerate() {
+        x[c] = rows[i][k].clone();
+    }
+    let free: Vec<usize> = (0..k).filter(|c| !pivots.contains(c)).collect();
+    let basis = free
+        .iter()
+        .map(|&f| {
+            let mut v = vec![q(0); k];
+            v[f] = q(1);
+            for (i, &c) in pivots.iter().enumerate() {
+                v[c] = -&rows[i][f];
+            }
+            v
+        })
+        .collect();
+    Some((x, basis))
+}
+
+/// The lexicographic minimizer of `(F, G)` on the affine subspace where every `eqs`
+/// holds with equality; `None` when the equalities are inconsistent (or `F` is
+/// unbounded there, which a validated objective excludes).
+fn affine_min(eqs: &[&HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
+    let a: Vec<Vec<Q>> = eqs.iter().map(|h| h.n.iter().map(qz).collect()).collect();
+    let b: Vec<Q> = eqs.iter().map(|h| qz(&h.off)).collect();
+    let (p0, basis) = if eqs.is_empty() {
+        (
+            vec![q(0), q(0), q(0)],
+            vec![
+                vec![q(1), q(0), q(0)],
+                vec![q(0), q(1), q(0)],
+                vec![q(0), q(0), q(1)],
+            ],
+        )
+    } else {
+        affine_solutions(&a, &b, 3)?
+    };
+    let p0 = [p0[0].clone(), p0[1].clone(), p0[2].clone()];
+    if basis.is_empty() {
+        return Some(p0);
+    }
+    let basis: Vec<[Q; 3]> = basis
+        .into_iter()
+        .map(|v| [v[0].clone(), v[1].clone(), v[2].clone()])
+        .collect();
+    let d = basis.len();
+    // Stage F: 2 BᵀHB u = −Bᵀ(2Hp0 + g).
+    let hp0 = mat_vec(&obj.h, &p0);
+    let grad0 = [0, 1, 2].map(|i| &(&q(2) * &hp0[i]) + &obj.g[i]);
+    let hb: Vec<[Q; 3]> = basis.iter().map(|b| mat_vec(&obj.h, b)).collect();
+    let m: Vec<Vec<Q>> = (0..d)
+        .map(|i| (0..d).map(|j| &q(2) * &qdot(&basis[i], &hb[j])).collect())
+        .collect();
+    let r: Vec<Q> = (0..d).map(|i| -&qdot(&basis[i], &grad0)).collect();
+    let (u0, kern) = affine_solutions(&m, &r, d)?;
+    let combine = |coef: &[Q], vecs: &[[Q; 3]]| -> [Q; 3] {
+        let mut s = [q(0), q(0), q(0)];
+        for (c, v) in coef.iter().zip(vecs) {
+            if c.is_zero() {
+                continue;
+            }
+            for i in 0..3 {
+                s[i] = &s[i] + &(c * &v[i]);
+            }
+        }
+        s
+    };
+    let du = combine(&u0, &basis);
+    let p1 = [0, 1, 2].map(|i| &p0[i] + &du[i]);
+    if kern.is_empty() {
+        return Some(p1);
+    }
+    let b1: Vec<[Q; 3]> = kern.iter().map(|k| combine(k, &basis)).collect();
+    // Stage G: (B1ᵀB1) v = B1ᵀ(anchor − p1), positive definite.
+    let e = d - kern.len();
+    let _ = e;
+    let diff = crate::exact::qsub3(&obj.anchor, &p1);
+    let n = b1.len();
+    let m: Vec<Vec<Q>> = (0..n)
+        .map(|i| (0..n).map(|j| qdot(&b1[i], &b1[j])).collect())
+        .collect();
+    let r: Vec<Q> = (0..n).map(|i| qdot(&b1[i], &diff)).collect();
+    let (v, _) = affine_solutions(&m, &r, n)?;
+    let dv = combine(&v, &b1);
+    Some([0, 1, 2].map(|i| &p1[i] + &dv[i]))
+}
+
+fn seidel<'a>(
+    cons: &[&'a HalfSpace],
+    eqs: &mut Vec<&'a HalfSpace>,
+    obj: &Objective,
+) -> Option<[Q; 3]> {
+    let mut p = affine_min(eqs, obj)?;
+    let mut hp = Point::from_q(&p);
+    for k in 0..cons.len() {
+        if cons[k].side(&hp) == Sign::Positive {
+            eqs.push(cons[k]);
+            let r = seidel(&cons[..k], eqs, obj);
+            eqs.pop();
+            p = r?;
+            hp = Point::from_q(&p);
+        }
+    }
+    Some(p)
+}
+
+/// A fixed pseudo-random order of `0..n` (Seidel's expected linear time wants a random
+/// insertion order; a fixed one keeps results reproducible).
+fn shuffled(n: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15 ^ n as u64;
+    for i in (1..n).rev() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        let j = (state % (i as u64 + 1)) as usize;
+        order.swap(i, j);
+    }
+    order
+}
+
+/// The lexicographic minimizer of `(F, G)` over `{p : every constraint}`, or `None`
+/// when the cell is empty.
+///
+/// When `F` is strictly convex, a floating-point run proposes the active constraints and
+/// the answer is certified exactly (the point on those planes is feasible and its
+/// Lagrange multipliers are non-negative: the KKT conditions, sufficient for a convex
+/// program); otherwise, or when the certificate fails, exact Seidel decides.
+pub fn lexmin(constraints: &[HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
+    let order = shuffled(constraints.len());
+    if obj.definite() {
+        if let Some(p) = guided(constraints, &order, obj, &obj.gradient_at_neg()) {
+            return Some(p);
+        }
+    }
+    let cons: Vec<&HalfSpace> = order.iter().map(|&i| &constraints[i]).collect();
+    seidel(&cons, &mut Vec::with_capacity(4), obj)
+}
+
+/// Certified guided solve: the float guide's active set, the exact point on it, exact
+/// feasibility, and multipliers `λ >= 0` with `Σ λ_i n_i = r(p)` (for the quadratic,
+/// `r = −∇F(p)`; for a linear objective `c · p`, `r = −c`).
+fn guided(
+    constraints: &[HalfSpace],
+    order: &[usize],
+    obj: &Objective,
+    rhs: &dyn Fn(&[Q; 3]) -> [Q; 3],
+) -> Option<[Q; 3]> {
+    let fc: Vec<crate::guide::FHalf> = constraints.iter().map(to_float).collect::<Option<_>>()?;
+    let (_, active) = crate::guide::lexmin(&fc, order, &obj.to_float())?;
+    let eqs: Vec<&HalfSpace> = active.iter().map(|&i| &constraints[i]).collect();
+    let p = affine_min(&eqs, obj)?;
+    let hp = Point::from_q(&p);
+    if constraints.iter().any(|h| h.side(&hp) == Sign::Positive) {
+        return None;
+    }
+    let r = rhs(&p);
+    if eqs.is_empty() {
+        return r.iter().all(Q::is_zero).then_some(p);
+    }
+    // Σ λ_i n_i = r: three equations in |S| unknowns; a unique solution with λ >= 0.
+    let a: Vec<Vec<Q>> = (0..3)
+        .map(|j| eqs.iter().map(|h| qz(&h.n[j])).collect())
+        .collect();
+    let (lambda, null) = affine_solutions(&a, &r, eqs.len())?;
+    if !null.is_empty() || lambda.iter().any(|l| l.sign() == Sign::Negative) {
+        return None;
+    }
+    Some(p)
+}
+
+fn to_float(h: &HalfSpace) -> Option<crate::guide::FHalf> {
+    h.to_float()
+}
+
+impl Objective {
+    /// True when `H` is positive definite (then the minimizer is unique without the
+    /// tie-breaker).
+    pub fn definite(&self) -> bool {
+        let h = &self.h;
+        let m2 = &(&h[0][0] * &h[1][1]) - &(&h[0][1] * &h[1][0]);
+        h[0][0].sign() == Sign::Positive
+            && m2.sign() == Sign::Positive
+            && det3(h).sign() == Sign::Positive
+    }
+
+    /// `p -> −∇F(p) = −(2Hp + g)`.
+    fn gradient_at_neg(&self) -> impl Fn(&[Q; 3]) -> [Q; 3] + '_ {
+        move |p: &[Q; 3]| {
+            let hp = mat_vec(&self.h, p);
+            [0, 1, 2].map(|i| -&(&(&q(2) * &hp[i]) + &self.g[i]))
+        }
+    }
+
+    fn to_float(&self) -> crate::guide::FObjective {
+        crate::guide::FObjective {
+            h: self.h.clone().map(|r| r.map(|v| v.to_f64())),
+            g: self.g.clone().map(|v| v.to_f64()),
+            anchor: self.anchor.clone().map(|v| v.to_f64()),
+        }
+    }
+}
+
+/// The minimum of `n · p` over the cell and a point attaining it, given a strict lower
+/// bound `lower` of `n · p` on the cell (e.g. from a box containing it); `None` when
+/// the cell is empty. A float guide proposes the optimal face; an exact dual certificate
+/// (`n = −Σ λ_i n_i`, `λ >= 0` over its planes) confirms it, else exact Seidel decides.
+pub fn min_linear(
+    constraints: &[HalfSpace],
+    n: &[apart_kernel::Int; 3],
+    lower: &Q,
+) -> Option<(Q, [Q; 3])> {
+    let obj = Objective::linear(n, lower);
+    let nq = n.clone().map(Q::from_int);
+    let order = shuffled(constraints.len());
+    let neg_n = [-&nq[0], -&nq[1], -&nq[2]];
+    let p = match guided(constraints, &order, &obj, &|_| neg_n.clone()) {
+        Some(p) => p,
+        None => {
+            let cons: Vec<&HalfSpace> = order.iter().map(|&i| &constraints[i]).collect();
+            seidel(&cons, &mut Vec::with_capacity(4), &obj)?
+        }
+    };
+    Some((qdot(&nq, &p), p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::{qfrac, QBox};
+    use apart_kernel::Int;
+
+    fn unit_box() -> Vec<HalfSpace> {
+        QBox {
+            lo: [q(0), q(0), q(0)],
+            hi: [q(1), q(1), q(1)],
+        }
+        .halfspaces()
+    }
+
+    #[test]
+    fn projection_onto_a_box() {
+        let obj = Objective::distance(&[q(3), qfrac(1, 2), q(-2)]);
+        let p = lexmin(&unit_box(), &obj).unwrap();
+        assert_eq!(p, [q(1), qfrac(1, 2), q(0)]);
+        let inside = Objective::distance(&[qfrac(1, 3), qfrac(1, 2), qfrac(2, 3)]);
+        assert_eq!(lexmin(&unit_box(), &inside).unwrap(), inside.anchor);
+    }
+
+    #[test]
+    fn slanted_plane_and_ties() {
+        // x + y + z <= 1 inside the unit box; nearest point to (1, 1, 1) is (1/3, 1/3, 1/3).
+        let mut c = unit_box();
+        c.push(HalfSpace::new([1, 1, 1].map(Int::from), Int::from(1)));
+        let p = lexmin(&c, &Objective::distance(&[q(1), q(1), q(1)])).unwrap();
+        assert_eq!(p, [qfrac(1, 3), qfrac(1, 3), qfrac(1, 3)]);
+        // Weight only on z: every point with z minimal ties; the anchor decides.
+        let obj = Objective::diagonal(
+            &[q(0), q(0), q(1)],
+            &[qfrac(1, 2), qfrac(1, 4), q(-3)],
+            &q(0),
+        );
+        assert_eq!(lexmin(&c, &obj).unwrap(), [qfrac(1, 2), qfrac(1, 4), q(0)]);
+        // Far anchor: the nearest point of the bottom triangle is its corner (1, 0, 0).
+        let obj = Objective::diagonal(&[q(0), q(0), q(1)], &[q(5), qfrac(1, 4), q(-3)], &q(0));
+        assert_eq!(lexmin(&c, &obj).unwrap(), [q(1), q(0), q(0)]);
+    }
+
+    #[test]
+    fn empty_and_flat_cells() {
+        let mut c = unit_box();
+        c.push(HalfSpace::new([-1, 0, 0].map(Int::from), Int::from(-2))); // x >= 2
+        assert!(lexmin(&c, &Objective::distance(&[q(0), q(0), q(0)])).is_none());
+        let mut f = unit_box();
+        f.push(HalfSpace::new([-1, 0, 0].map(Int::from), Int::from(-1))); // x >= 1: a face
+        let p = lexmin(&f, &Objective::distance(&[q(0), qfrac(1, 2), q(7)])).unwrap();
+        assert_eq!(p, [q(1), qfrac(1, 2), q(1)]);
+    }
+
+    #[test]
+    fn linear_programs() {
+        let mut c = unit_box();
+        c.push(HalfSpace::new([1, 1, 0].map(Int::from), Int::from(1)));
+        let (v, _) = min_linear(&c, &[-1, -2, 0].map(Int::from), &q(-10)).unwrap();
+        assert_eq!(v, q(-2)); // max x + 2y on the triangle is 2 at (0, 1)
+    }
+
+    #[test]
+    fn objective_checks() {
+        assert!(Objective::distance(&[q(1), q(2), q(3)]).validate().is_ok());
+        let mut o = Objective::distance(&[q(0), q(0), q(0)]);
+        o.h[0][0] = q(-1);
+        assert_eq!(o.validate(), Err(ObjectiveError::NotConvex));
+        let mut o = Objective::diagonal(&[q(1), q(1), q(0)], &[q(0), q(0), q(0)], &q(0));
+        o.g[2] = q(1);
+        assert_eq!(o.validate(), Err(ObjectiveError::Unbounded));
+    }
+}

@@ -1,0 +1,385 @@
+//! The planner's checks beyond interference (paper 004 §II-B): contacts, static
+//! stability, a face for the suction gripper, and lowering into place.
+//!
+//! - Contacts are found exactly: the intersection points of touching closed pieces, and
+//!   the vertices lying on the floor. A contact *supports* the new part when some plane
+//!   separating the two pieces has the new part above it (normal with positive z).
+//! - Stable: the centre of gravity (exact rational centroid) projects strictly inside
+//!   the convex hull of the supporting contact points (the support polygon). Marginal
+//!   balance on the hull's boundary is rejected: a positioning error would tip it.
+//! - Gripper: the turned part shows an upward horizontal face: facets with normal +z not
+//!   covered by another piece of the same part, the largest plane's exposed area.
+//! - Lowering: the part can come down along −z into place, i.e. it can leave along +z
+//!   without its interior meeting any stack part, decided by `apart-plan`'s exact
+//!   blocked regions.
+
+use crate::exact::{q, Point, QBox, Q};
+use crate::interference::{touch, translated};
+use crate::scene::Scene;
+use apart_kernel::{Sign, Vec3};
+use apart_pieces::Polytope;
+
+/// What the new part touches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ContactWith {
+    /// The floor plane.
+    Floor,
+    /// A part of the stack (by index).
+    Part(usize),
+}
+
+/// The new part's contact with the floor or one stack part.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Contact {
+    /// The other side.
+    pub with: ContactWith,
+    /// Points of the contact set (its vertices among them).
+    pub points: Vec<[Q; 3]>,
+    /// The other side holds the new part up (a supporting contact).
+    pub supports: bool,
+}
+
+/// The contacts of the placed pieces with the floor (`z = floor_z`) and the scene.
+pub fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<Contact> {
+    let mut out: Vec<Contact> = Vec::new();
+    let mut floor = Vec::new();
+    for p in placed {
+        for v in p.vertices() {
+            let z = Q::new(v.get(2), p.den().clone());
+            if z == *floor_z {
+                floor.push(Point::stored(v, p.den()).to_q());
+            }
+        }
+    }
+    if !floor.is_empty() {
+        floor.sort();
+        floor.dedup();
+        out.push(Contact {
+            with: ContactWith::Floor,
+            points: floor,
+            supports: true,
+        });
+    }
+    let mut near = Vec::new();
+    for p in placed {
+        let b = QBox::of_points(p.vertices(), p.den()).to_f64();
+        near.clear();
+        scene.near(&b, &mut near);
+        for &k in &near {
+            let other = scene.placed(k);
+            let Some(t) = touch(p, &other) else {
+                continue;
+            };
+            let with = ContactWith::Part(scene.pieces()[k].part);
+            match out.iter_mut().find(|c| c.with == with) {
+                Some(c) => {
+                    c.points.extend(t.points);
+                    c.supports |= t.supports;
+                }
+                None => out.push(Contact {
+                    with,
+                    points: t.points,
+                    supports: t.supports,
+                }),
+            }
+        }
+    }
+    for c in &mut out {
+        c.points.sort();
+        c.points.dedup();
+    }
+    out.sort_by(|a, b| a.with.cmp(&b.with));
+    out
+}
+
+fn cross2(o: &[Q; 2], a: &[Q; 2], b: &[Q; 2]) -> Q {
+    let l = &(&a[0] - &o[0]) * &(&b[1] - &o[1]);
+    let r = &(&a[1] - &o[1]) * &(&b[0] - &o[0]);
+    &l - &r
+}
+
+/// The strictly convex hull of 2-D points, counter-clockwise (monotone chain, exact).
+pub fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
+    let mut pts = points.to_vec();
+    pts.sort();
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut lower: Vec<[Q; 2]> = Vec::new();
+    for p in &pts {
+        while lower.len() >= 2
+            && cross2(&lower[lower.len() - 2], &lower[lower.len() - 1], p).sign() != Sign::Positive
+        {
+            lower.pop();
+        }
+        lower.push(p.clone());
+    }
+    let mut upper: Vec<[Q; 2]> = Vec::new();
+    for p in pts.iter().rev() {
+        while upper.len() >= 2
+            && cross2(&upper[upper.len() - 2], &upper[upper.len() - 1], p).sign() != Sign::Positive
+        {
+            upper.pop();
+        }
+        upper.push(p.clone());
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
+/// True when the centre of gravity projects strictly inside the support polygon of the
+/// supporting contacts.
+pub fn stable(cg: &[Q; 3], contacts: &[Contact]) -> bool {
+    let pts: Vec<[Q; 2]> = contacts
+        .iter()
+        .filter(|c| c.supports)
+        .flat_map(|c| c.points.iter().map(|p| [p[0].clone(), p[1].clone()]))
+        .collect();
+    let hull = convex_hull_2d(&pts);
+    if hull.len() < 3 {
+        return false;
+    }
+    let c = [cg[0].clone(), cg[1].clone()];
+    (0..hull.len())
+        .all(|i| cross2(&hull[i], &hull[(i + 1) % hull.len()], &c).sign() == Sign::Positive)
+}
+
+/// Area of a simple polygon given counter-clockwise (shoelace).
+fn area(poly: &[[Q; 2]]) -> Q {
+    let mut s = q(0);
+    for i in 0..poly.len() {
+        let (a, b) = (&poly[i], &poly[(i + 1) % poly.len()]);
+        s = &s + &(&(&a[0] * &b[1]) - &(&a[1] * &b[0]));
+    }
+    &s * &crate::exact::qfrac(1, 2)
+}
+
+/// `subject` clipped to the convex counter-clockwise polygon `clip` (Sutherland–Hodgman).
+fn clip(subject: &[[Q; 2]], clip: &[[Q; 2]]) -> Vec<[Q; 2]> {
+    let mut out = subject.to_vec();
+    for i in 0..clip.len() {
+        if out.is_empty() {
+            break;
+        }
+        let (a, b) = (&clip[i], &clip[(i + 1) % clip.len()]);
+        let input = std::mem::take(&mut out);
+        for k in 0..input.len() {
+            let (p, r) = (&input[k], &input[(k + 1) % input.len()]);
+            let (sp, sr) = (cross2(a, b, p), cross2(a, b, r));
+            let pin = sp.sign() != Sign::Negative;
+            let rin = sr.sign() != Sign::Negative;
+            if pin {
+                out.push(p.clone());
+            }
+            if pin != rin {
+                // p + (r − p) sp / (sp − sr)
+                let t = crate::exact::qdiv(&sp, &(&sp - &sr));
+                out.push([
+                    &p[0] + &(&(&r[0] - &p[0]) * &t),
+                    &p[1] + &(&(&r[1] - &p[1]) * &t),
+                ]);
+            }
+        }
+    }
+    out
+}
+
+/// The largest exposed area of an upward horizontal face of the part (facets with
+/// normal +z minus the parts covered by other pieces' downward facets on the same
+/// plane), exactly.
+pub fn up_face_area(pieces: &[Polytope]) -> Q {
+    let up = Vec3::new(0, 0, 1);
+    let down = Vec3::new(0, 0, -1);
+    // (height, polygon counter-clockwise seen from above, is_up)
+    let mut faces: Vec<(Q, Vec<[Q; 2]>, bool)> = Vec::new();
+    for p in pieces {
+        let den = p.den();
+        for f in p.facets() {
+            let is_up = f.normal == up;
+            if !is_up && f.normal != down {
+                continue;
+            }
+            let mut poly: Vec<[Q; 2]> = f
+                .cycle
+                .iter()
+                .map(|&i| {
+                    let v = &p.vertices()[i as usize];
+                    [Q::new(v.get(0), den.clone()), Q::new(v.get(1), den.clone())]
+                })
+                .collect();
+            if !is_up {
+                poly.reverse();
+            }
+            let off = if is_up {
+                f.offset.clone()
+            } else {
+                -f.offset.clone()
+            };
+            faces.push((Q::new(off, den.clone()), poly, is_up));
+        }
+    }
+    let mut best = q(0);
+    let mut heights: Vec<Q> = faces.iter().filter(|f| f.2).map(|f| f.0.clone()).collect();
+    heights.sort();
+    heights.dedup();
+    for h in heights {
+        let ups: Vec<&Vec<[Q; 2]>> = faces
+            .iter()
+            .filter(|f| f.2 && f.0 == h)
+            .map(|f| &f.1)
+            .collect();
+        let downs: Vec<&Vec<[Q; 2]>> = faces
+            .iter()
+            .filter(|f| !f.2 && f.0 == h)
+            .map(|f| &f.1)
+            .collect();
+        let mut a = q(0);
+        for u in &ups {
+            a = &a + &area(u);
+            for d in &downs {
+                let c = clip(u, d);
+                if c.len() >= 3 {
+                    a = &a - &area(&c);
+                }
+            }
+        }
+        if a > best {
+            best = a;
+        }
+    }
+    best
+}
+
+/// Exactly: can the pieces leave along +z without their interiors meeting the scene
+/// (equivalently: be lowered into place along −z)? Uses `apart-plan`'s blocked regions
+/// of the new part against the stack pieces that lie above some of its pieces'
+/// footprints.
+pub fn lowerable(placed: &[Polytope], scene: &Scene) -> Result<bool, crate::part::StackError> {
+    let boxes: Vec<QBox> = placed
+        .iter()
+        .map(|p| QBox::of_points(p.vertices(), p.den()))
+        .collect();
+    // Stack pieces whose open footprint meets a new piece's and that reach above its
+    // bottom: the only ones a +z sweep can hit.
+    let mut stack = Vec::new();
+    let mut moving = vec![false; placed.len()];
+    for (k, sp) in scene.pieces().iter().enumerate() {
+        let mut hit = false;
+        for (i, b) in boxes.iter().enumerate() {
+            let meets = (0..2).all(|a| sp.bbox.lo[a] < b.hi[a] && b.lo[a] < sp.bbox.hi[a])
+                && sp.bbox.hi[2] > b.lo[2];
+            if meets {
+                moving[i] = true;
+                hit = true;
+            }
+        }
+        if hit {
+            stack.push(scene.placed(k));
+        }
+    }
+    if stack.is_empty() {
+        return Ok(true);
+    }
+    let new: Vec<Polytope> = placed
+        .iter()
+        .zip(&moving)
+        .filter(|(_, &m)| m)
+        .map(|(p, _)| p.clone())
+        .collect();
+    let parts = [
+        apart_plan::PartPieces {
+            name: "new".into(),
+            pieces: new,
+        },
+        apart_plan::PartPieces {
+            name: "stack".into(),
+            pieces: stack,
+        },
+    ];
+    let regions = apart_plan::BlockingRegions::compute(&parts)
+        .map_err(|e| crate::part::StackError::Internal(format!("blocked regions: {e:?}")))?;
+    Ok(!regions.blocks(0, 1, &Vec3::new(0, 0, 1)))
+}
+
+/// The pieces of a part turned and translated into place.
+pub fn placed_pieces(rotated: &[Polytope], t: &[Q; 3]) -> Vec<Polytope> {
+    let tp = Point::from_q(t);
+    rotated.iter().map(|p| translated(p, &tp)).collect()
+}
+
+/// The exact height of the highest vertex of the pieces.
+pub fn top(pieces: &[Polytope]) -> Option<Q> {
+    pieces
+        .iter()
+        .flat_map(|p| {
+            p.vertices()
+                .iter()
+                .map(move |v| Q::new(v.get(2), p.den().clone()))
+        })
+        .max()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::qfrac;
+
+    fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+        let mut pts = Vec::new();
+        for i in 0..8 {
+            pts.push(Vec3::new(
+                if i & 1 == 1 { hi[0] } else { lo[0] },
+                if i & 2 == 2 { hi[1] } else { lo[1] },
+                if i & 4 == 4 { hi[2] } else { lo[2] },
+            ));
+        }
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn support_polygon_and_centre() {
+        let mut scene = Scene::new();
+        scene.add_fixed_part(&[boxp([0, 0, 0], [2, 2, 1])]);
+        // A box on top, overhanging by less than half: stable.
+        let top = [boxp([1, 0, 1], [4, 2, 2])];
+        let c = contacts(&top, &q(0), &scene);
+        assert_eq!(c.len(), 1);
+        assert!(c[0].supports);
+        assert!(!stable(&[qfrac(5, 2), q(1), qfrac(3, 2)], &c)); // cg at x = 2.5 > 2
+        let top2 = [boxp([0, 0, 1], [3, 2, 2])];
+        let c2 = contacts(&top2, &q(0), &scene);
+        assert!(stable(&[qfrac(3, 2), q(1), qfrac(3, 2)], &c2));
+        // On the floor.
+        let fl = [boxp([5, 5, 0], [6, 6, 1])];
+        let c3 = contacts(&fl, &q(0), &scene);
+        assert_eq!(c3[0].with, ContactWith::Floor);
+        assert!(stable(&[qfrac(11, 2), qfrac(11, 2), qfrac(1, 2)], &c3));
+    }
+
+    #[test]
+    fn upward_faces() {
+        // Two stacked boxes: the lower top face is covered where the upper sits.
+        let pieces = [boxp([0, 0, 0], [4, 4, 1]), boxp([0, 0, 1], [2, 4, 3])];
+        assert_eq!(up_face_area(&pieces), q(8));
+        let flat = [boxp([0, 0, 0], [4, 4, 1]), boxp([0, 0, 1], [1, 1, 3])];
+        assert_eq!(up_face_area(&flat), q(15));
+    }
+
+    #[test]
+    fn lowering() {
+        let mut scene = Scene::new();
+        // A bridge: two posts and a roof.
+        scene.add_fixed_part(&[
+            boxp([0, 0, 0], [1, 3, 3]),
+            boxp([4, 0, 0], [5, 3, 3]),
+            boxp([0, 0, 3], [5, 3, 4]),
+        ]);
+        let under = [boxp([2, 1, 0], [3, 2, 1])];
+        assert!(!lowerable(&under, &scene).unwrap());
+        let beside = [boxp([6, 1, 0], [7, 2, 1])];
+        assert!(lowerable(&beside, &scene).unwrap());
+    }
+}
