@@ -116,11 +116,10 @@ impl Cell {
 /// the same orientation (stacked identical parts give many such planes; without this a
 /// cell's list would grow with every obstacle subtracted from it).
 pub fn add_constraint(list: &mut Vec<HalfSpace>, h: HalfSpace) {
-    for k in 0..list.len() {
-        let g = &list[k];
+    for g in list.iter_mut() {
         if let Some(cmp) = parallel_offsets(g, &h) {
             if cmp == std::cmp::Ordering::Greater {
-                list[k] = h; // the new one is tighter
+                *g = h; // the new one is tighter
             }
             return;
         }

@@ -26,6 +26,8 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 /// Solutions of `a x = b` (`k` unknowns): a particular solution and a null-space basis,
 /// by Gauss–Jordan with partial pivoting; `None` when clearly inconsistent.
+// Row reduction reads and writes two rows at once by index.
+#[allow(clippy::needless_range_loop)]
 fn solve(rows: &mut [[f64; 4]], k: usize) -> Option<([f64; 3], Vec<[f64; 3]>)> {
     let n = rows.len();
     let scale = rows

@@ -24,6 +24,9 @@ use crate::orientation::{Base, Orientation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
 use crate::qp::{lexmin, Objective};
 use crate::scene::Scene;
+
+/// A newly found interfering pair: its placed obstacle and (fixed piece, moving piece).
+type Detected = (Obstacle, (usize, usize));
 use apart_pieces::Polytope;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::cmp::Ordering;
@@ -57,7 +60,7 @@ pub enum Cost {
         floor: [Q; 3],
     },
     /// The same quadratic in the translation for every orientation.
-    Quadratic(Objective),
+    Quadratic(Box<Objective>),
 }
 
 impl Cost {
@@ -65,7 +68,7 @@ impl Cost {
     pub fn objective(&self, part: &OrientedPart) -> Objective {
         match self {
             Cost::Distance(t) => Objective::distance(t),
-            Cost::Quadratic(o) => o.clone(),
+            Cost::Quadratic(o) => (**o).clone(),
             Cost::Stacking { w, floor } => {
                 let one_w = &q(1) - w;
                 let e = &part.extent;
@@ -568,7 +571,7 @@ impl<'a> Placer<'a> {
         st: &OrientState,
         pq: &[Q; 3],
         p: &Point,
-    ) -> Result<Vec<(Obstacle, (usize, usize))>, StackError> {
+    ) -> Result<Vec<Detected>, StackError> {
         let part = &self.moving.oriented[o];
         let clearance = self.opts.clearance.as_ref().filter(|c| !c.is_zero());
         let mut out = Vec::new();
@@ -577,9 +580,11 @@ impl<'a> Placer<'a> {
             let mut fb: FBox = b.translated(pq).to_f64();
             if let Some(c) = clearance {
                 let c = c.to_f64() * (1.0 + 1e-6);
-                for i in 0..2 {
-                    fb[0][i] -= c;
-                    fb[1][i] += c;
+                for v in fb[0].iter_mut().take(2) {
+                    *v -= c;
+                }
+                for v in fb[1].iter_mut().take(2) {
+                    *v += c;
                 }
             }
             near.clear();

@@ -148,6 +148,8 @@ fn mat_vec(h: &[[Q; 3]; 3], p: &[Q; 3]) -> [Q; 3] {
 
 /// All solutions of `a x = b` (`a`: rows of length `k`): a particular solution and a
 /// basis of the null space of `a`; `None` when inconsistent. Exact Gauss–Jordan.
+// Row reduction reads and writes two rows at once by index.
+#[allow(clippy::needless_range_loop)]
 pub fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q>, Vec<Vec<Q>>)> {
     let mut rows: Vec<Vec<Q>> = a
         .iter()

@@ -88,7 +88,7 @@ pub fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<Contact>
         c.points.sort();
         c.points.dedup();
     }
-    out.sort_by(|a, b| a.with.cmp(&b.with));
+    out.sort_by_key(|c| c.with);
     out
 }
 
