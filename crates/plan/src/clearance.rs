@@ -89,22 +89,6 @@ pub fn isolated_points(arr: &RegionArrangement) -> Vec<Vec<V3>> {
     out
 }
 
-/// The real boundary arcs of face `f` as floating-point arcs (face on their left).
-pub fn face_boundary(arr: &RegionArrangement, f: u32) -> Vec<FArc> {
-    let mut arcs = Vec::new();
-    for lp in arr.boundary_loops(f) {
-        for h in lp {
-            let arc = arr.half_edge_arc(h);
-            arcs.push(FArc {
-                a: arc.start.unit_f64(),
-                b: arc.end.unit_f64(),
-                n: arc.normal.unit_f64(),
-            });
-        }
-    }
-    arcs
-}
-
 /// Squared chord clearance of unit point `p`: to the nearest boundary arc or point.
 pub fn clearance2(p: &V3, arcs: &[FArc], points: &[V3]) -> f64 {
     let mut c = 4.0;
@@ -224,8 +208,10 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
 }
 
 /// The simplest integer direction near the unit point `p` (smallest multiplier `k`, then
-/// components of `round(k p)`) that `ok` accepts and whose clearance is at least
-/// `fraction` of `target` (radians); `None` when no small one qualifies.
+/// `round(k p)` or a neighbour of it) that lies well inside the cap of radius `target` (radians,
+/// the clearance of `p`) around `p`, has a clearance of at least `fraction` of `target`,
+/// and that `ok` accepts; `None` when no small one qualifies. Staying inside the cap keeps
+/// the direction in the region whose boundary `arcs` and `points` describe.
 pub fn simple_direction(
     p: &V3,
     target: f64,
@@ -234,15 +220,81 @@ pub fn simple_direction(
     points: &[V3],
     ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
 ) -> Option<(apart_kernel::Vec3, f64)> {
+    // round(k p) first, then its 26 neighbours (nearest first): the exact rounding may lie
+    // on an arc of the motion space, a neighbour usually does not.
+    let mut offsets: Vec<[i64; 3]> = (0..27)
+        .map(|i| [i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1])
+        .collect();
+    offsets.sort_by_key(|o| o.iter().map(|x| x.abs()).sum::<i64>());
     for k in 1..=64i64 {
         let c = p.map(|x| (x * k as f64).round() as i64);
-        let d = apart_kernel::Vec3::new(c[0], c[1], c[2]);
-        if d.is_zero() {
-            continue;
+        for o in &offsets {
+            let d = apart_kernel::Vec3::new(c[0] + o[0], c[1] + o[1], c[2] + o[2]);
+            if d.is_zero() {
+                continue;
+            }
+            let u = d.unit_f64();
+            if to_angle(chord2(&u, p)) >= 0.98 * target {
+                continue;
+            }
+            let cl = clearance(&u, arcs, points);
+            if cl >= fraction * target && ok(&d) {
+                return Some((d.primitive(), cl));
+            }
         }
-        let cl = clearance(&d.unit_f64(), arcs, points);
-        if cl >= fraction * target && ok(&d) {
-            return Some((d.primitive(), cl));
+    }
+    None
+}
+
+/// A direction deep inside the region bounded by `arcs` (region on their left) and
+/// `points`, with its clearance (radians): the best of clearance climbs from points next
+/// to the boundary, then the simplest integer direction with 90% of that clearance, else
+/// the climb's end rounded to 20, 30 or 40 bits; every candidate must pass the exact
+/// check `ok`. `None` when no candidate passes (callers fall back to an exact sample).
+pub fn deep_direction(
+    arcs: &[FArc],
+    points: &[V3],
+    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
+) -> Option<(apart_kernel::Vec3, f64)> {
+    use apart_kernel::Vec3;
+    if arcs.is_empty() && points.is_empty() {
+        // No boundary: the whole sphere; any accepted direction has half-turn clearance.
+        return [[0, 0, 1], [1, 2, 3], [3, -5, 7], [-11, 13, 17]]
+            .into_iter()
+            .map(Vec3::from_i64)
+            .find(|d| ok(d))
+            .map(|d| (d, std::f64::consts::PI));
+    }
+    let mut starts: Vec<V3> = starting_points(arcs, points, 8)
+        .into_iter()
+        .take(2)
+        .map(|(p, _)| p)
+        .collect();
+    if arcs.is_empty() {
+        // Only isolated points bound the region: start opposite the first one.
+        starts.push(points[0].map(|x| -x));
+    }
+    let mut best: Option<(V3, f64)> = None;
+    for p in starts {
+        let (q, c) = climb(p, arcs, points);
+        if best.is_none_or(|(_, bc)| c > bc) {
+            best = Some((q, c));
+        }
+    }
+    let (p, c) = best?;
+    if let Some(found) = simple_direction(&p, c, 0.9, arcs, points, ok) {
+        return Some(found);
+    }
+    for bits in [20, 30, 40] {
+        let scale = (1u64 << bits) as f64;
+        let d = Vec3::new(
+            (p[0] * scale).round() as i64,
+            (p[1] * scale).round() as i64,
+            (p[2] * scale).round() as i64,
+        )
+        .primitive();
+        if !d.is_zero() && ok(&d) {
+            return Some((d, c));
         }
     }
     None

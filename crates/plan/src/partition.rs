@@ -1,7 +1,7 @@
 //! Partitioning: every direction and subset that separates a (sub)assembly by one
 //! infinite translation.
 
-use crate::clearance::{climb, face_boundary, isolated_points, starting_points};
+use crate::clearance::{deep_direction, FArc};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::regions::{BlockingRegions, PartPieces};
@@ -31,8 +31,9 @@ pub struct Solution {
     pub unit: [f64; 3],
     /// The parts that move (global indices, sorted): a minimal movable subset.
     pub moving: Vec<usize>,
-    /// For faces, the angular distance in degrees from `direction` to the face's
-    /// boundary; 0 for edges and vertices.
+    /// For faces, the angular distance in degrees from `direction` to the nearest
+    /// direction where `moving` is blocked (the boundary of the connected region of
+    /// directions where it is free); 0 for edges and vertices.
     pub clearance_deg: f64,
 }
 
@@ -152,34 +153,22 @@ fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec
         |local: Vec<usize>| -> Vec<usize> { local.into_iter().map(|k| ms.parts()[k]).collect() };
     let mut out = Vec::new();
 
-    // Faces with solutions; their deep directions are independent searches, run in parallel.
-    let mut faces: Vec<(usize, Vec<Vec<usize>>)> = Vec::new();
-    for f in 0..arr.faces().len() {
-        let moving = sets(&st.faces[f]);
-        if !moving.is_empty() {
-            faces.push((f, moving));
-            if opts.first {
-                break;
-            }
-        }
-    }
-    let isolated = isolated_points(arr);
-    let directions: Vec<(Vec3, f64)> = faces
+    // Face solutions, one per moving set and connected region where it is free; their
+    // deep directions are independent searches, run in parallel.
+    let free_regions = free_regions(ms, opts.first);
+    let directions: Vec<(Vec3, f64)> = free_regions
         .par_iter()
-        .map(|(f, _)| face_direction(regions, ms, *f as u32, &st.faces[*f], &isolated[*f]))
+        .map(|r| region_direction(regions, ms, r))
         .collect();
-    for ((_, moving), (direction, clearance)) in faces.into_iter().zip(directions) {
-        for m in moving {
-            out.push(Solution {
-                cell: CellKind::Face,
-                unit: direction.unit_f64(),
-                direction: direction.clone(),
-                moving: global(m),
-                clearance_deg: clearance.to_degrees(),
-            });
-        }
+    for (r, (direction, clearance)) in free_regions.into_iter().zip(directions) {
+        out.push(Solution {
+            cell: CellKind::Face,
+            unit: direction.unit_f64(),
+            direction,
+            moving: global(r.moving),
+            clearance_deg: clearance.to_degrees(),
+        });
         if opts.first {
-            out.truncate(1);
             return out;
         }
     }
@@ -255,67 +244,152 @@ pub fn dbg_at(regions: &BlockingRegions, parts: &[usize], d: &Vec3) -> Dbg {
     Dbg::new(parts.len(), arcs)
 }
 
-/// A direction deep inside face `f` with its clearance (radians): the best of a
-/// clearance-climbing search from points next to the boundary, verified exactly (on no
-/// arc of the motion space, with the face's blocking graph); falls back to an exact
-/// point of the face found without floating point when verification fails.
-fn face_direction(
-    regions: &BlockingRegions,
-    ms: &MotionSpace,
-    f: u32,
-    status: &BitSet,
-    points: &[[f64; 3]],
-) -> (Vec3, f64) {
+/// A connected region of faces where one moving set is free: the set can translate
+/// along every direction of the region's closure.
+struct FreeRegion {
+    /// The moving set (local indices), a minimal moving set of `seed`.
+    moving: Vec<usize>,
+    /// A face of the region where `moving` is a minimal moving set.
+    seed: u32,
+    /// The real half-edges bounding the region (region on their left).
+    boundary: Vec<u32>,
+}
+
+/// For every face and each of its minimal moving sets, the connected region of faces
+/// where that set is free, each region once (only the first with `first`). The free set
+/// of a moving set is closed (blocked sets are open), so faces are joined across every
+/// real edge with the set free on both sides, and the region's boundary is the edges
+/// with the set blocked on the other side.
+fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
     let arr = ms.arrangement();
-    let want = ms.dbg(status);
-    let arcs = face_boundary(arr, f);
-    let verify = |d: &Vec3| -> bool {
-        !d.is_zero() && ms.locate(d).0 == CellKind::Face && dbg_at(regions, ms.parts(), d) == want
-    };
-    if arcs.is_empty() && points.is_empty() {
-        // The whole sphere is one face: any direction, with half-turn clearance.
-        return (Vec3::new(0, 0, 1), std::f64::consts::PI);
-    }
-    let mut best: Option<([f64; 3], f64)> = None;
-    let mut starts: Vec<[f64; 3]> = starting_points(&arcs, points, 8)
-        .into_iter()
-        .take(2)
-        .map(|(p, _)| p)
+    let st = ms.statuses();
+    // The blocking graph and minimal moving sets of each distinct face status.
+    let mut index: HashMap<&BitSet, usize> = HashMap::default();
+    let mut graphs: Vec<(Dbg, Vec<Vec<usize>>)> = Vec::new();
+    let face_graph: Vec<usize> = st
+        .faces
+        .iter()
+        .map(|s| {
+            *index.entry(s).or_insert_with(|| {
+                let g = ms.dbg(s);
+                let sets = g.minimal_moving_sets();
+                graphs.push((g, sets));
+                graphs.len() - 1
+            })
+        })
         .collect();
-    if arcs.is_empty() {
-        // Only isolated points bound the face: start opposite the first one.
-        starts.push(points[0].map(|x| -x));
-    }
-    for p in starts {
-        let (q, c) = climb(p, &arcs, points);
-        if best.is_none_or(|(_, bc)| c > bc) {
-            best = Some((q, c));
-        }
-    }
-    if let Some((p, c)) = best {
-        // A small integer direction with nearly the best clearance reads better.
-        if let Some(found) = crate::clearance::simple_direction(&p, c, 0.9, &arcs, points, &verify)
-        {
-            return found;
-        }
-        for bits in [20, 30, 40] {
-            let scale = (1u64 << bits) as f64;
-            let d = Vec3::new(
-                (p[0] * scale).round() as i64,
-                (p[1] * scale).round() as i64,
-                (p[2] * scale).round() as i64,
-            )
-            .primitive();
-            if verify(&d) {
-                return (d, c);
+    let graph = |f: u32| &graphs[face_graph[f as usize]];
+    let mut ids: HashMap<Vec<usize>, usize> = HashMap::default();
+    let mut seen: rustc_hash::FxHashSet<(u32, usize)> = Default::default();
+    let mut out = Vec::new();
+    for f in 0..arr.faces().len() as u32 {
+        for m in graph(f).1.clone() {
+            let next = ids.len();
+            let id = *ids.entry(m.clone()).or_insert(next);
+            if !seen.insert((f, id)) {
+                continue;
+            }
+            let mut boundary = Vec::new();
+            let mut todo = vec![f];
+            while let Some(g) = todo.pop() {
+                for &c in &arr.faces()[g as usize] {
+                    for h in arr.cycle_half_edges(c) {
+                        if arr.edges()[(h / 2) as usize].structural {
+                            continue;
+                        }
+                        let other = arr.face_of(h ^ 1);
+                        if graph(other).0.can_move(&m) {
+                            if seen.insert((other, id)) {
+                                todo.push(other);
+                            }
+                        } else {
+                            boundary.push(h);
+                        }
+                    }
+                }
+            }
+            out.push(FreeRegion {
+                moving: m,
+                seed: f,
+                boundary,
+            });
+            if first {
+                return out;
             }
         }
     }
-    let d = ms.face_sample(f);
+    out
+}
+
+/// Angular distance (radians) from unit `u`, a direction where the local set `moving` is
+/// free, to the nearest direction where it is blocked: to the nearest real edge with the
+/// set free on one side and blocked on the other.
+pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -> f64 {
+    let arr = ms.arrangement();
+    let st = ms.statuses();
+    let mut free: HashMap<&BitSet, bool> = HashMap::default();
+    let mut c2 = 4.0f64;
+    for (e, edge) in arr.edges().iter().enumerate() {
+        if edge.structural {
+            continue;
+        }
+        let h = 2 * e as u32;
+        let mut is_free = |f: u32| {
+            let s = &st.faces[f as usize];
+            *free.entry(s).or_insert_with(|| ms.dbg(s).can_move(moving))
+        };
+        if is_free(arr.face_of(h)) != is_free(arr.face_of(h ^ 1)) {
+            let arc = arr.edge_arc(e as u32);
+            let fa = FArc::new(
+                arc.start.unit_f64(),
+                arc.end.unit_f64(),
+                arc.normal.unit_f64(),
+            );
+            c2 = c2.min(fa.distance2(u));
+        }
+    }
+    crate::clearance::to_angle(c2)
+}
+
+/// A direction deep inside a free region with its clearance (radians): the angular
+/// distance to the region's boundary, the directions where the moving set is blocked.
+/// The direction is verified exactly (inside a face, the set a minimal moving set there); the fallback is
+/// an exact point of the seed face found without floating point.
+fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion) -> (Vec3, f64) {
+    let arr = ms.arrangement();
+    let arcs: Vec<FArc> = r
+        .boundary
+        .iter()
+        .map(|&h| {
+            let arc = arr.half_edge_arc(h);
+            FArc::new(
+                arc.start.unit_f64(),
+                arc.end.unit_f64(),
+                arc.normal.unit_f64(),
+            )
+        })
+        .collect();
+    // The set must be a minimal moving set at the reported direction (it is free in the
+    // whole region, but minimal only where no smaller subset of it is free).
+    let verify = |d: &Vec3| -> bool {
+        !d.is_zero()
+            && ms.locate(d).0 == CellKind::Face
+            && dbg_at(regions, ms.parts(), d)
+                .minimal_moving_sets()
+                .contains(&r.moving)
+    };
+    if let Some(found) = deep_direction(&arcs, &[], &verify) {
+        return found;
+    }
+    let d = ms.face_sample(r.seed);
     debug_assert!(
         verify(&d),
-        "the exact face sample must have the face's graph"
+        "the exact face sample has the set as a minimal moving set"
     );
-    let c = crate::clearance::clearance(&d.unit_f64(), &arcs, points);
+    let c = if arcs.is_empty() {
+        std::f64::consts::PI
+    } else {
+        crate::clearance::clearance(&d.unit_f64(), &arcs, &[])
+    };
     (d, c)
 }

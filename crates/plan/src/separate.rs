@@ -4,7 +4,7 @@
 //! (faces, with their exact boundary arcs), sliding arcs (free arcs between blocked
 //! regions) and isolated directions (free points inside blocked regions).
 
-use crate::clearance::{climb, isolated_points, starting_points, to_angle, FArc};
+use crate::clearance::{isolated_points, to_angle, FArc};
 use crate::regions::BlockingRegions;
 use apart_kernel::Vec3;
 use apart_sphere::overlay::{cell_statuses, RegionArrangement};
@@ -170,40 +170,8 @@ fn deep_direction(
             FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64())
         })
         .collect();
-    if arcs.is_empty() && points.is_empty() {
-        return (Vec3::new(0, 0, 1), std::f64::consts::PI);
-    }
-    let mut starts: Vec<[f64; 3]> = starting_points(&arcs, points, 8)
-        .into_iter()
-        .take(2)
-        .map(|(p, _)| p)
-        .collect();
-    if arcs.is_empty() {
-        starts.push(points[0].map(|x| -x));
-    }
-    let mut best: Option<([f64; 3], f64)> = None;
-    for p in starts {
-        let (q, c) = climb(p, &arcs, points);
-        if best.is_none_or(|(_, bc)| c > bc) {
-            best = Some((q, c));
-        }
-    }
-    if let Some((p, c)) = best {
-        if let Some(found) = crate::clearance::simple_direction(&p, c, 0.9, &arcs, points, ok) {
-            return found;
-        }
-        for bits in [20, 30, 40] {
-            let s = (1u64 << bits) as f64;
-            let d = Vec3::new(
-                (p[0] * s).round() as i64,
-                (p[1] * s).round() as i64,
-                (p[2] * s).round() as i64,
-            )
-            .primitive();
-            if !d.is_zero() && ok(&d) {
-                return (d, c);
-            }
-        }
+    if let Some(found) = crate::clearance::deep_direction(&arcs, points, ok) {
+        return found;
     }
     // Exact fallback next to a boundary edge (see MotionSpace::face_sample).
     let h = arr

@@ -6,8 +6,8 @@
 //! Reversing the steps (each side moving back along the opposite direction) gives an
 //! assembly sequence.
 
-use crate::clearance::{to_angle, FArc};
 use crate::motion_space::{CellKind, MotionSpace};
+use crate::partition::free_clearance;
 use crate::partition::{dbg_at, partition_subset, Options, Solution};
 use crate::regions::BlockingRegions;
 use apart_kernel::Vec3;
@@ -234,12 +234,12 @@ fn axis_candidates(regions: &BlockingRegions, ms: &MotionSpace) -> Vec<Solution>
             continue;
         }
         let (cell, _) = ms.locate(&d);
-        let clearance = if cell == CellKind::Face {
-            distance_to_arcs(ms, &d)
-        } else {
-            0.0
-        };
         for m in sets {
+            let clearance = if cell == CellKind::Face {
+                free_clearance(ms, &m, &d.unit_f64())
+            } else {
+                0.0
+            };
             out.push(Solution {
                 cell,
                 direction: d.clone(),
@@ -250,34 +250,6 @@ fn axis_candidates(regions: &BlockingRegions, ms: &MotionSpace) -> Vec<Solution>
         }
     }
     out
-}
-
-/// Angular distance (radians) from `d` to the nearest real edge or isolated vertex of the
-/// motion space: the clearance of `d` inside its face.
-fn distance_to_arcs(ms: &MotionSpace, d: &Vec3) -> f64 {
-    let arr = ms.arrangement();
-    let p = d.unit_f64();
-    let mut c2 = 4.0f64;
-    for (e, edge) in arr.edges().iter().enumerate() {
-        if edge.structural {
-            continue;
-        }
-        let arc = arr.edge_arc(e as u32);
-        let fa = FArc::new(
-            arc.start.unit_f64(),
-            arc.end.unit_f64(),
-            arc.normal.unit_f64(),
-        );
-        c2 = c2.min(fa.distance2(&p));
-    }
-    for v in arr.vertices() {
-        if !v.structural {
-            let q = v.point.unit_f64();
-            let d2 = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2);
-            c2 = c2.min(d2);
-        }
-    }
-    to_angle(c2)
 }
 
 /// The largest uniform growth `s` (grid units) of every part that keeps `step`'s
