@@ -6,46 +6,8 @@ use apart_kernel::Vec3;
 use apart_plan::{
     sequence, BlockingRegions, CellKind, PartPieces, Sequence, SequenceOptions, Tolerance,
 };
-use common::oracle::Oracle;
+use common::check_plan;
 use proptest::prelude::*;
-
-/// Checks every step: the moving side is free along the direction against the rest of
-/// its subassembly (oracle), it is a proper non-empty subset, the steps split exactly the
-/// subassemblies the tree produces, and a complete plan ends with single parts.
-fn check_plan(parts: &[PartPieces], plan: &Sequence) {
-    let oracle = Oracle::new(parts);
-    let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
-    for step in &plan.steps {
-        assert!(
-            !step.moving.is_empty() && step.moving.len() < step.subassembly.len(),
-            "{step:?}"
-        );
-        let rest: Vec<usize> = step
-            .subassembly
-            .iter()
-            .copied()
-            .filter(|k| !step.moving.contains(k))
-            .collect();
-        assert!(
-            oracle.free(&step.moving, &rest, &step.direction),
-            "step blocked: {step:?}"
-        );
-        // The subassembly is one still waiting to be split.
-        let k = open
-            .iter()
-            .position(|s| s == &step.subassembly)
-            .expect("step splits an open subassembly");
-        open.remove(k);
-        open.push(step.moving.clone());
-        open.push(rest);
-    }
-    if plan.complete() {
-        assert!(open.iter().all(|s| s.len() == 1), "{open:?}");
-    }
-    for s in plan.stuck.iter().chain(&plan.unsplit) {
-        assert!(open.contains(s));
-    }
-}
 
 fn plan(parts: &[PartPieces], opts: &SequenceOptions) -> Sequence {
     let regions = BlockingRegions::compute(parts).unwrap();

@@ -6,7 +6,7 @@ pub mod oracle;
 
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
-use apart_plan::PartPieces;
+use apart_plan::{PartPieces, Sequence};
 
 /// A convex piece: the hull of integer points.
 pub fn hull(pts: &[[i64; 3]]) -> Polytope {
@@ -144,4 +144,42 @@ pub fn linked_rings() -> Vec<PartPieces> {
         cuboid([2, 2, -1], [3, 3, 2]),
     ];
     vec![part("ring_a", a), part("ring_b", b)]
+}
+
+/// Checks every step: the moving side is free along the direction against the rest of
+/// its subassembly (oracle), it is a proper non-empty subset, the steps split exactly the
+/// subassemblies the tree produces, and a complete plan ends with single parts.
+pub fn check_plan(parts: &[PartPieces], plan: &Sequence) {
+    let oracle = oracle::Oracle::new(parts);
+    let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
+    for step in &plan.steps {
+        assert!(
+            !step.moving.is_empty() && step.moving.len() < step.subassembly.len(),
+            "{step:?}"
+        );
+        let rest: Vec<usize> = step
+            .subassembly
+            .iter()
+            .copied()
+            .filter(|k| !step.moving.contains(k))
+            .collect();
+        assert!(
+            oracle.free(&step.moving, &rest, &step.direction),
+            "step blocked: {step:?}"
+        );
+        // The subassembly is one still waiting to be split.
+        let k = open
+            .iter()
+            .position(|s| s == &step.subassembly)
+            .expect("step splits an open subassembly");
+        open.remove(k);
+        open.push(step.moving.clone());
+        open.push(rest);
+    }
+    if plan.complete() {
+        assert!(open.iter().all(|s| s.len() == 1), "{open:?}");
+    }
+    for s in plan.stuck.iter().chain(&plan.unsplit) {
+        assert!(open.contains(s));
+    }
 }
