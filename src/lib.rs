@@ -5,8 +5,9 @@
 //! validation of one solid), [`assembly`] (the assembly model and its loader),
 //! [`pieces`] (exact convex polytopes), [`decompose`] (exact convex decomposition),
 //! [`minkowski`] (convex sums and their projection onto the sphere), [`sphere`]
-//! (arrangements of great-circle arcs), [`plan`] (partitioning, sequences, separation)
-//! and [`draw`] (pictures and exports). The `apart` binary holds flags and output only.
+//! (arrangements of great-circle arcs), [`plan`] (partitioning, sequences, separation),
+//! [`stack`] (placement by c-space obstacles and stacking) and [`draw`] (pictures and
+//! exports). The `apart` binary holds flags and output only.
 //!
 //! ```no_run
 //! let loaded = apart::assembly::load(std::path::Path::new("examples/split-star"), &Default::default()).unwrap();
@@ -23,5 +24,6 @@ pub use apart_minkowski as minkowski;
 pub use apart_pieces as pieces;
 pub use apart_plan as plan;
 pub use apart_sphere as sphere;
+pub use apart_stack as stack;
 
 pub use apart_plan::partition;

@@ -58,6 +58,12 @@ enum Command {
     /// Every direction along which one part leaves another: exact regions, sliding arcs,
     /// isolated directions, free area and the direction of largest clearance.
     Separate(commands::separate::SeparateArgs),
+    /// Interference-free positions of a new part among fixed parts, cheapest first
+    /// (exact c-space obstacles); exit 2 when it fits nowhere in the region.
+    Place(commands::place::PlaceArgs),
+    /// Stack identical parts on a floor region (stable, grippable from above, lowered
+    /// along -z); exit 2 when not every part could be placed.
+    Stack(commands::stack::StackArgs),
 }
 
 fn main() -> ExitCode {
@@ -81,6 +87,8 @@ fn main() -> ExitCode {
         Command::Decompose(args) => commands::decompose::run(args, &cli.global),
         Command::Sequence(args) => commands::sequence::run(args, &cli.global),
         Command::Separate(args) => commands::separate::run(args, &cli.global),
+        Command::Place(args) => commands::place::run(args, &cli.global),
+        Command::Stack(args) => commands::stack::run(args, &cli.global),
     };
     match result {
         Ok(code) => code,

@@ -26,9 +26,26 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
 /// Loads an assembly for planning (every non-convex part decomposed); when it has
 /// errors, prints every problem on standard error and fails naming how many.
 pub fn load_valid(path: &Path, global: &Global) -> anyhow::Result<Loaded> {
+    load_valid_but(path, global, None)
+}
+
+/// [`load_valid`], except that overlaps of the part named `free` with other parts are
+/// allowed (a part about to be placed may start where others are).
+pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyhow::Result<Loaded> {
     let loaded = load_with(path, global, Decompose::Always)?;
-    if !loaded.is_valid() {
-        let errors: Vec<_> = loaded.problems.iter().filter(|p| p.is_error()).collect();
+    let excused = |p: &apart::mesh::Problem| {
+        free.is_some_and(|n| {
+            let with = format!("overlaps part \"{n}\"");
+            p.message.starts_with(&with)
+                || (p.part.as_deref() == Some(n) && p.message.starts_with("overlaps part \""))
+        })
+    };
+    let errors: Vec<_> = loaded
+        .problems
+        .iter()
+        .filter(|p| p.is_error() && !excused(p))
+        .collect();
+    if !errors.is_empty() {
         for p in &errors {
             output::eline(p);
         }
@@ -49,4 +66,44 @@ pub fn load_valid(path: &Path, global: &Global) -> anyhow::Result<Loaded> {
         }
     }
     Ok(loaded)
+}
+
+/// A temporary manifest naming mesh files as parts of one assembly (so that they are
+/// snapped to one grid), with the part names (file stems, made unique) and a guard that
+/// removes the manifest's folder when dropped.
+pub fn files_manifest(
+    files: &[&String],
+    tag: &str,
+) -> anyhow::Result<(std::path::PathBuf, Vec<String>, TempDir)> {
+    let dir = std::env::temp_dir().join(format!("apart-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let guard = TempDir(dir.clone());
+    let mut names: Vec<String> = Vec::new();
+    let mut parts = Vec::new();
+    for (k, f) in files.iter().enumerate() {
+        let abs = std::fs::canonicalize(f).map_err(|e| anyhow::anyhow!("cannot read {f}: {e}"))?;
+        let mut name = Path::new(f.as_str())
+            .file_stem()
+            .map_or(format!("part{}", k + 1), |s| {
+                s.to_string_lossy().into_owned()
+            });
+        while names.contains(&name) {
+            name.push_str("_2");
+        }
+        parts.push(serde_json::json!({"name": name, "mesh": abs}));
+        names.push(name);
+    }
+    let manifest = serde_json::json!({"name": names.join(" and "), "parts": parts});
+    let file = dir.join("assembly.json");
+    std::fs::write(&file, serde_json::to_string(&manifest)?)?;
+    Ok((file, names, guard))
+}
+
+/// A temporary folder, removed when dropped.
+pub struct TempDir(std::path::PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }

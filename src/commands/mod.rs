@@ -4,5 +4,7 @@ pub mod check;
 pub mod decompose;
 pub mod load;
 pub mod partition;
+pub mod place;
 pub mod separate;
 pub mod sequence;
+pub mod stack;

@@ -2,7 +2,7 @@
 //! spherical regions, sliding arcs and isolated directions, with the free area and the
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
-use crate::commands::load::load_valid;
+use crate::commands::load::{files_manifest, load_valid};
 use crate::output;
 use crate::Global;
 use apart::plan::{parts_of, separate, BlockingRegions, Separation};
@@ -68,28 +68,9 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let (path, a_name, b_name, _tmp) = match args.inputs.as_slice() {
         [asm, a, b] => (PathBuf::from(asm), a.clone(), b.clone(), None),
         [a, b] => {
-            // Two mesh files: a temporary manifest naming them as two parts.
-            let dir = std::env::temp_dir().join(format!("apart-separate-{}", std::process::id()));
-            std::fs::create_dir_all(&dir)?;
-            let abs = |p: &str| {
-                std::fs::canonicalize(p).map_err(|e| anyhow::anyhow!("cannot read {p}: {e}"))
-            };
-            let stem = |p: &str, d: &str| {
-                std::path::Path::new(p)
-                    .file_stem()
-                    .map_or(d.to_string(), |s| s.to_string_lossy().into_owned())
-            };
-            let (na, mut nb) = (stem(a, "A"), stem(b, "B"));
-            if nb == na {
-                nb.push_str("_2");
-            }
-            let manifest = serde_json::json!({
-                "name": format!("{na} and {nb}"),
-                "parts": [{"name": na, "mesh": abs(a)?}, {"name": nb, "mesh": abs(b)?}],
-            });
-            let file = dir.join("assembly.json");
-            std::fs::write(&file, serde_json::to_string(&manifest)?)?;
-            (file, na, nb, Some(TempDir(dir)))
+            let (file, names, tmp) = files_manifest(&[a, b], "separate")?;
+            let [na, nb]: [String; 2] = names.try_into().expect("two names");
+            (file, na, nb, Some(tmp))
         }
         _ => anyhow::bail!("give an assembly and two part names, or two mesh files"),
     };
@@ -202,14 +183,5 @@ fn print_text(s: &Separation, a: &str, b: &str) {
             point(d),
             output::unit(&d.unit_f64())
         ));
-    }
-}
-
-/// A temporary folder removed when dropped.
-struct TempDir(PathBuf);
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }

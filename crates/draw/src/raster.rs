@@ -52,8 +52,28 @@ pub fn assembly_png(
     width: u32,
     height: u32,
 ) -> Vec<u8> {
-    let shapes = part_shapes(assembly);
-    let colors = part_colors(&part_names(assembly));
+    let names: Vec<String> = assembly.parts.iter().map(|p| p.name.clone()).collect();
+    shapes_png(
+        &part_shapes(assembly),
+        &names,
+        highlight,
+        view,
+        width,
+        height,
+    )
+}
+
+/// A render of arbitrary part surfaces (for instance placed pieces) as PNG bytes, with
+/// the same conventions as [`assembly_png`]: `names` give colours and the legend.
+pub fn shapes_png(
+    shapes: &[PartShape],
+    names: &[String],
+    highlight: &[usize],
+    view: &View,
+    width: u32,
+    height: u32,
+) -> Vec<u8> {
+    let colors = part_colors(names);
     let items: Vec<Item> = (0..shapes.len())
         .map(|k| {
             let lit = highlight.is_empty() || highlight.contains(&k);
@@ -70,7 +90,7 @@ pub fn assembly_png(
     } else {
         0.0
     };
-    let points = item_points(&shapes, &items);
+    let points = item_points(shapes, &items);
     let camera = Camera::fit(
         view,
         &points,
@@ -78,13 +98,97 @@ pub fn assembly_png(
         height,
         [12.0, 12.0, 12.0, legend_w + 12.0],
     );
-    let mut pixmap = render(&shapes, &items, &camera, width, height);
+    let mut pixmap = render(shapes, &items, &camera, width, height);
     if view.labels {
         let lit: Vec<usize> = items.iter().filter(|i| !i.ghost).map(|i| i.part).collect();
-        let svg = legend_svg(assembly, &colors, &lit, width, height, legend_w);
+        let svg = legend_svg(names, &colors, &lit, width, height, legend_w);
         overlay(&mut pixmap, &svg);
     }
     png_bytes(&pixmap)
+}
+
+/// A vector drawing of part surfaces as SVG text, for pictures that should scale: the
+/// same camera as [`shapes_png`], triangles facing the eye drawn far to near (painter's
+/// algorithm: exact for separate convex pieces seen from outside, approximate where
+/// surfaces interpenetrate), flat-shaded in the part colours, with a legend.
+pub fn shapes_svg(
+    shapes: &[PartShape],
+    names: &[String],
+    view: &View,
+    width: u32,
+    height: u32,
+) -> String {
+    let colors = part_colors(names);
+    let items: Vec<Item> = (0..shapes.len())
+        .map(|k| Item {
+            part: k,
+            offset: [0.0; 3],
+            color: colors[k],
+            ghost: false,
+        })
+        .collect();
+    let legend_w = if view.labels {
+        legend_width(width)
+    } else {
+        0.0
+    };
+    let points = item_points(shapes, &items);
+    let camera = Camera::fit(
+        view,
+        &points,
+        width,
+        height,
+        [12.0, 12.0, 12.0, legend_w + 12.0],
+    );
+    let light = camera.light();
+    // (depth of the farthest corner, part, corners in the picture, shaded colour)
+    type Flat = (f64, usize, [(f64, f64); 3], Rgb);
+    let mut tris: Vec<Flat> = Vec::new();
+    for (k, shape) in shapes.iter().enumerate() {
+        for (t, tri) in shape.triangles.iter().enumerate() {
+            let n = shape.normal(t);
+            if dot(n, camera.eye) <= 0.0 {
+                continue; // facing away
+            }
+            let p = tri.map(|v| camera.project(v));
+            let depth = p.iter().map(|q| q.2).fold(f64::NEG_INFINITY, f64::max);
+            tris.push((depth, k, p.map(|q| (q.0, q.1)), shade(colors[k], n, light)));
+        }
+    }
+    // Far first; ties by part and order for a deterministic picture.
+    tris.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut svg = svg_open(width, height);
+    let _ = writeln!(
+        svg,
+        r#"<rect width="{width}" height="{height}" fill="{}"/>"#,
+        BACKGROUND.hex()
+    );
+    for (_, _, p, c) in &tris {
+        let _ = writeln!(
+            svg,
+            r#"<polygon points="{:.2},{:.2} {:.2},{:.2} {:.2},{:.2}" fill="{c}" stroke="{c}" stroke-width="0.5" stroke-linejoin="round"/>"#,
+            p[0].0,
+            p[0].1,
+            p[1].0,
+            p[1].1,
+            p[2].0,
+            p[2].1,
+            c = c.hex()
+        );
+    }
+    if view.labels {
+        let all: Vec<usize> = (0..shapes.len()).collect();
+        let legend = legend_svg(names, &colors, &all, width, height, legend_w);
+        // The legend's own <svg> wrapper is dropped: its body goes into this drawing.
+        let body = legend
+            .split_once('\n')
+            .map_or("", |(_, b)| b)
+            .trim_end()
+            .trim_end_matches("</svg>");
+        svg.push_str(body);
+    }
+    svg.push_str("</svg>\n");
+    svg
 }
 
 /// One render per step of `sequence`, as PNG bytes, all with the same camera: the
@@ -453,7 +557,7 @@ fn legend_width(width: u32) -> f64 {
 
 /// A legend of the coloured parts in the right-hand column.
 fn legend_svg(
-    assembly: &Assembly,
+    names: &[String],
     colors: &[Rgb],
     lit: &[usize],
     width: u32,
@@ -480,7 +584,7 @@ fn legend_svg(
             y - 10.5,
             colors[k].hex(),
             x + 18.0,
-            escape(&assembly.parts[k].name)
+            escape(&names[k])
         );
     }
     svg.push_str("</svg>\n");

@@ -103,37 +103,42 @@ pub fn part_shapes(assembly: &Assembly) -> Vec<PartShape> {
                 }
                 shape
             }
-            _ => {
-                let mut planes = Planes::default();
-                let mut shape = PartShape::default();
-                for piece in &part.pieces {
-                    let den = piece.den();
-                    let scale = h / to_f64(den);
-                    let pts: Vec<[f64; 3]> = piece
-                        .vertices()
-                        .iter()
-                        .map(|v| v.to_ints().map(|c| to_f64(&c) * scale))
-                        .collect();
-                    for f in piece.facets() {
-                        let plane = planes.index(
-                            f.normal.clone(),
-                            Rational::new(f.offset.clone(), den.clone()),
-                        );
-                        let c = &f.cycle;
-                        for k in 1..c.len().saturating_sub(1) {
-                            shape.triangles.push([
-                                pts[c[0] as usize],
-                                pts[c[k] as usize],
-                                pts[c[k + 1] as usize],
-                            ]);
-                            shape.plane.push(plane);
-                        }
-                    }
-                }
-                shape
-            }
+            _ => pieces_shape(&part.pieces, h),
         })
         .collect()
+}
+
+/// The surface of a part given by convex pieces (integer or rational), in input units
+/// for a grid of the given step: every facet of every piece (faces between pieces lie
+/// inside and stay hidden behind the outer ones).
+pub fn pieces_shape(pieces: &[apart_pieces::Polytope], step: f64) -> PartShape {
+    let mut planes = Planes::default();
+    let mut shape = PartShape::default();
+    for piece in pieces {
+        let den = piece.den();
+        let scale = step / to_f64(den);
+        let pts: Vec<[f64; 3]> = piece
+            .vertices()
+            .iter()
+            .map(|v| v.to_ints().map(|c| to_f64(&c) * scale))
+            .collect();
+        for f in piece.facets() {
+            let plane = planes.index(
+                f.normal.clone(),
+                Rational::new(f.offset.clone(), den.clone()),
+            );
+            let c = &f.cycle;
+            for k in 1..c.len().saturating_sub(1) {
+                shape.triangles.push([
+                    pts[c[0] as usize],
+                    pts[c[k] as usize],
+                    pts[c[k + 1] as usize],
+                ]);
+                shape.plane.push(plane);
+            }
+        }
+    }
+    shape
 }
 
 /// The bounds of all shapes, each translated by `offsets[k]` when given.

@@ -57,5 +57,6 @@ pub mod parts;
 pub mod planner;
 pub mod qp;
 pub mod rational;
+pub mod render;
 pub mod scene;
 pub mod stability;

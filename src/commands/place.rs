@@ -1,0 +1,432 @@
+//! `apart place`: interference-free positions of a new part among fixed parts, cheapest
+//! first (paper 004): exact c-space obstacles of the interfering piece pairs only, free
+//! space as convex cells, the squared distance to a desired position minimized exactly in
+//! each cell, over discrete orientations about z. Exit code 0 when a position was found,
+//! 2 when the part fits nowhere in the region.
+
+use crate::commands::load::{files_manifest, load_valid_but};
+use crate::commands::stack::percent;
+use crate::output;
+use crate::Global;
+use apart::assembly::Assembly;
+use apart::draw::View;
+use apart::stack::exact::{q_from_f64, QBox, Q};
+use apart::stack::orientation::{orientations, Base};
+use apart::stack::part::PartModel;
+use apart::stack::partial::{place, Cost, Moving, ObstacleStats, PlaceOptions, PlaceStats, Region};
+use apart::stack::scene::Scene;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Arguments of `apart place`.
+#[derive(clap::Args, Debug)]
+pub struct PlaceArgs {
+    /// Either an assembly and the name of the part to place (`ASSEMBLY NAME`: every
+    /// other part is fixed), or two mesh files (`FIXED.stl NEW.off`, in the same
+    /// coordinates).
+    #[arg(num_args = 2, required = true, value_name = "INPUT")]
+    pub inputs: Vec<String>,
+    /// Desired translation p_d "X,Y,Z" of the new part from where it is given (input
+    /// units); the cost is |p − p_d|².
+    #[arg(long, default_value = "0,0,0", value_name = "X,Y,Z")]
+    pub target: String,
+    /// Box "X0,Y0,Z0,X1,Y1,Z1" the whole placed part must lie in. Default: the bounding
+    /// box of all parts grown by the new part's size on every side.
+    #[arg(
+        long,
+        value_name = "X0,Y0,Z0,X1,Y1,Z1",
+        conflicts_with = "translations"
+    )]
+    pub region: Option<String>,
+    /// Box "X0,Y0,Z0,X1,Y1,Z1" of allowed translations instead (Ω itself; Z0 = Z1 asks
+    /// for positions in a plane).
+    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1")]
+    pub translations: Option<String>,
+    /// Step of the orientations about z, in degrees (360: keep the part as given).
+    #[arg(long, default_value_t = 360.0, value_name = "DEG")]
+    pub dtheta: f64,
+    /// A base orientation "PHI,PSI" (multiples of 90 degrees about x, then y) to try;
+    /// repeat for several. Default: the part as given.
+    #[arg(long = "base", value_name = "PHI,PSI")]
+    pub bases: Vec<String>,
+    /// Clearance kept from the fixed parts (robot positioning error, input units).
+    #[arg(long, value_name = "C")]
+    pub clearance: Option<f64>,
+    /// Number of candidate positions to list (one per free-space cell, cheapest first).
+    #[arg(long, default_value_t = 5, value_name = "K")]
+    pub candidates: usize,
+    #[command(flatten)]
+    pub pictures: PictureArgs,
+}
+
+/// Picture flags shared by `place` and `stack`.
+#[derive(clap::Args, Debug)]
+pub struct PictureArgs {
+    /// Write a PNG render (drawn without a GPU).
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// Write an SVG drawing.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+}
+
+/// Writes the requested pictures; `draw(view, width, height, svg)` makes the bytes.
+pub fn write_pictures(
+    args: &PictureArgs,
+    draw: impl Fn(&View, u32, u32, bool) -> Vec<u8>,
+) -> anyhow::Result<()> {
+    let view = View::default();
+    if let Some(p) = &args.png {
+        output::write_file(p, draw(&view, 1000, 750, false))?;
+    }
+    if let Some(p) = &args.svg {
+        output::write_file(p, draw(&view, 1000, 750, true))?;
+    }
+    Ok(())
+}
+
+/// Counters shared by the JSON of `place` and `stack`.
+#[derive(Serialize)]
+pub struct StatsJson {
+    orientations_considered: usize,
+    pairs_total: u64,
+    pairs_evaluated: u64,
+    interference_tests: u64,
+    cells: u64,
+    qps: u64,
+    obstacles_fresh: u64,
+    obstacles_extrapolated: u64,
+    seconds: StatsSeconds,
+}
+
+#[derive(Serialize)]
+struct StatsSeconds {
+    total: f64,
+    detect: f64,
+    cells: f64,
+    obstacles: f64,
+    extrapolation: f64,
+}
+
+/// The counters as JSON.
+pub fn stats_json(p: &PlaceStats, o: &ObstacleStats, seconds: f64) -> StatsJson {
+    StatsJson {
+        orientations_considered: p.orientations_considered,
+        pairs_total: p.pairs_total,
+        pairs_evaluated: p.pairs_evaluated,
+        interference_tests: p.interference_tests,
+        cells: p.cells,
+        qps: p.qps,
+        obstacles_fresh: o.fresh,
+        obstacles_extrapolated: o.extrapolated,
+        seconds: StatsSeconds {
+            total: seconds,
+            detect: p.detect_seconds,
+            cells: p.cells_seconds,
+            obstacles: o.fresh_seconds,
+            extrapolation: o.extrapolate_seconds,
+        },
+    }
+}
+
+/// Parses `n` comma-separated finite numbers.
+pub fn parse_numbers(text: &str, n: usize, flag: &str) -> anyhow::Result<Vec<f64>> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| anyhow::anyhow!("{flag} \"{text}\" is not {n} comma-separated numbers"))?;
+    anyhow::ensure!(
+        v.len() == n,
+        "{flag} \"{text}\" needs {n} comma-separated numbers"
+    );
+    anyhow::ensure!(
+        v.iter().all(|x| x.is_finite()),
+        "{flag} \"{text}\" has a non-finite number"
+    );
+    Ok(v)
+}
+
+/// Parses base orientations "PHI,PSI" in degrees (multiples of 90).
+pub fn parse_bases(texts: &[String]) -> anyhow::Result<Vec<Base>> {
+    texts
+        .iter()
+        .map(|t| {
+            let v = parse_numbers(t, 2, "--base")?;
+            let quarter = |d: f64| -> anyhow::Result<u8> {
+                anyhow::ensure!(
+                    d.rem_euclid(90.0) == 0.0,
+                    "--base \"{t}\": angles must be multiples of 90 degrees"
+                );
+                Ok((d / 90.0).rem_euclid(4.0) as u8)
+            };
+            Ok(Base {
+                phi: quarter(v[0])?,
+                psi: quarter(v[1])?,
+            })
+        })
+        .collect()
+}
+
+/// A grid-unit rational in input units, as `f64`.
+pub fn qunits(v: &Q, h: f64) -> f64 {
+    v.to_f64() * h
+}
+
+/// A grid-unit rational in input units, exactly (`h` is a power of two).
+pub fn exact_units(v: &Q, h: f64) -> String {
+    let step = q_from_f64(h).expect("the grid step is a finite power of two");
+    (v * &step).to_string()
+}
+
+/// The part named `name` (or the only part) of a loaded assembly, as a placement model.
+pub fn load_part(asm: &Assembly, name: Option<&str>, path: &Path) -> anyhow::Result<PartModel> {
+    let k = match name {
+        Some(n) => asm
+            .parts
+            .iter()
+            .position(|p| p.name == n)
+            .ok_or_else(|| anyhow::anyhow!("{} has no part named \"{n}\"", path.display()))?,
+        None => {
+            anyhow::ensure!(
+                asm.parts.len() == 1,
+                "{} holds {} parts; name the one to use with --part-name",
+                path.display(),
+                asm.parts.len()
+            );
+            0
+        }
+    };
+    model_of(asm, k)
+}
+
+fn model_of(asm: &Assembly, k: usize) -> anyhow::Result<PartModel> {
+    let part = &asm.parts[k];
+    let mut model = PartModel::from_pieces(&part.name, part.pieces.clone())
+        .map_err(|e| anyhow::anyhow!("part \"{}\": {e}", part.name))?;
+    model.mesh = part.mesh.as_ref().map(|m| {
+        (
+            m.vertices
+                .iter()
+                .map(|&v| apart::kernel::Vec3::from(v))
+                .collect(),
+            m.triangles.clone(),
+        )
+    });
+    Ok(model)
+}
+
+#[derive(Serialize)]
+struct CandidateJson {
+    translation: [f64; 3],
+    exact_translation: [String; 3],
+    rotation_deg: [f64; 3],
+    exact_rotation: [String; 2],
+    cost: f64,
+}
+
+#[derive(Serialize)]
+struct PlaceJson {
+    moving: String,
+    fixed: Vec<String>,
+    target: [f64; 3],
+    grid_step: f64,
+    candidates: Vec<CandidateJson>,
+    stats: StatsJson,
+}
+
+/// Runs the command.
+pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    let start = std::time::Instant::now();
+    let (path, name, _tmp) = match args.inputs.as_slice() {
+        [asm, name] if !Path::new(name).is_file() => (PathBuf::from(asm), name.clone(), None),
+        [fixed, new] => {
+            let (file, names, tmp) = files_manifest(&[fixed, new], "place")?;
+            (file, names[1].clone(), Some(tmp))
+        }
+        _ => anyhow::bail!("give an assembly and a part name, or two mesh files"),
+    };
+    let loaded = load_valid_but(&path, global, Some(&name))?;
+    let asm = &loaded.assembly;
+    let h = asm.grid.step();
+    let k = asm
+        .parts
+        .iter()
+        .position(|p| p.name == name)
+        .ok_or_else(|| anyhow::anyhow!("the assembly has no part named \"{name}\""))?;
+    let part = model_of(asm, k)?;
+    let mut scene = Scene::new();
+    let mut fixed = Vec::new();
+    for (i, p) in asm.parts.iter().enumerate() {
+        if i != k {
+            scene.add_fixed_part(&p.pieces);
+            fixed.push(p.name.clone());
+        }
+    }
+    let to_grid = |v: f64, flag: &str| -> anyhow::Result<Q> {
+        q_from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag}: {v} is out of range"))
+    };
+    let boxed = |text: &str, flag: &str| -> anyhow::Result<QBox> {
+        let v = parse_numbers(text, 6, flag)?;
+        anyhow::ensure!(
+            (0..3).all(|i| v[i] <= v[i + 3]),
+            "{flag} \"{text}\" is empty (a low corner above the high one)"
+        );
+        Ok(QBox {
+            lo: [
+                to_grid(v[0], flag)?,
+                to_grid(v[1], flag)?,
+                to_grid(v[2], flag)?,
+            ],
+            hi: [
+                to_grid(v[3], flag)?,
+                to_grid(v[4], flag)?,
+                to_grid(v[5], flag)?,
+            ],
+        })
+    };
+    let region = if let Some(t) = &args.translations {
+        Region::Translations(boxed(t, "--translations")?)
+    } else if let Some(r) = &args.region {
+        Region::Container(boxed(r, "--region")?)
+    } else {
+        Region::Container(default_region(asm, &part))
+    };
+    let target = parse_numbers(&args.target, 3, "--target")?;
+    let bases = if args.bases.is_empty() {
+        vec![Base::IDENTITY]
+    } else {
+        parse_bases(&args.bases)?
+    };
+    let moving = Moving::new(part.clone(), &orientations(args.dtheta, &bases, 0.05), true);
+    let opts = PlaceOptions {
+        region,
+        cost: Cost::Distance([
+            to_grid(target[0], "--target")?,
+            to_grid(target[1], "--target")?,
+            to_grid(target[2], "--target")?,
+        ]),
+        clearance: args
+            .clearance
+            .map(|c| to_grid(c, "--clearance"))
+            .transpose()?,
+        extrapolate: true,
+    };
+    let result = place(&scene, &moving, &opts, args.candidates.max(1))?;
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(best) = result.candidates.first() {
+        let placed = apart::stack::stability::placed_pieces(
+            &moving.oriented[best.orientation].pieces,
+            &best.translation,
+        );
+        write_pictures(&args.pictures, |view, w, hgt, svg| {
+            let (shapes, names) = apart::stack::render::scene_shapes(
+                &scene,
+                &[(part.name.clone(), placed.clone())],
+                h,
+            );
+            if svg {
+                apart::draw::shapes_svg(&shapes, &names, view, w, hgt).into_bytes()
+            } else {
+                apart::draw::shapes_png(&shapes, &names, &[], view, w, hgt)
+            }
+        })?;
+    }
+    let candidates: Vec<CandidateJson> = result
+        .candidates
+        .iter()
+        .map(|c| {
+            let o = &moving.orientations[c.orientation];
+            CandidateJson {
+                translation: c.translation.clone().map(|t| qunits(&t, h)),
+                exact_translation: c.translation.clone().map(|t| exact_units(&t, h)),
+                rotation_deg: o.degrees(),
+                exact_rotation: [
+                    format!("{}/{}", o.theta.a, o.theta.c),
+                    format!("{}/{}", o.theta.b, o.theta.c),
+                ],
+                cost: c.cost.to_f64() * h * h,
+            }
+        })
+        .collect();
+    let found = !candidates.is_empty();
+    let json = PlaceJson {
+        moving: name.clone(),
+        fixed,
+        target: [target[0], target[1], target[2]],
+        grid_step: h,
+        candidates,
+        stats: stats_json(&result.stats, &result.obstacles, seconds),
+    };
+    if global.json {
+        output::json(&json)?;
+    } else {
+        print_text(&json, &result.stats);
+    }
+    Ok(if found {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    })
+}
+
+/// The bounding box of every part grown by the new part's largest extent.
+fn default_region(asm: &Assembly, part: &PartModel) -> QBox {
+    let mut b: Option<QBox> = None;
+    for p in &asm.parts {
+        for piece in &p.pieces {
+            let pb = QBox::of_points(piece.vertices(), piece.den());
+            b = Some(match b {
+                None => pb,
+                Some(a) => a.union(&pb),
+            });
+        }
+    }
+    let b = b.expect("a valid assembly has pieces");
+    let e = part
+        .orient(&apart::stack::orientation::Orientation::IDENTITY)
+        .extent;
+    let grow = (0..3)
+        .map(|i| &e.hi[i] - &e.lo[i])
+        .max()
+        .expect("three axes");
+    QBox {
+        lo: b.lo.clone().map(|v| &v - &grow),
+        hi: b.hi.clone().map(|v| &v + &grow),
+    }
+}
+
+fn print_text(j: &PlaceJson, s: &PlaceStats) {
+    output::line(format!(
+        "place {} among {} fixed part{}, target translation ({}, {}, {})",
+        j.moving,
+        j.fixed.len(),
+        if j.fixed.len() == 1 { "" } else { "s" },
+        j.target[0],
+        j.target[1],
+        j.target[2]
+    ));
+    if j.candidates.is_empty() {
+        output::line("no interference-free position in the region");
+    }
+    for (k, c) in j.candidates.iter().enumerate() {
+        output::line(format!(
+            "{:>3}. translation ({}, {}, {})  turn {:.2} deg  cost {:.6}",
+            k + 1,
+            c.translation[0],
+            c.translation[1],
+            c.translation[2],
+            c.rotation_deg[2],
+            c.cost
+        ));
+    }
+    output::line(format!(
+        "piece pairs evaluated {} of {} ({:.2}%), {} orientations, {:.3} s",
+        s.pairs_evaluated,
+        s.pairs_total,
+        percent(s.pairs_evaluated, s.pairs_total),
+        s.orientations_considered,
+        j.stats.seconds.total
+    ));
+}
