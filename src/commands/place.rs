@@ -29,26 +29,32 @@ pub struct PlaceArgs {
     pub inputs: Vec<String>,
     /// Desired translation p_d "X,Y,Z" of the new part from where it is given (input
     /// units); the cost is |p − p_d|².
-    #[arg(long, default_value = "0,0,0", value_name = "X,Y,Z")]
+    #[arg(
+        long,
+        default_value = "0,0,0",
+        value_name = "X,Y,Z",
+        allow_hyphen_values = true
+    )]
     pub target: String,
     /// Box "X0,Y0,Z0,X1,Y1,Z1" the whole placed part must lie in. Default: the bounding
     /// box of all parts grown by the new part's size on every side.
     #[arg(
         long,
         value_name = "X0,Y0,Z0,X1,Y1,Z1",
-        conflicts_with = "translations"
+        conflicts_with = "translations",
+        allow_hyphen_values = true
     )]
     pub region: Option<String>,
     /// Box "X0,Y0,Z0,X1,Y1,Z1" of allowed translations instead (Ω itself; Z0 = Z1 asks
     /// for positions in a plane).
-    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1")]
+    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true)]
     pub translations: Option<String>,
     /// Step of the orientations about z, in degrees (360: keep the part as given).
     #[arg(long, default_value_t = 360.0, value_name = "DEG")]
     pub dtheta: f64,
     /// A base orientation "PHI,PSI" (multiples of 90 degrees about x, then y) to try;
     /// repeat for several. Default: the part as given.
-    #[arg(long = "base", value_name = "PHI,PSI")]
+    #[arg(long = "base", value_name = "PHI,PSI", allow_hyphen_values = true)]
     pub bases: Vec<String>,
     /// Clearance kept from the fixed parts (robot positioning error, input units).
     #[arg(long, value_name = "C")]

@@ -33,10 +33,15 @@ pub struct StackArgs {
     pub weight: f64,
     /// Floor region "X0,Y0,X1,Y1" (input units); its centre is eq. (1)'s (x0, y0).
     /// Default: a square centred on the origin with room for all parts side by side.
-    #[arg(long, value_name = "X0,Y0,X1,Y1")]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
     pub floor: Option<String>,
     /// Height of the floor (eq. (1)'s z0).
-    #[arg(long, default_value_t = 0.0, value_name = "Z0")]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        value_name = "Z0",
+        allow_hyphen_values = true
+    )]
     pub floor_z: f64,
     /// Maximum height of the stack above the floor (default: count × part height).
     #[arg(long, value_name = "H")]
@@ -46,7 +51,7 @@ pub struct StackArgs {
     pub dtheta: f64,
     /// A base orientation "PHI,PSI" (multiples of 90 degrees about x, then y) to try;
     /// repeat for several. Default: the part as given.
-    #[arg(long = "base", value_name = "PHI,PSI")]
+    #[arg(long = "base", value_name = "PHI,PSI", allow_hyphen_values = true)]
     pub bases: Vec<String>,
     /// Horizontal clearance kept between parts (robot positioning error, input units).
     #[arg(long, value_name = "C")]
