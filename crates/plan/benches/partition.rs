@@ -8,7 +8,9 @@ mod common;
 #[path = "../../decompose/tests/common/shapes.rs"]
 mod shapes;
 
-use apart_plan::{partition_pieces, Options, PartPieces};
+use apart_plan::{
+    partition_pieces, sequence, BlockingRegions, Options, PartPieces, SequenceOptions,
+};
 use std::time::Instant;
 
 /// Resets the process's peak resident set size (Linux), so each case reports its own.
@@ -179,6 +181,62 @@ fn run(name: &str, parts: &[PartPieces], reps: usize) -> Row {
     }
 }
 
+/// A 5 x 5 x 2 block of unit cubes (50 parts) on a base plate with a lid on top.
+fn cube_block() -> Vec<PartPieces> {
+    let mut parts = vec![common::part(
+        "base",
+        vec![common::cuboid([-1, -1, -1], [6, 6, 0])],
+    )];
+    for z in 0..2 {
+        for y in 0..5 {
+            for x in 0..5 {
+                parts.push(common::part(
+                    &format!("c{x}{y}{z}"),
+                    vec![common::cuboid([x, y, z], [x + 1, y + 1, z + 1])],
+                ));
+            }
+        }
+    }
+    parts.push(common::part(
+        "lid",
+        vec![common::cuboid([-1, -1, 2], [6, 6, 3])],
+    ));
+    parts
+}
+
+/// Full disassembly plans: time for the shared pair regions (computed once) against the
+/// time of all the per-step overlays and graphs.
+fn sequences(quick: bool) {
+    println!("\n| assembly (sequence) | parts | steps | complete | pair regions ms | steps ms | share of regions |");
+    println!("|---|---|---|---|---|---|---|");
+    let mut cases: Vec<(String, Vec<PartPieces>)> = Vec::new();
+    for seed in [1u64, 2, 3] {
+        if quick && seed > 1 {
+            break;
+        }
+        cases.push((
+            format!("random boxes 128/16, seed {seed}"),
+            random_boxes(128, 16, seed),
+        ));
+    }
+    cases.push(("52 parts: 5 x 5 x 2 cubes, base, lid".into(), cube_block()));
+    for (name, parts) in cases {
+        let t = Instant::now();
+        let regions = BlockingRegions::compute(&parts).unwrap();
+        let tr = t.elapsed().as_secs_f64();
+        let s = sequence(&regions, &SequenceOptions::default());
+        println!(
+            "| {name} | {} | {} | {} | {:.1} | {:.1} | {:.0}% |",
+            parts.len(),
+            s.steps.len(),
+            s.complete(),
+            tr * 1000.0,
+            s.step_seconds * 1000.0,
+            100.0 * tr / (tr + s.step_seconds)
+        );
+    }
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let mut rows = Vec::new();
@@ -224,4 +282,5 @@ fn main() {
             r.name, r.parts, r.pieces, r.sums, r.cells.0, r.cells.1, r.cells.2, r.t1 * 1000.0, r.t2 * 1000.0, r.t1 / r.t2, r.peak, r.solutions
         );
     }
+    sequences(quick);
 }

@@ -1,1 +1,165 @@
-fn main() {}
+//! Placement and stacking benchmark (paper 004 Tables I and II): per-call times of
+//! obstacle construction, extrapolation and interference tests, the share of piece
+//! pairs evaluated by partial c-space, and whole stacking runs. Prints tables;
+//! `cargo bench -p apart-stack --bench stack` (add `-- --quick` to skip the longest run).
+
+use apart_stack::exact::{q, qfrac, Point};
+use apart_stack::extrapolate::Template;
+use apart_stack::interference::overlaps;
+use apart_stack::obstacle::ObstacleShape;
+use apart_stack::orientation::{Orientation, ZRotation};
+use apart_stack::part::PartModel;
+use apart_stack::parts::{channel, complex_part, cube, triangle_part};
+use apart_stack::planner::{stack, StackOptions};
+use std::time::Instant;
+
+/// Mean seconds per call of `f` over enough calls to take about 0.2 s.
+fn per_call(mut f: impl FnMut()) -> f64 {
+    let t = Instant::now();
+    f();
+    let once = t.elapsed().as_secs_f64().max(1e-7);
+    let n = ((0.2 / once) as usize).clamp(3, 200_000);
+    let t = Instant::now();
+    for _ in 0..n {
+        f();
+    }
+    t.elapsed().as_secs_f64() / n as f64
+}
+
+fn micro() {
+    println!("## Per call (one convex piece pair)\n");
+    println!("| operation | pieces | µs per call |");
+    println!("|---|---|---:|");
+    let c = cube(10);
+    let complex = complex_part();
+    // The largest and a typical piece of the complex part.
+    let mut by_size: Vec<_> = complex.pieces.iter().collect();
+    by_size.sort_by_key(|p| p.vertices().len());
+    let small = by_size[by_size.len() / 2];
+    let large = by_size[by_size.len() - 1];
+    let cases = [
+        ("cube pieces", &c.pieces[0], &c.pieces[0]),
+        (
+            "complex part, typical pieces",
+            small as &apart_pieces::Polytope,
+            small,
+        ),
+        ("complex part, largest pieces", large, large),
+    ];
+    for (name, a, b) in cases {
+        let label = format!("{} + {} vertices", a.vertices().len(), b.vertices().len());
+        let t = per_call(|| {
+            std::hint::black_box(ObstacleShape::compute(a, b).unwrap());
+        });
+        println!(
+            "| obstacle construction, {name} | {label} | {:.1} |",
+            t * 1e6
+        );
+        let turn = ZRotation::nearest(10.0, 0.05);
+        let o = ObstacleShape::compute(a, &apart_stack::extrapolate::rotate_z(b, turn)).unwrap();
+        if let Some(tpl) = Template::new(a, b, turn, &o) {
+            let other = ZRotation::nearest(10.5, 0.05);
+            let quarter = ZRotation::nearest(100.0, 0.05);
+            let t = per_call(|| {
+                std::hint::black_box(tpl.valid_at(quarter));
+            });
+            println!(
+                "| structure check (a miss, 90° away), {name} | {label} | {:.1} |",
+                t * 1e6
+            );
+            if tpl.valid_at(other) {
+                let t = per_call(|| {
+                    std::hint::black_box(tpl.extrapolate(other));
+                });
+                println!("| extrapolation, {name} | {label} | {:.1} |", t * 1e6);
+            }
+        }
+        let shift = Point::from_q(&[qfrac(1, 2), q(1), q(0)]);
+        let zero = Point::from_q(&[q(0), q(0), q(0)]);
+        let t = per_call(|| {
+            std::hint::black_box(overlaps(a, &shift, b, &zero));
+        });
+        println!("| interference test, {name} | {label} | {:.1} |", t * 1e6);
+    }
+    println!();
+}
+
+fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<String>) {
+    let e = part.orient(&Orientation::IDENTITY).extent;
+    let size = (0..2)
+        .map(|i| (&e.hi[i] - &e.lo[i]).to_f64())
+        .fold(0.0, f64::max);
+    let side = ((n as f64).sqrt().ceil() * size * 1.25).ceil() as i64;
+    let half = side / 2 + 1;
+    let height = &(&e.hi[2] - &e.lo[2]) * &q(n as i64);
+    let mut opts = StackOptions::new(
+        n,
+        qfrac(w.0, w.1),
+        [q(-half), q(-half), q(half), q(half)],
+        height,
+    );
+    opts.dtheta_deg = dtheta;
+    let plan = stack(part, &opts).unwrap();
+    let s = &plan.stats;
+    let pct = 100.0 * s.place.pairs_evaluated as f64 / s.place.pairs_total.max(1) as f64;
+    let fresh = s.obstacles.fresh_seconds / s.obstacles.fresh.max(1) as f64;
+    let tried = s.obstacles.extrapolated + s.obstacles.extrapolation_misses;
+    let extra = s.obstacles.extrapolate_seconds / tried.max(1) as f64;
+    println!(
+        "| {} ({} pieces) | {n} | {}/{} | {} | {:.3} | {} / {} ({pct:.3}%) | {} ({:.1} µs) | {} of {} tried ({:.1} µs per try) | {:.2} |",
+        part.name,
+        part.pieces.len(),
+        w.0,
+        w.1,
+        s.orientations,
+        plan.stack_height.to_f64(),
+        s.place.pairs_evaluated,
+        s.place.pairs_total,
+        s.obstacles.fresh,
+        fresh * 1e6,
+        s.obstacles.extrapolated,
+        tried,
+        extra * 1e6,
+        s.seconds
+    );
+    phases.push(format!(
+        "| {} ({n}, w = {}/{}) | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {:.2} |",
+        part.name,
+        w.0,
+        w.1,
+        s.place.detect_seconds,
+        s.place.cells_seconds,
+        s.stability_seconds,
+        s.lowering_seconds,
+        s.unstable,
+        s.place.cells,
+        s.seconds
+    ));
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    println!(
+        "apart-stack benchmark, {} threads available\n",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
+    micro();
+    println!("## Stacking runs (Δθ = 90°)\n");
+    println!("| part | n | w | orientations | stack height | piece pairs evaluated / total | fresh obstacles (mean) | extrapolated (mean) | seconds |");
+    println!("|---|---:|---|---:|---:|---:|---:|---:|---:|");
+    let mut phases = Vec::new();
+    for w in [(0, 1), (1, 2), (1, 1)] {
+        run(&cube(1), 121, w, 90.0, &mut phases);
+    }
+    run(&channel(), 15, (1, 2), 90.0, &mut phases);
+    run(&triangle_part(), 15, (1, 2), 90.0, &mut phases);
+    if !quick {
+        run(&complex_part(), 15, (1, 2), 90.0, &mut phases);
+    }
+    println!("\n## Where the time goes (seconds)\n");
+    println!("| run | interference detection | cells and QPs | stability | lowering check | unstable candidates | cells | total |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for p in phases {
+        println!("{p}");
+    }
+}
