@@ -37,6 +37,26 @@ impl Dbg {
         if self.n <= 1 {
             return Vec::new();
         }
+        if self.n <= 64 {
+            return self.minimal_moving_sets_small();
+        }
+        self.minimal_moving_sets_scc()
+    }
+
+    /// [`Self::minimal_moving_sets`] for at most 64 nodes, with bit masks.
+    fn minimal_moving_sets_small(&self) -> Vec<Vec<usize>> {
+        let mut m = Masks::new(self.n);
+        for &(a, b) in &self.arcs {
+            m.block(a, b);
+        }
+        m.minimal_moving_sets()
+            .into_iter()
+            .map(|s| Masks::members(s))
+            .collect()
+    }
+
+    /// [`Self::minimal_moving_sets`] by Tarjan's strongly connected components.
+    fn minimal_moving_sets_scc(&self) -> Vec<Vec<usize>> {
         let mut g: DiGraph<(), ()> = DiGraph::with_capacity(self.n, self.arcs.len());
         for _ in 0..self.n {
             g.add_node(());
@@ -88,6 +108,115 @@ impl Dbg {
     }
 }
 
+/// A blocking graph on at most 64 nodes as adjacency bit masks: cheap enough to be
+/// rebuilt for every cell of a large motion space instead of being stored.
+#[derive(Clone, Copy, Debug)]
+pub struct Masks {
+    n: usize,
+    adj: [u64; 64],
+}
+
+impl Masks {
+    /// The graph without arcs on `n <= 64` nodes.
+    pub fn new(n: usize) -> Masks {
+        assert!(n <= 64, "bit-mask graphs hold at most 64 nodes");
+        Masks { n, adj: [0; 64] }
+    }
+
+    /// Adds the arc `a → b` (`a` moving hits `b`).
+    pub fn block(&mut self, a: usize, b: usize) {
+        self.adj[a] |= 1 << b;
+    }
+
+    /// The node set of a mask, ascending.
+    pub fn members(mask: u64) -> Vec<usize> {
+        (0..64).filter(|&k| mask >> k & 1 == 1).collect()
+    }
+
+    /// The mask of a node set.
+    pub fn mask_of(set: &[usize]) -> u64 {
+        set.iter().fold(0, |m, &k| m | 1 << k)
+    }
+
+    /// True when the set `mask` can move: not empty, not everything, no arc leaving it.
+    pub fn can_move(&self, mask: u64) -> bool {
+        let all = self.all();
+        if mask == 0 || mask & all == all {
+            return false;
+        }
+        let mut m = mask;
+        while m != 0 {
+            let u = m.trailing_zeros() as usize;
+            m &= m - 1;
+            if self.adj[u] & !mask != 0 {
+                return false;
+            }
+        }
+        true
+    }
+
+    fn all(&self) -> u64 {
+        if self.n == 64 {
+            u64::MAX
+        } else {
+            (1u64 << self.n) - 1
+        }
+    }
+
+    /// The minimal moving sets as masks, ascending by their sorted member lists: `reach[v]`,
+    /// the nodes reachable from `v` (itself included), is a minimal closed set exactly
+    /// when `v` is reachable back from each of them (its strongly connected component has
+    /// no arc leaving it).
+    pub fn minimal_moving_sets(&self) -> Vec<u64> {
+        let n = self.n;
+        if n <= 1 {
+            return Vec::new();
+        }
+        let mut reach = [0u64; 64];
+        for (v, r) in reach.iter_mut().enumerate().take(n) {
+            let mut seen = 1u64 << v;
+            let mut frontier = seen;
+            while frontier != 0 {
+                let mut next = 0u64;
+                let mut f = frontier;
+                while f != 0 {
+                    let u = f.trailing_zeros() as usize;
+                    f &= f - 1;
+                    next |= self.adj[u];
+                }
+                frontier = next & !seen;
+                seen |= next;
+            }
+            *r = seen;
+        }
+        let all = self.all();
+        let mut sets: Vec<u64> = Vec::new();
+        for v in 0..n {
+            let r = reach[v];
+            if r == all || sets.contains(&r) {
+                continue;
+            }
+            let mut m = r;
+            let mut sink = true;
+            while m != 0 {
+                let u = m.trailing_zeros() as usize;
+                m &= m - 1;
+                if reach[u] & (1 << v) == 0 {
+                    sink = false;
+                    break;
+                }
+            }
+            if sink {
+                sets.push(r);
+            }
+        }
+        // Sink components are disjoint: order them by their smallest member, which is
+        // the order of their sorted member lists.
+        sets.sort_unstable_by_key(|m| m.trailing_zeros());
+        sets
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -112,5 +241,32 @@ mod tests {
         assert_eq!(g.minimal_moving_sets(), vec![vec![0], vec![1], vec![2]]);
         let g = Dbg::new(3, vec![(0, 1), (1, 0), (2, 0)]);
         assert_eq!(g.minimal_moving_sets(), vec![vec![0, 1]]);
+    }
+
+    #[test]
+    fn bit_masks_agree_with_tarjan() {
+        // Random graphs of 2 to 64 nodes and various densities (a small LCG keeps the
+        // test deterministic), including complete and empty ones.
+        let mut s = 12345u64;
+        let mut next = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % m
+        };
+        for _ in 0..400 {
+            let n = 2 + next(63) as usize;
+            let density = next(100);
+            let mut arcs = Vec::new();
+            for a in 0..n {
+                for b in 0..n {
+                    if a != b && next(100 * n as u64) < density * 3 {
+                        arcs.push((a, b));
+                    }
+                }
+            }
+            let g = Dbg::new(n, arcs);
+            assert_eq!(g.minimal_moving_sets_small(), g.minimal_moving_sets_scc());
+        }
     }
 }

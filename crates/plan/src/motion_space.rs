@@ -180,6 +180,19 @@ impl MotionSpace {
         )
     }
 
+    /// The blocking graph of a status set as bit masks, when there are at most 64 parts.
+    pub fn masks(&self, status: &BitSet) -> Option<crate::dbg::Masks> {
+        if self.parts.len() > 64 {
+            return None;
+        }
+        let mut m = crate::dbg::Masks::new(self.parts.len());
+        for k in status.iter().filter(|&k| k < self.maps.len()) {
+            let (a, b) = self.maps[k];
+            m.block(a, b);
+        }
+        Some(m)
+    }
+
     /// Number of ordered pairs blocked in a status set.
     pub fn blocked_pairs(&self, status: &BitSet) -> usize {
         status.iter().filter(|&m| m < self.maps.len()).count()

@@ -2,7 +2,7 @@
 //! infinite translation.
 
 use crate::clearance::{deep_direction, FArc};
-use crate::dbg::Dbg;
+use crate::dbg::{Dbg, Masks};
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
@@ -145,6 +145,14 @@ fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec
     let st = ms.statuses();
     let mut memo: HashMap<BitSet, Vec<Vec<usize>>> = HashMap::default();
     let mut sets = |s: &BitSet| -> Vec<Vec<usize>> {
+        // Up to 64 parts the bit-mask graph is cheaper to rebuild than to look up.
+        if let Some(m) = ms.masks(s) {
+            return m
+                .minimal_moving_sets()
+                .into_iter()
+                .map(Masks::members)
+                .collect();
+        }
         memo.entry(s.clone())
             .or_insert_with(|| ms.dbg(s).minimal_moving_sets())
             .clone()
@@ -262,28 +270,12 @@ struct FreeRegion {
 /// with the set blocked on the other side.
 fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
     let arr = ms.arrangement();
-    let st = ms.statuses();
-    // The blocking graph and minimal moving sets of each distinct face status.
-    let mut index: HashMap<&BitSet, usize> = HashMap::default();
-    let mut graphs: Vec<(Dbg, Vec<Vec<usize>>)> = Vec::new();
-    let face_graph: Vec<usize> = st
-        .faces
-        .iter()
-        .map(|s| {
-            *index.entry(s).or_insert_with(|| {
-                let g = ms.dbg(s);
-                let sets = g.minimal_moving_sets();
-                graphs.push((g, sets));
-                graphs.len() - 1
-            })
-        })
-        .collect();
-    let graph = |f: u32| &graphs[face_graph[f as usize]];
+    let graphs = FaceGraphs::new(ms);
     let mut ids: HashMap<Vec<usize>, usize> = HashMap::default();
     let mut seen: rustc_hash::FxHashSet<(u32, usize)> = Default::default();
     let mut out = Vec::new();
     for f in 0..arr.faces().len() as u32 {
-        for m in graph(f).1.clone() {
+        for m in graphs.sets(f) {
             let next = ids.len();
             let id = *ids.entry(m.clone()).or_insert(next);
             if !seen.insert((f, id)) {
@@ -298,7 +290,7 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
                             continue;
                         }
                         let other = arr.face_of(h ^ 1);
-                        if graph(other).0.can_move(&m) {
+                        if graphs.can_move(other, &m) {
                             if seen.insert((other, id)) {
                                 todo.push(other);
                             }
@@ -321,6 +313,66 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
     out
 }
 
+/// The blocking graph of every face: rebuilt from the face's status as bit masks when
+/// there are at most 64 parts (cheaper than storing one per face of a large motion
+/// space), else built once per distinct status.
+enum FaceGraphs<'a> {
+    Masks(&'a MotionSpace),
+    Memo {
+        face_graph: Vec<usize>,
+        graphs: Vec<(Dbg, Vec<Vec<usize>>)>,
+    },
+}
+
+impl<'a> FaceGraphs<'a> {
+    fn new(ms: &'a MotionSpace) -> FaceGraphs<'a> {
+        if ms.parts().len() <= 64 {
+            return FaceGraphs::Masks(ms);
+        }
+        let mut index: HashMap<&BitSet, usize> = HashMap::default();
+        let mut graphs: Vec<(Dbg, Vec<Vec<usize>>)> = Vec::new();
+        let face_graph = ms
+            .statuses()
+            .faces
+            .iter()
+            .map(|s| {
+                *index.entry(s).or_insert_with(|| {
+                    let g = ms.dbg(s);
+                    let sets = g.minimal_moving_sets();
+                    graphs.push((g, sets));
+                    graphs.len() - 1
+                })
+            })
+            .collect();
+        FaceGraphs::Memo { face_graph, graphs }
+    }
+
+    fn masks(ms: &MotionSpace, f: u32) -> Masks {
+        ms.masks(&ms.statuses().faces[f as usize])
+            .expect("at most 64 parts")
+    }
+
+    /// The minimal moving sets of face `f` (local indices, sorted).
+    fn sets(&self, f: u32) -> Vec<Vec<usize>> {
+        match self {
+            FaceGraphs::Masks(ms) => Self::masks(ms, f)
+                .minimal_moving_sets()
+                .into_iter()
+                .map(Masks::members)
+                .collect(),
+            FaceGraphs::Memo { face_graph, graphs } => graphs[face_graph[f as usize]].1.clone(),
+        }
+    }
+
+    /// True when the local set `m` can move in face `f`.
+    fn can_move(&self, f: u32, m: &[usize]) -> bool {
+        match self {
+            FaceGraphs::Masks(ms) => Self::masks(ms, f).can_move(Masks::mask_of(m)),
+            FaceGraphs::Memo { face_graph, graphs } => graphs[face_graph[f as usize]].0.can_move(m),
+        }
+    }
+}
+
 /// Angular distance (radians) from unit `u`, a direction where the local set `moving` is
 /// free, to the nearest direction where it is blocked: to the nearest real edge with the
 /// set free on one side and blocked on the other.
@@ -336,7 +388,10 @@ pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -
         let h = 2 * e as u32;
         let mut is_free = |f: u32| {
             let s = &st.faces[f as usize];
-            *free.entry(s).or_insert_with(|| ms.dbg(s).can_move(moving))
+            *free.entry(s).or_insert_with(|| match ms.masks(s) {
+                Some(m) => m.can_move(Masks::mask_of(moving)),
+                None => ms.dbg(s).can_move(moving),
+            })
         };
         if is_free(arr.face_of(h)) != is_free(arr.face_of(h ^ 1)) {
             let arc = arr.edge_arc(e as u32);
