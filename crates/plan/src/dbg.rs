@@ -51,7 +51,7 @@ impl Dbg {
         }
         m.minimal_moving_sets()
             .into_iter()
-            .map(|s| Masks::members(s))
+            .map(Masks::members)
             .collect()
     }
 
