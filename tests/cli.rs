@@ -153,7 +153,7 @@ fn separate_names_the_free_directions_of_two_parts() {
     assert_eq!(code, 0);
     assert_eq!(v["separable"], true);
     let f = v["area_fraction"].as_f64().unwrap();
-    assert!(f >= 0.0 && f < 1.0, "{f}");
+    assert!((0.0..1.0).contains(&f), "{f}");
 
     let (code, v) = apart_json(&["separate", &example("linked-rings"), "ring_a", "ring_b"]);
     assert_eq!(code, 2, "{v}");
