@@ -221,6 +221,23 @@ fn place_puts_a_copy_next_to_the_original_without_overlap() {
     let mut sorted = moved.clone();
     sorted.sort_by(f64::total_cmp);
     assert_eq!(sorted, [0.0, 0.0, 10.0]);
+
+    // Eq. (1) with w = 0 is 4 (z_cg − z0)²: lowest on the floor of the region, beside the
+    // original (which fills z in [0, 10]), centre of gravity 5 above the floor point.
+    let (code, v) = apart_json(&[
+        "place",
+        &cube,
+        &cube,
+        "--weight",
+        "0",
+        "--region",
+        "-30,-30,0,30,30,40",
+    ]);
+    assert_eq!(code, 0, "{v}");
+    let best = &v["candidates"][0];
+    assert_eq!(best["cost"], 100.0);
+    assert_eq!(best["translation"][2], 0.0);
+    assert_eq!(v["cost_kind"], "stacking");
 }
 
 #[test]

@@ -36,6 +36,19 @@ pub struct PlaceArgs {
         allow_hyphen_values = true
     )]
     pub target: String,
+    /// Minimize paper 004 eq. (1) with this weight in [0, 1] instead of the distance to
+    /// --target: w times the spread of the part's vertices about the floor point in x
+    /// and y, plus (1 − w) times the height of its centre of gravity above it.
+    #[arg(long, value_name = "W")]
+    pub weight: Option<f64>,
+    /// The floor point (x0, y0, z0) of eq. (1), with --weight.
+    #[arg(
+        long,
+        default_value = "0,0,0",
+        value_name = "X,Y,Z",
+        allow_hyphen_values = true
+    )]
+    pub floor_point: String,
     /// Box "X0,Y0,Z0,X1,Y1,Z1" the whole placed part must lie in. Default: the bounding
     /// box of all parts grown by the new part's size on every side.
     #[arg(
@@ -236,6 +249,9 @@ struct CandidateJson {
 struct PlaceJson {
     moving: String,
     fixed: Vec<String>,
+    /// "distance" (to `target`) or "stacking" (eq. (1) with `weight`).
+    cost_kind: &'static str,
+    weight: Option<f64>,
     target: [f64; 3],
     grid_step: f64,
     candidates: Vec<CandidateJson>,
@@ -308,11 +324,25 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let moving = Moving::new(part.clone(), &orientations(args.dtheta, &bases, 0.05), true);
     let opts = PlaceOptions {
         region,
-        cost: Cost::Distance([
-            to_grid(target[0], "--target")?,
-            to_grid(target[1], "--target")?,
-            to_grid(target[2], "--target")?,
-        ]),
+        cost: match args.weight {
+            None => Cost::Distance([
+                to_grid(target[0], "--target")?,
+                to_grid(target[1], "--target")?,
+                to_grid(target[2], "--target")?,
+            ]),
+            Some(w) => {
+                anyhow::ensure!((0.0..=1.0).contains(&w), "--weight {w} is not in [0, 1]");
+                let f = parse_numbers(&args.floor_point, 3, "--floor-point")?;
+                Cost::Stacking {
+                    w: q_from_f64(w).expect("finite"),
+                    floor: [
+                        to_grid(f[0], "--floor-point")?,
+                        to_grid(f[1], "--floor-point")?,
+                        to_grid(f[2], "--floor-point")?,
+                    ],
+                }
+            }
+        },
         clearance: args
             .clearance
             .map(|c| to_grid(c, "--clearance"))
@@ -360,6 +390,12 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let json = PlaceJson {
         moving: name.clone(),
         fixed,
+        cost_kind: if args.weight.is_some() {
+            "stacking"
+        } else {
+            "distance"
+        },
+        weight: args.weight,
         target: [target[0], target[1], target[2]],
         grid_step: h,
         candidates,
@@ -404,14 +440,18 @@ fn default_region(asm: &Assembly, part: &PartModel) -> QBox {
 }
 
 fn print_text(j: &PlaceJson, s: &PlaceStats) {
+    let cost = match j.weight {
+        Some(w) => format!("cost eq. (1) with w = {w}"),
+        None => format!(
+            "target translation ({}, {}, {})",
+            j.target[0], j.target[1], j.target[2]
+        ),
+    };
     output::line(format!(
-        "place {} among {} fixed part{}, target translation ({}, {}, {})",
+        "place {} among {} fixed part{}, {cost}",
         j.moving,
         j.fixed.len(),
         if j.fixed.len() == 1 { "" } else { "s" },
-        j.target[0],
-        j.target[1],
-        j.target[2]
     ));
     if j.candidates.is_empty() {
         output::line("no interference-free position in the region");
