@@ -22,10 +22,14 @@ pub struct Options {
 /// One way to separate: `moving` translates along `direction`, the rest stays.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
-    /// The kind of motion-space cell the direction lies in.
+    /// The kind of solution: `Face`, a region of directions (faces of the motion space
+    /// and the arcs between them) where `moving` is free with positive clearance; `Edge`,
+    /// a sliding arc; `Vertex`, an isolated direction.
     pub cell: CellKind,
-    /// An exact integer direction in that cell (the vertex itself, an interior point of
-    /// the edge, or a point deep inside the face).
+    /// An exact integer direction of the solution where `moving` is a minimal moving set:
+    /// the vertex itself, an interior point of the edge, or a simple direction deep
+    /// inside the region (it may lie on an arc where only other parts' blocking changes,
+    /// as the diagonal does for the corner cube of a block).
     pub direction: Vec3,
     /// The same direction as a unit vector.
     pub unit: [f64; 3],
@@ -425,10 +429,11 @@ fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion)
         })
         .collect();
     // The set must be a minimal moving set at the reported direction (it is free in the
-    // whole region, but minimal only where no smaller subset of it is free).
+    // whole region, but minimal only where no smaller subset of it is free). The direction
+    // may lie on an arc where only other parts' blocking changes (the diagonal for a
+    // corner cube of a block): it is inside the set's free region all the same.
     let verify = |d: &Vec3| -> bool {
         !d.is_zero()
-            && ms.locate(d).0 == CellKind::Face
             && dbg_at(regions, ms.parts(), d)
                 .minimal_moving_sets()
                 .contains(&r.moving)
