@@ -35,6 +35,41 @@ fn linked_rings_are_stuck() {
     assert!(!p.complete());
 }
 
+/// A 3 x 3 x 3 block of unit cubes: a corner cube is free exactly in the closed octant
+/// facing away from the block, whose deepest direction is the diagonal, at angular
+/// distance asin(1/sqrt 3) = 35.26 degrees from the octant's three bounding planes.
+#[test]
+fn a_corner_cube_of_a_block_leaves_along_the_diagonal() {
+    let mut parts = Vec::new();
+    for x in 0..3 {
+        for y in 0..3 {
+            for z in 0..3 {
+                parts.push(common::part(
+                    &format!("c{x}{y}{z}"),
+                    vec![common::cuboid([x, y, z], [x + 1, y + 1, z + 1])],
+                ));
+            }
+        }
+    }
+    let p = plan(&parts, &SequenceOptions::default());
+    assert!(p.complete());
+    let first = &p.steps[0];
+    assert_eq!(first.moving.len(), 1);
+    let k = first.moving[0] as i64;
+    let (x, y, z) = (k / 9, k / 3 % 3, k % 3);
+    assert!(
+        [x, y, z].iter().all(|&c| c != 1),
+        "a corner cube: {first:?}"
+    );
+    let away = |c: i64| if c == 0 { -1 } else { 1 };
+    assert_eq!(
+        first.direction.primitive(),
+        Vec3::new(away(x), away(y), away(z))
+    );
+    let want = (1.0f64 / 3f64.sqrt()).asin().to_degrees();
+    assert!((first.clearance_deg - want).abs() < 1e-9, "{first:?}");
+}
+
 #[test]
 fn plans_are_deterministic() {
     let parts = common::split_star();
