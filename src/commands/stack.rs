@@ -20,7 +20,7 @@ use std::process::ExitCode;
 /// Arguments of `apart stack`.
 #[derive(clap::Args, Debug)]
 pub struct StackArgs {
-    /// The part: a mesh file, or an assembly with one part (or pick one with --part).
+    /// The part: a mesh file, or an assembly with one part (or pick one with --part-name).
     pub part: PathBuf,
     /// The part to stack when the input holds several.
     #[arg(long, value_name = "NAME")]
