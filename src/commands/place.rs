@@ -457,13 +457,18 @@ fn print_text(j: &PlaceJson, s: &PlaceStats) {
         output::line("no interference-free position in the region");
     }
     for (k, c) in j.candidates.iter().enumerate() {
+        let [phi, psi, theta] = c.rotation_deg;
+        let turn = if phi == 0.0 && psi == 0.0 {
+            format!("turn {theta:.2} deg")
+        } else {
+            format!("rotation x {phi}, y {psi}, z {theta:.2} deg")
+        };
         output::line(format!(
-            "{:>3}. translation ({}, {}, {})  turn {:.2} deg  cost {:.6}",
+            "{:>3}. translation ({}, {}, {})  {turn}  cost {:.6}",
             k + 1,
             c.translation[0],
             c.translation[1],
             c.translation[2],
-            c.rotation_deg[2],
             c.cost
         ));
     }
