@@ -70,7 +70,31 @@ pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
     if interiors_disjoint(a, b) {
         return None;
     }
-    // Homogeneous points (x, w), w > 0.
+    let pts = contact_points(a, b);
+    debug_assert!(!pts.is_empty());
+    // Average of x_i / w_i.
+    let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
+    for (x, w) in &pts {
+        for (k, s) in sum.iter_mut().enumerate() {
+            *s = &*s + &Rational::new(x.get(k), w.clone());
+        }
+    }
+    // The stored integers are den times the coordinates.
+    let n = Rational::from_int(Int::from(pts.len()) * a.den());
+    let inv = Rational::new(n.denom().clone(), n.numer().clone());
+    Some(sum.map(|s| &s * &inv))
+}
+
+/// A superset of the vertices of `a ∩ b` for two closed convex polytopes at the same
+/// denominator, as homogeneous points `(x, w)`, `w > 0` (coordinates `x / (w · den)`):
+/// the vertices of one inside or on the other, and the crossings of the edges of one with
+/// the facets of the other that lie in the other. Empty when `a` and `b` do not meet.
+pub fn contact_points(a: &Polytope, b: &Polytope) -> Vec<(Vec3, Int)> {
+    debug_assert_eq!(
+        a.den(),
+        b.den(),
+        "contact_points needs a common denominator"
+    );
     let mut pts: Vec<(Vec3, Int)> = Vec::new();
     for (p, q) in [(a, b), (b, a)] {
         for v in p.vertices() {
@@ -107,18 +131,7 @@ pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
             }
         }
     }
-    debug_assert!(!pts.is_empty());
-    // Average of x_i / w_i.
-    let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
-    for (x, w) in &pts {
-        for (k, s) in sum.iter_mut().enumerate() {
-            *s = &*s + &Rational::new(x.get(k), w.clone());
-        }
-    }
-    // The stored integers are den times the coordinates.
-    let n = Rational::from_int(Int::from(pts.len()) * a.den());
-    let inv = Rational::new(n.denom().clone(), n.numer().clone());
-    Some(sum.map(|s| &s * &inv))
+    pts
 }
 
 fn locate_homogeneous(p: &Polytope, x: &Vec3, w: &Int) -> Containment {

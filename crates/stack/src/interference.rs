@@ -7,7 +7,7 @@
 use crate::exact::{Point, Q};
 use apart_kernel::int::sign_of;
 use apart_kernel::{Int, Sign, Vec3};
-use apart_pieces::{Containment, Polytope};
+use apart_pieces::Polytope;
 
 /// Exactly: do the interiors of `a + ta` and `b + tb` meet? (Touching is not
 /// interference.) Separating-axis test over facet normals and edge cross products.
@@ -80,44 +80,7 @@ pub struct Touch {
 pub fn touch(a: &Polytope, b: &Polytope) -> Option<Touch> {
     let (a, b) = Polytope::common(a, b);
     let den = a.den().clone();
-    let mut pts: Vec<(Vec3, Int)> = Vec::new();
-    for (p, q) in [(&a, &b), (&b, &a)] {
-        for v in p.vertices() {
-            if q.locate(v) != Containment::Outside {
-                pts.push((v.clone(), Int::ONE));
-            }
-        }
-        for e in p.edges() {
-            let (s, t) = (
-                &p.vertices()[e.ends[0] as usize],
-                &p.vertices()[e.ends[1] as usize],
-            );
-            let dir = t.sub(s);
-            for f in q.facets() {
-                let dn = f.normal.dot(&dir);
-                if dn == Int::ZERO {
-                    continue;
-                }
-                let num = &f.offset - f.normal.dot(s);
-                let (num, dn) = if dn < Int::ZERO {
-                    (-num, -dn)
-                } else {
-                    (num, dn)
-                };
-                if num <= Int::ZERO || num >= dn {
-                    continue;
-                }
-                let x = s.scale(&dn).add(&dir.scale(&num));
-                let inside = q
-                    .facets()
-                    .iter()
-                    .all(|g| sign_of(&(g.normal.dot(&x) - &g.offset * &dn)) != Sign::Positive);
-                if inside {
-                    pts.push((x, dn));
-                }
-            }
-        }
-    }
+    let pts = apart_pieces::interference::contact_points(&a, &b);
     if pts.is_empty() {
         return None;
     }
