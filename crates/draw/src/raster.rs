@@ -74,7 +74,21 @@ pub fn shapes_png(
     height: u32,
 ) -> Vec<u8> {
     let colors = part_colors(names);
-    let items: Vec<Item> = (0..shapes.len())
+    let items = lit_items(&colors, highlight);
+    let (camera, legend_w) = framed(shapes, &items, view, width, height);
+    let mut pixmap = render(shapes, &items, &camera, width, height);
+    if view.labels {
+        let lit: Vec<usize> = items.iter().filter(|i| !i.ghost).map(|i| i.part).collect();
+        let svg = legend_svg(names, &colors, &lit, width, height, legend_w);
+        overlay(&mut pixmap, &svg);
+    }
+    png_bytes(&pixmap)
+}
+
+/// Every part in place: those in `highlight` (all when it is empty) in their colours,
+/// the others grey and see-through.
+fn lit_items(colors: &[Rgb], highlight: &[usize]) -> Vec<Item> {
+    (0..colors.len())
         .map(|k| {
             let lit = highlight.is_empty() || highlight.contains(&k);
             Item {
@@ -84,27 +98,26 @@ pub fn shapes_png(
                 ghost: !lit,
             }
         })
-        .collect();
+        .collect()
+}
+
+/// The camera fitting `items` with room for a legend on the right when `view.labels`,
+/// and the legend's width.
+fn framed(
+    shapes: &[PartShape],
+    items: &[Item],
+    view: &View,
+    width: u32,
+    height: u32,
+) -> (Camera, f64) {
     let legend_w = if view.labels {
         legend_width(width)
     } else {
         0.0
     };
-    let points = item_points(shapes, &items);
-    let camera = Camera::fit(
-        view,
-        &points,
-        width,
-        height,
-        [12.0, 12.0, 12.0, legend_w + 12.0],
-    );
-    let mut pixmap = render(shapes, &items, &camera, width, height);
-    if view.labels {
-        let lit: Vec<usize> = items.iter().filter(|i| !i.ghost).map(|i| i.part).collect();
-        let svg = legend_svg(names, &colors, &lit, width, height, legend_w);
-        overlay(&mut pixmap, &svg);
-    }
-    png_bytes(&pixmap)
+    let points = item_points(shapes, items);
+    let margins = [12.0, 12.0, 12.0, legend_w + 12.0];
+    (Camera::fit(view, &points, width, height, margins), legend_w)
 }
 
 /// A vector drawing of part surfaces as SVG text, for pictures that should scale: the
@@ -119,27 +132,8 @@ pub fn shapes_svg(
     height: u32,
 ) -> String {
     let colors = part_colors(names);
-    let items: Vec<Item> = (0..shapes.len())
-        .map(|k| Item {
-            part: k,
-            offset: [0.0; 3],
-            color: colors[k],
-            ghost: false,
-        })
-        .collect();
-    let legend_w = if view.labels {
-        legend_width(width)
-    } else {
-        0.0
-    };
-    let points = item_points(shapes, &items);
-    let camera = Camera::fit(
-        view,
-        &points,
-        width,
-        height,
-        [12.0, 12.0, 12.0, legend_w + 12.0],
-    );
+    let items = lit_items(&colors, &[]);
+    let (camera, legend_w) = framed(shapes, &items, view, width, height);
     let light = camera.light();
     // (depth of the farthest corner, part, corners in the picture, shaded colour)
     type Flat = (f64, usize, [(f64, f64); 3], Rgb);
@@ -178,14 +172,14 @@ pub fn shapes_svg(
     }
     if view.labels {
         let all: Vec<usize> = (0..shapes.len()).collect();
-        let legend = legend_svg(names, &colors, &all, width, height, legend_w);
-        // The legend's own <svg> wrapper is dropped: its body goes into this drawing.
-        let body = legend
-            .split_once('\n')
-            .map_or("", |(_, b)| b)
-            .trim_end()
-            .trim_end_matches("</svg>");
-        svg.push_str(body);
+        legend_rows(
+            &mut svg,
+            names,
+            &colors,
+            &all,
+            height,
+            width as f64 - legend_w,
+        );
     }
     svg.push_str("</svg>\n");
     svg
@@ -565,7 +559,27 @@ fn legend_svg(
     legend_w: f64,
 ) -> String {
     let mut svg = svg_open(width, height);
-    let x = width as f64 - legend_w;
+    legend_rows(
+        &mut svg,
+        names,
+        colors,
+        lit,
+        height,
+        width as f64 - legend_w,
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// The legend's rows (a colour swatch and a name per lit part) starting at `x`.
+fn legend_rows(
+    svg: &mut String,
+    names: &[String],
+    colors: &[Rgb],
+    lit: &[usize],
+    height: u32,
+    x: f64,
+) {
     let line = 18.0;
     let fit = ((height as f64 - 24.0) / line).floor().max(1.0) as usize;
     for (row, &k) in lit.iter().enumerate() {
@@ -587,8 +601,6 @@ fn legend_svg(
             escape(&names[k])
         );
     }
-    svg.push_str("</svg>\n");
-    svg
 }
 
 fn svg_open(width: u32, height: u32) -> String {
