@@ -45,6 +45,20 @@ pub enum Region {
     Container(QBox),
 }
 
+impl Region {
+    /// Ω for the part in one orientation: the allowed translations (empty when the
+    /// part does not fit).
+    pub fn omega(&self, part: &OrientedPart) -> QBox {
+        match self {
+            Region::Translations(b) => b.clone(),
+            Region::Container(s) => QBox {
+                lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
+                hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
+            },
+        }
+    }
+}
+
 /// The cost to minimize, a convex quadratic in the translation for each orientation.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Cost {
@@ -367,13 +381,7 @@ impl<'a> Placer<'a> {
             stats: PlaceStats::default(),
         };
         for (o, part) in moving.oriented.iter().enumerate() {
-            let omega = match &opts.region {
-                Region::Translations(b) => b.clone(),
-                Region::Container(s) => QBox {
-                    lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
-                    hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
-                },
-            };
+            let omega = opts.region.omega(part);
             if omega.is_empty() {
                 placer.states.push(None);
                 continue;
@@ -721,13 +729,7 @@ pub fn best_full(
     o: usize,
 ) -> Result<Option<Candidate>, StackError> {
     let part = &moving.oriented[o];
-    let omega = match &opts.region {
-        Region::Translations(b) => b.clone(),
-        Region::Container(s) => QBox {
-            lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
-            hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
-        },
-    };
+    let omega = opts.region.omega(part);
     if omega.is_empty() {
         return Ok(None);
     }
