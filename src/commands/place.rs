@@ -11,7 +11,7 @@ use crate::Global;
 use apart::assembly::Assembly;
 use apart::draw::View;
 use apart::stack::exact::{q_from_f64, QBox, Q};
-use apart::stack::orientation::{orientations, Base};
+use apart::stack::orientation::{orientations, Base, Orientation};
 use apart::stack::part::PartModel;
 use apart::stack::partial::{place, Cost, Moving, ObstacleStats, PlaceOptions, PlaceStats, Region};
 use apart::stack::scene::Scene;
@@ -188,6 +188,17 @@ pub fn parse_bases(texts: &[String]) -> anyhow::Result<Vec<Base>> {
         .collect()
 }
 
+/// A value given in input units, exactly in grid units (`h` is a power of two).
+pub fn grid_value(v: f64, h: f64, flag: &str) -> anyhow::Result<Q> {
+    q_from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag} {v} is not a finite number"))
+}
+
+/// The exact turn about z as its rational cosine and sine, `["a/c", "b/c"]`.
+pub fn exact_rotation(o: &Orientation) -> [String; 2] {
+    let t = o.theta;
+    [format!("{}/{}", t.a, t.c), format!("{}/{}", t.b, t.c)]
+}
+
 /// A grid-unit rational in input units, as `f64`.
 pub fn qunits(v: &Q, h: f64) -> f64 {
     v.to_f64() * h
@@ -286,9 +297,7 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             fixed.push(p.name.clone());
         }
     }
-    let to_grid = |v: f64, flag: &str| -> anyhow::Result<Q> {
-        q_from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag}: {v} is out of range"))
-    };
+    let to_grid = |v: f64, flag: &str| grid_value(v, h, flag);
     let boxed = |text: &str, flag: &str| -> anyhow::Result<QBox> {
         let v = parse_numbers(text, 6, flag)?;
         anyhow::ensure!(
@@ -378,10 +387,7 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
                 translation: c.translation.clone().map(|t| qunits(&t, h)),
                 exact_translation: c.translation.clone().map(|t| exact_units(&t, h)),
                 rotation_deg: o.degrees(),
-                exact_rotation: [
-                    format!("{}/{}", o.theta.a, o.theta.c),
-                    format!("{}/{}", o.theta.b, o.theta.c),
-                ],
+                exact_rotation: exact_rotation(o),
                 cost: c.cost.to_f64() * h * h,
             }
         })

@@ -5,12 +5,11 @@
 
 use crate::commands::load::load_valid;
 use crate::commands::place::{
-    exact_units, load_part, parse_bases, parse_numbers, qunits, stats_json, write_pictures,
-    PictureArgs, StatsJson,
+    exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, qunits,
+    stats_json, write_pictures, PictureArgs, StatsJson,
 };
 use crate::output;
 use crate::Global;
-use apart::stack::exact::Q;
 use apart::stack::planner::{stack, StackOptions, StackPlan};
 use apart::stack::stability::ContactWith;
 use serde::Serialize;
@@ -112,10 +111,7 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let grid = loaded.assembly.grid;
     let part = load_part(&loaded.assembly, args.part_name.as_deref(), &args.part)?;
     let h = grid.step();
-    let to_grid = |v: f64, what: &str| -> anyhow::Result<Q> {
-        apart::stack::exact::q_from_f64(v / h)
-            .ok_or_else(|| anyhow::anyhow!("{what} {v} is not a finite number"))
-    };
+    let to_grid = |v: f64, flag: &str| grid_value(v, h, flag);
     let extent = part
         .orient(&apart::stack::orientation::Orientation::IDENTITY)
         .extent;
@@ -192,10 +188,7 @@ fn to_json(plan: &StackPlan, name: &str, count: usize, h: f64) -> StackJson {
                 translation: p.translation.clone().map(|t| qunits(&t, h)),
                 exact_translation: p.translation.clone().map(|t| exact_units(&t, h)),
                 rotation_deg: p.orientation.degrees(),
-                exact_rotation: [
-                    format!("{}/{}", p.orientation.theta.a, p.orientation.theta.c),
-                    format!("{}/{}", p.orientation.theta.b, p.orientation.theta.c),
-                ],
+                exact_rotation: exact_rotation(&p.orientation),
                 cost: p.cost.to_f64() * h * h,
                 stage: p.stage,
                 examined: p.examined,
