@@ -49,10 +49,7 @@ impl Dbg {
         for &(a, b) in &self.arcs {
             m.block(a, b);
         }
-        m.minimal_moving_sets()
-            .into_iter()
-            .map(Masks::members)
-            .collect()
+        m.minimal_moving_set_lists()
     }
 
     /// [`Self::minimal_moving_sets`] by Tarjan's strongly connected components.
@@ -161,6 +158,15 @@ impl Masks {
         } else {
             (1u64 << self.n) - 1
         }
+    }
+
+    /// The minimal moving sets as sorted node lists, in the order of
+    /// [`Dbg::minimal_moving_sets`].
+    pub fn minimal_moving_set_lists(&self) -> Vec<Vec<usize>> {
+        self.minimal_moving_sets()
+            .into_iter()
+            .map(Masks::members)
+            .collect()
     }
 
     /// The minimal moving sets as masks, ascending by their sorted member lists: `reach[v]`,

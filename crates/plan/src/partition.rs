@@ -151,11 +151,7 @@ fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec
     let mut sets = |s: &BitSet| -> Vec<Vec<usize>> {
         // Up to 64 parts the bit-mask graph is cheaper to rebuild than to look up.
         if let Some(m) = ms.masks(s) {
-            return m
-                .minimal_moving_sets()
-                .into_iter()
-                .map(Masks::members)
-                .collect();
+            return m.minimal_moving_set_lists();
         }
         memo.entry(s.clone())
             .or_insert_with(|| ms.dbg(s).minimal_moving_sets())
@@ -359,11 +355,7 @@ impl<'a> FaceGraphs<'a> {
     /// The minimal moving sets of face `f` (local indices, sorted).
     fn sets(&self, f: u32) -> Vec<Vec<usize>> {
         match self {
-            FaceGraphs::Masks(ms) => Self::masks(ms, f)
-                .minimal_moving_sets()
-                .into_iter()
-                .map(Masks::members)
-                .collect(),
+            FaceGraphs::Masks(ms) => Self::masks(ms, f).minimal_moving_set_lists(),
             FaceGraphs::Memo { face_graph, graphs } => graphs[face_graph[f as usize]].1.clone(),
         }
     }
