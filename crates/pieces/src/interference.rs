@@ -155,15 +155,7 @@ mod tests {
     use super::*;
 
     fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
-        let mut pts = Vec::new();
-        for x in [lo[0], hi[0]] {
-            for y in [lo[1], hi[1]] {
-                for z in [lo[2], hi[2]] {
-                    pts.push(Vec3::new(x, y, z));
-                }
-            }
-        }
-        Polytope::hull_of_points(&pts).unwrap()
+        Polytope::cuboid(lo, hi).unwrap()
     }
 
     fn strictly_inside(p: &Polytope, w: &[Rational; 3]) -> bool {

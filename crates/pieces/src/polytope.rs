@@ -172,6 +172,21 @@ impl Polytope {
         Polytope::assemble(points, facets)
     }
 
+    /// The axis-aligned box `[lo, hi]` (its eight corners' hull; an error when some
+    /// `lo[k] >= hi[k]` leaves it flat).
+    pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Result<Polytope, PolytopeError> {
+        let corners: Vec<Vec3> = (0..8)
+            .map(|i| {
+                Vec3::new(
+                    if i & 1 == 1 { hi[0] } else { lo[0] },
+                    if i & 2 == 2 { hi[1] } else { lo[1] },
+                    if i & 4 == 4 { hi[2] } else { lo[2] },
+                )
+            })
+            .collect();
+        Polytope::hull_of_points(&corners)
+    }
+
     /// The convex hull of a small set of points (at most a few dozen: the method tries
     /// every triple, O(n^4)). Meant for tests and for small generated pieces.
     pub fn hull_of_points(points: &[Vec3]) -> Result<Polytope, PolytopeError> {

@@ -213,15 +213,7 @@ mod tests {
     use crate::exact::qfrac;
 
     fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
-        let mut pts = Vec::new();
-        for i in 0..8 {
-            pts.push(Vec3::new(
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            ));
-        }
-        Polytope::hull_of_points(&pts).unwrap()
+        Polytope::cuboid(lo, hi).unwrap()
     }
 
     #[test]

@@ -16,16 +16,7 @@ fn hull(points: &[(i64, i64, i64)]) -> Option<Polytope> {
 }
 
 fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
-    let pts: Vec<(i64, i64, i64)> = (0..8)
-        .map(|i| {
-            (
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            )
-        })
-        .collect();
-    hull(&pts).unwrap()
+    Polytope::cuboid(lo, hi).unwrap()
 }
 
 /// A canonical form of an obstacle: its vertex set and its facet set.

@@ -2,7 +2,6 @@
 //! same orientation (paper 004 §V-B), on random scenes; and the best configuration is
 //! free and no free grid point is cheaper (an independent brute force).
 
-use apart_kernel::Vec3;
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::Polytope;
 use apart_stack::exact::{q, qfrac, Point, QBox, Q};
@@ -14,16 +13,7 @@ use apart_stack::scene::Scene;
 use proptest::prelude::*;
 
 fn boxp(lo: [i64; 3], size: [i64; 3]) -> Polytope {
-    let pts: Vec<Vec3> = (0..8)
-        .map(|i| {
-            Vec3::new(
-                lo[0] + (i & 1) * size[0],
-                lo[1] + (i >> 1 & 1) * size[1],
-                lo[2] + (i >> 2 & 1) * size[2],
-            )
-        })
-        .collect();
-    Polytope::hull_of_points(&pts).unwrap()
+    Polytope::cuboid(lo, [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]]).unwrap()
 }
 
 /// Fixed boxes (overlapping ones dropped) and a moving L of two boxes.

@@ -227,16 +227,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn box_poly(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
-        let pts: Vec<Vec3> = (0..8)
-            .map(|i| {
-                Vec3::new(
-                    if i & 1 == 1 { hi[0] } else { lo[0] },
-                    if i & 2 == 2 { hi[1] } else { lo[1] },
-                    if i & 4 == 4 { hi[2] } else { lo[2] },
-                )
-            })
-            .collect();
-        Polytope::hull_of_points(&pts).unwrap()
+        Polytope::cuboid(lo, hi).unwrap()
     }
 
     fn check(a: &Polytope, b: &Polytope) -> Option<QPoint> {

@@ -16,15 +16,7 @@ pub fn hull(pts: &[[i64; 3]]) -> Polytope {
 
 /// An axis-aligned box [lo, hi].
 pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
-    let mut pts = Vec::new();
-    for i in 0..8 {
-        pts.push([
-            if i & 1 == 0 { lo[0] } else { hi[0] },
-            if i & 2 == 0 { lo[1] } else { hi[1] },
-            if i & 4 == 0 { lo[2] } else { hi[2] },
-        ]);
-    }
-    hull(&pts)
+    Polytope::cuboid(lo, hi).unwrap()
 }
 
 pub fn part(name: &str, pieces: Vec<Polytope>) -> PartPieces {
