@@ -12,7 +12,7 @@
 //! - `ring-and-cone/`: two 2,048-triangle rings stacked around a 158-triangle cone, like
 //!   paper 000 fig. 2 (the rings are plain meshes, decomposed automatically).
 //!
-//! `cargo run -p apart-plan --example generate_examples [-- OUT_DIR]`
+//! `cargo run -p apart-plan --example generate_plan_examples [-- OUT_DIR]`
 
 #[path = "../../decompose/tests/common/shapes.rs"]
 mod shapes;
