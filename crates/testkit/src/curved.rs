@@ -1,0 +1,1 @@
+//! Tessellated curved parts whose fits interpenetrate by a known depth.

@@ -1,0 +1,1 @@
+//! Meshes with the defects of real CAD exports (filled in by the repair work).

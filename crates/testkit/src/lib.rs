@@ -1,0 +1,20 @@
+//! Generators of test inputs for apart, modelled on what CAD exporters produce.
+//!
+//! Everything here is plain data ([`Soup`]: `f64` vertices and polygons) with no apart
+//! dependency, so that the tests and benchmarks of every crate can use it without a
+//! dependency cycle. Each generator documents the answer it is built to have, so tests
+//! compare apart's results with that known answer, never with apart's own output.
+//!
+//! - [`defects`]: meshes with the defects of real exports (T-junction seams,
+//!   float32-rounded coordinates, duplicated and flipped faces, holes, several bodies
+//!   in one file, self-crossing folds).
+//! - [`curved`]: tessellated curved parts (pins in holes with different segment counts,
+//!   plugs and sockets, a nut on a bolt), whose fits interpenetrate by a known depth.
+
+#![warn(missing_docs)]
+
+pub mod curved;
+pub mod defects;
+mod soup;
+
+pub use soup::Soup;
