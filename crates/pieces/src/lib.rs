@@ -22,5 +22,6 @@
 pub mod hull2d;
 pub mod interference;
 pub mod polytope;
+pub mod shrink;
 
 pub use polytope::{Containment, Edge, Facet, Polytope, PolytopeError};

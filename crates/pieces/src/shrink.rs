@@ -1,0 +1,363 @@
+//! Shrinking a convex piece by a stated tolerance: every facet plane moved inward by at
+//! least `eps`, exactly.
+//!
+//! A facet `n · x <= c` (primitive integer `n`) moves to `n · x <= c - eps · r` where
+//! `r = ⌈256 |n|⌉ / 256 >= |n|` is a rational upper bound of the normal's length, so each
+//! plane moves by at least `eps` and by at most `eps (1 + 1 / (256 |n|))`. The result is
+//! contained in the erosion of the piece by a ball of radius `eps`, which is what makes a
+//! tolerance conservative: two pieces whose interiors overlap by a depth below `2 eps`
+//! no longer overlap once both are shrunk.
+//!
+//! The new polytope is the intersection of the moved half-spaces, computed by clipping
+//! the original piece by one moved plane after the other. Vertices are homogeneous
+//! integer points (`y / w`) carrying the complete list of planes through them; a vertex
+//! created on an edge is the exact combination of the edge's end points that lies on the
+//! clipping plane. Nothing is rounded.
+
+use crate::hull2d::hull_in_plane;
+use crate::polytope::Polytope;
+use apart_kernel::int::{self, Int};
+use apart_kernel::{Sign, Vec3};
+use rustc_hash::FxHashMap as HashMap;
+
+/// A half-space `normal · y <= offset` on the piece's stored integers `y` (true point
+/// `y / den`).
+struct Half {
+    normal: Vec3,
+    offset: Int,
+}
+
+/// A vertex `y / w` (`w > 0`, stored integers of the piece scaled by `1 / w`) and the
+/// sorted indices of the half-spaces whose plane passes through it.
+#[derive(Clone)]
+struct Vertex {
+    y: [Int; 3],
+    w: Int,
+    on: Vec<u32>,
+}
+
+/// `⌈sqrt(v)⌉` for `v >= 0`, exactly.
+fn ceil_sqrt(v: &Int) -> Int {
+    if *v <= Int::ZERO {
+        return Int::ZERO;
+    }
+    let mut k = Int::from(int::to_f64(v).sqrt().ceil() as u128);
+    // Newton steps from above, then the exact correction.
+    loop {
+        let next: Int = (&k + v / &k) / Int::from(2);
+        if next >= k {
+            break;
+        }
+        k = next;
+    }
+    while &k * &k < *v {
+        k += Int::ONE;
+    }
+    while k > Int::ZERO && &(&k - Int::ONE) * &(&k - Int::ONE) >= *v {
+        k -= Int::ONE;
+    }
+    k
+}
+
+fn dot3(n: &[Int; 3], y: &[Int; 3]) -> Int {
+    &n[0] * &y[0] + &n[1] * &y[1] + &n[2] * &y[2]
+}
+
+/// Sign of `normal · (y / w) - offset` (as `w > 0`).
+fn side(h: &Half, n: &[Int; 3], v: &Vertex) -> (Sign, Int) {
+    let s = dot3(n, &v.y) - &h.offset * &v.w;
+    (int::sign_of(&s), s)
+}
+
+fn reduce(mut y: [Int; 3], mut w: Int) -> ([Int; 3], Int) {
+    let g = int::gcd(&int::gcd(&int::gcd(&y[0], &y[1]), &y[2]), &w);
+    if g > Int::ONE {
+        for c in &mut y {
+            *c /= &g;
+        }
+        w /= &g;
+    }
+    (y, w)
+}
+
+/// The edges of the current polytope: pairs of vertices sharing two planes.
+fn edges(verts: &[Vertex]) -> Vec<(u32, u32)> {
+    let mut by_pair: HashMap<(u32, u32), Vec<u32>> = HashMap::default();
+    for (i, v) in verts.iter().enumerate() {
+        for a in 0..v.on.len() {
+            for b in a + 1..v.on.len() {
+                by_pair
+                    .entry((v.on[a], v.on[b]))
+                    .or_default()
+                    .push(i as u32);
+            }
+        }
+    }
+    let mut out: Vec<(u32, u32)> = by_pair
+        .into_values()
+        .filter(|vs| vs.len() == 2)
+        .map(|vs| (vs[0].min(vs[1]), vs[0].max(vs[1])))
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Clips `verts` by half-space number `hi`. `None` when nothing of positive volume is
+/// left on the inner side.
+fn clip(verts: Vec<Vertex>, h: &Half, hi: u32) -> Option<Vec<Vertex>> {
+    let n = h.normal.to_ints();
+    let sides: Vec<(Sign, Int)> = verts.iter().map(|v| side(h, &n, v)).collect();
+    if sides.iter().all(|(s, _)| *s != Sign::Positive) {
+        // Nothing cut; vertices on the plane learn it.
+        return Some(
+            verts
+                .into_iter()
+                .zip(&sides)
+                .map(|(mut v, (s, _))| {
+                    if *s == Sign::Zero {
+                        v.on.push(hi);
+                    }
+                    v
+                })
+                .collect(),
+        );
+    }
+    if sides.iter().all(|(s, _)| *s != Sign::Negative) {
+        return None;
+    }
+    let mut out: Vec<Vertex> = Vec::with_capacity(verts.len() + 8);
+    for (e0, e1) in edges(&verts) {
+        let (a, b) = (&verts[e0 as usize], &verts[e1 as usize]);
+        let ((sa, va), (sb, vb)) = (&sides[e0 as usize], &sides[e1 as usize]);
+        let (inner, outer, vi, vo) = match (sa, sb) {
+            (Sign::Negative, Sign::Positive) => (a, b, va, vb),
+            (Sign::Positive, Sign::Negative) => (b, a, vb, va),
+            _ => continue,
+        };
+        // vo * inner - vi * outer lies on the plane; its weight is positive because
+        // vo > 0 > vi and both weights are positive.
+        let y = [0, 1, 2].map(|k| vo * &inner.y[k] - vi * &outer.y[k]);
+        let w = vo * &inner.w - vi * &outer.w;
+        let (y, w) = reduce(y, w);
+        let mut on: Vec<u32> = inner
+            .on
+            .iter()
+            .filter(|p| outer.on.contains(p))
+            .copied()
+            .collect();
+        on.push(hi);
+        out.push(Vertex { y, w, on });
+    }
+    for (mut v, (s, _)) in verts.into_iter().zip(&sides) {
+        match s {
+            Sign::Negative => out.push(v),
+            Sign::Zero => {
+                v.on.push(hi);
+                out.push(v);
+            }
+            Sign::Positive => {}
+        }
+    }
+    for v in &mut out {
+        v.on.sort_unstable();
+        v.on.dedup();
+    }
+    Some(out)
+}
+
+/// `⌈256 |n|⌉`: 256 times the rational upper bound of a normal's length.
+fn length_bound_256(n: &Vec3) -> Int {
+    ceil_sqrt(&(n.dot(n) * Int::from(65536)))
+}
+
+impl Polytope {
+    /// The piece made `eps` smaller: every facet plane moved inward by at least `eps`
+    /// (true coordinates; `eps > 0` given as the fraction `eps_num / eps_den` of the grid
+    /// step), exactly. `None` when nothing of positive volume is left (a piece thinner
+    /// than `2 eps`). See the module documentation for the bound.
+    pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
+        assert!(
+            *eps_num > Int::ZERO && *eps_den > Int::ZERO,
+            "tolerance must be positive"
+        );
+        // Half-spaces on stored integers y = den x: n · y <= offset becomes
+        // 256 eps_den n · y <= 256 eps_den offset - eps_num den ⌈256 |n|⌉.
+        let den = self.den();
+        let scale = Int::from(256) * eps_den;
+        let mut halves: Vec<Half> = self
+            .facets()
+            .iter()
+            .map(|f| Half {
+                normal: f.normal.scale(&scale),
+                offset: &f.offset * &scale - eps_num * den * length_bound_256(&f.normal),
+            })
+            .collect();
+        let nf = halves.len() as u32;
+        // Start from the piece itself, its planes numbered after the moved ones.
+        let mut on_of: Vec<Vec<u32>> = vec![Vec::new(); self.vertices().len()];
+        for (f, facet) in self.facets().iter().enumerate() {
+            for &v in &facet.cycle {
+                on_of[v as usize].push(nf + f as u32);
+            }
+        }
+        let mut verts: Vec<Vertex> = self
+            .vertices()
+            .iter()
+            .zip(on_of)
+            .map(|(v, on)| Vertex {
+                y: v.to_ints(),
+                w: Int::ONE,
+                on,
+            })
+            .collect();
+        for f in self.facets() {
+            halves.push(Half {
+                normal: f.normal.clone(),
+                offset: f.offset.clone(),
+            });
+        }
+        for hi in 0..nf {
+            verts = clip(verts, &halves[hi as usize], hi)?;
+        }
+        // Common denominator: stored integers of the result are W y / w with W = lcm w,
+        // and the result's denominator is den W.
+        let mut lcm = Int::ONE;
+        for v in &verts {
+            let g = int::gcd(&lcm, &v.w);
+            lcm = &lcm / &g * &v.w;
+        }
+        let points: Vec<Vec3> = verts
+            .iter()
+            .map(|v| {
+                let k = &lcm / &v.w;
+                Vec3::from_ints([&v.y[0] * &k, &v.y[1] * &k, &v.y[2] * &k])
+            })
+            .collect();
+        let mut facets = Vec::new();
+        for hi in 0..nf {
+            let on: Vec<u32> = (0..verts.len() as u32)
+                .filter(|&v| verts[v as usize].on.contains(&hi))
+                .collect();
+            if on.len() < 3 {
+                continue;
+            }
+            let normal = self.facets()[hi as usize].normal.clone();
+            let sub: Vec<Vec3> = on.iter().map(|&v| points[v as usize].clone()).collect();
+            let hull = hull_in_plane(&normal, &sub);
+            if hull.len() >= 3 {
+                facets.push((normal, hull.into_iter().map(|i| on[i]).collect()));
+            }
+        }
+        let p = Polytope::from_facets(&points, facets).ok()?;
+        if p.volume6() <= Int::ZERO {
+            return None;
+        }
+        Some(p.with_den(den * &lcm))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use apart_kernel::Rational;
+
+    fn cube(lo: i64, hi: i64) -> Polytope {
+        Polytope::cuboid([lo; 3], [hi; 3]).unwrap()
+    }
+
+    #[test]
+    fn ceil_sqrt_is_exact() {
+        for v in 0u64..2000 {
+            let k = ceil_sqrt(&Int::from(v));
+            let k = u64::try_from(&k).unwrap();
+            assert!(
+                k * k >= v && (k == 0 || (k - 1) * (k - 1) < v),
+                "{v} -> {k}"
+            );
+        }
+        let big = Int::from(1u128 << 100) + Int::from(7);
+        let k = ceil_sqrt(&big);
+        assert!(&k * &k >= big && &(&k - Int::ONE) * &(&k - Int::ONE) < big);
+    }
+
+    #[test]
+    fn axis_cube_shrinks_by_exactly_eps() {
+        // Axis normals have |n| = 1 exactly, so the bound is tight.
+        let c = cube(0, 10);
+        let s = c.shrunk(&Int::from(1), &Int::from(2)).unwrap();
+        assert_eq!(s.facets().len(), 6);
+        assert_eq!(s.vertices().len(), 8);
+        // Side 9: volume 729.
+        assert_eq!(s.volume(), Rational::from_int(Int::from(729)));
+        // Too thin: nothing left.
+        assert!(c.shrunk(&Int::from(5), &Int::ONE).is_none());
+        assert!(c.shrunk(&Int::from(6), &Int::ONE).is_none());
+    }
+
+    #[test]
+    fn shrunk_tetrahedron_lies_eps_inside_and_loses_at_most_the_bound() {
+        let pts = [[0, 0, 0], [12, 0, 0], [0, 12, 0], [0, 0, 12]].map(Vec3::from_i64);
+        let t = Polytope::hull_of_points(&pts).unwrap();
+        let s = t.shrunk(&Int::ONE, &Int::ONE).unwrap();
+        assert_eq!(s.vertices().len(), 4);
+        // Every vertex of the shrunk piece is at distance >= 1 from every original
+        // facet plane: (c - n·x)^2 >= |n|^2, exactly, with x = y / den.
+        for v in s.vertices() {
+            for f in t.facets() {
+                let gap = &f.offset * s.den() - f.normal.dot(v); // den * (c - n·x)
+                assert!(gap > Int::ZERO);
+                assert!(&gap * &gap >= f.normal.dot(&f.normal) * s.den() * s.den());
+            }
+        }
+        // And not much more: the slanted plane (1,1,1) moves by ⌈256√3⌉/256 ≈ 1.7344,
+        // not more than 1 + 1/(256·√3) of eps.
+        let slanted = t
+            .facets()
+            .iter()
+            .position(|f| f.normal == Vec3::new(1, 1, 1))
+            .unwrap();
+        let f = &t.facets()[slanted];
+        let moved = s.support(&f.normal).0; // den' · max n·x
+        let shift = Rational::new(&f.offset * s.den() - moved, s.den().clone());
+        let bound = Rational::new(Int::from(444), Int::from(256)); // ⌈256√3⌉ = 444
+        assert_eq!(shift, bound);
+    }
+
+    #[test]
+    fn shrinking_can_remove_a_facet() {
+        // The box [0, 10]^3 with one vertical edge bevelled by the plane x + y = 19.
+        // Every plane moves inward, and the bevel, being slanted, moves by less in
+        // x and y than the box planes do: it is cut off by its neighbours and vanishes.
+        let mut pts = Vec::new();
+        for x in [0, 10] {
+            for y in [0, 10] {
+                for z in [0, 10] {
+                    if x == 10 && y == 10 {
+                        pts.push(Vec3::new(10, 9, z));
+                        pts.push(Vec3::new(9, 10, z));
+                    } else {
+                        pts.push(Vec3::new(x, y, z));
+                    }
+                }
+            }
+        }
+        let p = Polytope::hull_of_points(&pts).unwrap();
+        assert_eq!(p.facets().len(), 7);
+        let s = p.shrunk(&Int::from(2), &Int::ONE).unwrap();
+        // The bevel x + y <= 19 moves to x + y <= 19 - 2·⌈256√2⌉/256 ≈ 16.17, while the
+        // box planes go to 8: x + y <= 16 holds at the corner (8, 8): the bevel is gone.
+        assert_eq!(s.facets().len(), 6);
+        assert_eq!(s.volume(), Rational::from_int(Int::from(6 * 6 * 6)));
+    }
+
+    #[test]
+    fn rational_pieces_shrink_too() {
+        // A piece with denominator 3: the cube [0, 10/3]^3 stored as [0, 10]^3 / 3.
+        let c = cube(0, 10).with_den(Int::from(3));
+        let s = c.shrunk(&Int::ONE, &Int::from(3)).unwrap(); // eps = 1/3
+                                                             // Side 10/3 - 2/3 = 8/3.
+        let side = Rational::new(Int::from(8), Int::from(3));
+        assert_eq!(s.volume(), &(&side * &side) * &side);
+    }
+}

@@ -1,0 +1,87 @@
+//! Property test of `Polytope::shrunk` against its definition: the intersection of the
+//! facet half-spaces moved inward by `eps · ⌈256 |n|⌉ / 256`. Checked exactly on random
+//! hulls, independently of the clipping code: every vertex of the result satisfies every
+//! moved half-space, lies on at least three moved planes whose normals span space, and
+//! lies at least `eps` inside every original facet plane.
+
+use apart_kernel::int::Int;
+use apart_kernel::{Rational, Vec3};
+use apart_pieces::Polytope;
+use proptest::prelude::*;
+
+/// `⌈256 |n|⌉` by bisection on `k² >= 65536 |n|²` (independent of the library's Newton).
+fn bound256(n: &Vec3) -> Int {
+    let target = n.dot(n) * Int::from(65536);
+    let (mut lo, mut hi) = (Int::ZERO, &target + Int::ONE); // lo² < target <= hi²
+    while &hi - &lo > Int::ONE {
+        let mid: Int = (&lo + &hi) / Int::from(2);
+        if &mid * &mid >= target {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn shrunk_is_the_moved_half_space_intersection(
+        pts in prop::collection::vec((-40i64..40, -40i64..40, -40i64..40), 5..14),
+        num in 1i64..6,
+        den in 1i64..4,
+    ) {
+        let pts: Vec<Vec3> = pts.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
+        let Ok(p) = Polytope::hull_of_points(&pts) else { return Ok(()) };
+        let (num, den) = (Int::from(num), Int::from(den));
+        let moved: Vec<(Vec3, Rational)> = p
+            .facets()
+            .iter()
+            .map(|f| {
+                let shift = Rational::new(&num * bound256(&f.normal), &den * Int::from(256));
+                (f.normal.clone(), &Rational::from_int(f.offset.clone()) - &shift)
+            })
+            .collect();
+        match p.shrunk(&num, &den) {
+            // Nothing left is allowed for thin hulls; the unit tests check known cases.
+            None => {}
+            Some(s) => {
+                prop_assert!(s.volume() < p.volume());
+                for v in s.vertices() {
+                    let x = |k: usize| Rational::new(v.get(k), s.den().clone());
+                    let dot = |n: &Vec3| &(&(&Rational::from_int(n.get(0)) * &x(0))
+                        + &(&Rational::from_int(n.get(1)) * &x(1)))
+                        + &(&Rational::from_int(n.get(2)) * &x(2));
+                    let mut tight = Vec::new();
+                    for (nrm, off) in &moved {
+                        let d = dot(nrm);
+                        prop_assert!(d <= *off, "a vertex violates a moved plane");
+                        if d == *off { tight.push(nrm.clone()); }
+                    }
+                    // At least three tight planes with independent normals.
+                    let mut spans = false;
+                    'outer: for a in 0..tight.len() {
+                        for b in a + 1..tight.len() {
+                            for c in b + 1..tight.len() {
+                                if tight[a].dot(&tight[b].cross(&tight[c])) != Int::ZERO {
+                                    spans = true;
+                                    break 'outer;
+                                }
+                            }
+                        }
+                    }
+                    prop_assert!(spans, "a vertex is not a vertex of the moved half-spaces");
+                    // At least eps inside every original facet: (c - n·x)^2 >= eps^2 |n|^2.
+                    for f in p.facets() {
+                        let gap = &Rational::from_int(f.offset.clone()) - &dot(&f.normal);
+                        let eps = Rational::new(num.clone(), den.clone());
+                        let lhs = &gap * &gap;
+                        let rhs = &(&eps * &eps) * &Rational::from_int(f.normal.dot(&f.normal));
+                        prop_assert!(gap > Rational::zero() && lhs >= rhs);
+                    }
+                }
+            }
+        }
+    }
+}
