@@ -44,6 +44,7 @@ mod partition;
 mod reflex;
 mod solid;
 mod split;
+mod union;
 mod verify;
 
 pub use exact::MAX_COORD_BITS;
@@ -87,6 +88,9 @@ pub struct Stats {
     /// `floor(log2)` of the largest vertex denominator `W` over the pieces (0 when every
     /// vertex is an integer point); a piece's common denominator can be larger.
     pub max_den_bits: u32,
+    /// Least and greatest winding number over the partition's cells, for
+    /// [`decompose_union`] (`None` for [`decompose`]).
+    pub winding: Option<(i64, i64)>,
     /// Wall-clock time.
     pub seconds: f64,
 }
@@ -225,6 +229,24 @@ pub fn decompose(
     } else {
         (cells, 0)
     };
+    let (max_den_bits, pieces) = finish(&cells)?;
+    Ok(Decomposition {
+        pieces,
+        reflex_edges: reflex,
+        stats: Stats {
+            splits: part.counters.splits.load(Ordering::Relaxed),
+            cells: part.counters.cells.load(Ordering::Relaxed),
+            partition_pieces,
+            merges,
+            max_den_bits,
+            winding: None,
+            seconds: start.elapsed().as_secs_f64(),
+        },
+    })
+}
+
+/// The largest vertex denominator's bits and the cells as polytopes.
+fn finish(cells: &[cell::Cell]) -> Result<(u32, Vec<Polytope>), DecomposeError> {
     let max_den_bits = cells
         .iter()
         .map(|c| c.max_den_bits().saturating_sub(1))
@@ -235,15 +257,64 @@ pub fn decompose(
         .map(|c| c.to_polytope())
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| DecomposeError::Internal(format!("a piece is not a polytope: {e}")))?;
+    Ok((max_den_bits, pieces))
+}
+
+/// Decomposes the union solid of a closed, possibly self-crossing triangle surface into
+/// convex pieces, exactly: the pieces have pairwise disjoint interiors and their union is
+/// the closure of `{x : w(x) >= 1}`, `w` the winding number of the surface.
+///
+/// Accepted: any triangles over points with coordinates below `2^MAX_COORD_BITS` such that
+/// every edge (pair of point indices) is used equally often in both directions. The
+/// triangles may cross, overlap, coincide or touch; shells may nest or be repeated
+/// (`w >= 2` is inside); triangles with collinear corners count for closure only;
+/// regions of negative winding (inside-out parts, e.g. a dent pushed through the opposite
+/// face) are outside, like `w = 0`, and show in [`Stats::winding`]. Rejected: no
+/// triangles, bad indices, too large coordinates, an edge not used equally often both
+/// ways ([`DecomposeError::NotClosed`]), and an empty union
+/// ([`DecomposeError::NotPositive`]). `reflex_edges` is 0: the union's edges are not
+/// input edges. On a valid solid the result is the same solid as [`decompose`]'s, in
+/// usually more pieces.
+///
+/// Method (see `union`): an autopartition by the triangles' planes until no triangle
+/// meets a cell's open interior, each cell kept when the exact winding number of an
+/// interior point is at least 1, then the same merging as [`decompose`].
+pub fn decompose_union(
+    points: &[Vec3],
+    triangles: &[[u32; 3]],
+    opts: &Options,
+) -> Result<Decomposition, DecomposeError> {
+    let start = Instant::now();
+    let surface = solid::Solid::surface(points, triangles)?;
+    let part = union::UnionPartition::new(&surface, opts.parallel);
+    let leaves = part.run()?;
+    let lo = leaves.iter().map(|l| l.w).min().unwrap_or(0);
+    let hi = leaves.iter().map(|l| l.w).max().unwrap_or(0);
+    let cells: Vec<cell::Cell> = leaves
+        .into_iter()
+        .filter(|l| l.w >= 1)
+        .map(|l| l.cell)
+        .collect();
+    if cells.is_empty() {
+        return Err(DecomposeError::NotPositive);
+    }
+    let partition_pieces = cells.len();
+    let (cells, merges) = if opts.merge {
+        merge::merge(cells)
+    } else {
+        (cells, 0)
+    };
+    let (max_den_bits, pieces) = finish(&cells)?;
     Ok(Decomposition {
         pieces,
-        reflex_edges: reflex,
+        reflex_edges: 0,
         stats: Stats {
             splits: part.counters.splits.load(Ordering::Relaxed),
             cells: part.counters.cells.load(Ordering::Relaxed),
             partition_pieces,
             merges,
             max_den_bits,
+            winding: Some((lo, hi)),
             seconds: start.elapsed().as_secs_f64(),
         },
     })

@@ -164,6 +164,86 @@ impl Solid {
         })
     }
 
+    /// A surface for the union solid (see `union`): only `pts`, `tris` (the triangles
+    /// with non-collinear corners), `planes`, `volume6` (six times the integral of the
+    /// winding number) and the box are filled; edge structures are empty. Checks indices,
+    /// coordinates and closure (every edge used equally often in both directions,
+    /// counting collinear triangles too), not orientation or self-intersection.
+    pub fn surface(points: &[Vec3], triangles: &[[u32; 3]]) -> Result<Solid, DecomposeError> {
+        if triangles.is_empty() {
+            return Err(DecomposeError::Empty);
+        }
+        let limit = 1i64 << MAX_COORD_BITS;
+        let mut pts = Vec::with_capacity(points.len());
+        for (i, p) in points.iter().enumerate() {
+            let c = p
+                .as_small()
+                .filter(|c| c.iter().all(|v| v.abs() < limit))
+                .ok_or(DecomposeError::CoordinateTooLarge { point: i })?;
+            pts.push(*c);
+        }
+        let mut half: Vec<(u32, u32, bool)> = Vec::with_capacity(triangles.len() * 3);
+        let mut tris = Vec::with_capacity(triangles.len());
+        let mut planes = Vec::with_capacity(triangles.len());
+        for (t, tri) in triangles.iter().enumerate() {
+            if tri.iter().any(|&v| v as usize >= pts.len()) {
+                return Err(DecomposeError::BadIndex { triangle: t });
+            }
+            for k in 0..3 {
+                let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                half.push((u.min(v), u.max(v), u < v));
+            }
+            let [a, b, c] = tri.map(|v| &pts[v as usize]);
+            if let Some(pl) = Plane::through(a, b, c) {
+                tris.push(*tri);
+                planes.push(pl);
+            }
+        }
+        half.sort_unstable();
+        let mut i = 0;
+        while i < half.len() {
+            let (u, v) = (half[i].0, half[i].1);
+            let mut j = i;
+            let mut balance = 0i64;
+            while j < half.len() && half[j].0 == u && half[j].1 == v {
+                balance += if half[j].2 { 1 } else { -1 };
+                j += 1;
+            }
+            if balance != 0 {
+                return Err(DecomposeError::NotClosed { edge: [u, v] });
+            }
+            i = j;
+        }
+        let mut volume6 = Int::ZERO;
+        let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
+        for tri in &tris {
+            let [a, b, c] = tri.map(|v| Vec3::from_i64(pts[v as usize]));
+            volume6 += a.dot(&b.cross(&c));
+            for &v in tri {
+                for a in 0..3 {
+                    lo[a] = lo[a].min(pts[v as usize][a]);
+                    hi[a] = hi[a].max(pts[v as usize][a]);
+                }
+            }
+        }
+        if tris.is_empty() {
+            return Err(DecomposeError::NotPositive);
+        }
+        Ok(Solid {
+            pts,
+            tris,
+            planes,
+            tri_edge: Vec::new(),
+            partner: Vec::new(),
+            edges: Vec::new(),
+            nm_vertex: Vec::new(),
+            nm_vertex_tris: rustc_hash::FxHashMap::default(),
+            volume6,
+            lo,
+            hi,
+        })
+    }
+
     /// End points of triangle `t`'s side `k`.
     pub fn side_ends(&self, t: u32, k: u8) -> (&[i64; 3], &[i64; 3]) {
         let tri = &self.tris[t as usize];
