@@ -36,6 +36,7 @@ mod model;
 mod options;
 mod overlap;
 mod pieces;
+pub mod tolerance;
 mod witness;
 
 /// Problems are defined with the meshes and shared by the loader.
@@ -44,6 +45,7 @@ pub use error::LoadError;
 pub use load::load;
 pub use model::{Assembly, Loaded, Part};
 pub use options::{Decompose, LoadOptions, Progress, ProgressFn, Stage};
+pub use tolerance::{AppliedTolerance, Tolerance};
 pub use witness::{fmt_witness, witness_units};
 
 use apart_kernel::{Grid, Rational};

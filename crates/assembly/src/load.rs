@@ -6,6 +6,7 @@ use crate::error::LoadError;
 use crate::inputs::{self, PartSpec, SourceRef};
 use crate::model::{Assembly, Loaded, Part};
 use crate::options::{Decompose, LoadOptions, Stage, Tracker};
+use crate::tolerance::{self, Tolerance};
 use crate::{overlap, pieces};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::formats::{read_file, ReadError};
@@ -156,7 +157,9 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         parts.push(part);
         problems.extend(probs);
     }
+    // A tolerance shrinks convex pieces, so every part needs its pieces.
     let decompose = match opts.decompose {
+        _ if opts.tolerance != Tolerance::None => true,
         Decompose::Never => false,
         Decompose::WhenNeeded => parts.len() >= 2,
         Decompose::Always => true,
@@ -164,13 +167,18 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     if decompose {
         problems.extend(decompose_parts(&mut parts, opts));
     }
-    let assembly = Assembly {
+    let mut assembly = Assembly {
         name: plan.name,
         grid,
         max_snap_displacement,
         parts,
+        tolerance: None,
     };
-    problems.extend(overlap::check_parts(&assembly, opts));
+    if opts.tolerance == Tolerance::None {
+        problems.extend(overlap::check_parts(&assembly, opts));
+    } else {
+        problems.extend(tolerance::apply(&mut assembly, opts.tolerance, opts));
+    }
     Ok(Loaded { assembly, problems })
 }
 
@@ -302,6 +310,7 @@ fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
         volume: Rational::zero(),
         reflex_edges: 0,
         bbox: None,
+        unshrunk_pieces: Vec::new(),
     };
     let mut mesh_ok = false;
     if let (Some(raw), Some(src)) = (&r.mesh, &spec.mesh) {

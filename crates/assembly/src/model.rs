@@ -1,5 +1,6 @@
 //! The assembly model: an ordered list of named parts on one integer grid.
 
+use crate::tolerance::AppliedTolerance;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::validate::{volume_in_units, MeshInfo};
 use apart_mesh::{Aabb, Mesh, Problem};
@@ -36,9 +37,33 @@ pub struct Part {
     pub reflex_edges: usize,
     /// Bounding box in grid units (of the mesh, or of the pieces).
     pub bbox: Option<Aabb>,
+    /// The pieces before a tolerance shrank them (empty when no tolerance applies):
+    /// what the part really is, for telling which answers hold only under the
+    /// tolerance.
+    pub unshrunk_pieces: Vec<Polytope>,
 }
 
 impl Part {
+    /// A part known only by declared convex pieces (no mesh, volume unknown): for
+    /// assemblies built in code.
+    pub fn from_pieces(name: impl Into<String>, pieces: Vec<Polytope>) -> Part {
+        Part {
+            name: name.into(),
+            source: PathBuf::new(),
+            mesh: None,
+            info: None,
+            pieces,
+            piece_sources: Vec::new(),
+            declared_pieces: true,
+            decomposed: false,
+            convex: false,
+            volume: Rational::zero(),
+            reflex_edges: 0,
+            bbox: None,
+            unshrunk_pieces: Vec::new(),
+        }
+    }
+
     /// The exact volume in input units.
     pub fn volume_units(&self, grid: &Grid) -> Rational {
         volume_in_units(&self.volume, grid)
@@ -61,6 +86,9 @@ pub struct Assembly {
     pub max_snap_displacement: f64,
     /// The parts, in input order (by name for a folder).
     pub parts: Vec<Part>,
+    /// The tolerance every answer holds under: parts made this much smaller (`None`:
+    /// the parts as given).
+    pub tolerance: Option<AppliedTolerance>,
 }
 
 impl Assembly {

@@ -1,5 +1,6 @@
 //! Options of the loader, and the progress hook a program can drive a bar with.
 
+use crate::tolerance::Tolerance;
 use std::sync::Arc;
 
 /// A long step of loading.
@@ -67,6 +68,8 @@ pub struct LoadOptions {
     /// Verify every decomposition exactly (pieces convex, interiors disjoint, inside the
     /// part, volumes adding up), reporting a failure as an error.
     pub verify: bool,
+    /// Accept overlaps between parts as contact for parts made this much smaller.
+    pub tolerance: Tolerance,
 }
 
 impl Default for LoadOptions {
@@ -76,6 +79,7 @@ impl Default for LoadOptions {
             progress: None,
             decompose: Decompose::WhenNeeded,
             verify: false,
+            tolerance: Tolerance::None,
         }
     }
 }
@@ -87,6 +91,7 @@ impl std::fmt::Debug for LoadOptions {
             .field("progress", &self.progress.is_some())
             .field("decompose", &self.decompose)
             .field("verify", &self.verify)
+            .field("tolerance", &self.tolerance)
             .finish()
     }
 }

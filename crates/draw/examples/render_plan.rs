@@ -97,23 +97,13 @@ fn bricks() -> apart_assembly::Assembly {
     for row in 0..4i64 {
         for i in 0..5i64 {
             let y = 2 * row;
-            parts.push(apart_assembly::Part {
-                name: format!("brick-{row}-{i}"),
-                source: Default::default(),
-                mesh: None,
-                info: None,
-                pieces: vec![
+            parts.push(apart_assembly::Part::from_pieces(
+                format!("brick-{row}-{i}"),
+                vec![
                     common::cuboid([2 * i, y, 0], [2 * i + 2, y + 2, 1]),
                     common::cuboid([2 * i + 1, y, 1], [2 * i + 3, y + 2, 2]),
                 ],
-                piece_sources: Vec::new(),
-                declared_pieces: true,
-                decomposed: false,
-                convex: false,
-                volume: apart_kernel::Rational::zero(),
-                reflex_edges: 0,
-                bbox: None,
-            });
+            ));
         }
     }
     apart_assembly::Assembly {
@@ -121,5 +111,6 @@ fn bricks() -> apart_assembly::Assembly {
         grid: apart_kernel::Grid::unit(30),
         max_snap_displacement: 0.0,
         parts,
+        tolerance: None,
     }
 }

@@ -138,12 +138,18 @@ pub(crate) fn check_parts(asm: &Assembly, opts: &LoadOptions) -> Vec<Problem> {
             let w = part_overlap(&parts[i], &parts[j], &asm.grid);
             tracker.tick();
             w.map(|w| {
+                let (a, b) = (&parts[i], &parts[j]);
+                // The depth is measured on convex pieces; parts compared by their
+                // boundaries only get the witness.
+                let depth = crate::tolerance::deepest_piece_overlap(&a.pieces, &b.pieces)
+                    .map(|d| format!(" by a depth of {:.3e}", d * asm.grid.step()))
+                    .unwrap_or_default();
                 Problem::error(format!(
-                    "overlaps part \"{}\": {} lies strictly inside both",
-                    parts[j].name,
+                    "overlaps part \"{}\"{depth}: {} lies strictly inside both",
+                    b.name,
                     fmt_witness(&w, &asm.grid)
                 ))
-                .in_part(parts[i].name.clone())
+                .in_part(a.name.clone())
             })
         })
         .collect::<Vec<_>>()

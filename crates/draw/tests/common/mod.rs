@@ -7,7 +7,7 @@ pub mod plan_common;
 
 use apart_assembly::{load, Assembly, LoadOptions, Part};
 use apart_draw::colors::Rgb;
-use apart_kernel::{Grid, Rational};
+use apart_kernel::Grid;
 use apart_plan::{parts_of, sequence, BlockingRegions, PartPieces, Sequence, SequenceOptions};
 use resvg::tiny_skia::Pixmap;
 use std::path::PathBuf;
@@ -30,21 +30,9 @@ pub fn assembly_of(name: &str, parts: Vec<PartPieces>) -> Assembly {
         max_snap_displacement: 0.0,
         parts: parts
             .into_iter()
-            .map(|p| Part {
-                name: p.name,
-                source: PathBuf::new(),
-                mesh: None,
-                info: None,
-                pieces: p.pieces,
-                piece_sources: Vec::new(),
-                declared_pieces: true,
-                decomposed: false,
-                convex: false,
-                volume: Rational::zero(),
-                reflex_edges: 0,
-                bbox: None,
-            })
+            .map(|p| Part::from_pieces(p.name, p.pieces))
             .collect(),
+        tolerance: None,
     }
 }
 

@@ -1,0 +1,318 @@
+//! A stated tolerance: parts made `eps` smaller, so that overlaps up to a stated depth
+//! count as contact.
+//!
+//! CAD exports of curved fits interpenetrate by micrometres where both sides of a fit are
+//! tessellated. A tolerance is not an epsilon in a predicate: it is a stated change of
+//! the input. Every convex piece is shrunk by at least `eps` (facet planes moved inward,
+//! exact rationals: [`Polytope::shrunk`]), the overlap check runs again, exactly, on
+//! the shrunk pieces, and the planners then work on those pieces. Two pieces that overlap
+//! by a depth below `2 eps` are disjoint once both are shrunk; deeper overlaps stay
+//! errors, with a witness point and the measured depth.
+//!
+//! `eps` given in input units is a binary floating-point number, hence an exact dyadic
+//! rational; it is used exactly (no rounding to the grid). [`Tolerance::Auto`] finds the
+//! smallest `eps` (rounded up to 8 significant bits) that makes the assembly valid, up to
+//! `1e-3` of the assembly's size.
+
+use crate::load::polytope_bbox;
+use crate::model::{Assembly, Part};
+use crate::options::{LoadOptions, Stage, Tracker};
+use crate::witness::fmt_witness;
+use apart_kernel::{Grid, Int, Rational};
+use apart_mesh::{Aabb, Problem};
+use apart_pieces::interference::{interiors_disjoint, overlap_depth};
+use apart_pieces::Polytope;
+use rayon::prelude::*;
+
+/// How much smaller parts may be made to accept overlaps as contact.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Tolerance {
+    /// No tolerance: any overlap is an error (the default).
+    #[default]
+    None,
+    /// Every piece made this much smaller (input units, positive).
+    Fixed(f64),
+    /// The smallest tolerance that makes the assembly valid, up to [`AUTO_LIMIT`] of
+    /// the assembly's size.
+    Auto,
+}
+
+/// The largest tolerance [`Tolerance::Auto`] may choose, as a fraction of the largest
+/// extent of the assembly's bounding box.
+pub const AUTO_LIMIT: f64 = 1e-3;
+
+/// The tolerance an assembly was loaded under.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AppliedTolerance {
+    /// Every piece was made at least this much smaller (input units).
+    pub eps: f64,
+    /// The same, exactly (input units).
+    pub exact: Rational,
+    /// Chosen by [`Tolerance::Auto`].
+    pub auto: bool,
+    /// The deepest overlap between parts before shrinking (input units; 0 when none).
+    pub deepest_overlap: f64,
+    /// Pairs of parts whose overlap the tolerance turned into contact.
+    pub accepted_overlaps: usize,
+    /// Pieces thinner than `2 eps` that vanished.
+    pub vanished_pieces: usize,
+}
+
+/// An overlap between two parts, measured on their pieces.
+struct Overlap {
+    i: usize,
+    j: usize,
+    /// The deepest piece pair's depth (grid units).
+    depth: f64,
+}
+
+fn pair_boxes(parts: &[Part]) -> Vec<(usize, usize)> {
+    let mut pairs = Vec::new();
+    for i in 0..parts.len() {
+        for j in i + 1..parts.len() {
+            let (a, b) = (&parts[i], &parts[j]);
+            if a.pieces.is_empty() || b.pieces.is_empty() {
+                continue;
+            }
+            if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
+                if ba.overlaps_open(&bb) {
+                    pairs.push((i, j));
+                }
+            }
+        }
+    }
+    pairs
+}
+
+/// The deepest overlap of two parts' pieces (grid units), or `None` when their
+/// interiors are disjoint.
+pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f64> {
+    let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
+    let mut deepest: Option<f64> = None;
+    for pa in a {
+        let ba = polytope_bbox(pa);
+        for (pb, bbox) in b.iter().zip(&bb) {
+            if !ba.overlaps_open(bbox) || interiors_disjoint(pa, pb) {
+                continue;
+            }
+            let d = overlap_depth(pa, pb);
+            deepest = Some(deepest.map_or(d, |x: f64| x.max(d)));
+        }
+    }
+    deepest
+}
+
+fn overlaps(parts: &[Part]) -> Vec<Overlap> {
+    pair_boxes(parts)
+        .into_par_iter()
+        .filter_map(|(i, j)| {
+            deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
+                i,
+                j,
+                depth,
+            })
+        })
+        .collect()
+}
+
+/// `v` (input units, finite, positive) in grid units, exactly.
+fn to_grid_units(v: f64, grid: &Grid) -> Rational {
+    &dyadic(v) * &pow2(-grid.exp)
+}
+
+/// The exact value of a finite `f64`.
+pub fn dyadic(v: f64) -> Rational {
+    let bits = v.to_bits();
+    let sign = if bits >> 63 == 1 { -1 } else { 1 };
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (m, e) = if exp == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), exp - 1075)
+    };
+    &Rational::from_int(Int::from(sign) * Int::from(m)) * &pow2(e)
+}
+
+fn pow2(e: i32) -> Rational {
+    let p = Int::ONE << e.unsigned_abs() as usize;
+    if e >= 0 {
+        Rational::from_int(p)
+    } else {
+        Rational::new(Int::ONE, p)
+    }
+}
+
+/// `x` rounded up to 8 significant bits (a short, exact number to state).
+fn round_up_8_bits(x: f64) -> f64 {
+    if x <= 0.0 || !x.is_finite() {
+        return x;
+    }
+    let e = x.log2().floor() as i32 - 7;
+    let s = 2f64.powi(e);
+    let r = (x / s).ceil() * s;
+    if r < x {
+        r + s
+    } else {
+        r
+    }
+}
+
+/// Every piece of every part shrunk by `eps` (grid units), in parallel. Returns the
+/// number of pieces that vanished.
+fn shrink_all(parts: &mut [Part], eps: &Rational) -> usize {
+    let (num, den) = (eps.numer().clone(), eps.denom().clone());
+    parts
+        .par_iter_mut()
+        .map(|p| {
+            let shrunk: Vec<Option<Polytope>> = p
+                .unshrunk_pieces
+                .par_iter()
+                .map(|q| q.shrunk(&num, &den))
+                .collect();
+            let before = shrunk.len();
+            p.pieces = shrunk.into_iter().flatten().collect();
+            before - p.pieces.len()
+        })
+        .sum()
+}
+
+/// Applies `tol` to an assembly whose parts have their pieces (the loader's last step,
+/// in place of the plain overlap check): shrinks the pieces, and returns the problems of
+/// the overlap check on the shrunk pieces (deeper overlaps as errors with a witness and
+/// the measured depth; accepted overlaps and vanished pieces as notes).
+pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> Vec<Problem> {
+    let grid = asm.grid;
+    let h = grid.step();
+    let tracker = Tracker::start(opts, Stage::Overlaps, 1);
+    let before = overlaps(&asm.parts);
+    tracker.tick();
+    let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * h;
+    let size = asm
+        .parts
+        .iter()
+        .filter_map(|p| p.bbox)
+        .fold(Aabb::EMPTY, |b, x| b.union(&x));
+    let extent = if size.is_empty() {
+        0.0
+    } else {
+        (0..3)
+            .map(|k| grid.to_units(size.max[k]) - grid.to_units(size.min[k]))
+            .fold(0.0, f64::max)
+    };
+    let mut problems = Vec::new();
+    let (mut eps, auto) = match tol {
+        Tolerance::None => unreachable!("apply is called with a tolerance"),
+        Tolerance::Fixed(e) => (e, false),
+        Tolerance::Auto => {
+            if before.is_empty() {
+                asm.tolerance = None;
+                problems.push(Problem::note(
+                    "tolerance auto: no part overlaps another, so none is needed",
+                ));
+                return problems;
+            }
+            (round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true)
+        }
+    };
+    let limit = AUTO_LIMIT * extent;
+    if auto && eps > limit {
+        problems.push(Problem::error(format!(
+            "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
+        )));
+        eps = round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE);
+    }
+    for p in &mut asm.parts {
+        p.unshrunk_pieces = std::mem::take(&mut p.pieces);
+    }
+    let mut vanished;
+    let mut after;
+    loop {
+        vanished = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
+        after = overlaps(&asm.parts);
+        // The depth is a floating-point measurement: when it fell short, double (auto
+        // only; a stated tolerance is kept as stated).
+        if !auto || after.is_empty() || eps * 2.0 > limit {
+            break;
+        }
+        eps *= 2.0;
+    }
+    for o in &after {
+        let (a, b) = (&asm.parts[o.i], &asm.parts[o.j]);
+        let depth = before
+            .iter()
+            .find(|x| x.i == o.i && x.j == o.j)
+            .map_or(o.depth, |x| x.depth)
+            * h;
+        let witness = crate::overlap::part_overlap(a, b, &grid)
+            .map(|w| format!(": {} lies strictly inside both", fmt_witness(&w, &grid)))
+            .unwrap_or_default();
+        problems.push(
+            Problem::error(format!(
+                "overlaps part \"{}\" by a depth of {depth:.3e}, deeper than the tolerance accepts (parts made {eps:.3e} smaller){witness}",
+                b.name
+            ))
+            .in_part(a.name.clone()),
+        );
+    }
+    let accepted = before.len().saturating_sub(after.len());
+    if accepted > 0 {
+        problems.push(Problem::note(format!(
+            "{accepted} overlapping pair{} of parts (deepest {deepest:.3e}) count as contact for parts made {eps:.3e} smaller",
+            if accepted == 1 { "" } else { "s" }
+        )));
+    }
+    if vanished > 0 {
+        problems.push(Problem::note(format!(
+            "{vanished} convex piece{} thinner than twice the tolerance vanished",
+            if vanished == 1 { "" } else { "s" }
+        )));
+    }
+    for p in &asm.parts {
+        if p.pieces.is_empty() && !p.unshrunk_pieces.is_empty() {
+            problems.push(
+                Problem::error(format!(
+                    "nothing is left of the part once made {eps:.3e} smaller: it is thinner than twice the tolerance"
+                ))
+                .in_part(p.name.clone()),
+            );
+        }
+    }
+    asm.tolerance = Some(AppliedTolerance {
+        eps,
+        exact: dyadic(eps),
+        auto,
+        deepest_overlap: deepest,
+        accepted_overlaps: accepted,
+        vanished_pieces: vanished,
+    });
+    problems
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dyadic_is_exact() {
+        assert_eq!(dyadic(0.5), Rational::new(Int::ONE, Int::from(2)));
+        assert_eq!(dyadic(3.0), Rational::from_int(Int::from(3)));
+        assert_eq!(dyadic(-0.75), Rational::new(Int::from(-3), Int::from(4)));
+        // 0.1 is not 1/10 but the nearest double, 3602879701896397 / 2^55.
+        assert_eq!(
+            dyadic(0.1),
+            Rational::new(Int::from(3602879701896397u64), Int::ONE << 55usize)
+        );
+        assert_eq!(dyadic(0.1).to_f64(), 0.1);
+    }
+
+    #[test]
+    fn rounding_up_keeps_8_bits_and_never_goes_down() {
+        for x in [1e-6, 3.3e-7, 0.125, 1.0, 255.5, 1234.5678] {
+            let r = round_up_8_bits(x);
+            assert!(r >= x && r <= x * (1.0 + 1.0 / 64.0), "{x} -> {r}");
+            let m = r / 2f64.powi(r.log2().floor() as i32 - 7);
+            assert_eq!(m, m.round(), "{x} -> {r}: more than 8 significant bits");
+        }
+    }
+}

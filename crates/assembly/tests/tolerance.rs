@@ -1,0 +1,116 @@
+//! A stated tolerance on tessellated fits that interpenetrate by a known depth: a pin of
+//! n segments in a hole of the same radius turned by half a segment pokes out by
+//! `r (1 - cos(π/n))` (closed form in apart-testkit), so overlaps, depths and the
+//! tolerance that makes the assembly valid are all known in advance.
+
+use apart_assembly::{load, LoadOptions, Tolerance};
+use apart_testkit::curved::{pin_in_hole, pin_in_hole_depth, write_off_dir, PIN_RADIUS};
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+fn write(n: usize, m: usize, phase: f64, tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("apart-tol-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    write_off_dir(&pin_in_hole(n, m, phase), &dir).unwrap();
+    dir
+}
+
+fn with(tolerance: Tolerance) -> LoadOptions {
+    LoadOptions {
+        tolerance,
+        ..LoadOptions::default()
+    }
+}
+
+#[test]
+fn turned_pin_overlaps_by_the_known_depth_and_a_tolerance_of_half_accepts_it() {
+    let n = 64;
+    let phase = PI / n as f64;
+    let depth = pin_in_hole_depth(n, n, phase, PIN_RADIUS);
+    assert!(depth > 0.001);
+    let dir = write(n, n, phase, "turned");
+
+    // No tolerance: an overlap error that states the depth.
+    let plain = load(&dir, &LoadOptions::default()).unwrap();
+    assert!(!plain.is_valid());
+    let err = plain
+        .problems
+        .iter()
+        .find(|p| p.is_error() && p.message.starts_with("overlaps part"))
+        .expect("an overlap error");
+    assert!(err.message.contains("depth"), "{}", err.message);
+
+    // Half the depth (and a little): valid, every piece shrunk, the tolerance stated.
+    let ok = load(&dir, &with(Tolerance::Fixed(depth / 2.0 * 1.01))).unwrap();
+    assert!(ok.is_valid(), "{:?}", ok.problems);
+    let t = ok
+        .assembly
+        .tolerance
+        .clone()
+        .expect("a tolerance was applied");
+    assert_eq!(t.accepted_overlaps, 1);
+    assert!(
+        (t.deepest_overlap - depth).abs() <= 1e-6 * depth,
+        "{} vs {depth}",
+        t.deepest_overlap
+    );
+    for p in &ok.assembly.parts {
+        assert_eq!(p.pieces.len(), p.unshrunk_pieces.len());
+        // Every shrunk piece lies inside its original piece.
+        for (s, o) in p.pieces.iter().zip(&p.unshrunk_pieces) {
+            assert!(s.volume() < o.volume());
+        }
+    }
+
+    // A quarter of the depth is not enough: the error names the depth and a witness.
+    let short = load(&dir, &with(Tolerance::Fixed(depth / 4.0))).unwrap();
+    assert!(!short.is_valid());
+    let err = short.problems.iter().find(|p| p.is_error()).unwrap();
+    assert!(
+        err.message.contains("deeper than the tolerance"),
+        "{}",
+        err.message
+    );
+    assert!(
+        err.message.contains("strictly inside both"),
+        "{}",
+        err.message
+    );
+
+    // Auto: the smallest tolerance, between half the depth and a little more.
+    let auto = load(&dir, &with(Tolerance::Auto)).unwrap();
+    assert!(auto.is_valid(), "{:?}", auto.problems);
+    let t = auto.assembly.tolerance.clone().unwrap();
+    assert!(t.auto);
+    assert!(
+        t.eps >= depth / 2.0 && t.eps <= depth / 2.0 * 1.05,
+        "{} for depth {depth}",
+        t.eps
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn matching_tessellation_needs_no_tolerance_and_auto_says_so() {
+    let dir = write(20, 20, 0.0, "matching");
+    let plain = load(&dir, &LoadOptions::default()).unwrap();
+    assert!(plain.is_valid(), "{:?}", plain.problems);
+    let auto = load(&dir, &with(Tolerance::Auto)).unwrap();
+    assert!(auto.is_valid());
+    assert!(auto.assembly.tolerance.is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn overlaps_beyond_the_auto_limit_stay_errors() {
+    // A pin of 6 segments in a hole of 6 turned by half a segment pokes out by
+    // r (1 - cos 30°) ≈ 0.4: far beyond 1e-3 of the assembly's size (16).
+    let dir = write(6, 6, PI / 6.0, "coarse");
+    let auto = load(&dir, &with(Tolerance::Auto)).unwrap();
+    assert!(!auto.is_valid());
+    assert!(auto
+        .problems
+        .iter()
+        .any(|p| p.is_error() && p.message.contains("beyond the limit")));
+    let _ = std::fs::remove_dir_all(&dir);
+}
