@@ -2,6 +2,7 @@
 //! `commands/<name>.rs`; shared output helpers in `output.rs`.
 
 mod commands;
+mod input_facts;
 mod output;
 
 use clap::{Args, Parser, Subcommand};
@@ -37,6 +38,23 @@ pub struct Global {
     /// disjoint, inside the part, volumes adding up).
     #[arg(long, global = true)]
     pub verify: bool,
+    /// Accept overlaps between parts as contact for parts made EPS smaller: every
+    /// convex piece's faces move inward by EPS (input units, or with a unit such as
+    /// 5um, 0.01mm, 1e-4in together with --units), and every answer says it holds for
+    /// parts made EPS smaller. `auto` finds the smallest EPS, up to 1e-3 of the
+    /// assembly's size, that makes the assembly valid.
+    #[arg(long, global = true, value_name = "EPS|auto")]
+    pub tolerance: Option<String>,
+    /// The length unit of the input files, stated in answers (coordinates are not
+    /// rescaled).
+    #[arg(long, global = true, value_enum, value_name = "UNIT")]
+    pub units: Option<input_facts::Units>,
+    /// Repair nothing on load: any defect of a mesh is an error.
+    #[arg(long, global = true)]
+    pub strict: bool,
+    /// Read each file as one part, even when it holds several separate solids.
+    #[arg(long, global = true)]
+    pub one_part_per_file: bool,
 }
 
 #[derive(Subcommand)]

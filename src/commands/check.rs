@@ -1,6 +1,7 @@
 //! `apart check <assembly>`: load, validate, print a table of parts, the grid and every
 //! problem. Exit code 0 when the assembly is valid (no error problem), 1 otherwise.
 
+use crate::input_facts::{tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
 use apart::assembly::{fmt_volume, Decompose, Loaded};
@@ -57,13 +58,15 @@ struct CheckJson<'a> {
     grid: GridJson,
     parts: Vec<PartJson>,
     problems: &'a [Problem],
+    #[serde(flatten)]
+    input: InputFacts,
 }
 
 /// Runs the command.
 pub fn run(args: &CheckArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let loaded = crate::commands::load::load_with(&args.assembly, global, Decompose::WhenNeeded)?;
     if global.json {
-        output::json(&to_json(&loaded))?;
+        output::json(&to_json(&loaded, InputFacts::of(&loaded.assembly, global)))?;
     } else {
         print_text(&loaded, global);
     }
@@ -74,7 +77,7 @@ pub fn run(args: &CheckArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
-fn to_json(l: &Loaded) -> CheckJson<'_> {
+fn to_json(l: &Loaded, input: InputFacts) -> CheckJson<'_> {
     let a = &l.assembly;
     let g = &a.grid;
     let parts = a
@@ -115,6 +118,7 @@ fn to_json(l: &Loaded) -> CheckJson<'_> {
         },
         parts,
         problems: &l.problems,
+        input,
     }
 }
 
@@ -185,6 +189,9 @@ fn print_text(l: &Loaded, global: &Global) {
     let count = |s| l.problems.iter().filter(|p| p.severity == s).count();
     use apart::mesh::Severity::*;
     let (e, w, n) = (count(Error), count(Warning), count(Note));
+    if let Some(t) = tolerance_statement(a, global) {
+        output::line(t);
+    }
     let verdict = if l.is_valid() { "valid" } else { "invalid" };
     output::line(format_args!(
         "{verdict}: {e} error(s), {w} warning(s), {n} note(s)"

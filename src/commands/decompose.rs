@@ -59,6 +59,7 @@ struct Report {
 
 /// Runs the command.
 pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    crate::input_facts::no_tolerance(global, "decompose")?;
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let seconds = t.elapsed().as_secs_f64();

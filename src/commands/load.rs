@@ -15,6 +15,7 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
         progress: bar.as_ref().map(|(_, hook)| hook.clone()),
         decompose,
         verify: global.verify,
+        tolerance: crate::input_facts::tolerance(global)?,
     };
     let loaded = load(path, &opts);
     if let Some((bar, _)) = &bar {

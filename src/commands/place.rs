@@ -271,6 +271,7 @@ struct PlaceJson {
 
 /// Runs the command.
 pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    crate::input_facts::no_tolerance(global, "place")?;
     let start = std::time::Instant::now();
     let (path, name, _tmp) = match args.inputs.as_slice() {
         [asm, name] if !Path::new(name).is_file() => (PathBuf::from(asm), name.clone(), None),

@@ -3,6 +3,7 @@
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
 use crate::commands::load::{files_manifest, load_valid};
+use crate::input_facts::{tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
 use apart::plan::{parts_of, separate, BlockingRegions, Separation};
@@ -53,6 +54,8 @@ struct SeparateJson {
     regions: Vec<RegionJson>,
     sliding: Vec<ArcJson>,
     isolated: Vec<[String; 3]>,
+    #[serde(flatten)]
+    input: InputFacts,
 }
 
 fn arc_json(a: &Arc) -> ArcJson {
@@ -88,9 +91,18 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let s = separate(&regions, a, b);
     let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
     if global.json {
-        output::json(&to_json(&s, &a_name, &b_name, separable))?;
+        output::json(&to_json(
+            &s,
+            &a_name,
+            &b_name,
+            separable,
+            InputFacts::of(asm, global),
+        ))?;
     } else {
         print_text(&s, &a_name, &b_name);
+        if let Some(t) = tolerance_statement(asm, global) {
+            output::line(t);
+        }
     }
     Ok(if separable {
         ExitCode::SUCCESS
@@ -99,8 +111,9 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
-fn to_json(s: &Separation, a: &str, b: &str, separable: bool) -> SeparateJson {
+fn to_json(s: &Separation, a: &str, b: &str, separable: bool, input: InputFacts) -> SeparateJson {
     SeparateJson {
+        input,
         moving: a.to_string(),
         fixed: b.to_string(),
         separable,

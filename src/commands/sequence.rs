@@ -5,6 +5,7 @@
 
 use crate::commands::load::load_valid;
 use crate::commands::partition::Projection;
+use crate::input_facts::{tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
 use apart::draw::{
@@ -40,9 +41,9 @@ pub struct SequenceArgs {
     #[arg(long, value_name = "N")]
     pub max_depth: Option<usize>,
     /// For each step, the largest uniform growth of the parts that keeps it possible
-    /// (compare with manufacturing tolerance).
+    /// (compare with manufacturing tolerances).
     #[arg(long)]
-    pub tolerance: bool,
+    pub growth: bool,
     /// Draw the motion-space sphere of step K (see --step) as SVG.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
@@ -76,9 +77,9 @@ struct StepJson {
     cell: &'static str,
     clearance_deg: f64,
     depth: usize,
-    /// Largest uniform growth in input units; null when unbounded or not computed.
+    /// Largest uniform growth in input units (--growth); null when unbounded.
     #[serde(skip_serializing_if = "Option::is_none")]
-    tolerance: Option<Option<f64>>,
+    growth: Option<Option<f64>>,
 }
 
 #[derive(Serialize)]
@@ -92,6 +93,8 @@ struct SequenceJson {
     /// Subassemblies left whole by --max-depth.
     unsplit: Vec<Vec<String>>,
     seconds: SecondsJson,
+    #[serde(flatten)]
+    input: InputFacts,
 }
 
 #[derive(Serialize)]
@@ -123,15 +126,19 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         prefer_axes: args.prefer_axes,
         base,
         max_depth: args.max_depth,
-        tolerance: args.tolerance,
+        tolerance: args.growth,
     };
     let plan = sequence(&regions, &opts);
     pictures(args, asm, &regions, &plan)?;
     let step_unit = asm.grid.step();
     if global.json {
-        output::json(&to_json(&plan, step_unit, load, regions_s))?;
+        let input = InputFacts::of(asm, global);
+        output::json(&to_json(&plan, step_unit, load, regions_s, input))?;
     } else {
         print_text(&plan, asm, global, step_unit, load, regions_s);
+        if let Some(t) = tolerance_statement(asm, global) {
+            output::line(t);
+        }
     }
     Ok(if plan.stuck.is_empty() {
         ExitCode::SUCCESS
@@ -197,8 +204,15 @@ fn tolerance_units(t: &Option<Tolerance>, step_unit: f64) -> Option<Option<f64>>
     })
 }
 
-fn to_json(plan: &Sequence, step_unit: f64, load: f64, regions: f64) -> SequenceJson {
+fn to_json(
+    plan: &Sequence,
+    step_unit: f64,
+    load: f64,
+    regions: f64,
+    input: InputFacts,
+) -> SequenceJson {
     SequenceJson {
+        input,
         interlocked: !plan.stuck.is_empty(),
         complete: plan.complete(),
         parts: plan.names.clone(),
@@ -213,7 +227,7 @@ fn to_json(plan: &Sequence, step_unit: f64, load: f64, regions: f64) -> Sequence
                 cell: s.cell.name(),
                 clearance_deg: s.clearance_deg,
                 depth: s.depth,
-                tolerance: tolerance_units(&s.tolerance, step_unit),
+                growth: tolerance_units(&s.tolerance, step_unit),
             })
             .collect(),
         stuck: plan.stuck.iter().map(|s| names(plan, s)).collect(),

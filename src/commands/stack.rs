@@ -101,6 +101,7 @@ struct StackJson {
 
 /// Runs the command.
 pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    crate::input_facts::no_tolerance(global, "stack")?;
     anyhow::ensure!(args.count > 0, "--count must be at least 1");
     anyhow::ensure!(
         (0.0..=1.0).contains(&args.weight),
