@@ -47,15 +47,18 @@ impl Solid {
         if triangles.is_empty() {
             return Err(DecomposeError::Empty);
         }
-        let limit = 1i64 << MAX_COORD_BITS;
-        let mut pts = Vec::with_capacity(points.len());
-        for (i, p) in points.iter().enumerate() {
-            let c = p
-                .as_small()
-                .filter(|c| c.iter().all(|v| v.abs() < limit))
-                .ok_or(DecomposeError::CoordinateTooLarge { point: i })?;
-            pts.push(*c);
-        }
+        let pts = small_points(points)?;
+        Solid::build(pts, triangles, true)
+    }
+
+    /// The indexed mesh. With `strict`, errors for an unbalanced edge, a failed pairing
+    /// around a non-manifold edge and a non-positive volume; otherwise such edges are
+    /// only marked non-manifold (unpaired).
+    fn build(
+        pts: Vec<[i64; 3]>,
+        triangles: &[[u32; 3]],
+        strict: bool,
+    ) -> Result<Solid, DecomposeError> {
         let mut planes = Vec::with_capacity(triangles.len());
         for (t, tri) in triangles.iter().enumerate() {
             if tri.iter().any(|&v| v as usize >= pts.len()) {
@@ -93,10 +96,13 @@ impl Solid {
                 .map(|&(_, _, t, k)| (t, triangles[t as usize][k as usize] == u))
                 .collect();
             let fwd = uses.iter().filter(|x| x.1).count();
-            if fwd * 2 != uses.len() {
+            let balanced = fwd * 2 == uses.len();
+            if strict && !balanced {
                 return Err(DecomposeError::NotClosed { edge: [u, v] });
             }
-            let pairs: Vec<(u32, u32)> = if uses.len() == 2 {
+            let pairs: Vec<(u32, u32)> = if !balanced {
+                Vec::new()
+            } else if uses.len() == 2 {
                 let (a, b) = if uses[0].1 {
                     (uses[0].0, uses[1].0)
                 } else {
@@ -104,8 +110,11 @@ impl Solid {
                 };
                 vec![(a, b)]
             } else {
-                pair_around_edge(&pts, triangles, [u, v], &uses)
-                    .ok_or(DecomposeError::BadNonManifoldEdge { edge: [u, v] })?
+                match pair_around_edge(&pts, triangles, [u, v], &uses) {
+                    Some(p) => p,
+                    None if !strict => Vec::new(),
+                    None => return Err(DecomposeError::BadNonManifoldEdge { edge: [u, v] }),
+                }
             };
             let mut reflex = false;
             for &(a, b) in &pairs {
@@ -125,7 +134,7 @@ impl Solid {
             edges.push(EdgeInfo {
                 ends: [u, v],
                 reflex,
-                non_manifold: uses.len() > 2,
+                non_manifold: uses.len() > 2 || !balanced,
                 tris: uses.iter().map(|x| x.0).collect(),
             });
             i = j;
@@ -136,7 +145,7 @@ impl Solid {
             let [a, b, c] = tri.map(|v| Vec3::from_i64(pts[v as usize]));
             volume6 += a.dot(&b.cross(&c));
         }
-        if volume6 <= Int::ZERO {
+        if strict && volume6 <= Int::ZERO {
             return Err(DecomposeError::NotPositive);
         }
         let mut lo = [i64::MAX; 3];
@@ -164,27 +173,18 @@ impl Solid {
         })
     }
 
-    /// A surface for the union solid (see `union`): only `pts`, `tris` (the triangles
-    /// with non-collinear corners), `planes`, `volume6` (six times the integral of the
-    /// winding number) and the box are filled; edge structures are empty. Checks indices,
-    /// coordinates and closure (every edge used equally often in both directions,
-    /// counting collinear triangles too), not orientation or self-intersection.
+    /// A surface for the union solid (see `union`): the triangles with non-collinear
+    /// corners, indexed as by [`Solid::new`] but without its errors for a failed pairing
+    /// or a non-positive volume (unbalanced or unpaired edges are marked non-manifold).
+    /// Checks indices, coordinates and closure: every edge used equally often in both
+    /// directions, counting collinear triangles too.
     pub fn surface(points: &[Vec3], triangles: &[[u32; 3]]) -> Result<Solid, DecomposeError> {
         if triangles.is_empty() {
             return Err(DecomposeError::Empty);
         }
-        let limit = 1i64 << MAX_COORD_BITS;
-        let mut pts = Vec::with_capacity(points.len());
-        for (i, p) in points.iter().enumerate() {
-            let c = p
-                .as_small()
-                .filter(|c| c.iter().all(|v| v.abs() < limit))
-                .ok_or(DecomposeError::CoordinateTooLarge { point: i })?;
-            pts.push(*c);
-        }
+        let pts = small_points(points)?;
         let mut half: Vec<(u32, u32, bool)> = Vec::with_capacity(triangles.len() * 3);
         let mut tris = Vec::with_capacity(triangles.len());
-        let mut planes = Vec::with_capacity(triangles.len());
         for (t, tri) in triangles.iter().enumerate() {
             if tri.iter().any(|&v| v as usize >= pts.len()) {
                 return Err(DecomposeError::BadIndex { triangle: t });
@@ -194,9 +194,8 @@ impl Solid {
                 half.push((u.min(v), u.max(v), u < v));
             }
             let [a, b, c] = tri.map(|v| &pts[v as usize]);
-            if let Some(pl) = Plane::through(a, b, c) {
+            if Plane::through(a, b, c).is_some() {
                 tris.push(*tri);
-                planes.push(pl);
             }
         }
         half.sort_unstable();
@@ -214,34 +213,10 @@ impl Solid {
             }
             i = j;
         }
-        let mut volume6 = Int::ZERO;
-        let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
-        for tri in &tris {
-            let [a, b, c] = tri.map(|v| Vec3::from_i64(pts[v as usize]));
-            volume6 += a.dot(&b.cross(&c));
-            for &v in tri {
-                for a in 0..3 {
-                    lo[a] = lo[a].min(pts[v as usize][a]);
-                    hi[a] = hi[a].max(pts[v as usize][a]);
-                }
-            }
-        }
         if tris.is_empty() {
             return Err(DecomposeError::NotPositive);
         }
-        Ok(Solid {
-            pts,
-            tris,
-            planes,
-            tri_edge: Vec::new(),
-            partner: Vec::new(),
-            edges: Vec::new(),
-            nm_vertex: Vec::new(),
-            nm_vertex_tris: rustc_hash::FxHashMap::default(),
-            volume6,
-            lo,
-            hi,
-        })
+        Solid::build(pts, &tris, false)
     }
 
     /// End points of triangle `t`'s side `k`.
@@ -258,6 +233,20 @@ impl Solid {
         let [a, b] = self.edges[e as usize].ends;
         (&self.pts[a as usize], &self.pts[b as usize])
     }
+}
+
+/// The points as `i64` triples, each coordinate below `2^MAX_COORD_BITS` in magnitude.
+fn small_points(points: &[Vec3]) -> Result<Vec<[i64; 3]>, DecomposeError> {
+    let limit = 1i64 << MAX_COORD_BITS;
+    let mut pts = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let c = p
+            .as_small()
+            .filter(|c| c.iter().all(|v| v.abs() < limit))
+            .ok_or(DecomposeError::CoordinateTooLarge { point: i })?;
+        pts.push(*c);
+    }
+    Ok(pts)
 }
 
 /// The vertex of `tri` other than `u` and `v`.

@@ -1,8 +1,8 @@
 //! The union solid of a closed, possibly self-crossing surface: `{x : w(x) >= 1}` for the
 //! winding number `w`, cut into convex cells.
 //!
-//! Method: an autopartition. A box around the surface is split by planes of input
-//! triangles that meet the open cell, carrying the triangles' fragments (exact convex
+//! Method: an autopartition. A box around the surface is split by planes through input
+//! elements meeting the open cell (see below), carrying the triangles' fragments (exact convex
 //! polygons, see `fragments`), until no fragment meets a cell's open interior. A fragment
 //! lying in a splitting plane lies on the boundary of both parts and is dropped; every
 //! other one goes to the part(s) it meets. A leaf's open interior therefore meets no
@@ -12,8 +12,16 @@
 //! closure of `{w >= 1}`: the leaves cover the box, the surface has measure zero, and a
 //! leaf is kept exactly when its open interior lies in `{w >= 1}`.
 //!
-//! Termination: a splitting plane contains a fragment of the cell, which then meets
-//! neither open part, and parts only inherit fragments of their parent.
+//! The planes are chosen as by `decompose` while a reflex or non-manifold input edge or a
+//! non-manifold vertex meets the open cell (through such an element, see `split`), then
+//! among the fragments' planes (cutting few fragments). The first kind only serves the
+//! quality of the pieces: on a valid solid, once the elements are resolved, each cell
+//! holds one convex part of the solid, which the fragment planes carve out without
+//! cutting it. Correctness rests on the leaves alone.
+//!
+//! Termination: a plane of the first kind contains a live element, which then meets
+//! neither open part; one of the second kind contains a fragment, likewise. Parts only
+//! inherit elements and fragments of their parent.
 //!
 //! The ray: from `q` along `+x`, with `q` moved to `q + (0, ε, ε²)` for an infinitesimal
 //! `ε` (simulation of simplicity). The moved point stays in the open leaf, so `w` is
@@ -31,8 +39,10 @@ use crate::exact::{HPoint, Plane};
 use crate::fragments::{place, Frag, Placement};
 use crate::partition::Counters;
 use crate::solid::Solid;
+use crate::split::{for_live, live};
 use crate::DecomposeError;
 use apart_kernel::{int, Int, Rational, Sign};
+use rustc_hash::FxHashMap;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
@@ -118,7 +128,18 @@ impl<'a> UnionPartition<'a> {
             return Ok(Step::Leaf(Leaf { cell: t.cell, w }));
         }
         self.counters.splits.fetch_add(1, Ordering::Relaxed);
-        let h = choose(self.solid, &t.frags);
+        let l = live(self.solid, &t.frags);
+        let h = if l.is_empty() {
+            choose(self.solid, &t.frags)
+        } else {
+            let in_cell: FxHashMap<u32, u32> = t
+                .frags
+                .iter()
+                .enumerate()
+                .map(|(i, f)| (f.tri, i as u32))
+                .collect();
+            for_live(self.solid, &t.frags, &in_cell, &l).plane
+        };
         let (below, above) = t.cell.split(&h, true);
         let (Some(below), Some(above)) = (below, above) else {
             return Err(DecomposeError::Internal(

@@ -147,9 +147,9 @@ fn run(m: &Mesh) -> Decomposition {
     d
 }
 
-/// Checks, at the centre of every unit voxel of `[lo, hi)`, that the point is interior
-/// to exactly one piece when `inside` says so and touches none otherwise. Callers make
-/// sure no piece facet plane passes through a voxel centre.
+/// Checks, at the centre of every unit voxel of `[lo, hi)` (never on the surface), that
+/// the point is in some closed piece and interior to at most one when `inside` says so,
+/// and touches no piece otherwise.
 fn check_voxel_centres(
     pieces: &[Polytope],
     lo: [i64; 3],
@@ -165,7 +165,7 @@ fn check_voxel_centres(
                 let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
                 let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
                 if inside([x, y, z]) {
-                    assert_eq!((interior, closed), (1, 1), "voxel {x} {y} {z}");
+                    assert!(closed >= 1 && interior <= 1, "voxel {x} {y} {z}");
                 } else {
                     assert_eq!(closed, 0, "voxel {x} {y} {z} is outside");
                 }
