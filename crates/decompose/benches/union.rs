@@ -48,14 +48,7 @@ impl Soup {
     }
 
     fn bbox(&self) -> [[i64; 3]; 2] {
-        let mut b = [[i64::MAX; 3], [i64::MIN; 3]];
-        for p in &self.raw {
-            for a in 0..3 {
-                b[0][a] = b[0][a].min(p[a]);
-                b[1][a] = b[1][a].max(p[a]);
-            }
-        }
-        b
+        bounds(self.raw.iter())
     }
 
     /// Pairs of triangles sharing no point index where an edge of one passes through
@@ -65,16 +58,7 @@ impl Soup {
         let bb: Vec<[[i64; 3]; 2]> = self
             .tris
             .iter()
-            .map(|t| {
-                let mut b = [[i64::MAX; 3], [i64::MIN; 3]];
-                for &v in t {
-                    for a in 0..3 {
-                        b[0][a] = b[0][a].min(self.raw[v as usize][a]);
-                        b[1][a] = b[1][a].max(self.raw[v as usize][a]);
-                    }
-                }
-                b
-            })
+            .map(|t| bounds(t.iter().map(|&v| &self.raw[v as usize])))
             .collect();
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by_key(|&i| bb[i][0][0]);
@@ -125,6 +109,18 @@ impl Soup {
         }
         count
     }
+}
+
+/// The bounding box of some points.
+fn bounds<'a>(pts: impl Iterator<Item = &'a [i64; 3]>) -> [[i64; 3]; 2] {
+    let mut b = [[i64::MAX; 3], [i64::MIN; 3]];
+    for p in pts {
+        for (a, &c) in p.iter().enumerate() {
+            b[0][a] = b[0][a].min(c);
+            b[1][a] = b[1][a].max(c);
+        }
+    }
+    b
 }
 
 fn best_of(s: &Soup, opts: &Options, runs: usize, union: bool) -> (Decomposition, f64) {
