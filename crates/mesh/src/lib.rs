@@ -33,6 +33,7 @@ pub mod locate;
 mod mesh;
 mod problem;
 mod raw;
+pub mod repair;
 pub mod transform;
 mod triangulate;
 pub mod validate;
