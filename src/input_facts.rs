@@ -2,7 +2,8 @@
 //! under, and the repairs made on load. Parsing of `--units` and `--tolerance`.
 
 use crate::Global;
-use apart::assembly::{Assembly, Tolerance};
+use apart::assembly::{Assembly, Loaded, Tolerance};
+use apart::mesh::repair::RepairReport;
 use serde::Serialize;
 
 /// Length units of input files.
@@ -143,12 +144,33 @@ pub struct InputFacts {
     units: Option<&'static str>,
     /// The tolerance the answer holds under; null for the parts as given.
     tolerance: Option<ToleranceJson>,
+    /// Every repair made on load, per mesh file.
+    repairs: Vec<RepairJson>,
+}
+
+/// The repairs of one mesh file, as JSON.
+#[derive(Serialize)]
+pub struct RepairJson {
+    file: std::path::PathBuf,
+    parts: Vec<String>,
+    #[serde(flatten)]
+    counts: RepairReport,
 }
 
 impl InputFacts {
     /// The facts of a loaded assembly.
-    pub fn of(asm: &Assembly, global: &Global) -> InputFacts {
+    pub fn of(loaded: &Loaded, global: &Global) -> InputFacts {
+        let asm = &loaded.assembly;
         InputFacts {
+            repairs: loaded
+                .repairs
+                .iter()
+                .map(|r| RepairJson {
+                    file: r.file.clone(),
+                    parts: r.parts.clone(),
+                    counts: r.report.clone(),
+                })
+                .collect(),
             units: global.units.map(Units::symbol),
             tolerance: asm.tolerance.as_ref().map(|t| ToleranceJson {
                 eps: t.eps,

@@ -66,7 +66,7 @@ struct CheckJson<'a> {
 pub fn run(args: &CheckArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let loaded = crate::commands::load::load_with(&args.assembly, global, Decompose::WhenNeeded)?;
     if global.json {
-        output::json(&to_json(&loaded, InputFacts::of(&loaded.assembly, global)))?;
+        output::json(&to_json(&loaded, InputFacts::of(&loaded, global)))?;
     } else {
         print_text(&loaded, global);
     }

@@ -16,6 +16,8 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
         decompose,
         verify: global.verify,
         tolerance: crate::input_facts::tolerance(global)?,
+        repair: !global.strict,
+        split_bodies: !global.one_part_per_file,
     };
     let loaded = load(path, &opts);
     if let Some((bar, _)) = &bar {

@@ -96,7 +96,7 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
             &a_name,
             &b_name,
             separable,
-            InputFacts::of(asm, global),
+            InputFacts::of(&loaded, global),
         ))?;
     } else {
         print_text(&s, &a_name, &b_name);

@@ -132,7 +132,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     pictures(args, asm, &regions, &plan)?;
     let step_unit = asm.grid.step();
     if global.json {
-        let input = InputFacts::of(asm, global);
+        let input = InputFacts::of(&loaded, global);
         output::json(&to_json(&plan, step_unit, load, regions_s, input))?;
     } else {
         print_text(&plan, asm, global, step_unit, load, regions_s);

@@ -28,6 +28,9 @@ pub(crate) struct PartSpec {
     pub source: PathBuf,
     pub mesh: Option<SourceRef>,
     pub pieces: Vec<SourceRef>,
+    /// The name comes from a file or object, not from the user: a mesh holding several
+    /// separate solids may become several parts.
+    pub splittable: bool,
 }
 
 /// The parts to load, with any problem found while looking for them, and files already
@@ -104,6 +107,7 @@ fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
                 name: p.name,
                 mesh: p.mesh.map(r),
                 pieces: p.pieces.into_iter().map(r).collect(),
+                splittable: false,
             }
         })
         .collect();
@@ -185,6 +189,7 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
         parts.push(PartSpec {
             name,
             source,
+            splittable: pieces.is_empty(),
             mesh: mesh.map(plain),
             pieces: pieces.into_iter().map(plain).collect(),
         });
@@ -238,6 +243,7 @@ fn from_file(path: &Path) -> Result<Plan, LoadError> {
                 transform: Affine::IDENTITY,
             }),
             pieces: Vec::new(),
+            splittable: true,
         });
     }
     let mut preloaded = HashMap::new();

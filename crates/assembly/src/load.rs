@@ -4,14 +4,16 @@
 
 use crate::error::LoadError;
 use crate::inputs::{self, PartSpec, SourceRef};
+use crate::model::Repairs;
 use crate::model::{Assembly, Loaded, Part};
 use crate::options::{Decompose, LoadOptions, Stage, Tracker};
 use crate::tolerance::{self, Tolerance};
 use crate::{overlap, pieces};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::formats::{read_file, ReadError};
-use apart_mesh::validate::check_solid;
-use apart_mesh::{Aabb, Problem, RawObject};
+use apart_mesh::repair::{bodies, repair, RepairOptions};
+use apart_mesh::validate::validate;
+use apart_mesh::{Aabb, Mesh, Problem, RawObject};
 use apart_pieces::Polytope;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -144,19 +146,27 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
 
     // Parts, in parallel.
     let tracker = Tracker::start(opts, Stage::Validating, raw.len());
-    let built: Vec<(Part, Vec<Problem>)> = raw
+    let built: Vec<Built> = raw
         .into_par_iter()
         .map(|r| {
-            let out = build_part(r, &grid);
+            let out = build_parts(r, &grid, opts);
             tracker.tick();
             out
         })
         .collect();
     let mut parts = Vec::with_capacity(built.len());
-    for (part, probs) in built {
-        parts.push(part);
-        problems.extend(probs);
+    let mut repairs = Vec::new();
+    for b in built {
+        if let Some(mut record) = b.repairs {
+            record.parts = b.parts.iter().map(|(p, _)| p.name.clone()).collect();
+            repairs.push(record);
+        }
+        for (part, probs) in b.parts {
+            parts.push(part);
+            problems.extend(probs);
+        }
     }
+    problems.extend(unique_names(&mut parts));
     // A tolerance shrinks convex pieces, so every part needs its pieces.
     let decompose = match opts.decompose {
         _ if opts.tolerance != Tolerance::None => true,
@@ -179,7 +189,11 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     } else {
         problems.extend(tolerance::apply(&mut assembly, opts.tolerance, opts));
     }
-    Ok(Loaded { assembly, problems })
+    Ok(Loaded {
+        assembly,
+        problems,
+        repairs,
+    })
 }
 
 /// Decomposes every valid non-convex part without pieces, in parallel.
@@ -293,10 +307,207 @@ pub(crate) fn polytope_bbox(p: &Polytope) -> Aabb {
     })
 }
 
-fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
+/// The parts one specification gave (several when its mesh holds separate solids), and
+/// what repair did to its mesh.
+struct Built {
+    parts: Vec<(Part, Vec<Problem>)>,
+    repairs: Option<Repairs>,
+}
+
+/// Snaps the mesh of a specification, repairs it (unless strict), splits it into its
+/// separate solids when allowed, and builds one part per solid.
+fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
     let spec = r.spec;
-    let name = &spec.name;
-    let mut problems = r.problems;
+    let (Some(raw), Some(src)) = (&r.mesh, &spec.mesh) else {
+        return Built {
+            parts: vec![build_part(
+                &r,
+                spec.name.clone(),
+                None,
+                r.problems.clone(),
+                grid,
+            )],
+            repairs: None,
+        };
+    };
+    let (mesh, probs) = Mesh::from_raw(raw, grid);
+    let mut problems = r.problems.clone();
+    problems.extend(
+        probs
+            .into_iter()
+            .map(|p| p.in_file(&src.path).in_part(&spec.name)),
+    );
+    let Some(mut mesh) = mesh else {
+        return Built {
+            parts: vec![build_part(&r, spec.name.clone(), None, problems, grid)],
+            repairs: None,
+        };
+    };
+    let mut repairs = None;
+    if opts.repair {
+        let report = repair(&mut mesh, &RepairOptions::default());
+        if !report.is_empty() {
+            problems.push(
+                Problem::warning(format!("repaired: {report}"))
+                    .in_file(&src.path)
+                    .in_part(&spec.name),
+            );
+            repairs = Some(Repairs {
+                file: src.path.clone(),
+                parts: Vec::new(),
+                report,
+            });
+        }
+    }
+    let solids = if opts.repair && opts.split_bodies && spec.splittable {
+        joined_bodies(&mesh)
+    } else {
+        vec![mesh]
+    };
+    if solids.len() <= 1 {
+        let m = solids.into_iter().next();
+        return Built {
+            parts: vec![build_part(&r, spec.name.clone(), m, problems, grid)],
+            repairs,
+        };
+    }
+    let names: Vec<String> = (1..=solids.len())
+        .map(|k| format!("{}_{k}", spec.name))
+        .collect();
+    problems.push(
+        Problem::note(format!(
+            "the mesh holds {} separate solids, loaded as parts {} (--one-part-per-file reads it as one part)",
+            solids.len(),
+            names.join(", ")
+        ))
+        .in_file(&src.path),
+    );
+    let parts = solids
+        .into_iter()
+        .zip(names)
+        .enumerate()
+        .map(|(k, (m, name))| {
+            let probs = if k == 0 {
+                std::mem::take(&mut problems)
+            } else {
+                Vec::new()
+            };
+            build_part(&r, name, Some(m), probs, grid)
+        })
+        .collect();
+    Built { parts, repairs }
+}
+
+/// The separate solids of a repaired mesh, where solids sharing a vertex stay together:
+/// a part that touches itself along an edge or at a corner (voxel puzzles, sheet metal)
+/// is one rigid part, and joining is the conservative choice (parts that move together
+/// can only make fewer motions possible, never a wrong one).
+fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
+    let bodies = bodies(mesh);
+    if bodies.len() <= 1 {
+        return bodies;
+    }
+    let mut owner: HashMap<[i64; 3], usize> = HashMap::new();
+    let mut parent: Vec<usize> = (0..bodies.len()).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    for (b, m) in bodies.iter().enumerate() {
+        for v in &m.vertices {
+            if let Some(&o) = owner.get(v) {
+                let (x, y) = (find(&mut parent, o), find(&mut parent, b));
+                parent[x.max(y)] = x.min(y);
+            } else {
+                owner.insert(*v, b);
+            }
+        }
+    }
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); bodies.len()];
+    for b in 0..bodies.len() {
+        let r = find(&mut parent, b);
+        groups[r].push(b);
+    }
+    if groups.iter().filter(|g| !g.is_empty()).count() == bodies.len() {
+        return bodies;
+    }
+    let mut bodies: Vec<Option<Mesh>> = bodies.into_iter().map(Some).collect();
+    groups
+        .into_iter()
+        .filter(|g| !g.is_empty())
+        .map(|g| {
+            let mut it = g
+                .into_iter()
+                .map(|b| bodies[b].take().expect("one group each"));
+            let first = it.next().expect("non-empty group");
+            it.fold(first, |m, other| merged(m, &other))
+        })
+        .collect()
+}
+
+/// Two meshes as one, identifying equal grid points.
+fn merged(mut m: Mesh, other: &Mesh) -> Mesh {
+    let mut index: HashMap<[i64; 3], u32> = m
+        .vertices
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (*v, i as u32))
+        .collect();
+    let remap: Vec<u32> = other
+        .vertices
+        .iter()
+        .zip(&other.source_vertices)
+        .map(|(v, &s)| {
+            *index.entry(*v).or_insert_with(|| {
+                m.vertices.push(*v);
+                m.source_vertices.push(s);
+                (m.vertices.len() - 1) as u32
+            })
+        })
+        .collect();
+    m.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|v| remap[v as usize])));
+    m.source_faces.extend_from_slice(&other.source_faces);
+    m
+}
+
+/// Makes part names unique (files split into bodies may collide with other names),
+/// in one pass over a set of the names in use.
+fn unique_names(parts: &mut [Part]) -> Vec<Problem> {
+    let mut used: std::collections::HashSet<String> = std::collections::HashSet::new();
+    let mut problems = Vec::new();
+    for p in parts.iter_mut() {
+        if used.insert(p.name.clone()) {
+            continue;
+        }
+        let mut k = 2;
+        while used.contains(&format!("{}-{k}", p.name)) {
+            k += 1;
+        }
+        let name = format!("{}-{k}", p.name);
+        problems.push(
+            Problem::note(format!("renamed to \"{name}\": the name was taken"))
+                .in_part(p.name.clone()),
+        );
+        p.name = name.clone();
+        used.insert(name);
+    }
+    problems
+}
+
+/// One part of a specification, from its (repaired) mesh and its declared pieces.
+fn build_part(
+    r: &RawPart,
+    name: String,
+    mesh: Option<Mesh>,
+    mut problems: Vec<Problem>,
+    grid: &Grid,
+) -> (Part, Vec<Problem>) {
+    let spec = r.spec;
+    let name = &name;
     let mut part = Part {
         name: name.clone(),
         source: spec.source.clone(),
@@ -313,26 +524,22 @@ fn build_part(r: RawPart, grid: &Grid) -> (Part, Vec<Problem>) {
         unshrunk_pieces: Vec::new(),
     };
     let mut mesh_ok = false;
-    if let (Some(raw), Some(src)) = (&r.mesh, &spec.mesh) {
-        let (mesh, info, probs) = check_solid(raw, grid);
-        mesh_ok = mesh.is_some()
-            && info.as_ref().is_some_and(|i| i.volume6.is_some())
-            && !probs.iter().any(Problem::is_error);
+    if let (Some(mut mesh), Some(src)) = (mesh, &spec.mesh) {
+        let (info, probs) = validate(&mut mesh, grid);
+        mesh_ok = info.volume6.is_some() && !probs.iter().any(Problem::is_error);
         problems.extend(
             probs
                 .into_iter()
                 .map(|p| p.in_file(&src.path).in_part(name)),
         );
-        if let Some(info) = &info {
-            part.reflex_edges = info.reflex_edges;
-            part.convex = mesh_ok && info.convex;
-            part.bbox = info.bbox;
-            if let (true, Some(v)) = (mesh_ok, info.volume()) {
-                part.volume = v;
-            }
+        part.reflex_edges = info.reflex_edges;
+        part.convex = mesh_ok && info.convex;
+        part.bbox = info.bbox;
+        if let (true, Some(v)) = (mesh_ok, info.volume()) {
+            part.volume = v;
         }
-        part.mesh = mesh;
-        part.info = info;
+        part.mesh = Some(mesh);
+        part.info = Some(info);
     }
     // Declared pieces.
     let mut pieces_ok = !r.pieces.is_empty();

@@ -2,6 +2,7 @@
 
 use crate::tolerance::AppliedTolerance;
 use apart_kernel::{Grid, Rational};
+use apart_mesh::repair::RepairReport;
 use apart_mesh::validate::{volume_in_units, MeshInfo};
 use apart_mesh::{Aabb, Mesh, Problem};
 use apart_pieces::Polytope;
@@ -98,6 +99,17 @@ impl Assembly {
     }
 }
 
+/// What repair on load did to one mesh file (or object).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Repairs {
+    /// The file.
+    pub file: PathBuf,
+    /// The parts made of it (several when it held separate solids).
+    pub parts: Vec<String>,
+    /// The repairs, by kind.
+    pub report: RepairReport,
+}
+
 /// A loaded assembly and every problem found while loading it.
 #[derive(Clone, Debug)]
 pub struct Loaded {
@@ -105,6 +117,9 @@ pub struct Loaded {
     pub assembly: Assembly,
     /// Every problem, in the order found (per part in part order, then across parts).
     pub problems: Vec<Problem>,
+    /// Every repair made on load, per mesh (empty with `--strict`, or when nothing
+    /// needed repair).
+    pub repairs: Vec<Repairs>,
 }
 
 impl Loaded {

@@ -70,6 +70,13 @@ pub struct LoadOptions {
     pub verify: bool,
     /// Accept overlaps between parts as contact for parts made this much smaller.
     pub tolerance: Tolerance,
+    /// Repair meshes on load (exact: T-junctions, duplicate and cancelling faces, small
+    /// holes, shell orientation), reporting every repair. `false` (strict): any defect
+    /// is an error.
+    pub repair: bool,
+    /// Load a mesh that holds several separate solids as several parts (only where the
+    /// part name comes from a file or object, not from a manifest).
+    pub split_bodies: bool,
 }
 
 impl Default for LoadOptions {
@@ -80,6 +87,8 @@ impl Default for LoadOptions {
             decompose: Decompose::WhenNeeded,
             verify: false,
             tolerance: Tolerance::None,
+            repair: true,
+            split_bodies: true,
         }
     }
 }
@@ -92,6 +101,8 @@ impl std::fmt::Debug for LoadOptions {
             .field("decompose", &self.decompose)
             .field("verify", &self.verify)
             .field("tolerance", &self.tolerance)
+            .field("repair", &self.repair)
+            .field("split_bodies", &self.split_bodies)
             .finish()
     }
 }
