@@ -52,15 +52,13 @@ impl Mesh {
     /// A convex polygon (corners in order), fanned, oriented so that its normal points
     /// along `out`.
     fn poly(&mut self, corners: &[[i64; 3]], out: [i64; 3]) {
-        let (a, b, c) = (corners[0], corners[1], corners[2]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let flip = n[0] * out[0] + n[1] * out[1] + n[2] * out[2] < 0;
+        let [a, b, c] = [0, 1, 2].map(|k| corners[k].map(Int::from));
+        let (u, v) = (
+            [0, 1, 2].map(|k| &b[k] - &a[k]),
+            [0, 1, 2].map(|k| &c[k] - &a[k]),
+        );
+        let n = Vec3::from_ints(u.clone()).cross(&Vec3::from_ints(v));
+        let flip = n.dot(&Vec3::from_i64(out)) < Int::ZERO;
         let ids: Vec<u32> = corners.iter().map(|&p| self.id(p)).collect();
         for k in 1..ids.len() - 1 {
             if flip {
@@ -393,6 +391,34 @@ fn octahedron_slab_volume() -> Rational {
 }
 
 #[test]
+fn large_coordinates() {
+    // The octahedron and box of `crossing_octahedron_and_box`, scaled by 2^36 and moved
+    // to near -2^39: coordinates close to the 2^40 limit, every exact fallback in play.
+    let k = 1i64 << 36;
+    let t = -(1i64 << 39) + 12345;
+    let at = |p: [i64; 3]| [p[0] * k + t, p[1] * k - t, p[2] * k + 7];
+    let mut m = Mesh::default();
+    m.shell();
+    for sx in [-1, 1] {
+        for sy in [-1, 1] {
+            for sz in [-1, 1] {
+                m.poly(
+                    &[at([sx * 6, 0, 0]), at([0, sy * 6, 0]), at([0, 0, sz * 6])],
+                    [sx, sy, sz],
+                );
+            }
+        }
+    }
+    m.cuboid(at([-2, -1, -3]), at([9, 1, 2]), true);
+    let d = run(&m);
+    let scale = Rational::from_int(Int::from(k) * Int::from(k) * Int::from(k));
+    assert_eq!(
+        volume(&d.pieces),
+        &Rational::from_int(288 + 110 - 62) * &scale
+    );
+}
+
+#[test]
 fn valid_solids_agree_with_decompose() {
     for shape in shapes::all() {
         if shape.tris.len() > 600 {
@@ -417,37 +443,70 @@ fn valid_solids_agree_with_decompose() {
 }
 
 fn random_boxes(boxes: &[([i64; 3], [i64; 3])], weld: bool, flip_order: bool) {
+    let signed: Vec<_> = boxes.iter().map(|&(lo, hi)| (lo, hi, true)).collect();
+    random_signed_boxes(&signed, weld, flip_order);
+}
+
+/// Boxes, each outward or inward, in one surface: the winding number of a voxel is the
+/// number of outward boxes holding it minus the number of inward ones (the oracle).
+fn random_signed_boxes(boxes: &[([i64; 3], [i64; 3], bool)], weld: bool, flip_order: bool) {
     let mut m = if weld {
         Mesh::welded()
     } else {
         Mesh::default()
     };
-    for (lo, hi) in boxes {
-        m.cuboid(*lo, *hi, true);
+    for &(lo, hi, out) in boxes {
+        m.cuboid(lo, hi, out);
     }
     if flip_order {
         m.tris.reverse();
     }
-    let d = run(&m);
-    let inside = |p: [i64; 3]| boxes.iter().any(|(lo, hi)| in_box(p, *lo, *hi));
-    let mut count = 0;
+    let w = |p: [i64; 3]| -> i64 {
+        boxes
+            .iter()
+            .filter(|(lo, hi, _)| in_box(p, *lo, *hi))
+            .map(|b| if b.2 { 1 } else { -1 })
+            .sum()
+    };
+    let inside = |p: [i64; 3]| w(p) >= 1;
+    let (mut count, mut lo, mut hi) = (0, 0, 0);
     for x in 0..6 {
         for y in 0..6 {
             for z in 0..6 {
                 count += inside([x, y, z]) as i64;
+                lo = lo.min(w([x, y, z]));
+                hi = hi.max(w([x, y, z]));
             }
         }
     }
+    if count == 0 {
+        let err = decompose_union(&m.points, &m.tris, &Options::default()).unwrap_err();
+        assert_eq!(err, DecomposeError::NotPositive);
+        return;
+    }
+    let d = run(&m);
     assert_eq!(volume(&d.pieces), Rational::from_int(count));
+    assert_eq!(d.stats.winding, Some((lo, hi)));
     check_voxel_centres(&d.pieces, [-1; 3], [7; 3], inside);
 }
 
-fn boxes_strategy() -> impl Strategy<Value = Vec<([i64; 3], [i64; 3])>> {
+fn interval() -> impl Strategy<Value = (i64, i64)> + Clone {
     // Intervals of [0, 6] with length 1 to 4.
-    let interval = (0i64..6, 1i64..5).prop_map(|(a, l)| (a, (a + l).min(6)));
-    proptest::collection::vec([interval.clone(), interval.clone(), interval], 1..6).prop_map(|v| {
+    (0i64..6, 1i64..5).prop_map(|(a, l)| (a, (a + l).min(6)))
+}
+
+fn boxes_strategy() -> impl Strategy<Value = Vec<([i64; 3], [i64; 3])>> {
+    proptest::collection::vec([interval(), interval(), interval()], 1..6).prop_map(|v| {
         v.into_iter()
             .map(|[x, y, z]| ([x.0, y.0, z.0], [x.1, y.1, z.1]))
+            .collect()
+    })
+}
+
+fn signed_boxes_strategy() -> impl Strategy<Value = Vec<([i64; 3], [i64; 3], bool)>> {
+    proptest::collection::vec(([interval(), interval(), interval()], 0..3), 1..7).prop_map(|v| {
+        v.into_iter()
+            .map(|([x, y, z], o)| ([x.0, y.0, z.0], [x.1, y.1, z.1], o != 0))
             .collect()
     })
 }
@@ -457,5 +516,137 @@ proptest! {
     #[test]
     fn random_box_unions(boxes in boxes_strategy(), weld in any::<bool>(), flip in any::<bool>()) {
         random_boxes(&boxes, weld, flip);
+    }
+
+    /// Inward boxes too: cavities, and negative winding where they stick out.
+    #[test]
+    fn random_signed_box_unions(boxes in signed_boxes_strategy(), weld in any::<bool>()) {
+        random_signed_boxes(&boxes, weld, false);
+    }
+
+    /// Valid solids (unions of voxels welded into one manifold-or-touching surface): the
+    /// same volume as the voxel count and as `decompose`.
+    #[test]
+    fn voxel_solids_agree_with_decompose(on in proptest::collection::vec(any::<bool>(), 27)) {
+        prop_assume!(on.iter().any(|&b| b));
+        let shape = shapes::voxels([3, 3, 3], &on);
+        let a = decompose(&shape.points, &shape.tris, &Options::default()).unwrap();
+        let b = decompose_union(&shape.points, &shape.tris, &Options::default()).unwrap();
+        prop_assert_eq!(volume(&b.pieces), shape.volume.clone());
+        prop_assert_eq!(volume(&a.pieces), shape.volume.clone());
+        prop_assert_eq!(b.stats.winding, Some((0, 1)));
+        check_pieces(&b.pieces);
+        shapes::check_samples(&shape, &b.pieces);
+    }
+
+    /// Height fields (valid solids with generic planes and rational vertices).
+    #[test]
+    fn terrains_agree_with_decompose(h in proptest::collection::vec(1i64..60, 16)) {
+        let shape = shapes::terrain(3, 20, &h);
+        let b = decompose_union(&shape.points, &shape.tris, &Options::default()).unwrap();
+        prop_assert_eq!(volume(&b.pieces), shape.volume.clone());
+        check_pieces(&b.pieces);
+        shapes::check_samples(&shape, &b.pieces);
+    }
+
+    /// Random crossing tetrahedra: slanted planes, rational vertices; membership of
+    /// lattice points against the tetrahedra's own inequalities.
+    #[test]
+    fn random_tetrahedra_unions(pts in proptest::collection::vec([0i64..13, 0i64..13, 0i64..13], 8..17)) {
+        tetrahedra(&pts);
+    }
+}
+
+/// The tetrahedra of consecutive quadruples of `pts` (flat ones skipped), outward.
+fn tetrahedra(pts: &[[i64; 3]]) {
+    let mut m = Mesh::default();
+    let mut solids = Vec::new();
+    let mut total = Rational::zero();
+    for q in pts.chunks_exact(4) {
+        let sub = |a: [i64; 3], b: [i64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let cross = |u: [i64; 3], v: [i64; 3]| {
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
+        let dot = |u: [i64; 3], v: [i64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+        let det = dot(cross(sub(q[1], q[0]), sub(q[2], q[0])), sub(q[3], q[0]));
+        if det == 0 {
+            continue;
+        }
+        total = &total + &Rational::new(Int::from(det.abs()), Int::from(6));
+        m.shell();
+        let mut faces = Vec::new();
+        for k in 0..4 {
+            let f: Vec<[i64; 3]> = (0..4).filter(|&j| j != k).map(|j| q[j]).collect();
+            let mut n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
+            // Outward: away from the opposite corner.
+            if dot(n, sub(q[k], f[0])) > 0 {
+                n = n.map(|v| -v);
+            }
+            m.poly(&f, n);
+            faces.push((n, dot(n, f[0])));
+        }
+        solids.push(HalfSpaces(faces));
+    }
+    if solids.is_empty() {
+        return;
+    }
+    let d = run(&m);
+    let v = volume(&d.pieces);
+    assert!(v <= total);
+    for x in 0..26 {
+        for y in 0..26 {
+            for z in 0..26 {
+                let p = [7 * x as i128 + 1, 7 * y as i128 + 3, 7 * z as i128 + 2];
+                let w = 14;
+                let sides: Vec<Sign> = solids.iter().map(|h| h.side(&p, w)).collect();
+                if sides.contains(&Sign::Zero) {
+                    continue;
+                }
+                let inside = sides.contains(&Sign::Negative);
+                let loc: Vec<Containment> =
+                    d.pieces.iter().map(|q| shapes::locate(q, &p, w)).collect();
+                let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
+                let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
+                if inside {
+                    assert!(closed >= 1 && interior <= 1, "{p:?}/{w}");
+                } else {
+                    assert_eq!(closed, 0, "{p:?}/{w}");
+                }
+            }
+        }
+    }
+}
+
+/// A longer run of random signed boxes and tetrahedra: `cargo test --release -- --ignored`.
+#[test]
+#[ignore]
+fn union_stress() {
+    let mut seed = 0x5851f42d4c957f2du64;
+    let mut next = move |n: u64| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n) as i64
+    };
+    for case in 0..2000 {
+        let k = 1 + next(8) as usize;
+        let boxes: Vec<_> = (0..k)
+            .map(|_| {
+                let iv = |a: i64, l: i64| (a, (a + l).min(6));
+                let [x, y, z] = [0; 3].map(|_| iv(next(6), 1 + next(4)));
+                ([x.0, y.0, z.0], [x.1, y.1, z.1], next(4) != 0)
+            })
+            .collect();
+        eprintln!("boxes {case}");
+        random_signed_boxes(&boxes, next(2) == 0, next(2) == 0);
+        let pts: Vec<[i64; 3]> = (0..4 * (2 + next(4)))
+            .map(|_| [0; 3].map(|_| next(13)))
+            .collect();
+        eprintln!("tetrahedra {case}");
+        tetrahedra(&pts);
     }
 }
