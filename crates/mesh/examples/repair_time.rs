@@ -44,7 +44,11 @@ fn main() {
             f.reverse();
         }
     }
-    run("seamed box, every third triangle reversed", &raw(&flipped), &grid);
+    run(
+        "seamed box, every third triangle reversed",
+        &raw(&flipped),
+        &grid,
+    );
     let dec = decimal_seamed_box([4 * 10 * 21 * 13, 4 * 21 * 11 * 13, 4 * 16 * 13], div);
     let mut stl = Vec::new();
     dec.write_binary_stl(&mut stl).expect("writing to memory");

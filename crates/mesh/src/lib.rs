@@ -3,9 +3,11 @@
 //!
 //! The flow for one object is [`formats::read_file`] (floating-point [`RawObject`]s),
 //! then [`Mesh::from_raw`] (snap with the assembly's [`apart_kernel::Grid`], weld equal
-//! grid points, triangulate polygons), then [`validate::validate`] (closed, oriented,
-//! manifold up to valid self-contacts, not self-intersecting, positive volume; convex or
-//! not). Every decision after snapping is an exact integer predicate. Problems are
+//! grid points, triangulate polygons), optionally [`repair::repair`] (exact repair of
+//! export defects: T-junctions, duplicate faces, small holes, shell orientation; then
+//! [`repair::bodies`] splits several solids apart), then [`validate::validate`]
+//! (closed, oriented, manifold up to valid self-contacts, not self-intersecting,
+//! positive volume; convex or not). Every decision after snapping is an exact integer predicate. Problems are
 //! values ([`Problem`]) that name the element; nothing here panics on bad input.
 //!
 //! ```

@@ -174,6 +174,25 @@ fn duplicates_and_flips() {
 }
 
 #[test]
+fn a_flipped_face_on_a_seam_counts_once() {
+    // The coarse -x face (2 triangles) meets split faces: each of its triangles is
+    // split at the seam vertices, and the reversed one still counts as one face.
+    let div = [[1, 1], [3, 2], [2, 5], [4, 1], [1, 3], [2, 2]];
+    let e = [0, 1, 2].map(|k| seamed_box_extent_unit(&div, k));
+    let mut soup = seamed_box(e, div);
+    soup.faces[1].reverse();
+    repaired(
+        &soup,
+        RepairReport {
+            tjunctions: seamed_box_tjunctions(&div),
+            flipped_faces: 1,
+            ..Default::default()
+        },
+        vol(e),
+    );
+}
+
+#[test]
 fn a_duplicated_face_with_its_flipped_copy_cancels_and_is_closed_again() {
     // A face present three times, once the other way: one duplicate, one cancelled
     // pair, and the hole left behind is closed by one triangle.

@@ -5,11 +5,12 @@
 //! other shells bounds a cavity and must have negative volume, any other shell
 //! positive volume (signs exact, nesting by exact ray-crossing parity).
 //!
-//! Counting: a shell whose final orientation differs from the input in more than half
-//! of its triangles counts as one flipped shell, plus the triangles that had to be
-//! flipped against the rest (those that were right before the shell was reversed);
-//! otherwise the flipped triangles count as flipped faces. An open or zero-volume
-//! shell keeps the orientation that changes fewer triangles.
+//! Counting is by input face (source face), so that a face split at T-junctions or
+//! triangulated from a polygon counts once: a shell whose final orientation differs
+//! from the input in more than half of its faces counts as one flipped shell, plus the
+//! faces that had to be flipped against the rest (those that were right before the
+//! shell was reversed); otherwise its flipped faces are counted as such. An open or
+//! zero-volume shell keeps the orientation that changes fewer triangles.
 
 use super::edges::{runs, uses};
 use super::nesting::containers;
@@ -86,20 +87,35 @@ pub(super) fn orient(mesh: &mut Mesh, report: &mut RepairReport) {
         .map(|s| closed[s] && volumes[s] != Int::ZERO)
         .collect();
     let inside = containers(mesh, &shells.shell_of, &shells.members, &eligible);
+    let mut faces: Vec<(u32, bool)> = Vec::new();
     for (s, list) in shells.members.iter().enumerate() {
-        let size = list.len();
-        let mut changed = list.iter().filter(|&&t| flip[t as usize]).count();
+        let changed = list.iter().filter(|&&t| flip[t as usize]).count();
         let reverse = if eligible[s] {
             let want_positive = inside[s].len() % 2 == 0;
             (volumes[s] > Int::ZERO) != want_positive
         } else {
-            2 * changed > size
+            2 * changed > list.len()
         };
         if reverse {
             for &t in list {
                 mesh.triangles[t as usize].swap(1, 2);
             }
-            changed = size - changed;
+        }
+        // Count input faces (a split or triangulated face counts once): a face is
+        // changed when most of its triangles are.
+        faces.clear();
+        faces.extend(
+            list.iter()
+                .map(|&t| (mesh.source_faces[t as usize], flip[t as usize] ^ reverse)),
+        );
+        faces.sort_unstable();
+        let mut size = 0;
+        let mut changed = 0;
+        for group in faces.chunk_by(|a, b| a.0 == b.0) {
+            size += 1;
+            if 2 * group.iter().filter(|g| g.1).count() >= group.len() {
+                changed += 1;
+            }
         }
         if 2 * changed > size {
             report.flipped_shells += 1;

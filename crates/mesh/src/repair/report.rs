@@ -20,7 +20,8 @@ pub struct RepairReport {
     pub holes_closed: usize,
     /// Triangles added to close them.
     pub hole_triangles: usize,
-    /// Triangles reversed to agree with the rest of their shell.
+    /// Input faces (by source face: once however many triangles it became) reversed to
+    /// agree with the rest of their shell.
     pub flipped_faces: usize,
     /// Shells turned inside out to face the right way (outward, or inward for a cavity).
     pub flipped_shells: usize,
