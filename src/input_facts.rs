@@ -206,10 +206,11 @@ mod tests {
             parse_tolerance("1e-6", None).unwrap(),
             Tolerance::Fixed(1e-6)
         );
-        assert_eq!(
-            parse_tolerance("5um", Some(Units::Mm)).unwrap(),
-            Tolerance::Fixed(5e-6 / 1e-3)
-        );
+        // 5 µm in a millimetre file is 0.005 input units.
+        match parse_tolerance("5um", Some(Units::Mm)).unwrap() {
+            Tolerance::Fixed(v) => assert!((v - 0.005).abs() < 1e-15, "{v}"),
+            t => panic!("{t:?}"),
+        }
         assert_eq!(
             parse_tolerance("0.001 in", Some(Units::In)).unwrap(),
             Tolerance::Fixed(0.001)

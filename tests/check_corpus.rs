@@ -1,6 +1,8 @@
 //! Runs `apart check` on every case of `tests/corpus/<case>/`, each with an
 //! `expected.txt`: a line `exit N`, an optional line `input PATH` (default: the case
-//! folder itself), and `contains TEXT` lines that must all appear in the output.
+//! folder itself), an optional line `args FLAG ...` (e.g. `--strict`, so that a
+//! validation rule is seen before repair), and `contains TEXT` lines that must all
+//! appear in the output.
 //! The cases were written by hand, one per validation rule, so the expectations are
 //! independent of the program's output.
 
@@ -10,6 +12,7 @@ use std::process::Command;
 struct Expected {
     exit: i32,
     input: String,
+    args: Vec<String>,
     contains: Vec<String>,
 }
 
@@ -17,6 +20,7 @@ fn parse(text: &str) -> Expected {
     let mut e = Expected {
         exit: -1,
         input: ".".into(),
+        args: Vec::new(),
         contains: Vec::new(),
     };
     for line in text.lines() {
@@ -24,6 +28,8 @@ fn parse(text: &str) -> Expected {
             e.exit = v.trim().parse().expect("exit code");
         } else if let Some(v) = line.strip_prefix("input ") {
             e.input = v.trim().to_string();
+        } else if let Some(v) = line.strip_prefix("args ") {
+            e.args = v.split_whitespace().map(str::to_string).collect();
         } else if let Some(v) = line.strip_prefix("contains ") {
             e.contains.push(v.to_string());
         }
@@ -47,6 +53,7 @@ fn corpus() {
         let expected = parse(&std::fs::read_to_string(case.join("expected.txt")).unwrap());
         let out = Command::new(env!("CARGO_BIN_EXE_apart"))
             .args(["check", &expected.input])
+            .args(&expected.args)
             .current_dir(case)
             .output()
             .unwrap();
@@ -73,6 +80,7 @@ fn corpus() {
         // The same through --json: valid JSON with the same verdict.
         let out = Command::new(env!("CARGO_BIN_EXE_apart"))
             .args(["--json", "check", &expected.input])
+            .args(&expected.args)
             .current_dir(case)
             .output()
             .unwrap();

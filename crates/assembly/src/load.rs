@@ -359,11 +359,12 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
             });
         }
     }
-    let solids = if opts.repair && opts.split_bodies && spec.splittable {
-        joined_bodies(&mesh)
-    } else {
-        vec![mesh]
-    };
+    // A mesh without triangles has no body; it stays whole for validation to report.
+    let solids = match opts.repair && opts.split_bodies && spec.splittable {
+        true => Some(joined_bodies(&mesh)).filter(|b| !b.is_empty()),
+        false => None,
+    }
+    .unwrap_or_else(|| vec![mesh]);
     if solids.len() <= 1 {
         let m = solids.into_iter().next();
         return Built {
