@@ -201,7 +201,7 @@ fn main() {
     let mut linked = Soup::new("two linked rings (not touching)");
     linked.add(&ring, |p| p);
     linked.add(&ring, |p| [p[0] + w / 3, -p[2], p[1]]);
-    row(&linked, false);
+    row(&linked, true);
     let mut bars = Soup::new("ring crossed by 8 random bars");
     bars.add(&ring, |p| p);
     let th = hi[2] - lo[2];

@@ -11,6 +11,11 @@
 //! at reflex edges with planes through input points, until the part is convex in each
 //! cell; then greedy merging of pieces whose union is convex (see `merge`).
 //!
+//! A surface that crosses itself (as real CAD tessellations do) is handled by
+//! [`decompose_union`]: the convex pieces of its union solid `{w >= 1}`, `w` the winding
+//! number, by a partition that goes on until no triangle meets a cell's open interior
+//! (see `union`).
+//!
 //! ```
 //! use apart_kernel::Vec3;
 //! use apart_decompose::{decompose, verify, Options};
@@ -88,8 +93,9 @@ pub struct Stats {
     /// `floor(log2)` of the largest vertex denominator `W` over the pieces (0 when every
     /// vertex is an integer point); a piece's common denominator can be larger.
     pub max_den_bits: u32,
-    /// Least and greatest winding number over the partition's cells, for
-    /// [`decompose_union`] (`None` for [`decompose`]).
+    /// Least and greatest winding number over the cells of [`decompose_union`]'s
+    /// partition, which covers a box around the surface (so the least is at most 0; below
+    /// 0 where the surface is partly inside out). `None` for [`decompose`].
     pub winding: Option<(i64, i64)>,
     /// Wall-clock time.
     pub seconds: f64,
@@ -273,12 +279,14 @@ fn finish(cells: &[cell::Cell]) -> Result<(u32, Vec<Polytope>), DecomposeError> 
 /// triangles, bad indices, too large coordinates, an edge not used equally often both
 /// ways ([`DecomposeError::NotClosed`]), and an empty union
 /// ([`DecomposeError::NotPositive`]). `reflex_edges` is 0: the union's edges are not
-/// input edges. On a valid solid the result is the same solid as [`decompose`]'s, in
-/// usually more pieces.
+/// input edges. On a valid solid the result is the same solid as [`decompose`]'s, usually
+/// in as many pieces, in about twice the time.
 ///
-/// Method (see `union`): an autopartition by the triangles' planes until no triangle
-/// meets a cell's open interior, each cell kept when the exact winding number of an
-/// interior point is at least 1, then the same merging as [`decompose`].
+/// Method (see `union`): a binary space partition by planes through input points (first
+/// through reflex and non-manifold elements, as [`decompose`] cuts, then the triangles'
+/// own planes) until no triangle meets a cell's open interior; each cell is kept when
+/// the exact winding number of an interior point is at least 1; then the same merging
+/// as [`decompose`].
 pub fn decompose_union(
     points: &[Vec3],
     triangles: &[[u32; 3]],
