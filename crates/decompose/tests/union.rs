@@ -650,3 +650,33 @@ fn union_stress() {
         tetrahedra(&pts);
     }
 }
+
+#[test]
+fn sliver_triangle_closing_a_t_junction() {
+    // The box [0, 2]^3 whose top face is split at the midpoint m of its edge a-b, the
+    // T-junction closed by the zero-area triangle (a, b, m): a common CAD artefact.
+    // decompose rejects the collinear triangle; the union counts it for closure only.
+    let mut m = Mesh::welded();
+    m.cuboid([0, 0, 0], [2, 2, 2], true);
+    let (a, b) = ([0, 0, 2], [2, 0, 2]);
+    let top: Vec<usize> = (0..m.tris.len())
+        .filter(|&t| m.tris[t].iter().all(|&v| m.raw[v as usize][2] == 2))
+        .collect();
+    assert_eq!(top.len(), 2);
+    // Replace the top face by a fan from the midpoint m = (1, 0, 2).
+    let (ia, ib) = (m.id(a), m.id(b));
+    let (ic, id) = (m.id([2, 2, 2]), m.id([0, 2, 2]));
+    let im = m.id([1, 0, 2]);
+    m.tris.remove(top[1]);
+    m.tris.remove(top[0]);
+    m.tris
+        .extend([[im, ib, ic], [im, ic, id], [im, id, ia], [ia, ib, im]]);
+    let err = decompose(&m.points, &m.tris, &Options::default()).unwrap_err();
+    assert!(
+        matches!(err, DecomposeError::DegenerateTriangle { .. }),
+        "{err}"
+    );
+    let d = run(&m);
+    assert_eq!(volume(&d.pieces), Rational::from_int(8));
+    assert_eq!(d.pieces.len(), 1);
+}
