@@ -1,16 +1,19 @@
 //! Measures `repair` on ~50k-triangle meshes with T-junction seams (run with
 //! `cargo run --release -p apart-mesh --example repair_time`): a seamed box, the same
-//! with a third of its triangles reversed, and as a float32 binary STL.
+//! with a third of its triangles reversed, as a float32 binary STL; and 4000 boxes in
+//! one mesh, half of them inside out, split into bodies.
 
 use apart_kernel::Grid;
 use apart_mesh::formats::{read_bytes, Format};
-use apart_mesh::repair::{repair, RepairOptions};
+use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::validate;
 use apart_mesh::{Mesh, Polygons, RawObject};
-use apart_testkit::defects::{decimal_seamed_box, seamed_box, seamed_box_extent_unit};
+use apart_testkit::defects::{
+    box_soup, decimal_seamed_box, seamed_box, seamed_box_extent_unit, seamed_box_tjunctions,
+};
 use std::time::Instant;
 
-fn run(name: &str, raw: &RawObject, grid: &Grid) {
+fn run(name: &str, raw: &RawObject, grid: &Grid) -> Mesh {
     let (m, _) = Mesh::from_raw(raw, grid);
     let mut m = m.expect("a mesh");
     let n = m.triangles.len();
@@ -24,6 +27,7 @@ fn run(name: &str, raw: &RawObject, grid: &Grid) {
         m.triangles.len(),
         dt.as_secs_f64() * 1e3
     );
+    m
 }
 
 fn main() {
@@ -37,6 +41,7 @@ fn main() {
         faces: Polygons::from(s.faces.clone()),
     };
     let grid = Grid::unit(30);
+    println!("(expected: {} T-junctions)", seamed_box_tjunctions(&div));
     run("seamed box", &raw(&soup), &grid);
     let mut flipped = soup.clone();
     for (i, f) in flipped.faces.iter_mut().enumerate() {
@@ -55,4 +60,22 @@ fn main() {
     let objects = read_bytes(&stl, Format::Stl, None).expect("reading back");
     let grid = Grid::choose(objects[0].vertices.iter().flatten().copied(), 30).expect("grid");
     run("decimal seamed box via float32 STL", &objects[0], &grid);
+
+    let mut many = apart_testkit::Soup::default();
+    for i in 0..4000 {
+        let (x, y) = ((i % 64) as f64 * 3.0, (i / 64) as f64 * 3.0);
+        let mut b = box_soup([x, y, 0.0], [x + 2.0, y + 2.0, 2.0]);
+        if i % 2 == 1 {
+            b.faces.iter_mut().for_each(|f| f.reverse());
+        }
+        many.append(&b);
+    }
+    let m = run("4000 boxes, half inside out", &raw(&many), &Grid::unit(30));
+    let t = Instant::now();
+    let parts = bodies(&m);
+    println!(
+        "bodies: {} in {:.1} ms",
+        parts.len(),
+        t.elapsed().as_secs_f64() * 1e3
+    );
 }

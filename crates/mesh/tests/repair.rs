@@ -46,6 +46,25 @@ fn check_invariants(m: &Mesh, input_faces: usize) {
     assert!(used.iter().all(|u| *u), "unused vertex left");
 }
 
+/// The bodies of `m` partition its triangles: every triangle (as grid points, with its
+/// source face) lands in exactly one body.
+fn check_bodies(m: &Mesh) {
+    let key = |m: &Mesh, t: usize| (m.corners(t).map(|p| *p), m.source_faces[t]);
+    let mut all: Vec<_> = (0..m.triangles.len()).map(|t| key(m, t)).collect();
+    let parts = bodies(m);
+    let mut got: Vec<_> = parts
+        .iter()
+        .flat_map(|b| (0..b.triangles.len()).map(move |t| key(b, t)))
+        .collect();
+    all.sort_unstable();
+    got.sort_unstable();
+    assert_eq!(all, got);
+    for b in &parts {
+        assert_eq!(b.vertices.len(), b.source_vertices.len());
+        assert!(!b.triangles.is_empty());
+    }
+}
+
 /// Snaps on the unit grid, repairs, checks the report, validates without error and
 /// checks the exact volume; returns the repaired mesh.
 fn repaired(soup: &Soup, expect: RepairReport, volume: i128) -> Mesh {
@@ -373,26 +392,20 @@ fn on_box_edge(p: [f64; 3], q: [f64; 3], e: [u64; 3]) -> bool {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
-    /// Random seamed boxes with random duplicated and flipped faces and an optional
-    /// one-triangle hole, all injected away from the seams so that each defect is
-    /// repaired exactly once.
+    /// Random seamed boxes with random duplicated and flipped faces (anywhere, seams
+    /// included: a face split at a seam still counts once) and an optional
+    /// one-triangle hole away from the seams and from the other defects, so that each
+    /// defect is repaired exactly once.
     #[test]
     fn random_defects(div in proptest::array::uniform6(proptest::array::uniform2(1u32..6)),
                       scale in 1u64..4,
                       picks in proptest::collection::vec(any::<u32>(), 0..12),
-                      hole in any::<bool>()) {
+                      hole in proptest::option::of(any::<u32>())) {
         let e = [0, 1, 2].map(|k| scale * seamed_box_extent_unit(&div, k));
         let mut soup = seamed_box(e, div);
         let p = |i: u32| soup.vertices[i as usize];
-        // Triangles with no edge on a box edge are never split.
-        let inner: Vec<usize> = (0..soup.faces.len())
-            .filter(|&t| {
-                let f = &soup.faces[t];
-                (0..3).all(|k| !on_box_edge(p(f[k]), p(f[(k + 1) % 3]), e))
-            })
-            .collect();
-        prop_assume!(inner.len() >= 4);
-        let mut chosen: Vec<usize> = picks.iter().map(|&x| inner[x as usize % inner.len()]).collect();
+        let n = soup.faces.len();
+        let mut chosen: Vec<usize> = picks.iter().map(|&x| x as usize % n).collect();
         chosen.sort_unstable();
         chosen.dedup();
         let key = |t: usize| {
@@ -400,11 +413,18 @@ proptest! {
             v.sort_unstable();
             v
         };
-        // The hole: the first chosen triangle; flips and duplicates share no vertex with it.
+        // The hole: a triangle with no edge on a box edge (never split); flips and
+        // duplicates share no vertex with it.
+        let inner: Vec<usize> = (0..n)
+            .filter(|&t| {
+                let f = &soup.faces[t];
+                (0..3).all(|k| !on_box_edge(p(f[k]), p(f[(k + 1) % 3]), e))
+            })
+            .collect();
         let mut expect = RepairReport { tjunctions: seamed_box_tjunctions(&div), ..Default::default() };
         let mut removed = None;
-        if hole && !chosen.is_empty() {
-            let h = chosen.remove(0);
+        if let (Some(h), false) = (hole, inner.is_empty()) {
+            let h = inner[h as usize % inner.len()];
             let hv = key(h);
             chosen.retain(|&t| key(t).iter().all(|v| !hv.contains(v)));
             removed = Some(h);
@@ -470,24 +490,27 @@ proptest! {
     #[test]
     fn fuzz_garbage(points in proptest::collection::vec(proptest::array::uniform3(0i32..5), 3..24),
                     tris in proptest::collection::vec(proptest::array::uniform3(any::<u16>()), 0..60),
-                    holes in 0usize..8) {
+                    holes in 0usize..8,
+                    huge in any::<bool>()) {
         let n = points.len();
+        // With `huge`, the lattice is spread over 52-bit coordinates (the exact
+        // predicates' slow paths).
+        let (step, shift) = if huge { ((1i64 << 48) as f64, -((1i64 << 50) as f64)) } else { (1.0, 0.0) };
         let soup = Soup {
-            vertices: points.iter().map(|p| p.map(|c| c as f64)).collect(),
+            vertices: points.iter().map(|p| p.map(|c| c as f64 * step + shift)).collect(),
             faces: tris.iter().map(|t| t.iter().map(|&i| i as u32 % n as u32).collect()).collect(),
         };
-        let grid = Grid::unit(30);
+        let grid = Grid::unit(if huge { 53 } else { 30 });
         let (m, _) = Mesh::from_raw(&raw(&soup), &grid);
         let mut m = m.unwrap();
         let _ = repair(&mut m, &RepairOptions { max_hole_edges: holes });
         check_invariants(&m, soup.faces.len());
-        let _ = bodies(&m);
+        check_bodies(&m);
         let _ = validate(&mut m, &grid);
     }
 
     /// Mutated defect meshes: random triangles of a seamed box dropped, reversed or
-    /// repeated. Repair ends with its invariants, and repairing twice changes nothing
-    /// more than orientation and holes can (never panics).
+    /// repeated. Repair ends and keeps the mesh invariants; bodies and validation run.
     #[test]
     fn fuzz_mutated(div in proptest::array::uniform6(proptest::array::uniform2(1u32..4)),
                     ops in proptest::collection::vec((0u8..3, any::<u32>()), 0..20)) {
@@ -510,7 +533,7 @@ proptest! {
         let mut m = m.unwrap();
         let _ = repair(&mut m, &RepairOptions::default());
         check_invariants(&m, soup.faces.len());
-        let _ = bodies(&m);
+        check_bodies(&m);
         let _ = validate(&mut m, &grid);
     }
 }

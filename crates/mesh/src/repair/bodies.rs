@@ -108,3 +108,55 @@ pub fn bodies(mesh: &Mesh) -> Vec<Mesh> {
     out.sort_by_key(|(f, _)| *f);
     out.into_iter().map(|(_, m)| m).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cube `lo..lo + s` as 12 outward triangles (vertices appended to `v`).
+    fn cube(v: &mut Vec<[i64; 3]>, t: &mut Vec<[u32; 3]>, lo: [i64; 3], s: i64) {
+        let b = v.len() as u32;
+        for i in 0..8 {
+            v.push([0, 1, 2].map(|k| lo[k] + if i >> k & 1 == 1 { s } else { 0 }));
+        }
+        for q in [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ] {
+            t.push([b + q[0], b + q[1], b + q[2]]);
+            t.push([b + q[0], b + q[2], b + q[3]]);
+        }
+    }
+
+    #[test]
+    fn cubes_meeting_at_a_corner_are_two_bodies() {
+        let (mut v, mut t) = (Vec::new(), Vec::new());
+        cube(&mut v, &mut t, [0, 0, 0], 2);
+        cube(&mut v, &mut t, [2, 2, 2], 2);
+        // Weld the shared corner (2, 2, 2): vertex 7 of the first, 8 of the second.
+        for tri in &mut t {
+            for x in tri.iter_mut() {
+                if *x == 8 {
+                    *x = 7;
+                }
+            }
+        }
+        let m = Mesh {
+            vertices: v,
+            source_faces: (0..24).collect(),
+            triangles: t,
+            source_vertices: (0..16).collect(),
+        };
+        let parts = bodies(&m);
+        assert_eq!(parts.len(), 2);
+        assert!(parts
+            .iter()
+            .all(|p| p.vertices.len() == 8 && p.volume6() == Int::from(48)));
+        assert_eq!(parts[1].source_faces[0], 12);
+        assert!(parts[1].source_vertices.contains(&7));
+    }
+}

@@ -44,17 +44,29 @@ pub(super) fn drop_unused_vertices(mesh: &mut Mesh) {
 }
 
 /// The mesh made of the triangles listed in `tris` (in that order), with only the
-/// vertices they use.
+/// vertices they use (in their order in `mesh`). Costs `O(k log k)` for `k` triangles,
+/// whatever the size of `mesh`, so that splitting into many bodies stays linear.
 pub(super) fn submesh(mesh: &Mesh, tris: &[u32]) -> Mesh {
-    let mut m = Mesh {
-        vertices: mesh.vertices.clone(),
-        triangles: tris.iter().map(|&t| mesh.triangles[t as usize]).collect(),
+    let mut used: Vec<u32> = tris
+        .iter()
+        .flat_map(|&t| mesh.triangles[t as usize])
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    let local = |v: u32| used.binary_search(&v).expect("a used vertex") as u32;
+    Mesh {
+        vertices: used.iter().map(|&v| mesh.vertices[v as usize]).collect(),
+        triangles: tris
+            .iter()
+            .map(|&t| mesh.triangles[t as usize].map(local))
+            .collect(),
         source_faces: tris
             .iter()
             .map(|&t| mesh.source_faces[t as usize])
             .collect(),
-        source_vertices: mesh.source_vertices.clone(),
-    };
-    drop_unused_vertices(&mut m);
-    m
+        source_vertices: used
+            .iter()
+            .map(|&v| mesh.source_vertices.get(v as usize).copied().unwrap_or(v))
+            .collect(),
+    }
 }

@@ -150,3 +150,55 @@ fn closed_shells(shells: &Shells, uses: &[super::edges::Use], flip: &[bool]) -> 
     }
     closed
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra(offset: i64, outward: bool) -> (Vec<[i64; 3]>, Vec<[u32; 3]>) {
+        let o = offset;
+        let v = vec![[o, 0, 0], [o + 6, 0, 0], [o, 6, 0], [o, 0, 6]];
+        let mut t = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        if !outward {
+            t.iter_mut().for_each(|x| x.swap(1, 2));
+        }
+        (v, t)
+    }
+
+    #[test]
+    fn one_reversed_face_and_one_inside_out_shell() {
+        let (mut v, mut t) = tetra(0, true);
+        t[2].swap(0, 1);
+        let (v2, t2) = tetra(10, false);
+        v.extend(v2);
+        t.extend(t2.iter().map(|x| x.map(|i| i + 4)));
+        let mut m = Mesh {
+            vertices: v,
+            source_faces: (0..t.len() as u32).collect(),
+            triangles: t,
+            source_vertices: (0..8).collect(),
+        };
+        let mut r = RepairReport::default();
+        orient(&mut m, &mut r);
+        assert_eq!((r.flipped_faces, r.flipped_shells), (1, 1));
+        assert_eq!(m.volume6(), Int::from(2 * 216));
+    }
+
+    #[test]
+    fn an_open_shell_keeps_most_of_its_faces() {
+        // Three faces of a tetrahedron, one reversed: the two others decide.
+        let (v, mut t) = tetra(0, false);
+        t.pop();
+        t[0].swap(0, 1);
+        let mut m = Mesh {
+            vertices: v,
+            source_faces: vec![0, 1, 2],
+            triangles: t.clone(),
+            source_vertices: (0..4).collect(),
+        };
+        let mut r = RepairReport::default();
+        orient(&mut m, &mut r);
+        assert_eq!((r.flipped_faces, r.flipped_shells), (1, 0));
+        assert_eq!(&m.triangles[1..], &t[1..]);
+    }
+}
