@@ -130,7 +130,7 @@ fn float32_rounded_stl_with_seams() {
     let mut stl = Vec::new();
     soup.write_binary_stl(&mut stl).unwrap();
     let objects = read_bytes(&stl, Format::Stl, None).unwrap();
-    let grid = Grid { exp: -12, bits: 30 };
+    let grid = Grid { exp: -10, bits: 30 };
     let (m, p) = Mesh::from_raw(&objects[0], &grid);
     assert!(p.is_empty(), "{p:?}");
     let mut m = m.unwrap();
@@ -143,7 +143,7 @@ fn float32_rounded_stl_with_seams() {
         }
     );
     let (lo, hi) = decimal_seamed_box_corners(e);
-    let s = |v: f64| (v * 4096.0).round() as i128;
+    let s = |v: f64| (v * 1024.0).round() as i128;
     let expect: i128 = (0..3).map(|k| s(hi[k]) - s(lo[k])).product();
     assert_eq!(m.volume6(), Int::from(6 * expect));
     let (_, p) = validate(&mut m, &grid);
@@ -503,6 +503,7 @@ proptest! {
         let grid = Grid::unit(if huge { 53 } else { 30 });
         let (m, _) = Mesh::from_raw(&raw(&soup), &grid);
         let mut m = m.unwrap();
+        check_bodies(&m); // bodies also takes unrepaired meshes
         let _ = repair(&mut m, &RepairOptions { max_hole_edges: holes });
         check_invariants(&m, soup.faces.len());
         check_bodies(&m);

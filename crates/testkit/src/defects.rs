@@ -179,11 +179,13 @@ pub fn float32_rounded(soup: &Soup) -> Soup {
 /// (not representable in binary floating point). Written with
 /// [`Soup::write_binary_stl`] its coordinates are rounded to `f32`.
 ///
-/// Known answer: on any grid whose spacing `h` is at least `2^-12`, the corners snap to
-/// `round(c / h)` of their decimal values (the `f32` error, below `2^-13 · 2^-10 · 1024`,
-/// is far below `h / 2` for these values), so the volume in grid units is the product of
-/// the snapped extents; the T-junction count is [`seamed_box_tjunctions`]`(div)` (the
-/// seams are axis-parallel, so the rounded seam vertices stay exactly on the edges).
+/// Known answer: while every coordinate stays below 1024 in magnitude (extents below
+/// 230), `f32` rounding moves a coordinate by at most `2^-15`, which on the grid
+/// `h = 2^-10` is at most 1/32 of a step, whereas `c / h` (a multiple of 102.4) is at
+/// least 0.1 away from a half-integer: each corner snaps to `round(c · 1024)` of its
+/// decimal value, and the volume in grid units is the product of the snapped extents.
+/// The T-junction count is [`seamed_box_tjunctions`]`(div)` (the seams are
+/// axis-parallel, so the rounded seam vertices stay exactly on the edges).
 pub fn decimal_seamed_box(extent: [u64; 3], div: [[u32; 2]; 6]) -> Soup {
     let lo = [1000.1, -250.3, 40.7];
     let hi = [0, 1, 2].map(|k| lo[k] + extent[k] as f64 * 0.1);
