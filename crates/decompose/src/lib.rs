@@ -93,9 +93,11 @@ pub struct Stats {
     /// `floor(log2)` of the largest vertex denominator `W` over the pieces (0 when every
     /// vertex is an integer point); a piece's common denominator can be larger.
     pub max_den_bits: u32,
-    /// Least and greatest winding number over the cells of [`decompose_union`]'s
-    /// partition, which covers a box around the surface (so the least is at most 0; below
-    /// 0 where the surface is partly inside out). `None` for [`decompose`].
+    /// For [`decompose_union`]: the least winding number in a box around the surface,
+    /// exactly (at most 0; below 0 where the surface is partly inside out), and the
+    /// greatest one met (at least 1; a cell found to lie entirely in the solid is kept
+    /// without looking further, so a larger value may hide there). `None` for
+    /// [`decompose`].
     pub winding: Option<(i64, i64)>,
     /// Wall-clock time.
     pub seconds: f64,

@@ -12,6 +12,11 @@
 //! closure of `{w >= 1}`: the leaves cover the box, the surface has measure zero, and a
 //! leaf is kept exactly when its open interior lies in `{w >= 1}`.
 //!
+//! (Exactly: the union of the kept cells is closed and contains `{w >= 1}` off the surface,
+//! hence its closure; conversely each kept cell is the closure of its open interior,
+//! which lies in `{w >= 1}` off the surface, a set of measure zero that cannot hold an
+//! open set.)
+//!
 //! The planes are chosen as by `decompose` while a reflex or non-manifold input edge or a
 //! non-manifold vertex meets the open cell (through such an element, see `split`), then
 //! among the fragments' planes (cutting few fragments). The first kind only serves the
@@ -19,13 +24,17 @@
 //! holds one convex part of the solid, which the fragment planes carve out without
 //! cutting it. Correctness rests on the leaves alone.
 //!
+//! A cell that still holds fragments is also a leaf, kept whole, when it provably lies
+//! in the solid (fragments of interior layers, e.g. where shells overlap; see
+//! `UnionPartition::whole`): this only saves cuts.
+//!
 //! Termination: a plane of the first kind contains a live element, which then meets
 //! neither open part; one of the second kind contains a fragment, likewise. Parts only
 //! inherit elements and fragments of their parent.
 //!
 //! The ray: from `q` along `+x`, with `q` moved to `q + (0, ε, ε²)` for an infinitesimal
-//! `ε` (simulation of simplicity). The moved point stays in the open leaf, so `w` is
-//! unchanged, and the moved ray passes through no triangle edge or vertex and lies in no
+//! `ε` (simulation of simplicity). `q` lies on no triangle, so the moved point has the
+//! same `w`, and the moved ray passes through no triangle edge or vertex and lies in no
 //! triangle plane parallel to `x`: every crossing is proper. A crossed triangle with
 //! outward normal `n` adds `sign(n_x)` (leaving through the outer side counts +1, since
 //! `w = 0` far away). Exactness: the point-in-triangle test is three 2D orientations in
@@ -48,10 +57,16 @@ use std::sync::Arc;
 
 /// Cells with fewer fragments than this in either part are processed sequentially.
 const PARALLEL_MIN: usize = 48;
+/// Cells with more fragments than this are never kept whole (see `whole`).
+const WHOLE_MAX: usize = 64;
+/// Nor those with more fragments facing an interior point than this: `w` would have to
+/// exceed it.
+const WHOLE_MAX_INNER: i64 = 2;
 /// Candidate planes evaluated per split.
 const CANDIDATES: usize = 24;
 
-/// A leaf cell and the winding number on its interior.
+/// A leaf cell and the winding number at its interior point (on the whole interior for
+/// a cell without fragments; at least 1 on all of it otherwise).
 pub(crate) struct Leaf {
     pub cell: Cell,
     pub w: i64,
@@ -120,11 +135,43 @@ impl<'a> UnionPartition<'a> {
         Ok(out)
     }
 
+    /// The winding number at an interior point when the whole cell lies in the solid
+    /// although fragments cross it (interior layers, e.g. where shells overlap).
+    ///
+    /// For `x` and `q` in the open cell, off the surface, the segment from `q` to `x`
+    /// stays in the open cell and meets each fragment at most once (generically): `w`
+    /// drops by one exactly where it leaves a fragment's inner side. So
+    /// `w(x) >= w(q) - k`, `k` the number of fragments with `q` strictly on their inner
+    /// side, and the cell lies in the solid (up to the surface) when `w(q) - k >= 1`.
+    /// `q` must lie on no fragment's plane (else the cell is just split).
+    fn whole(&self, t: &Task) -> Result<Option<i64>, DecomposeError> {
+        if t.frags.len() > WHOLE_MAX {
+            return Ok(None);
+        }
+        let q = interior_point(&t.cell);
+        let mut inner = 0;
+        for f in &t.frags {
+            match self.solid.planes[f.tri as usize].side(&q) {
+                Sign::Zero => return Ok(None),
+                Sign::Negative => inner += 1,
+                Sign::Positive => {}
+            }
+        }
+        if inner > WHOLE_MAX_INNER {
+            return Ok(None);
+        }
+        let w = self.rays.winding(self.solid, &q)?;
+        Ok((w - inner >= 1).then_some(w))
+    }
+
     fn step(&self, t: Task) -> Result<Step, DecomposeError> {
         self.counters.cells.fetch_add(1, Ordering::Relaxed);
         if t.frags.is_empty() {
             let q = interior_point(&t.cell);
             let w = self.rays.winding(self.solid, &q)?;
+            return Ok(Step::Leaf(Leaf { cell: t.cell, w }));
+        }
+        if let Some(w) = self.whole(&t)? {
             return Ok(Step::Leaf(Leaf { cell: t.cell, w }));
         }
         self.counters.splits.fetch_add(1, Ordering::Relaxed);
