@@ -275,20 +275,22 @@ fn finish(cells: &[cell::Cell]) -> Result<(u32, Vec<Polytope>), DecomposeError> 
 /// Accepted: any triangles over points with coordinates below `2^MAX_COORD_BITS` such that
 /// every edge (pair of point indices) is used equally often in both directions. The
 /// triangles may cross, overlap, coincide or touch; shells may nest or be repeated
-/// (`w >= 2` is inside); triangles with collinear corners count for closure only;
-/// regions of negative winding (inside-out parts, e.g. a dent pushed through the opposite
-/// face) are outside, like `w = 0`, and show in [`Stats::winding`]. Rejected: no
+/// (`w >= 2` is inside); triangles with collinear corners count for closure only (a
+/// corner repeated in a triangle makes no edge); regions of negative winding (inside-out
+/// parts, e.g. a dent pushed through the opposite face) are outside, like `w = 0`, and
+/// show in [`Stats::winding`]. Rejected: no
 /// triangles, bad indices, too large coordinates, an edge not used equally often both
 /// ways ([`DecomposeError::NotClosed`]), and an empty union
 /// ([`DecomposeError::NotPositive`]). `reflex_edges` is 0: the union's edges are not
 /// input edges. On a valid solid the result is the same solid as [`decompose`]'s, usually
-/// in as many pieces, in about twice the time.
+/// in as many pieces, in 1 to 2 times the time.
 ///
 /// Method (see `union`): a binary space partition by planes through input points (first
 /// through reflex and non-manifold elements, as [`decompose`] cuts, then the triangles'
-/// own planes) until no triangle meets a cell's open interior; each cell is kept when
-/// the exact winding number of an interior point is at least 1; then the same merging
-/// as [`decompose`].
+/// own planes) until no triangle meets a cell's open interior, each such cell kept when
+/// the exact winding number of an interior point is at least 1 (a cell still crossed by
+/// triangles is kept whole when an exact bound shows `w >= 1` all over it); then the
+/// same merging as [`decompose`].
 pub fn decompose_union(
     points: &[Vec3],
     triangles: &[[u32; 3]],

@@ -177,7 +177,8 @@ impl Solid {
     /// corners, indexed as by [`Solid::new`] but without its errors for a failed pairing
     /// or a non-positive volume (unbalanced or unpaired edges are marked non-manifold).
     /// Checks indices, coordinates and closure: every edge used equally often in both
-    /// directions, counting collinear triangles too.
+    /// directions, counting collinear triangles too (a corner repeated in a triangle
+    /// makes no edge).
     pub fn surface(points: &[Vec3], triangles: &[[u32; 3]]) -> Result<Solid, DecomposeError> {
         if triangles.is_empty() {
             return Err(DecomposeError::Empty);
@@ -191,7 +192,9 @@ impl Solid {
             }
             for k in 0..3 {
                 let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                half.push((u.min(v), u.max(v), u < v));
+                if u != v {
+                    half.push((u.min(v), u.max(v), u < v));
+                }
             }
             let [a, b, c] = tri.map(|v| &pts[v as usize]);
             if Plane::through(a, b, c).is_some() {
