@@ -255,4 +255,19 @@ fn main() {
         ]
     });
     row(&tt, false);
+    println!();
+    println!("Scaling:");
+    println!();
+    println!("| surface | triangles | crossing pairs | winding | cells | kept cells | pieces | sequential ms | parallel ms | decompose (valid solids) |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let big = shapes::Ring::with_section(256, 1105, 40, 5 * 13 * 17 * 29 * 37).shape();
+    let mut r = Soup::new("ring (256 x 32-gon), valid");
+    r.add(&big, |p| p);
+    row(&r, true);
+    let [lo, hi] = r.bbox();
+    let w = hi[0] - lo[0];
+    let mut two = Soup::new("two crossing rings (256 x 32-gon)");
+    two.add(&big, |p| p);
+    two.add(&big, |p| [p[0] + 3 * w / 10, p[1] + w / 7, p[2]]);
+    row(&two, false);
 }
