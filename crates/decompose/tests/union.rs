@@ -189,6 +189,19 @@ fn two_overlapping_boxes() {
     check_voxel_centres(&d.pieces, [-1; 3], [7; 3], |p| {
         in_box(p, a.0, a.1) || in_box(p, b.0, b.1)
     });
+    // Sequential and unmerged runs give the same solid.
+    for (merge, parallel) in [(false, false), (false, true), (true, false)] {
+        let opts = Options { merge, parallel };
+        let e = decompose_union(&m.points, &m.tris, &opts).unwrap();
+        check_pieces(&e.pieces);
+        assert_eq!(volume(&e.pieces), Rational::from_int(84));
+        if !merge {
+            assert_eq!(
+                (e.stats.merges, e.pieces.len()),
+                (0, e.stats.partition_pieces)
+            );
+        }
+    }
 }
 
 #[test]
