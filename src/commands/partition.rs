@@ -10,7 +10,8 @@ use anyhow::Context;
 use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSvgOptions};
 use apart::kernel::{Grid, Vec3};
 use apart::plan::{
-    dbg_at, partition_subset, parts_of, BlockingRegions, CellKind, Options, Partitioning, Solution,
+    dbg_along, partition_first, partition_subset, parts_of, BlockingRegions, CellKind, Options,
+    Partitioning, Solution,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -117,13 +118,29 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let load_seconds = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
     let parts = parts_of(asm)?;
+    if let Some(d) = &args.direction {
+        // One direction: per-piece-pair tests only, no motion-space arrangement.
+        return direction(global, &parts, d);
+    }
+    let pictures = args.svg.is_some() || args.png.is_some();
+    if args.first && !pictures {
+        // Likely directions first; the full computation only when none separates.
+        let p = partition_first(&parts)?;
+        if global.json {
+            output::json(&to_json(&p, load_seconds))?;
+        } else {
+            print_text(&p, asm, args, global, load_seconds);
+        }
+        return Ok(if p.interlocked {
+            ExitCode::from(2)
+        } else {
+            ExitCode::SUCCESS
+        });
+    }
     let regions = BlockingRegions::compute(&parts)?;
     let all: Vec<usize> = (0..parts.len()).collect();
-    if let Some(d) = &args.direction {
-        return direction(args, global, &regions, &all, d);
-    }
     let (p, _) = partition_subset(&regions, &all, &Options { first: args.first });
-    if args.svg.is_some() || args.png.is_some() {
+    if pictures {
         let opts = SphereSvgOptions {
             title: format!("{}: motion space", asm.name),
             projection: args.projection.into(),
@@ -308,18 +325,15 @@ pub fn parse_direction(text: &str) -> anyhow::Result<Vec3> {
 }
 
 fn direction(
-    args: &PartitionArgs,
     global: &Global,
-    regions: &BlockingRegions,
-    all: &[usize],
+    parts: &[apart::plan::PartPieces],
     text: &str,
 ) -> anyhow::Result<ExitCode> {
     let d = parse_direction(text)?;
-    let names = regions.names();
-    let ms = apart::plan::MotionSpace::build(regions, all);
-    let (cell, _) = ms.locate(&d);
-    let g = dbg_at(regions, all, &d);
-    let moving = g.minimal_moving_sets();
+    let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
+    let names = &names[..];
+    let answer = dbg_along(parts, &d)?;
+    let (cell, g, moving) = (answer.cell, answer.dbg, answer.moving);
     let blocks: Vec<[String; 2]> = g
         .arcs()
         .iter()
@@ -357,7 +371,6 @@ fn direction(
             output::line(format_args!("can move: {}", names_of(names, m).join(", ")));
         }
     }
-    let _ = args;
     Ok(if moving.is_empty() {
         ExitCode::from(2)
     } else {

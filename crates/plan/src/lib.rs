@@ -40,14 +40,17 @@
 //! assert!(result.solutions.iter().any(|s| s.cell == CellKind::Edge && s.moving == vec![1]));
 //! ```
 
+pub mod along;
 pub mod clearance;
 pub mod dbg;
 pub mod motion_space;
+mod pairs;
 pub mod partition;
 pub mod regions;
 pub mod separate;
 pub mod sequence;
 
+pub use along::{dbg_along, partition_first, DirectionAnswer, DirectionQuery, QueryStats};
 pub use dbg::Dbg;
 pub use motion_space::{CellKind, MotionSpace};
 pub use partition::{

@@ -280,6 +280,51 @@ impl BlockingRegions {
         })
     }
 
+    /// Regions from given piece-pair polygons per unordered pair of parts (in the order
+    /// `(0,1), (0,2), …, (1,2), …`), without pieces: enough for a [`crate::MotionSpace`]
+    /// (used to build the motion space near one direction from the polygons that matter
+    /// there).
+    pub(crate) fn from_polygons(
+        names: Vec<String>,
+        polygons: Vec<Vec<SphericalPolygon>>,
+    ) -> BlockingRegions {
+        let n = names.len();
+        let pairs: Vec<(usize, usize)> = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .collect();
+        let mut index = vec![usize::MAX; n * n];
+        let regions: Vec<PairRegion> = pairs
+            .iter()
+            .zip(polygons)
+            .enumerate()
+            .map(|(k, (&(i, j), polygons))| {
+                index[i * n + j] = k;
+                let region = if polygons.is_empty() {
+                    RegionMap {
+                        arcs: Vec::new(),
+                        points: Vec::new(),
+                    }
+                } else {
+                    union_of(&polygons)
+                };
+                PairRegion {
+                    i,
+                    j,
+                    polygons,
+                    region,
+                    contact: false,
+                }
+            })
+            .collect();
+        BlockingRegions {
+            pieces: vec![Vec::new(); n],
+            names,
+            pairs: regions,
+            index,
+            stats: RegionStats::default(),
+        }
+    }
+
     /// Number of parts.
     pub fn part_count(&self) -> usize {
         self.names.len()

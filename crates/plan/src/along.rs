@@ -1,0 +1,475 @@
+//! One direction without the motion-space arrangement, and a quick first solution.
+//!
+//! [`dbg_along`] answers what `partition --direction` asks: the exact blocking graph at
+//! `d`, its minimal moving sets, and the kind of motion-space cell `d` lies in, from
+//! per-piece-pair tests only ([`crate::pairs`]): exact separating axes decide most pairs,
+//! touching pairs get their contact cone from a small sum of face neighbourhoods, and
+//! only the remaining pairs are summed in full, stopping for an ordered pair of parts as
+//! soon as one piece pair blocks it.
+//!
+//! The cell kind is local: near `d`, a pair's blocked set is everything when `d` is
+//! blocked, and otherwise the union of the piece pairs' polygons whose closure contains
+//! `d` (the others lie at a positive distance). So the motion space built from just
+//! those polygons (at `d` and `−d`, which the reversed pair sees) has, at `d`, the same
+//! vertex, edge or face as the full one.
+
+use crate::clearance::{to_angle, FArc};
+use crate::dbg::Dbg;
+use crate::motion_space::{CellKind, MotionSpace};
+use crate::pairs::{axes, classify, pair_polygon, Axis, PairPolygon, PieceInfo, Sep};
+use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
+use crate::regions::{BlockingRegions, PartPieces};
+use crate::PlanError;
+use apart_kernel::Vec3;
+use apart_sphere::SphericalPolygon;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
+use std::time::Instant;
+
+/// The exact answer at one direction.
+#[derive(Clone, Debug)]
+pub struct DirectionAnswer {
+    /// The direction (primitive).
+    pub direction: Vec3,
+    /// The kind of motion-space cell it lies in (as [`MotionSpace::locate`] says).
+    pub cell: CellKind,
+    /// The directional blocking graph (global part indices).
+    pub dbg: Dbg,
+    /// Its minimal moving sets.
+    pub moving: Vec<Vec<usize>>,
+}
+
+/// Work counters of a [`DirectionQuery`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct QueryStats {
+    /// Piece pairs of different parts.
+    pub piece_pairs: usize,
+    /// Pairs whose separating axes were computed (the box test did not decide).
+    pub axes: usize,
+    /// Contact cones from face neighbourhoods.
+    pub contact_cones: usize,
+    /// Full Minkowski sums.
+    pub sums: usize,
+}
+
+/// Lazily computed data of one piece pair (`a` of the smaller part index, `b` of the
+/// larger).
+#[derive(Default)]
+struct PairCache {
+    axes: OnceLock<Vec<Axis>>,
+    polygon: OnceLock<Result<PairPolygon, String>>,
+}
+
+/// Per-direction queries on an assembly's convex pieces, caching every piece pair's
+/// separating axes and projection between queries.
+pub struct DirectionQuery<'a> {
+    parts: &'a [PartPieces],
+    info: Vec<Vec<PieceInfo>>,
+    /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`).
+    cache: Vec<Vec<PairCache>>,
+    pair_index: Vec<usize>,
+    n_axes: AtomicUsize,
+    n_cones: AtomicUsize,
+    n_sums: AtomicUsize,
+}
+
+impl<'a> DirectionQuery<'a> {
+    /// Prepares the pieces (bounds only; everything else on demand).
+    pub fn new(parts: &'a [PartPieces]) -> Result<DirectionQuery<'a>, PlanError> {
+        for (k, p) in parts.iter().enumerate() {
+            if p.pieces.is_empty() {
+                return Err(PlanError::NoPieces {
+                    part: k,
+                    name: p.name.clone(),
+                });
+            }
+        }
+        let n = parts.len();
+        let info = parts
+            .par_iter()
+            .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
+            .collect();
+        let mut pair_index = vec![usize::MAX; n * n];
+        let mut cache = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                pair_index[i * n + j] = cache.len();
+                let m = parts[i].pieces.len() * parts[j].pieces.len();
+                cache.push((0..m).map(|_| PairCache::default()).collect());
+            }
+        }
+        Ok(DirectionQuery {
+            parts,
+            info,
+            cache,
+            pair_index,
+            n_axes: AtomicUsize::new(0),
+            n_cones: AtomicUsize::new(0),
+            n_sums: AtomicUsize::new(0),
+        })
+    }
+
+    /// Work done so far.
+    pub fn stats(&self) -> QueryStats {
+        let n = self.parts.len();
+        QueryStats {
+            piece_pairs: (0..n)
+                .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+                .map(|(i, j)| self.parts[i].pieces.len() * self.parts[j].pieces.len())
+                .sum(),
+            axes: self.n_axes.load(Ordering::Relaxed),
+            contact_cones: self.n_cones.load(Ordering::Relaxed),
+            sums: self.n_sums.load(Ordering::Relaxed),
+        }
+    }
+
+    fn pair(&self, i: usize, j: usize) -> &[PairCache] {
+        &self.cache[self.pair_index[i * self.parts.len() + j]]
+    }
+
+    fn axes(&self, i: usize, j: usize, k: usize) -> &[Axis] {
+        let nb = self.parts[j].pieces.len();
+        let (a, b) = (k / nb, k % nb);
+        self.pair(i, j)[k].axes.get_or_init(|| {
+            self.n_axes.fetch_add(1, Ordering::Relaxed);
+            axes(
+                &self.parts[i].pieces[a],
+                &self.info[i][a],
+                &self.parts[j].pieces[b],
+                &self.info[j][b],
+            )
+        })
+    }
+
+    fn polygon(&self, i: usize, j: usize, k: usize) -> Result<&SphericalPolygon, PlanError> {
+        let nb = self.parts[j].pieces.len();
+        let (a, b) = (k / nb, k % nb);
+        let axes = self.axes(i, j, k);
+        let r = self.pair(i, j)[k].polygon.get_or_init(|| {
+            let r = pair_polygon(
+                &self.parts[i].pieces[a],
+                &self.info[i][a],
+                &self.parts[j].pieces[b],
+                &self.info[j][b],
+                axes,
+            );
+            match r {
+                Ok((p, full)) => {
+                    let c = if full { &self.n_sums } else { &self.n_cones };
+                    c.fetch_add(1, Ordering::Relaxed);
+                    Ok(p)
+                }
+                Err(e) => Err(e),
+            }
+        });
+        match r {
+            Ok(PairPolygon::Polygon(p, _)) => Ok(p),
+            Ok(PairPolygon::Overlap) => Err(PlanError::Overlap {
+                parts: (i, j),
+                names: (self.parts[i].name.clone(), self.parts[j].name.clone()),
+                pieces: (a, b),
+            }),
+            Err(e) => Err(crate::pairs::internal(
+                (&self.parts[i].name, &self.parts[j].name),
+                e.clone(),
+            )),
+        }
+    }
+
+    /// The status of every piece pair of `{i, j}` at `x`, by exact boxes then axes.
+    fn classify_all(&self, i: usize, j: usize, x: &Vec3) -> Vec<Sep> {
+        let nb = self.parts[j].pieces.len();
+        let m = self.parts[i].pieces.len() * nb;
+        (0..m)
+            .into_par_iter()
+            .with_min_len(64)
+            .map(|k| classify(self.axes(i, j, k), x))
+            .collect()
+    }
+
+    /// For the pair `{i, j}` (`i < j`) at `x` (part `i` moving along `x`): a polygon
+    /// containing `x` in its interior when blocked, else every polygon whose closure
+    /// contains `x`.
+    fn local(&self, i: usize, j: usize, x: &Vec3) -> Result<(bool, Vec<usize>), PlanError> {
+        let sep = self.classify_all(i, j, x);
+        // Candidate blockers: touching pairs (cheap cones) first, in chunks, stopping at
+        // the first that blocks.
+        let mut unknown: Vec<usize> = (0..sep.len()).filter(|&k| sep[k] == Sep::Unknown).collect();
+        unknown.sort_by_key(|&k| {
+            self.axes(i, j, k).iter().all(|a| a.strict) // touching ones first
+        });
+        for chunk in unknown.chunks(256) {
+            let hit: Vec<Option<usize>> = chunk
+                .par_iter()
+                .map(|&k| -> Result<Option<usize>, PlanError> {
+                    Ok(self.polygon(i, j, k)?.contains_open(x).then_some(k))
+                })
+                .collect::<Result<_, _>>()?;
+            if let Some(k) = hit.into_iter().flatten().next() {
+                return Ok((true, vec![k]));
+            }
+        }
+        let free: Vec<usize> = (0..sep.len()).filter(|&k| sep[k] != Sep::Outside).collect();
+        let on: Vec<Option<usize>> = free
+            .par_iter()
+            .map(|&k| -> Result<Option<usize>, PlanError> {
+                Ok(self.polygon(i, j, k)?.contains_closed(x).then_some(k))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok((false, on.into_iter().flatten().collect()))
+    }
+
+    /// The exact blocking graph at `d`, its minimal moving sets and the cell kind.
+    pub fn answer(&self, d: &Vec3) -> Result<DirectionAnswer, PlanError> {
+        let d = d.primitive();
+        let n = self.parts.len();
+        let mut arcs = Vec::new();
+        let mut local: Vec<Vec<SphericalPolygon>> = Vec::new();
+        let mut any = false;
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut keep: Vec<usize> = Vec::new();
+                for (x, arc) in [(d.clone(), (i, j)), (d.neg(), (j, i))] {
+                    let (blocked, ks) = self.local(i, j, &x)?;
+                    if blocked {
+                        arcs.push(arc);
+                    }
+                    keep.extend(ks);
+                }
+                keep.sort_unstable();
+                keep.dedup();
+                any |= !keep.is_empty();
+                local.push(
+                    keep.iter()
+                        .map(|&k| self.polygon(i, j, k).cloned())
+                        .collect::<Result<_, _>>()?,
+                );
+            }
+        }
+        let dbg = Dbg::new(n, arcs);
+        let moving = dbg.minimal_moving_sets();
+        let cell = if any {
+            let names: Vec<String> = self.parts.iter().map(|p| p.name.clone()).collect();
+            let regions = BlockingRegions::from_polygons(names, local);
+            let all: Vec<usize> = (0..n).collect();
+            MotionSpace::build(&regions, &all).locate(&d).0
+        } else {
+            CellKind::Face
+        };
+        Ok(DirectionAnswer {
+            direction: d,
+            cell,
+            dbg,
+            moving,
+        })
+    }
+
+    /// Likely separating directions, most likely first: the coordinate axes, axes of
+    /// tessellated cylinders (edge directions shared by many pieces), and normals of
+    /// touching planes between different parts; each with both signs.
+    pub fn candidates(&self) -> Vec<Vec3> {
+        let mut out: Vec<Vec3> = Vec::new();
+        let push = |v: Vec3, out: &mut Vec<Vec3>| {
+            let v = v.primitive();
+            for s in [v.clone(), v.neg()] {
+                if !s.is_zero() && !out.contains(&s) {
+                    out.push(s);
+                }
+            }
+        };
+        for e in [[0, 0, 1], [1, 0, 0], [0, 1, 0]] {
+            push(Vec3::from_i64(e), &mut out);
+        }
+        let mut count: rustc_hash::FxHashMap<Vec3, usize> = Default::default();
+        for p in self.parts.iter().flat_map(|p| &p.pieces) {
+            for e in p.edge_directions() {
+                *count.entry(e.clone()).or_default() += 1;
+            }
+        }
+        let mut common: Vec<(usize, Vec3)> = count
+            .into_iter()
+            .filter(|(_, c)| *c >= 4)
+            .map(|(v, c)| (c, v))
+            .collect();
+        common.sort_by(|a, b| {
+            b.0.cmp(&a.0)
+                .then_with(|| a.1.to_strings().cmp(&b.1.to_strings()))
+        });
+        for (_, v) in common.into_iter().take(4) {
+            push(v, &mut out);
+        }
+        // Touching planes: normals of the axes of touching piece pairs (computed lazily:
+        // only pairs whose boxes touch or overlap).
+        let mut normals: rustc_hash::FxHashMap<Vec3, usize> = Default::default();
+        let n = self.parts.len();
+        for i in 0..n {
+            for j in i + 1..n {
+                let m = self.pair(i, j).len();
+                let found: Vec<Vec3> = (0..m)
+                    .into_par_iter()
+                    .with_min_len(64)
+                    .filter_map(|k| crate::pairs::touching_normal(self.axes(i, j, k)).cloned())
+                    .collect();
+                for v in found {
+                    *normals.entry(v.primitive()).or_default() += 1;
+                }
+            }
+        }
+        let mut normals: Vec<(usize, Vec3)> = normals.into_iter().map(|(v, c)| (c, v)).collect();
+        normals.sort_by(|a, b| {
+            b.0.cmp(&a.0)
+                .then_with(|| a.1.to_strings().cmp(&b.1.to_strings()))
+        });
+        for (_, v) in normals.into_iter().take(16) {
+            push(v, &mut out);
+        }
+        out
+    }
+
+    /// Angular clearance (radians) at `d` of the moving set `moving` (global indices):
+    /// the distance to the nearest direction along which a part of `moving` hits a part
+    /// outside it. Piece pairs are visited by increasing lower bound (the angle to the
+    /// cone of the bounding sphere of their sum's box) and stop once the bound exceeds the
+    /// best distance so far, so the value is the true distance (in floating point).
+    pub fn clearance(&self, d: &Vec3, moving: &[usize]) -> Result<f64, PlanError> {
+        let n = self.parts.len();
+        let mut cands: Vec<(f64, usize, usize, usize, Vec3)> = Vec::new();
+        for i in moving.iter().copied() {
+            for j in (0..n).filter(|j| !moving.contains(j)) {
+                // Map i -> j is P_ab of the pair (min, max) at d when i < j, at −d else.
+                let (p, q, x) = if i < j {
+                    (i, j, d.clone())
+                } else {
+                    (j, i, d.neg())
+                };
+                let ux = x.unit_f64();
+                let nb = self.parts[q].pieces.len();
+                for k in 0..self.parts[p].pieces.len() * nb {
+                    let bound = self.sphere_bound(p, q, k, &ux);
+                    cands.push((bound, p, q, k, x.clone()));
+                }
+            }
+        }
+        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut best = std::f64::consts::PI;
+        for (bound, p, q, k, x) in cands {
+            if bound >= best {
+                break;
+            }
+            let poly = self.polygon(p, q, k)?;
+            best = best.min(distance(poly, &x));
+        }
+        Ok(best)
+    }
+
+    /// A lower bound of the angle from unit `ux` to the projection of piece pair `k` of
+    /// `{p, q}`: the sum lies in its box, the box in its circumscribed ball.
+    fn sphere_bound(&self, p: usize, q: usize, k: usize, ux: &[f64; 3]) -> f64 {
+        let nb = self.parts[q].pieces.len();
+        let (a, b) = (&self.parts[p].pieces[k / nb], &self.parts[q].pieces[k % nb]);
+        let bounds = |x: &apart_pieces::Polytope| {
+            let den = apart_kernel::int::to_f64(x.den());
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for v in x.vertices() {
+                let c = v.approx();
+                for t in 0..3 {
+                    lo[t] = lo[t].min(c[t] / den);
+                    hi[t] = hi[t].max(c[t] / den);
+                }
+            }
+            (lo, hi)
+        };
+        let ((alo, ahi), (blo, bhi)) = (bounds(a), bounds(b));
+        let mut c = [0.0; 3];
+        let mut r2 = 0.0;
+        for t in 0..3 {
+            let (lo, hi) = (blo[t] - ahi[t], bhi[t] - alo[t]);
+            c[t] = 0.5 * (lo + hi);
+            r2 += (0.5 * (hi - lo)).powi(2);
+        }
+        let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        // Generous margin: a bound, only used to order and stop the search.
+        let r = r2.sqrt() * (1.0 + 1e-9) + 1e-12 * c2.sqrt();
+        if c2.sqrt() <= r {
+            return 0.0;
+        }
+        let cos = (c[0] * ux[0] + c[1] * ux[1] + c[2] * ux[2]) / c2.sqrt();
+        let angle = cos.clamp(-1.0, 1.0).acos();
+        (angle - (r / c2.sqrt()).asin() - 1e-9).max(0.0)
+    }
+
+    /// The first solution of candidate directions ([`DirectionQuery::candidates`]): the
+    /// first candidate with a minimal moving set, as a [`Solution`] of the exact kind of
+    /// its cell (its direction is the candidate itself; a face solution's clearance is
+    /// [`DirectionQuery::clearance`] there). `None` when no candidate separates.
+    pub fn first_solution(&self) -> Result<Option<Solution>, PlanError> {
+        for d in self.candidates() {
+            let ans = self.answer(&d)?;
+            if let Some(m) = ans.moving.first() {
+                let clearance = if ans.cell == CellKind::Face {
+                    self.clearance(&ans.direction, m)?.to_degrees()
+                } else {
+                    0.0
+                };
+                return Ok(Some(Solution {
+                    cell: ans.cell,
+                    unit: ans.direction.unit_f64(),
+                    direction: ans.direction,
+                    moving: m.clone(),
+                    clearance_deg: clearance,
+                }));
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// Angle (radians) from direction `x` to the closed polygon `p`.
+fn distance(p: &SphericalPolygon, x: &Vec3) -> f64 {
+    if p.contains_closed(x) {
+        return 0.0;
+    }
+    let u = x.unit_f64();
+    let c2 = p
+        .boundary()
+        .iter()
+        .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()).distance2(&u))
+        .fold(4.0, f64::min);
+    to_angle(c2)
+}
+
+/// The exact blocking graph, minimal moving sets and cell kind at `d`, from per-piece-
+/// pair tests only (no arrangement of the whole motion space).
+pub fn dbg_along(parts: &[PartPieces], d: &Vec3) -> Result<DirectionAnswer, PlanError> {
+    DirectionQuery::new(parts)?.answer(d)
+}
+
+/// `partition` with `first`: tries [`DirectionQuery::first_solution`] and falls back to
+/// the full computation ([`crate::partition_subset`]) when no candidate separates. The
+/// fast path's statistics count only the sums it computed.
+pub fn partition_first(parts: &[PartPieces]) -> Result<Partitioning, PlanError> {
+    let t = Instant::now();
+    let q = DirectionQuery::new(parts)?;
+    if let Some(s) = q.first_solution()? {
+        let st = q.stats();
+        return Ok(Partitioning {
+            names: parts.iter().map(|p| p.name.clone()).collect(),
+            interlocked: false,
+            solutions: vec![s],
+            stats: Stats {
+                pieces: parts.iter().map(|p| p.pieces.len()).sum(),
+                sums: st.sums + st.contact_cones,
+                seconds: PhaseSeconds {
+                    graphs: t.elapsed().as_secs_f64(),
+                    ..Default::default()
+                },
+                ..Default::default()
+            },
+        });
+    }
+    let regions = BlockingRegions::compute(parts)?;
+    let all: Vec<usize> = (0..parts.len()).collect();
+    Ok(crate::partition_subset(&regions, &all, &crate::Options { first: true }).0)
+}
