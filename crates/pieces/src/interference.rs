@@ -242,10 +242,10 @@ mod den_tests {
 /// disjoint polytopes.
 pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
     let pts = |p: &Polytope| -> Vec<[f64; 3]> {
-        let d = int::to_f64(p.den());
+        // Exact values divided once: `approx` is only proportional for big vectors.
         p.vertices()
             .iter()
-            .map(|v| v.approx().map(|c| c / d))
+            .map(|v| [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()))
             .collect()
     };
     let (pa, pb) = (pts(a), pts(b));
