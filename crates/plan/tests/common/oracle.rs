@@ -54,6 +54,12 @@ fn recip(r: &Rational) -> Rational {
 /// `s0 <= 0` chosen so that the origin is feasible, and the search stops as soon as
 /// `s > 0` is reached.
 pub fn sweep_meets_interior(a: &Polytope, b: &Polytope, d: &Vec3) -> bool {
+    // Facet offsets refer to the stored integers (den times the coordinates): compare
+    // the two pieces at a common denominator (then t absorbs the factor).
+    if a.den() != b.den() {
+        let (a, b) = Polytope::common(a, b);
+        return sweep_meets_interior(&a, &b, d);
+    }
     // Rows: coefficients of (x, y, z, t) and the right-hand side; every row has s with
     // coefficient 1.
     let mut rows: Vec<([Int; 4], Int)> = Vec::new();
