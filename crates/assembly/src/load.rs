@@ -12,7 +12,7 @@ use crate::{overlap, pieces};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::formats::{read_file, ReadError};
 use apart_mesh::repair::{bodies, repair, RepairOptions};
-use apart_mesh::validate::validate;
+use apart_mesh::validate::{validate, MeshInfo};
 use apart_mesh::{Aabb, Mesh, Problem, RawObject};
 use apart_pieces::Polytope;
 use rayon::prelude::*;
@@ -326,6 +326,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
                 None,
                 r.problems.clone(),
                 grid,
+                opts.repair,
             )],
             repairs: None,
         };
@@ -339,7 +340,14 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
     );
     let Some(mut mesh) = mesh else {
         return Built {
-            parts: vec![build_part(&r, spec.name.clone(), None, problems, grid)],
+            parts: vec![build_part(
+                &r,
+                spec.name.clone(),
+                None,
+                problems,
+                grid,
+                opts.repair,
+            )],
             repairs: None,
         };
     };
@@ -368,7 +376,14 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
     if solids.len() <= 1 {
         let m = solids.into_iter().next();
         return Built {
-            parts: vec![build_part(&r, spec.name.clone(), m, problems, grid)],
+            parts: vec![build_part(
+                &r,
+                spec.name.clone(),
+                m,
+                problems,
+                grid,
+                opts.repair,
+            )],
             repairs,
         };
     }
@@ -393,7 +408,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
             } else {
                 Vec::new()
             };
-            build_part(&r, name, Some(m), probs, grid)
+            build_part(&r, name, Some(m), probs, grid, opts.repair)
         })
         .collect();
     Built { parts, repairs }
@@ -499,6 +514,31 @@ fn unique_names(parts: &mut [Part]) -> Vec<Problem> {
     problems
 }
 
+/// True for validation's reports of faces that cross.
+fn is_crossing(p: &Problem) -> bool {
+    p.message.starts_with("self-intersection")
+        || p.message.ends_with("more intersecting face pairs")
+}
+
+/// The convex pieces of the solid a closed surface with crossing faces encloses (its
+/// union, where the winding number is at least 1), with a note saying so; `None` when
+/// that solid is ambiguous (a region of negative winding number: a fold turned inside
+/// out) or cannot be computed, so that validation's witnesses stand.
+fn union_of_crossing(mesh: &Mesh, info: &MeshInfo) -> Option<(Vec<Polytope>, String)> {
+    let d = apart_decompose::decompose_union(&mesh.points(), &mesh.triangles, &Default::default())
+        .ok()?;
+    let (lowest, _) = d.stats.winding?;
+    if lowest < 0 || d.pieces.is_empty() {
+        return None;
+    }
+    let note = format!(
+        "repaired: {} pairs of faces cross; the part is the solid they enclose (their union, {} exact convex pieces)",
+        info.self_intersections,
+        d.pieces.len()
+    );
+    Some((d.pieces, note))
+}
+
 /// One part of a specification, from its (repaired) mesh and its declared pieces.
 fn build_part(
     r: &RawPart,
@@ -506,6 +546,7 @@ fn build_part(
     mesh: Option<Mesh>,
     mut problems: Vec<Problem>,
     grid: &Grid,
+    repair: bool,
 ) -> (Part, Vec<Problem>) {
     let spec = r.spec;
     let name = &name;
@@ -526,7 +567,19 @@ fn build_part(
     };
     let mut mesh_ok = false;
     if let (Some(mut mesh), Some(src)) = (mesh, &spec.mesh) {
-        let (info, probs) = validate(&mut mesh, grid);
+        let (info, mut probs) = validate(&mut mesh, grid);
+        if repair && info.closed && info.self_intersections > 0 {
+            if let Some((pieces, note)) = union_of_crossing(&mesh, &info) {
+                // The crossings are resolved: the part is the solid they enclose.
+                probs.retain(|p| !(p.is_error() && is_crossing(p)));
+                probs.push(Problem::warning(note));
+                part.volume = pieces
+                    .iter()
+                    .fold(Rational::zero(), |s, p| &s + &p.volume());
+                part.pieces = pieces;
+                part.decomposed = true;
+            }
+        }
         mesh_ok = info.volume6.is_some() && !probs.iter().any(Problem::is_error);
         problems.extend(
             probs
@@ -536,7 +589,7 @@ fn build_part(
         part.reflex_edges = info.reflex_edges;
         part.convex = mesh_ok && info.convex;
         part.bbox = info.bbox;
-        if let (true, Some(v)) = (mesh_ok, info.volume()) {
+        if let (true, Some(v), false) = (mesh_ok, info.volume(), part.decomposed) {
             part.volume = v;
         }
         part.mesh = Some(mesh);
