@@ -17,8 +17,12 @@ impl Soup {
     pub fn append(&mut self, other: &Soup) {
         let base = self.vertices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
-        self.faces
-            .extend(other.faces.iter().map(|f| f.iter().map(|&v| v + base).collect()));
+        self.faces.extend(
+            other
+                .faces
+                .iter()
+                .map(|f| f.iter().map(|&v| v + base).collect()),
+        );
     }
 
     /// The soup moved by `t`.
