@@ -81,11 +81,11 @@ impl PieceInfo {
         })
     }
 
-    fn fixed(&self, p: &Polytope) -> &Summand {
+    pub(crate) fn fixed(&self, p: &Polytope) -> &Summand {
         self.fixed.get_or_init(|| Summand::new(p.clone()))
     }
 
-    fn reflected(&self, p: &Polytope) -> &Summand {
+    pub(crate) fn reflected(&self, p: &Polytope) -> &Summand {
         self.reflected.get_or_init(|| Summand::new(p.reflected()))
     }
 }

@@ -121,7 +121,7 @@ pub fn partition_subset(
     let rs = regions.stats;
     let stats = Stats {
         pieces: rs.pieces,
-        sums: rs.sums,
+        sums: rs.sums + rs.contact_cones,
         arcs: ms.input_arcs,
         vertices: ms.real_vertices().count(),
         edges: ms.edge_cells().len(),

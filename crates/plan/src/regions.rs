@@ -6,9 +6,10 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
+use crate::pairs::{axes, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::PlanError;
 use apart_kernel::Vec3;
-use apart_minkowski::{project, sum_prepared, Projection, Summand};
+use apart_minkowski::{project, sum_prepared, Projection};
 use apart_pieces::Polytope;
 use apart_sphere::overlay::{cell_statuses, PointStatus, SideLabel};
 use apart_sphere::region::{simplify_union, RegionMap, Sides};
@@ -123,8 +124,14 @@ impl PairRegion {
 pub struct RegionStats {
     /// Convex pieces in the assembly.
     pub pieces: usize,
-    /// Minkowski sums computed (one per piece pair of different parts).
+    /// Full Minkowski sums computed.
     pub sums: usize,
+    /// Touching piece pairs whose projection came from the small sum of their face
+    /// neighbourhoods (their contact cone).
+    pub contact_cones: usize,
+    /// Piece pairs skipped: their projection lies in an open hemisphere already in the
+    /// pair's union (a face contact's), so it changes nothing.
+    pub skipped: usize,
     /// Arcs in the simplified pair regions.
     pub region_arcs: usize,
     /// Seconds spent on Minkowski sums.
@@ -149,6 +156,14 @@ pub struct BlockingRegions {
 impl BlockingRegions {
     /// Computes the regions of all pairs (Minkowski sums, projections and unions run in
     /// parallel over piece pairs and pairs of parts).
+    ///
+    /// Every piece pair's exact separating axes are found first ([`crate::pairs`]).
+    /// Touching pairs get their projection, the contact cone, from the small sum of their
+    /// face neighbourhoods. A pair lying weakly below along an axis `n` has its projection
+    /// in `{n·x >= 0}`; when a face contact of the same two parts already put the open
+    /// hemisphere `{n·x > 0}` in the union, the pair changes neither the union nor any
+    /// blocking answer (its open polygon lies in that hemisphere), so it is not summed.
+    /// The remaining pairs are summed in full.
     pub fn compute(parts: &[PartPieces]) -> Result<BlockingRegions, PlanError> {
         let n = parts.len();
         for (k, p) in parts.iter().enumerate() {
@@ -171,37 +186,93 @@ impl BlockingRegions {
             .collect();
         let mut stats = RegionStats {
             pieces: parts.iter().map(|p| p.pieces.len()).sum(),
-            sums: jobs.len(),
             ..Default::default()
         };
 
         let t = Instant::now();
-        // Every piece b and reflected piece −a prepared once (Gaussian arcs).
-        let fixed: Vec<Vec<Summand>> = parts
+        // Separating axes of every piece pair (exact; coordinate axes first, which settle
+        // far-apart pairs at once).
+        let info: Vec<Vec<PieceInfo>> = parts
             .par_iter()
-            .map(|p| p.pieces.iter().map(|b| Summand::new(b.clone())).collect())
+            .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
-        let reflected: Vec<Vec<Summand>> = parts
+        let pair_axes: Vec<Vec<Axis>> = jobs
             .par_iter()
-            .map(|p| {
-                p.pieces
-                    .iter()
-                    .map(|a| Summand::new(a.reflected()))
-                    .collect()
+            .with_min_len(16)
+            .map(|&(i, j, a, b)| {
+                axes(
+                    &parts[i].pieces[a],
+                    &info[i][a],
+                    &parts[j].pieces[b],
+                    &info[j][b],
+                )
             })
             .collect();
-        // Sum and project each piece pair in one go (a sum is dropped as soon as it is
-        // projected, which keeps memory to the polygons). The wall time of this fused
-        // phase is split between "sums" and "projection" in proportion to the CPU time
-        // each took.
+        let name_err = |i: usize, j: usize, e: String| {
+            PlanError::Internal(format!(
+                "pieces of {} and {}: {e}",
+                parts[i].name, parts[j].name
+            ))
+        };
+        let overlap = |i: usize, j: usize, a: usize, b: usize| PlanError::Overlap {
+            parts: (i, j),
+            names: (parts[i].name.clone(), parts[j].name.clone()),
+            pieces: (a, b),
+        };
+        // Touching pairs: their projection is the contact cone, from the small sum of the
+        // face neighbourhoods (the same polygon as the full sum's).
+        let cones: Vec<Option<(SphericalPolygon, bool)>> = jobs
+            .par_iter()
+            .zip(&pair_axes)
+            .map(|(&(i, j, a, b), ax)| {
+                let Some(n) = crate::pairs::touching_normal(ax) else {
+                    return Ok(None);
+                };
+                match contact_polygon(&parts[i].pieces[a], &parts[j].pieces[b], n) {
+                    None => Ok(None),
+                    Some(Ok(PairPolygon::Polygon(p, touch))) => Ok(Some((p, touch))),
+                    Some(Ok(PairPolygon::Overlap)) => Err(overlap(i, j, a, b)),
+                    Some(Err(e)) => Err(name_err(i, j, e)),
+                }
+            })
+            .collect::<Result<_, _>>()?;
+        stats.contact_cones = cones.iter().filter(|c| c.is_some()).count();
+        // Open hemispheres already in each pair's union (face contacts).
+        let mut hemispheres: Vec<rustc_hash::FxHashSet<Vec3>> = vec![Default::default(); n * n];
+        for (c, &(i, j, _, _)) in cones.iter().zip(&jobs) {
+            if let Some((p, _)) = c {
+                if p.normals().len() == 1 {
+                    hemispheres[i * n + j].insert(p.normals()[0].clone());
+                }
+            }
+        }
+        // A pair lying weakly below along an axis n has its projection in the closed
+        // hemisphere {n·x >= 0}: it adds nothing when the open one is in the union.
+        let covered = |k: usize| {
+            let (i, j, _, _) = jobs[k];
+            let h = &hemispheres[i * n + j];
+            !h.is_empty() && pair_axes[k].iter().any(|ax| h.contains(&ax.n.primitive()))
+        };
+        let axes_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
         let cpu = |t: Instant| t.elapsed().as_nanos() as u64;
         let sum_ns = std::sync::atomic::AtomicU64::new(0);
         let proj_ns = std::sync::atomic::AtomicU64::new(0);
-        let polys: Vec<(SphericalPolygon, bool)> = jobs
+        let todo: Vec<usize> = (0..jobs.len())
+            .filter(|&k| cones[k].is_none() && !covered(k))
+            .collect();
+        stats.sums = todo.len();
+        stats.skipped = jobs.len() - todo.len() - stats.contact_cones;
+        let full: Vec<(SphericalPolygon, bool)> = todo
             .par_iter()
-            .map(|&(i, j, a, b)| {
+            .map(|&k| {
+                let (i, j, a, b) = jobs[k];
                 let t0 = Instant::now();
-                let m = sum_prepared(&fixed[j][b], &reflected[i][a]).map_err(|e| {
+                let m = sum_prepared(
+                    info[j][b].fixed(&parts[j].pieces[b]),
+                    info[i][a].reflected(&parts[i].pieces[a]),
+                )
+                .map_err(|e| {
                     PlanError::Internal(format!(
                         "Minkowski sum of {} and {}: {e}",
                         parts[i].name, parts[j].name
@@ -218,11 +289,7 @@ impl BlockingRegions {
                             .all(|f| f.offset >= apart_kernel::Int::ZERO);
                         Ok((p, contact))
                     }
-                    Ok(Projection::Everything) => Err(PlanError::Overlap {
-                        parts: (i, j),
-                        names: (parts[i].name.clone(), parts[j].name.clone()),
-                        pieces: (a, b),
-                    }),
+                    Ok(Projection::Everything) => Err(overlap(i, j, a, b)),
                     Err(e) => Err(PlanError::Internal(format!(
                         "projection for {} and {}: {e}",
                         parts[i].name, parts[j].name
@@ -232,10 +299,20 @@ impl BlockingRegions {
                 out
             })
             .collect::<Result<_, _>>()?;
+        // Back in job order (the order of the polygons of each pair is kept).
+        let mut slots: Vec<Option<(SphericalPolygon, bool)>> = cones;
+        for (k, p) in todo.into_iter().zip(full) {
+            slots[k] = Some(p);
+        }
+        let polys: Vec<(SphericalPolygon, bool, usize)> = slots
+            .into_iter()
+            .enumerate()
+            .filter_map(|(k, p)| p.map(|(p, c)| (p, c, k)))
+            .collect();
         let wall = t.elapsed().as_secs_f64();
         let (sn, pn) = (sum_ns.into_inner() as f64, proj_ns.into_inner() as f64);
         let share = if sn + pn > 0.0 { sn / (sn + pn) } else { 1.0 };
-        stats.sums_seconds = wall * share;
+        stats.sums_seconds = axes_seconds + wall * share;
         stats.projection_seconds = wall * (1.0 - share);
 
         let t = Instant::now();
@@ -245,7 +322,8 @@ impl BlockingRegions {
         for (k, &(i, j)) in pairs.iter().enumerate() {
             pair_index[i * n + j] = k;
         }
-        for ((p, touch), &(i, j, _, _)) in polys.into_iter().zip(&jobs) {
+        for (p, touch, job) in polys {
+            let (i, j, _, _) = jobs[job];
             let k = pair_index[i * n + j];
             grouped[k].push(p);
             contact[k] |= touch;
