@@ -3,7 +3,9 @@
 
 use crate::Global;
 use apart::assembly::{Assembly, Loaded, Tolerance};
+use apart::kernel::Vec3;
 use apart::mesh::repair::RepairReport;
+use apart::plan::{DirectionQuery, PartPieces, PlanError};
 use serde::Serialize;
 
 /// Length units of input files.
@@ -182,6 +184,64 @@ impl InputFacts {
             }),
         }
     }
+}
+
+/// For motions found under a tolerance (a moving set of parts and a direction each):
+/// whether each also holds for the parts as given, decided exactly from the unshrunk
+/// pieces (the moving parts against the others, per-piece-pair tests). A motion that
+/// separates parts whose unshrunk pieces overlap never holds. `None` without a
+/// tolerance.
+pub fn holds_without_tolerance(
+    asm: &Assembly,
+    motions: &[(&[usize], &Vec3)],
+) -> anyhow::Result<Option<Vec<bool>>> {
+    if asm.tolerance.is_none() {
+        return Ok(None);
+    }
+    let mut out = vec![false; motions.len()];
+    let mut groups: Vec<(&[usize], Vec<usize>)> = Vec::new();
+    for (k, (moving, _)) in motions.iter().enumerate() {
+        match groups.iter_mut().find(|(m, _)| m == moving) {
+            Some((_, ks)) => ks.push(k),
+            None => groups.push((moving, vec![k])),
+        }
+    }
+    for (moving, ks) in groups {
+        // Two sides, each the union of its parts' unshrunk pieces.
+        let mut sides = [Vec::new(), Vec::new()];
+        for (k, p) in asm.parts.iter().enumerate() {
+            let pieces = if p.unshrunk_pieces.is_empty() {
+                &p.pieces
+            } else {
+                &p.unshrunk_pieces
+            };
+            sides[usize::from(!moving.contains(&k))].extend(pieces.iter().cloned());
+        }
+        let [a, b] = sides;
+        let two = [
+            PartPieces {
+                name: "moving".into(),
+                pieces: a,
+            },
+            PartPieces {
+                name: "rest".into(),
+                pieces: b,
+            },
+        ];
+        let query = match DirectionQuery::new(&two) {
+            Ok(q) => q,
+            Err(PlanError::Overlap { .. }) => continue,
+            Err(e) => return Err(e.into()),
+        };
+        for k in ks {
+            out[k] = match query.answer(motions[k].1) {
+                Ok(answer) => answer.dbg.can_move(&[0]),
+                Err(PlanError::Overlap { .. }) => false,
+                Err(e) => return Err(e.into()),
+            };
+        }
+    }
+    Ok(Some(out))
 }
 
 /// The sentence every text answer under a tolerance ends with; `None` without one.

@@ -258,3 +258,112 @@ fn bad_input_fails_with_a_message_and_no_panic() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn real_cad_flags_repair_split_and_tolerance() {
+    // Seams and two washers in one file: repaired and split by default...
+    let (code, v) = apart_json(&["check", &example("cad-seams")]);
+    assert_eq!(code, 0);
+    let names: Vec<String> = v["parts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(names, ["base", "lid", "washers_1", "washers_2"]);
+    let repairs = v["repairs"].as_array().unwrap();
+    let base = repairs
+        .iter()
+        .find(|r| strs(&r["parts"]) == ["base"])
+        .unwrap();
+    // The generator's seams: every box edge where two faces' subdivisions differ.
+    assert!(base["tjunctions"].as_u64().unwrap() > 0);
+    assert!(v["tolerance"].is_null());
+    // ... refused with --strict, and one part per file with --one-part-per-file.
+    let (code, _) = apart_json(&["check", &example("cad-seams"), "--strict"]);
+    assert_eq!(code, 1);
+    let (_, v) = apart_json(&[
+        "check",
+        &example("cad-seams"),
+        "--one-part-per-file",
+        "--strict",
+    ]);
+    assert_eq!(v["parts"].as_array().unwrap().len(), 3);
+
+    // The pin pokes out of the hole by 4 (1 - cos(pi/64)): an error without tolerance,
+    // valid with --tolerance auto, which states the tolerance in the JSON.
+    let depth = 4.0 * (1.0 - (std::f64::consts::PI / 64.0).cos());
+    let (code, _) = apart_json(&["check", &example("cad-pin-in-hole")]);
+    assert_eq!(code, 1);
+    let (code, v) = apart_json(&[
+        "partition",
+        &example("cad-pin-in-hole"),
+        "--tolerance",
+        "auto",
+        "--units",
+        "mm",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(v["units"], "mm");
+    let eps = v["tolerance"]["eps"].as_f64().unwrap();
+    assert!(eps >= depth / 2.0 && eps <= depth, "{eps} vs {depth}");
+    assert_eq!(v["tolerance"]["auto"], true);
+    // The parts as given overlap, so no motion separating them holds without the
+    // tolerance, and every solution says so.
+    for s in v["solutions"].as_array().unwrap() {
+        assert_eq!(s["holds_without_tolerance"], false);
+    }
+    // Parts that only touch: the base leaves downwards (the rest upwards) either way,
+    // while the lid sliding out from under the washers tilted slightly upwards needs
+    // the gap the shrink opens between lid and washers (without it the lid slides
+    // exactly horizontally or not at all): marked.
+    let (code, v) = apart_json(&["partition", &example("cad-seams"), "--tolerance", "1e-3"]);
+    assert_eq!(code, 0);
+    let sols = v["solutions"].as_array().unwrap();
+    let face = |s: &&Value| s["cell"] == "face";
+    assert!(sols
+        .iter()
+        .filter(face)
+        .any(|s| strs(&s["moving"]) == ["base"]
+            && s["direction"][2].as_f64().unwrap() < -0.99
+            && s["holds_without_tolerance"] == true));
+    assert!(sols
+        .iter()
+        .filter(face)
+        .any(|s| strs(&s["moving"]) == ["lid"]
+            && s["direction"][2].as_f64().unwrap() > 0.0
+            && s["holds_without_tolerance"] == false));
+    assert!(sols
+        .iter()
+        .all(|s| s["holds_without_tolerance"].is_boolean()));
+    // A stated tolerance with a unit in a millimetre file: 2 µm is less than half the
+    // depth (2.41e-3 mm) and leaves the overlap; 3 µm is enough.
+    let (code, _) = apart_json(&[
+        "check",
+        &example("cad-pin-in-hole"),
+        "--tolerance",
+        "2um",
+        "--units",
+        "mm",
+    ]);
+    assert_eq!(code, 1);
+    let (code, _) = apart_json(&[
+        "check",
+        &example("cad-pin-in-hole"),
+        "--tolerance",
+        "3um",
+        "--units",
+        "mm",
+    ]);
+    assert_eq!(code, 0);
+    // A unit without --units, and a tolerance where it has no meaning, are errors.
+    let (code, _) = apart_json(&["check", &example("cad-pin-in-hole"), "--tolerance", "3um"]);
+    assert_eq!(code, 1);
+    let (code, _) = apart_json(&[
+        "stack",
+        &example("sheet-metal/cube.off"),
+        "--tolerance",
+        "1e-3",
+    ]);
+    assert_eq!(code, 1);
+}

@@ -4,9 +4,11 @@
 //! interlocked, 1 on error.
 
 use crate::commands::load::load_valid;
+use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
 use anyhow::Context;
+use apart::assembly::Loaded;
 use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSvgOptions};
 use apart::kernel::{Grid, Vec3};
 use apart::plan::{
@@ -71,6 +73,9 @@ struct SolutionJson {
     exact_direction: [String; 3],
     moving: Vec<String>,
     clearance_deg: f64,
+    /// Under a tolerance: the motion also holds for the parts as given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    holds_without_tolerance: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -96,6 +101,8 @@ struct StatsJson {
 
 #[derive(Serialize)]
 struct PartitionJson<'a> {
+    #[serde(flatten)]
+    input: InputFacts,
     interlocked: bool,
     parts: &'a [String],
     solutions: Vec<SolutionJson>,
@@ -104,11 +111,17 @@ struct PartitionJson<'a> {
 
 #[derive(Serialize)]
 struct DirectionJson {
+    #[serde(flatten)]
+    input: InputFacts,
     direction: [f64; 3],
     exact_direction: [String; 3],
     cell: &'static str,
     blocks: Vec<[String; 2]>,
     moving: Vec<Vec<String>>,
+    /// Under a tolerance: for each moving set, the motion also holds for the parts as
+    /// given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    holds_without_tolerance: Option<Vec<bool>>,
 }
 
 /// Runs the command.
@@ -120,17 +133,13 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let parts = parts_of(asm)?;
     if let Some(d) = &args.direction {
         // One direction: per-piece-pair tests only, no motion-space arrangement.
-        return direction(global, &parts, d);
+        return direction(global, &loaded, &parts, d);
     }
     let pictures = args.svg.is_some() || args.png.is_some();
     if args.first && !pictures {
         // Likely directions first; the full computation only when none separates.
         let p = partition_first(&parts)?;
-        if global.json {
-            output::json(&to_json(&p, load_seconds))?;
-        } else {
-            print_text(&p, asm, args, global, load_seconds);
-        }
+        report(&p, &loaded, args, global, load_seconds)?;
         return Ok(if p.interlocked {
             ExitCode::from(2)
         } else {
@@ -153,11 +162,7 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
             output::write_file(path, motion_space_png(&regions, &all, &p.solutions, &opts))?;
         }
     }
-    if global.json {
-        output::json(&to_json(&p, load_seconds))?;
-    } else {
-        print_text(&p, asm, args, global, load_seconds);
-    }
+    report(&p, &loaded, args, global, load_seconds)?;
     Ok(if p.interlocked {
         ExitCode::from(2)
     } else {
@@ -165,24 +170,59 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
+/// Prints the solutions (JSON or text), with the tolerance they hold under and, under a
+/// tolerance, which of them also hold for the parts as given.
+fn report(
+    p: &Partitioning,
+    loaded: &Loaded,
+    args: &PartitionArgs,
+    global: &Global,
+    load: f64,
+) -> anyhow::Result<()> {
+    let asm = &loaded.assembly;
+    let motions: Vec<(&[usize], &Vec3)> = p
+        .solutions
+        .iter()
+        .map(|s| (s.moving.as_slice(), &s.direction))
+        .collect();
+    let holds = holds_without_tolerance(asm, &motions)?;
+    if global.json {
+        output::json(&to_json(p, load, InputFacts::of(loaded, global), &holds))?;
+    } else {
+        print_text(p, asm, args, global, load, &holds);
+        if let Some(t) = tolerance_statement(asm, global) {
+            output::line(t);
+        }
+    }
+    Ok(())
+}
+
 fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| names[k].clone()).collect()
 }
 
-fn to_json(p: &Partitioning, load: f64) -> PartitionJson<'_> {
+fn to_json<'a>(
+    p: &'a Partitioning,
+    load: f64,
+    input: InputFacts,
+    holds: &Option<Vec<bool>>,
+) -> PartitionJson<'a> {
     let s = &p.stats;
     PartitionJson {
+        input,
         interlocked: p.interlocked,
         parts: &p.names,
         solutions: p
             .solutions
             .iter()
-            .map(|s| SolutionJson {
+            .enumerate()
+            .map(|(k, s)| SolutionJson {
                 cell: s.cell.name(),
                 direction: s.unit,
                 exact_direction: s.direction.to_strings(),
                 moving: names_of(&p.names, &s.moving),
                 clearance_deg: s.clearance_deg,
+                holds_without_tolerance: holds.as_ref().map(|h| h[k]),
             })
             .collect(),
         stats: StatsJson {
@@ -210,6 +250,7 @@ fn print_text(
     args: &PartitionArgs,
     global: &Global,
     load: f64,
+    holds: &Option<Vec<bool>>,
 ) {
     let s = &p.stats;
     if !global.quiet {
@@ -264,11 +305,17 @@ fn print_text(
             let of_kind: Vec<&&Solution> = sols.iter().filter(|x| x.cell == kind).collect();
             for sol in of_kind.iter().take(limit) {
                 let d = sol.direction.to_strings();
-                let extra = match kind {
+                let mut extra = match kind {
                     CellKind::Face => format!("clearance {:.2}°", sol.clearance_deg),
                     CellKind::Edge => "sliding".into(),
                     CellKind::Vertex => "isolated direction".into(),
                 };
+                let k = p.solutions.iter().position(|x| std::ptr::eq(x, **sol));
+                if let (Some(h), Some(k)) = (holds, k) {
+                    if !h[k] {
+                        extra.push_str(" (only under the tolerance)");
+                    }
+                }
                 output::line(format_args!(
                     "  {:6}  {}  ({}, {}, {})  {}",
                     kind.name(),
@@ -326,6 +373,7 @@ pub fn parse_direction(text: &str) -> anyhow::Result<Vec3> {
 
 fn direction(
     global: &Global,
+    loaded: &Loaded,
     parts: &[apart::plan::PartPieces],
     text: &str,
 ) -> anyhow::Result<ExitCode> {
@@ -339,8 +387,12 @@ fn direction(
         .iter()
         .map(|&(a, b)| [names[a].clone(), names[b].clone()])
         .collect();
+    let motions: Vec<(&[usize], &Vec3)> = moving.iter().map(|m| (m.as_slice(), &d)).collect();
+    let holds = holds_without_tolerance(&loaded.assembly, &motions)?;
     if global.json {
         output::json(&DirectionJson {
+            input: InputFacts::of(loaded, global),
+            holds_without_tolerance: holds,
             direction: d.unit_f64(),
             exact_direction: d.to_strings(),
             cell: cell.name(),
@@ -367,8 +419,18 @@ fn direction(
         if moving.is_empty() {
             output::line("no proper subset can move along this direction");
         }
-        for m in &moving {
-            output::line(format_args!("can move: {}", names_of(names, m).join(", ")));
+        for (k, m) in moving.iter().enumerate() {
+            let only = match &holds {
+                Some(h) if !h[k] => " (only under the tolerance)",
+                _ => "",
+            };
+            output::line(format_args!(
+                "can move: {}{only}",
+                names_of(names, m).join(", ")
+            ));
+        }
+        if let Some(t) = tolerance_statement(&loaded.assembly, global) {
+            output::line(t);
         }
     }
     Ok(if moving.is_empty() {
