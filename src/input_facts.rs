@@ -186,30 +186,40 @@ impl InputFacts {
     }
 }
 
-/// For motions found under a tolerance (a moving set of parts and a direction each):
-/// whether each also holds for the parts as given, decided exactly from the unshrunk
-/// pieces (the moving parts against the others, per-piece-pair tests). A motion that
-/// separates parts whose unshrunk pieces overlap never holds. `None` without a
-/// tolerance.
+/// A motion found by a planner: a set of parts moving along a direction away from the
+/// other parts of a subassembly (`among`; `None`: the whole assembly).
+pub type Motion<'a> = (&'a [usize], Option<&'a [usize]>, &'a Vec3);
+
+/// For motions found under a tolerance: whether each also holds for the parts as given,
+/// decided exactly from the unshrunk pieces (the moving parts against the others of the
+/// subassembly, per-piece-pair tests). A motion that separates parts whose unshrunk
+/// pieces overlap never holds. `None` without a tolerance.
 pub fn holds_without_tolerance(
     asm: &Assembly,
-    motions: &[(&[usize], &Vec3)],
+    motions: &[Motion],
 ) -> anyhow::Result<Option<Vec<bool>>> {
     if asm.tolerance.is_none() {
         return Ok(None);
     }
     let mut out = vec![false; motions.len()];
-    let mut groups: Vec<(&[usize], Vec<usize>)> = Vec::new();
-    for (k, (moving, _)) in motions.iter().enumerate() {
-        match groups.iter_mut().find(|(m, _)| m == moving) {
-            Some((_, ks)) => ks.push(k),
-            None => groups.push((moving, vec![k])),
+    type Group<'a> = (&'a [usize], Option<&'a [usize]>, Vec<usize>);
+    let mut groups: Vec<Group> = Vec::new();
+    for (k, (moving, among, _)) in motions.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|(m, a, _)| m == moving && a == among)
+        {
+            Some((_, _, ks)) => ks.push(k),
+            None => groups.push((moving, *among, vec![k])),
         }
     }
-    for (moving, ks) in groups {
+    for (moving, among, ks) in groups {
         // Two sides, each the union of its parts' unshrunk pieces.
         let mut sides = [Vec::new(), Vec::new()];
         for (k, p) in asm.parts.iter().enumerate() {
+            if among.is_some_and(|a| !a.contains(&k)) {
+                continue;
+            }
             let pieces = if p.unshrunk_pieces.is_empty() {
                 &p.pieces
             } else {
@@ -234,7 +244,7 @@ pub fn holds_without_tolerance(
             Err(e) => return Err(e.into()),
         };
         for k in ks {
-            out[k] = match query.answer(motions[k].1) {
+            out[k] = match query.answer(motions[k].2) {
                 Ok(answer) => answer.dbg.can_move(&[0]),
                 Err(PlanError::Overlap { .. }) => false,
                 Err(e) => return Err(e.into()),

@@ -4,7 +4,7 @@
 //! interlocked, 1 on error.
 
 use crate::commands::load::load_valid;
-use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
+use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
 use crate::output;
 use crate::Global;
 use anyhow::Context;
@@ -180,10 +180,10 @@ fn report(
     load: f64,
 ) -> anyhow::Result<()> {
     let asm = &loaded.assembly;
-    let motions: Vec<(&[usize], &Vec3)> = p
+    let motions: Vec<Motion> = p
         .solutions
         .iter()
-        .map(|s| (s.moving.as_slice(), &s.direction))
+        .map(|s| (s.moving.as_slice(), None, &s.direction))
         .collect();
     let holds = holds_without_tolerance(asm, &motions)?;
     if global.json {
@@ -387,7 +387,7 @@ fn direction(
         .iter()
         .map(|&(a, b)| [names[a].clone(), names[b].clone()])
         .collect();
-    let motions: Vec<(&[usize], &Vec3)> = moving.iter().map(|m| (m.as_slice(), &d)).collect();
+    let motions: Vec<Motion> = moving.iter().map(|m| (m.as_slice(), None, &d)).collect();
     let holds = holds_without_tolerance(&loaded.assembly, &motions)?;
     if global.json {
         output::json(&DirectionJson {

@@ -3,7 +3,7 @@
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
 use crate::commands::load::{files_manifest, load_valid};
-use crate::input_facts::{tolerance_statement, InputFacts};
+use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
 use apart::plan::{parts_of, separate, BlockingRegions, Separation};
@@ -42,6 +42,9 @@ struct BestJson {
     direction: [f64; 3],
     exact_direction: [String; 3],
     clearance_deg: f64,
+    /// Under a tolerance: this direction also separates the parts as given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    holds_without_tolerance: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -90,6 +93,12 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let regions = BlockingRegions::compute(&parts_of(asm)?)?;
     let s = separate(&regions, a, b);
     let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
+    let best = s.best();
+    let pair = [a, b];
+    let holds = match &best {
+        Some((d, _)) => holds_without_tolerance(asm, &[(&[a], Some(&pair), d)])?.map(|h| h[0]),
+        None => None,
+    };
     if global.json {
         output::json(&to_json(
             &s,
@@ -97,9 +106,13 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
             &b_name,
             separable,
             InputFacts::of(&loaded, global),
+            holds,
         ))?;
     } else {
         print_text(&s, &a_name, &b_name);
+        if holds == Some(false) {
+            output::line("the best direction holds only under the tolerance");
+        }
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -111,7 +124,14 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
-fn to_json(s: &Separation, a: &str, b: &str, separable: bool, input: InputFacts) -> SeparateJson {
+fn to_json(
+    s: &Separation,
+    a: &str,
+    b: &str,
+    separable: bool,
+    input: InputFacts,
+    holds: Option<bool>,
+) -> SeparateJson {
     SeparateJson {
         input,
         moving: a.to_string(),
@@ -122,6 +142,7 @@ fn to_json(s: &Separation, a: &str, b: &str, separable: bool, input: InputFacts)
             direction: d.unit_f64(),
             exact_direction: d.to_strings(),
             clearance_deg: c,
+            holds_without_tolerance: holds,
         }),
         regions: s
             .faces

@@ -5,7 +5,7 @@
 
 use crate::commands::load::load_valid;
 use crate::commands::partition::Projection;
-use crate::input_facts::{tolerance_statement, InputFacts};
+use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
 use crate::output;
 use crate::Global;
 use apart::draw::{
@@ -80,6 +80,9 @@ struct StepJson {
     /// Largest uniform growth in input units (--growth); null when unbounded.
     #[serde(skip_serializing_if = "Option::is_none")]
     growth: Option<Option<f64>>,
+    /// Under a tolerance: the step also holds for the parts as given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    holds_without_tolerance: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -131,11 +134,23 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let plan = sequence(&regions, &opts);
     pictures(args, asm, &regions, &plan)?;
     let step_unit = asm.grid.step();
+    let motions: Vec<Motion> = plan
+        .steps
+        .iter()
+        .map(|s| {
+            (
+                s.moving.as_slice(),
+                Some(s.subassembly.as_slice()),
+                &s.direction,
+            )
+        })
+        .collect();
+    let holds = holds_without_tolerance(asm, &motions)?;
     if global.json {
         let input = InputFacts::of(&loaded, global);
-        output::json(&to_json(&plan, step_unit, load, regions_s, input))?;
+        output::json(&to_json(&plan, step_unit, load, regions_s, input, &holds))?;
     } else {
-        print_text(&plan, asm, global, step_unit, load, regions_s);
+        print_text(&plan, asm, global, step_unit, load, regions_s, &holds);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -210,6 +225,7 @@ fn to_json(
     load: f64,
     regions: f64,
     input: InputFacts,
+    holds: &Option<Vec<bool>>,
 ) -> SequenceJson {
     SequenceJson {
         input,
@@ -219,7 +235,9 @@ fn to_json(
         steps: plan
             .steps
             .iter()
-            .map(|s| StepJson {
+            .enumerate()
+            .map(|(k, s)| StepJson {
+                holds_without_tolerance: holds.as_ref().map(|h| h[k]),
                 subassembly: names(plan, &s.subassembly),
                 moving: names(plan, &s.moving),
                 direction: s.unit,
@@ -269,6 +287,7 @@ fn print_text(
     step_unit: f64,
     load: f64,
     regions: f64,
+    holds: &Option<Vec<bool>>,
 ) {
     let status = if plan.complete() {
         "complete".to_string()
@@ -292,7 +311,14 @@ fn print_text(
             k + 1,
             names(plan, &s.subassembly).join(", ")
         ));
-        output::line(format_args!("{pad}   {}", describe(plan, s, step_unit)));
+        let only = match holds {
+            Some(h) if !h[k] => " (only under the tolerance)",
+            _ => "",
+        };
+        output::line(format_args!(
+            "{pad}   {}{only}",
+            describe(plan, s, step_unit)
+        ));
     }
     for s in &plan.stuck {
         output::line(format_args!(
