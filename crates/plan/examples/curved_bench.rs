@@ -5,7 +5,7 @@
 //! (mesh loading and convex decomposition), one direction (`dbg_along` at +z), the first
 //! solution (`partition_first`), the full partition, and the peak resident memory of the
 //! planning (the decomposition's own peak is reported separately).
-use apart_plan::{dbg_along, partition_first, partition_pieces, Options};
+use apart_plan::{partition_first, partition_subset, BlockingRegions, DirectionQuery, Options};
 use apart_testkit::curved;
 use std::time::Instant;
 
@@ -65,13 +65,18 @@ fn main() {
             .sum();
         reset_peak();
         let t = Instant::now();
-        let a = dbg_along(&pieces, &apart_kernel::Vec3::new(0, 0, 1)).unwrap();
+        let q = DirectionQuery::new(&pieces).unwrap();
+        let a = q.answer(&apart_kernel::Vec3::new(0, 0, 1)).unwrap();
         let one = t.elapsed().as_secs_f64();
+        eprintln!("{case}: +z query work {:?}", q.stats());
         let t = Instant::now();
         let f = partition_first(&pieces).unwrap();
         let first = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let full = partition_pieces(&pieces, &Options::default()).unwrap();
+        let regions = BlockingRegions::compute(&pieces).unwrap();
+        eprintln!("{case}: regions {:?}", regions.stats);
+        let everything: Vec<usize> = (0..pieces.len()).collect();
+        let full = partition_subset(&regions, &everything, &Options::default()).0;
         let all = t.elapsed().as_secs_f64();
         let mib = peak_mib();
         eprintln!(

@@ -175,6 +175,30 @@ pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -
     out
 }
 
+/// Whether `a` lies weakly below `b` along some normal of `h` that is a facet normal of
+/// `a` or the negated facet normal of `b` (the facet axes [`axes`] skips for pairs a
+/// coordinate axis already separates strictly).
+pub(crate) fn below_along_any(
+    a: &Polytope,
+    ia: &PieceInfo,
+    b: &Polytope,
+    ib: &PieceInfo,
+    h: &rustc_hash::FxHashSet<Vec3>,
+) -> bool {
+    let (da, db) = (a.den(), b.den());
+    a.facets().iter().any(|f| {
+        h.contains(&f.normal) && {
+            let (bmin, _) = ib.range(b, &f.normal);
+            cmp_scaled(&f.offset, da, &bmin, db) != Ordering::Greater
+        }
+    }) || b.facets().iter().any(|f| {
+        h.contains(&f.normal.neg()) && {
+            let (amin, _) = ia.range(a, &f.normal);
+            cmp_scaled(&f.offset, db, &amin, da) != Ordering::Greater
+        }
+    })
+}
+
 /// What the axes say about direction `x`.
 pub(crate) fn classify(axes: &[Axis], x: &Vec3) -> Sep {
     let mut free = false;
@@ -225,11 +249,13 @@ pub(crate) fn full_polygon(
     }
 }
 
-/// The hull of the support face of `p` along `n` and the neighbours of its vertices.
-fn face_neighbourhood(p: &Polytope, n: &Vec3) -> Option<Polytope> {
-    let (_, face) = p.support(n);
+/// The hull of the vertices `face` of `p` and their neighbours.
+fn face_neighbourhood(p: &Polytope, face: &[u32]) -> Option<Polytope> {
+    if face.is_empty() {
+        return None;
+    }
     let mut keep = vec![false; p.vertices().len()];
-    for &v in &face {
+    for &v in face {
         keep[v as usize] = true;
     }
     let mut with = keep.clone();
@@ -252,16 +278,159 @@ fn face_neighbourhood(p: &Polytope, n: &Vec3) -> Option<Polytope> {
         .map(|h| h.with_den(p.den().clone()))
 }
 
+/// The support face of `p` along `n` as a boundary cycle (a facet's cycle, an edge's two
+/// ends, or one vertex), as stored integers.
+fn support_face(p: &Polytope, n: &Vec3) -> Vec<u32> {
+    let (_, ids) = p.support(n);
+    if ids.len() >= 3 {
+        let n = n.primitive();
+        if let Some(f) = p.facets().iter().find(|f| f.normal == n) {
+            return f.cycle.clone();
+        }
+    }
+    ids
+}
+
+fn points(p: &Polytope, ids: &[u32]) -> Vec<Vec3> {
+    ids.iter()
+        .map(|&v| p.vertices()[v as usize].clone())
+        .collect()
+}
+
+/// The vertices of the edges of the facet cycle `ids` of `p` that are not strictly
+/// separated, in their common plane (normal `n`), from the hull of `other` (denominator
+/// `dother`): every common point of the facet and `other` lies on one of these edges
+/// when none lies in the facet's relative interior. All of `ids` when it has at most
+/// eight vertices (nothing to gain).
+fn edges_meeting(p: &Polytope, ids: &[u32], other: &[Vec3], dother: &Int, n: &Vec3) -> Vec<u32> {
+    let k = ids.len();
+    if k <= 8 {
+        return ids.to_vec();
+    }
+    let dp = p.den();
+    let v = |i: usize| &p.vertices()[ids[i % k] as usize];
+    // Strictly on the far side of a line g·x = h (the side without `own`).
+    let beyond = |g: &Vec3, h: &Int, own: Ordering, pts: &[Vec3], dp_: &Int, dh: &Int| {
+        pts.iter()
+            .all(|w| cmp_scaled(&g.dot(w), dp_, h, dh) == own.reverse())
+    };
+    let mut keep = vec![false; k];
+    for e in 0..k {
+        let (u, w) = (v(e), v(e + 1));
+        let seg = [u.clone(), w.clone()];
+        // The segment's line (either side), then the other hull's edge lines.
+        let g = n.cross(&w.sub(u));
+        let h = g.dot(u);
+        let mut apart = beyond(&g, &h, Ordering::Less, other, dother, dp)
+            || beyond(&g, &h, Ordering::Greater, other, dother, dp);
+        let m = other.len();
+        if !apart && m >= 2 {
+            for i in 0..if m == 2 { 1 } else { m } {
+                let (x, y) = (&other[i], &other[(i + 1) % m]);
+                let g = n.cross(&y.sub(x));
+                let h = g.dot(x);
+                let own = other
+                    .iter()
+                    .map(|z| g.dot(z).cmp(&h))
+                    .find(|o| *o != Ordering::Equal);
+                let sides: &[Ordering] = match own {
+                    Some(Ordering::Less) => &[Ordering::Less],
+                    Some(_) => &[Ordering::Greater],
+                    None => &[Ordering::Less, Ordering::Greater],
+                };
+                if sides.iter().any(|&s| beyond(&g, &h, s, &seg, dp, dother)) {
+                    apart = true;
+                    break;
+                }
+            }
+        }
+        if !apart {
+            keep[e] = true;
+            keep[(e + 1) % k] = true;
+        }
+    }
+    (0..k).filter(|&i| keep[i]).map(|i| ids[i]).collect()
+}
+
+/// Whether the relative interior of the facet `fa` (a cycle of at least three points of
+/// the plane with normal `n`, stored with denominator `da`) meets the convex hull of the
+/// points `fb` of the same plane (denominator `db`). They are disjoint exactly when a line
+/// of the plane separates them weakly, and then (two-dimensional separating axes) the
+/// line through an edge of `fa` or of `fb` does.
+fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec3) -> bool {
+    let separated = |cycle: &[Vec3], dc: &Int, other: &[Vec3], dother: &Int| -> bool {
+        let k = cycle.len();
+        let edges = if k == 2 { 1 } else { k };
+        (0..edges).any(|e| {
+            let (u, v) = (&cycle[e], &cycle[(e + 1) % k]);
+            let g = n.cross(&v.sub(u));
+            let h = g.dot(u);
+            // The side of the cycle (a third point, when there is one), then every other
+            // point weakly on the far side.
+            let own = cycle
+                .iter()
+                .map(|w| g.dot(w).cmp(&h))
+                .find(|o| *o != Ordering::Equal);
+            let far = |o: Ordering| match own {
+                Some(s) => o != s,
+                None => true,
+            };
+            let all_one_side = |want: Ordering| {
+                other
+                    .iter()
+                    .all(|w| matches!(cmp_scaled(&g.dot(w), dother, &h, dc), o if o == Ordering::Equal || o == want))
+            };
+            match own {
+                Some(s) => all_one_side(s.reverse()) && far(s.reverse()),
+                // A segment: either side of its line.
+                None => all_one_side(Ordering::Less) || all_one_side(Ordering::Greater),
+            }
+        })
+    };
+    !separated(fa, da, fb, db) && !(fb.len() >= 2 && separated(fb, db, fa, da))
+}
+
 /// The contact cone of two pieces touching across the plane with normal `n` (from `a` to
-/// `b`), from the small sum of their face neighbourhoods; `None` when they do not touch
-/// (or a neighbourhood is degenerate): the caller then sums the whole pieces.
+/// `b`); `None` when they do not touch (or a neighbourhood is degenerate): the caller
+/// then sums the whole pieces.
+///
+/// When a facet of either piece in that plane meets the other piece's face in its
+/// relative interior, the normal cone `N_b(c) ∩ −N_a(c)` at such a common point `c` is
+/// the ray of `−n`, and the cone is the hemisphere `{n·x >= 0}` (what the full sum's
+/// single facet through the origin projects to). Otherwise the contact lies on the
+/// faces' boundaries and the small sum of the face neighbourhoods gives the cone (of a
+/// facet with many vertices, only the edges that reach the other face: every common
+/// point lies on one of them, and the tangent cones there are kept).
 pub(crate) fn contact_polygon(
     a: &Polytope,
     b: &Polytope,
     n: &Vec3,
 ) -> Option<Result<PairPolygon, String>> {
-    let a2 = face_neighbourhood(a, n)?;
-    let b2 = face_neighbourhood(b, &n.neg())?;
+    let (ida, idb) = (support_face(a, n), support_face(b, &n.neg()));
+    let (fa, fb) = (points(a, &ida), points(b, &idb));
+    let face = |f: &[Vec3]| f.len() >= 3;
+    if (face(&fa) && meets_relative_interior(&fa, a.den(), &fb, b.den(), n))
+        || (face(&fb) && meets_relative_interior(&fb, b.den(), &fa, a.den(), n))
+    {
+        return Some(Ok(PairPolygon::Polygon(
+            SphericalPolygon::hemisphere(n),
+            true,
+        )));
+    }
+    // The contact lies on the faces' boundaries: only the edges of a large facet that
+    // reach the other face matter (their neighbourhoods keep the tangent cones there).
+    let ida = if face(&fa) {
+        edges_meeting(a, &ida, &fb, b.den(), n)
+    } else {
+        ida
+    };
+    let idb = if face(&fb) {
+        edges_meeting(b, &idb, &fa, a.den(), n)
+    } else {
+        idb
+    };
+    let a2 = face_neighbourhood(a, &ida)?;
+    let b2 = face_neighbourhood(b, &idb)?;
     let m = match sum_prepared(&Summand::new(b2), &Summand::new(a2.reflected())) {
         Ok(m) => m,
         Err(e) => return Some(Err(format!("Minkowski sum: {e}"))),
@@ -301,4 +470,90 @@ pub(crate) fn touching_normal(axes: &[Axis]) -> Option<&Vec3> {
 /// Wraps a pair error with part names.
 pub(crate) fn internal(names: (&str, &str), e: String) -> PlanError {
     PlanError::Internal(format!("pieces of {} and {}: {e}", names.0, names.1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::regions::PartPieces;
+    use apart_testkit::curved;
+
+    fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<PartPieces> {
+        let dir = std::env::temp_dir().join(format!("apart-pairs-{}-{name}", std::process::id()));
+        curved::write_off_dir(parts, &dir).unwrap();
+        let loaded = apart_assembly::load(&dir, &Default::default()).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(loaded.is_valid(), "{:?}", loaded.problems);
+        crate::parts_of(&loaded.assembly).unwrap()
+    }
+
+    fn normals(p: &SphericalPolygon) -> Vec<[String; 3]> {
+        let mut v: Vec<[String; 3]> = p.normals().iter().map(|q| q.to_strings()).collect();
+        v.sort();
+        v.dedup();
+        v
+    }
+
+    /// Every contact cone equals the full sum's projection (same inward normals), and the
+    /// axes never cull a direction the full polygon holds.
+    #[test]
+    fn contact_cones_and_axes_agree_with_full_sums() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+        let mut cases: Vec<Vec<PartPieces>> = Vec::new();
+        for name in [
+            "peg-in-the-hole",
+            "dovetail-and-cap",
+            "hinge",
+            "split-star-5",
+        ] {
+            let loaded = apart_assembly::load(&dir.join(name), &Default::default()).unwrap();
+            cases.push(crate::parts_of(&loaded.assembly).unwrap());
+        }
+        cases.push(generated("plug", &curved::plug_and_socket(20 * 16 - 8)));
+        cases.push(generated("pin", &curved::pin_in_hole(12, 12, 0.0)));
+        cases.push(generated("nut", &curved::nut_on_bolt(10, 2)));
+        let dirs: Vec<Vec3> = (0..27)
+            .map(|i| Vec3::new(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1))
+            .filter(|d| !d.is_zero())
+            .chain([Vec3::new(1, 2, 3), Vec3::new(-3, 1, 7)])
+            .collect();
+        let mut cones = 0;
+        for parts in &cases {
+            for (i, pi) in parts.iter().enumerate() {
+                for pj in &parts[i + 1..] {
+                    for a in &pi.pieces {
+                        for b in &pj.pieces {
+                            let (ia, ib) = (PieceInfo::new(a), PieceInfo::new(b));
+                            let ax = axes(a, &ia, b, &ib);
+                            let PairPolygon::Polygon(full, contact) =
+                                full_polygon(a, &ia, b, &ib).unwrap()
+                            else {
+                                panic!("overlap")
+                            };
+                            for d in &dirs {
+                                match classify(&ax, d) {
+                                    Sep::Outside => assert!(!full.contains_closed(d)),
+                                    Sep::Free => assert!(!full.contains_open(d)),
+                                    Sep::Unknown => {}
+                                }
+                            }
+                            let Some(n) = touching_normal(&ax) else {
+                                continue;
+                            };
+                            match contact_polygon(a, b, n) {
+                                Some(Ok(PairPolygon::Polygon(p, true))) => {
+                                    assert!(contact);
+                                    assert_eq!(normals(&p), normals(&full));
+                                    cones += 1;
+                                }
+                                None => assert!(!contact),
+                                other => panic!("{other:?}"),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cones > 50, "{cones}");
+    }
 }

@@ -6,7 +6,7 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
-use crate::pairs::{axes, contact_polygon, Axis, PairPolygon, PieceInfo};
+use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::PlanError;
 use apart_kernel::Vec3;
 use apart_minkowski::{project, sum_prepared, Projection};
@@ -250,8 +250,17 @@ impl BlockingRegions {
         // hemisphere {n·x >= 0}: it adds nothing when the open one is in the union.
         let covered = |k: usize| {
             let (i, j, _, _) = jobs[k];
+            let (_, _, a, b) = jobs[k];
             let h = &hemispheres[i * n + j];
-            !h.is_empty() && pair_axes[k].iter().any(|ax| h.contains(&ax.n.primitive()))
+            !h.is_empty()
+                && (pair_axes[k].iter().any(|ax| h.contains(&ax.n.primitive()))
+                    || below_along_any(
+                        &parts[i].pieces[a],
+                        &info[i][a],
+                        &parts[j].pieces[b],
+                        &info[j][b],
+                        h,
+                    ))
         };
         let axes_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
