@@ -20,7 +20,7 @@ use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::fmt_witness;
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::{Aabb, Problem};
-use apart_pieces::interference::{interiors_disjoint, overlap_depth};
+use apart_pieces::interference::overlap_with_depth;
 use apart_pieces::Polytope;
 use rayon::prelude::*;
 
@@ -92,11 +92,12 @@ pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f6
     for pa in a {
         let ba = polytope_bbox(pa);
         for (pb, bbox) in b.iter().zip(&bb) {
-            if !ba.overlaps_open(bbox) || interiors_disjoint(pa, pb) {
+            if !ba.overlaps_open(bbox) {
                 continue;
             }
-            let d = overlap_depth(pa, pb);
-            deepest = Some(deepest.map_or(d, |x: f64| x.max(d)));
+            if let (true, d) = overlap_with_depth(pa, pb) {
+                deepest = Some(deepest.map_or(d, |x: f64| x.max(d)));
+            }
         }
     }
     deepest

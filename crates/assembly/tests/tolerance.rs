@@ -49,9 +49,12 @@ fn turned_pin_overlaps_by_the_known_depth_and_a_tolerance_of_half_accepts_it() {
         .clone()
         .expect("a tolerance was applied");
     assert_eq!(t.accepted_overlaps, 1);
+    // Snapping moves each vertex by at most max_snap_displacement per coordinate, so the
+    // measured depth may differ from the closed form by a few of them.
+    let snap = ok.assembly.max_snap_displacement;
     assert!(
-        (t.deepest_overlap - depth).abs() <= 1e-6 * depth,
-        "{} vs {depth}",
+        (t.deepest_overlap - depth).abs() <= 4.0 * snap + 1e-12,
+        "{} vs {depth} (snap {snap})",
         t.deepest_overlap
     );
     for p in &ok.assembly.parts {

@@ -241,6 +241,38 @@ mod den_tests {
 /// upper bound of it when the cross products were left out. Zero for touching or
 /// disjoint polytopes.
 pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
+    signed_depth(a, b).depth.max(0.0)
+}
+
+/// Whether the interiors of `a` and `b` overlap (exact), and how deep (measured, as
+/// [`overlap_depth`]; 0 when they do not). A floating-point filter decides first: a
+/// clear gap along one axis proves them apart, a clear overlap along every candidate
+/// axis proves them overlapping, each beyond a proven bound of the rounding error; the
+/// exact separating-axis test decides the rest.
+pub fn overlap_with_depth(a: &Polytope, b: &Polytope) -> (bool, f64) {
+    let s = signed_depth(a, b);
+    let overlapping = if s.depth < -s.error {
+        false
+    } else if s.depth > s.error && s.all_axes {
+        true
+    } else {
+        !interiors_disjoint(a, b)
+    };
+    (
+        overlapping,
+        if overlapping { s.depth.max(0.0) } else { 0.0 },
+    )
+}
+
+/// The smallest signed overlap over the candidate axes (negative: a gap), whether every
+/// candidate axis was tried, and a bound of the rounding error.
+struct SignedDepth {
+    depth: f64,
+    all_axes: bool,
+    error: f64,
+}
+
+fn signed_depth(a: &Polytope, b: &Polytope) -> SignedDepth {
     let pts = |p: &Polytope| -> Vec<[f64; 3]> {
         // Exact values divided once: `approx` is only proportional for big vectors.
         p.vertices()
@@ -249,6 +281,16 @@ pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
             .collect()
     };
     let (pa, pb) = (pts(a), pts(b));
+    // Every coordinate is below m in magnitude. Each vertex coordinate and each unit
+    // axis component carries a relative error of at most 2^-52, so a dot product of a
+    // vertex with a unit axis is off by less than 8 m 2^-52, and a signed overlap (a
+    // difference of two extremes) by less than 16 m 2^-52; 2^-40 m leaves a margin.
+    let m = pa
+        .iter()
+        .chain(&pb)
+        .flatten()
+        .fold(0f64, |x, c| x.max(c.abs()));
+    let error = m * 2f64.powi(-40);
     let range = |ps: &[[f64; 3]], u: &[f64; 3]| {
         ps.iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
@@ -263,14 +305,15 @@ pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
         }
         let u = n.map(|c| c / len);
         let ((alo, ahi), (blo, bhi)) = (range(&pa, &u), range(&pb, &u));
-        (ahi - blo).min(bhi - alo).max(0.0)
+        (ahi - blo).min(bhi - alo)
     };
     let mut best = f64::INFINITY;
     for f in a.facets().iter().chain(b.facets()) {
         best = best.min(overlap_along(f.normal.approx()));
     }
     let (ea, eb) = (a.edge_directions(), b.edge_directions());
-    if ea.len() * eb.len() <= 4096 {
+    let all_axes = ea.len() * eb.len() <= 4096;
+    if all_axes {
         for da in ea {
             for db in eb {
                 let n = da.cross(db);
@@ -280,10 +323,10 @@ pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
             }
         }
     }
-    if best.is_finite() {
-        best
-    } else {
-        0.0
+    SignedDepth {
+        depth: if best.is_finite() { best } else { 0.0 },
+        all_axes: all_axes && best.is_finite(),
+        error: if m.is_finite() { error } else { f64::INFINITY },
     }
 }
 
@@ -315,5 +358,49 @@ mod depth_tests {
         let a4 = a.clone().with_den(Int::from(4));
         let b4 = b.clone().with_den(Int::from(4));
         assert_eq!(overlap_depth(&a4, &b4), 0.75);
+    }
+
+    #[test]
+    fn the_filtered_decision_agrees_with_the_exact_test() {
+        // Overlapping, touching (face, edge, corner), apart, and overlapping by much
+        // less than a unit at a scale where the filter must step aside.
+        let a = Polytope::cuboid([0, 0, 0], [10, 10, 10]).unwrap();
+        let cases = [
+            ([7, 0, 0], [20, 10, 10]),
+            ([10, 0, 0], [20, 10, 10]),
+            ([10, 10, 0], [20, 20, 10]),
+            ([10, 10, 10], [20, 20, 20]),
+            ([11, 0, 0], [20, 10, 10]),
+            ([-5, -5, -5], [15, 15, 15]),
+        ];
+        for (lo, hi) in cases {
+            let b = Polytope::cuboid(lo, hi).unwrap();
+            let (o, d) = overlap_with_depth(&a, &b);
+            assert_eq!(o, !interiors_disjoint(&a, &b), "{lo:?} {hi:?}");
+            assert_eq!(d > 0.0, o);
+        }
+        // Far from the origin, overlapping by 1 / 2^20 (a denominator): the filter's
+        // bound is larger than the overlap, so the exact test decides.
+        let big = 1i64 << 40;
+        let a = Polytope::cuboid([big, 0, 0], [big + 10, 10, 10])
+            .unwrap()
+            .rescaled(&Int::from(1u64 << 20));
+        let b = Polytope::cuboid(
+            [(big + 10) << 20, 0, 0],
+            [(big + 20) << 20, 10 << 20, 10 << 20],
+        )
+        .unwrap()
+        .with_den(Int::from(1u64 << 20))
+        .translated(&Vec3::new(-1, 0, 0));
+        let _ = b; // translated by whole units; build the sliver directly instead
+        let c = Polytope::cuboid(
+            [((big + 10) << 20) - 1, 0, 0],
+            [(big + 20) << 20, 10 << 20, 10 << 20],
+        )
+        .unwrap()
+        .with_den(Int::from(1u64 << 20));
+        let (o, _) = overlap_with_depth(&a, &c);
+        assert!(o);
+        assert!(!interiors_disjoint(&a, &c));
     }
 }
