@@ -119,15 +119,33 @@ struct Score {
     cut: i64,
     below: i64,
     above: i64,
+    /// Live edges strictly below and strictly above the plane (neither in it nor
+    /// crossing it).
+    live_below: i64,
+    live_above: i64,
 }
 
 impl Score {
-    fn key(&self) -> (i64, i64, i64) {
+    fn key(&self) -> (i64, bool, i64, i64) {
         (
             self.clean - self.pinched - self.crossed,
+            self.balanced(),
             self.coplanar - self.cut,
             -(self.below - self.above).abs(),
         )
+    }
+
+    /// The live edges left on the smaller side are at least a quarter of those left on
+    /// either side (or there are at most 2): splitting such cells again and again makes a
+    /// tree of logarithmic depth. Without it a hole's wall is peeled one facet at a
+    /// time (the planes cutting off a few facets cut the fewest fragments), and every
+    /// split walks almost all fragments: quadratic time.
+    fn balanced(&self) -> bool {
+        let (lo, hi) = (
+            self.live_below.min(self.live_above),
+            self.live_below.max(self.live_above),
+        );
+        lo + hi <= 2 || 3 * lo >= hi
     }
 }
 
@@ -142,6 +160,10 @@ fn clean_cut(solid: &Solid, e: u32, h: &Plane) -> bool {
     let u = Vec3::from_i128(h.n).cross(&dir);
     let [n1, n2] = [0, 1].map(|i| Vec3::from_i128(solid.planes[info.tris[i] as usize].n));
     dot_sign(&n1, &u) * dot_sign(&n2, &u) != Sign::Negative
+}
+
+fn dist2(a: &[i64; 3], b: &[i64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] as f64 - b[k] as f64).powi(2)).sum()
 }
 
 /// Evenly spread indices `0..n`, at most `k` of them.
@@ -163,6 +185,10 @@ fn element_score(solid: &Solid, live: &Live, h: &Plane) -> Score {
             }
         } else if sa * sb == Sign::Negative {
             s.crossed += 1;
+        } else if sa == Sign::Negative || sb == Sign::Negative {
+            s.live_below += 1;
+        } else {
+            s.live_above += 1;
         }
     }
     for &v in &live.nm_verts {
@@ -219,7 +245,9 @@ pub(crate) fn candidates(
             }
             // Planes through e and another live reflex edge coplanar with it.
             let (a, b) = solid.edge_ends(e);
-            let mut count: FxHashMap<Plane, u32> = FxHashMap::default();
+            // Per plane: how many edges it holds, and how far (squared, in floating
+            // point: a preference only) its farthest one lies from e.
+            let mut count: FxHashMap<Plane, (u32, f64)> = FxHashMap::default();
             for j in spread(r.len(), 400) {
                 if j == i {
                     continue;
@@ -233,12 +261,23 @@ pub(crate) fn candidates(
                     },
                 };
                 if p.side_int(c) == Sign::Zero && p.side_int(d) == Sign::Zero {
-                    *count.entry(p.unoriented()).or_insert(0) += 1;
+                    let far = dist2(a, c);
+                    let e = count.entry(p.unoriented()).or_insert((0, 0.0));
+                    e.0 += 1;
+                    e.1 = e.1.max(far);
                 }
             }
-            let mut best: Vec<(u32, Plane)> = count.into_iter().map(|(p, c)| (c, p)).collect();
-            best.sort_unstable_by(|x, y| y.0.cmp(&x.0).then_with(|| x.1.n.cmp(&y.1.n)));
-            for (_, p) in best.into_iter().take(2) {
+            // Most edges first; among equals the farthest (through a hole, the plane to
+            // the opposite wall halves the wall: see `Score::balanced`), then the first
+            // normal, to stay deterministic.
+            let mut best: Vec<(u32, f64, Plane)> =
+                count.into_iter().map(|(p, (c, f))| (c, f, p)).collect();
+            best.sort_unstable_by(|x, y| {
+                y.0.cmp(&x.0)
+                    .then_with(|| y.1.total_cmp(&x.1))
+                    .then_with(|| x.2.n.cmp(&y.2.n))
+            });
+            for (_, _, p) in best.into_iter().take(2) {
                 add(p, Witness::Reflex, &mut cands);
             }
         }
@@ -274,15 +313,11 @@ pub(crate) fn for_live(
         .into_iter()
         .map(|(p, w)| (element_score(solid, live, &p), p, w))
         .collect();
-    scored.sort_by(|x, y| {
-        y.0.key()
-            .0
-            .cmp(&x.0.key().0)
-            .then_with(|| x.1.n.cmp(&y.1.n))
-    });
-    // Fragments only break ties of the primary criterion.
-    let top = scored.first().map(|s| s.0.key().0);
-    scored.retain(|s| Some(s.0.key().0) == top);
+    let primary = |s: &Score| (s.key().0, s.key().1);
+    scored.sort_by(|x, y| primary(&y.0).cmp(&primary(&x.0)).then_with(|| x.1.n.cmp(&y.1.n)));
+    // Fragments only break ties of the primary criteria.
+    let top = scored.first().map(|s| primary(&s.0));
+    scored.retain(|s| Some(primary(&s.0)) == top);
     scored.truncate(6);
     let mut best: Option<(Score, Plane, Witness)> = None;
     for (mut s, p, w) in scored {
