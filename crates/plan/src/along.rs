@@ -193,13 +193,12 @@ impl<'a> DirectionQuery<'a> {
     /// contains `x`.
     fn local(&self, i: usize, j: usize, x: &Vec3) -> Result<(bool, Vec<usize>), PlanError> {
         let sep = self.classify_all(i, j, x);
-        // Candidate blockers: touching pairs (cheap cones) first, in chunks, stopping at
-        // the first that blocks.
-        let mut unknown: Vec<usize> = (0..sep.len()).filter(|&k| sep[k] == Sep::Unknown).collect();
-        unknown.sort_by_key(|&k| {
-            self.axes(i, j, k).iter().all(|a| a.strict) // touching ones first
-        });
-        for chunk in unknown.chunks(256) {
+        // Candidate blockers: all touching pairs at once (cheap cones), then the others
+        // (full sums) in chunks, stopping at the first that blocks.
+        let (touching, others): (Vec<usize>, Vec<usize>) = (0..sep.len())
+            .filter(|&k| sep[k] == Sep::Unknown)
+            .partition(|&k| self.axes(i, j, k).iter().any(|a| !a.strict));
+        for chunk in std::iter::once(&touching[..]).chain(others.chunks(64)) {
             let hit: Vec<Option<usize>> = chunk
                 .par_iter()
                 .map(|&k| -> Result<Option<usize>, PlanError> {
@@ -210,13 +209,50 @@ impl<'a> DirectionQuery<'a> {
                 return Ok((true, vec![k]));
             }
         }
-        let free: Vec<usize> = (0..sep.len()).filter(|&k| sep[k] != Sep::Outside).collect();
-        let on: Vec<Option<usize>> = free
+        // Not blocked: every polygon whose closure holds x, touching pairs first. A
+        // polygon inside the open hemisphere of a face contact of the same parts changes
+        // nothing near x (its open set lies in that hemisphere, which is in the union),
+        // so non-touching pairs covered that way are not summed.
+        let (touching, others): (Vec<usize>, Vec<usize>) = (0..sep.len())
+            .filter(|&k| sep[k] != Sep::Outside)
+            .partition(|&k| self.axes(i, j, k).iter().any(|a| !a.strict));
+        let mut on: Vec<Option<usize>> = touching
             .par_iter()
             .map(|&k| -> Result<Option<usize>, PlanError> {
                 Ok(self.polygon(i, j, k)?.contains_closed(x).then_some(k))
             })
             .collect::<Result<_, _>>()?;
+        let mut h: rustc_hash::FxHashSet<Vec3> = Default::default();
+        for &k in &touching {
+            let p = self.polygon(i, j, k)?;
+            if p.normals().len() == 1 {
+                h.insert(p.normals()[0].clone());
+            }
+        }
+        let nb = self.parts[j].pieces.len();
+        let more: Vec<Option<usize>> = others
+            .par_iter()
+            .map(|&k| -> Result<Option<usize>, PlanError> {
+                let (a, b) = (k / nb, k % nb);
+                let covered = !h.is_empty()
+                    && (self
+                        .axes(i, j, k)
+                        .iter()
+                        .any(|ax| h.contains(&ax.n.primitive()))
+                        || crate::pairs::below_along_any(
+                            &self.parts[i].pieces[a],
+                            &self.info[i][a],
+                            &self.parts[j].pieces[b],
+                            &self.info[j][b],
+                            &h,
+                        ));
+                if covered {
+                    return Ok(None);
+                }
+                Ok(self.polygon(i, j, k)?.contains_closed(x).then_some(k))
+            })
+            .collect::<Result<_, _>>()?;
+        on.extend(more);
         Ok((false, on.into_iter().flatten().collect()))
     }
 

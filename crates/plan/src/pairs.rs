@@ -314,9 +314,23 @@ fn edges_meeting(p: &Polytope, ids: &[u32], other: &[Vec3], dother: &Int, n: &Ve
         pts.iter()
             .all(|w| cmp_scaled(&g.dot(w), dp_, h, dh) == own.reverse())
     };
+    // Exact boxes: an edge whose box misses the other set's box cannot meet it.
+    let lo = [0, 1, 2].map(|t| other.iter().map(|w| w.get(t)).min().unwrap());
+    let hi = [0, 1, 2].map(|t| other.iter().map(|w| w.get(t)).max().unwrap());
+    let misses = |u: &Vec3, w: &Vec3| {
+        (0..3).any(|t| {
+            let (a, b) = (u.get(t), w.get(t));
+            let (mn, mx) = if a < b { (a, b) } else { (b, a) };
+            cmp_scaled(&mx, dp, &lo[t], dother) == Ordering::Less
+                || cmp_scaled(&mn, dp, &hi[t], dother) == Ordering::Greater
+        })
+    };
     let mut keep = vec![false; k];
     for e in 0..k {
         let (u, w) = (v(e), v(e + 1));
+        if misses(u, w) {
+            continue;
+        }
         let seg = [u.clone(), w.clone()];
         // The segment's line (either side), then the other hull's edge lines.
         let g = n.cross(&w.sub(u));
@@ -357,11 +371,28 @@ fn edges_meeting(p: &Polytope, ids: &[u32], other: &[Vec3], dother: &Int, n: &Ve
 /// points `fb` of the same plane (denominator `db`). They are disjoint exactly when a line
 /// of the plane separates them weakly, and then (two-dimensional separating axes) the
 /// line through an edge of `fa` or of `fb` does.
+fn approx(x: &Int) -> f64 {
+    apart_kernel::int::to_f64(x)
+}
+
 fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec3) -> bool {
     let separated = |cycle: &[Vec3], dc: &Int, other: &[Vec3], dother: &Int| -> bool {
         let k = cycle.len();
         let edges = if k == 2 { 1 } else { k };
-        (0..edges).any(|e| {
+        // Edges near the other set first (the separating one, when there is one, is
+        // usually there); the order changes nothing but the time.
+        let target = other[0].approx();
+        let dist = |e: usize| {
+            let u = cycle[e].approx();
+            (0..3)
+                .map(|t| (u[t] / approx(dc) - target[t] / approx(dother)).powi(2))
+                .sum::<f64>()
+        };
+        let mut order: Vec<usize> = (0..edges).collect();
+        if edges > 8 {
+            order.sort_by(|&x, &y| dist(x).total_cmp(&dist(y)));
+        }
+        order.into_iter().any(|e| {
             let (u, v) = (&cycle[e], &cycle[(e + 1) % k]);
             let g = n.cross(&v.sub(u));
             let h = g.dot(u);
@@ -371,23 +402,37 @@ fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec
                 .iter()
                 .map(|w| g.dot(w).cmp(&h))
                 .find(|o| *o != Ordering::Equal);
-            let far = |o: Ordering| match own {
-                Some(s) => o != s,
-                None => true,
-            };
             let all_one_side = |want: Ordering| {
-                other
-                    .iter()
-                    .all(|w| matches!(cmp_scaled(&g.dot(w), dother, &h, dc), o if o == Ordering::Equal || o == want))
+                other.iter().all(|w| {
+                    let o = cmp_scaled(&g.dot(w), dother, &h, dc);
+                    o == Ordering::Equal || o == want
+                })
             };
             match own {
-                Some(s) => all_one_side(s.reverse()) && far(s.reverse()),
+                Some(s) => all_one_side(s.reverse()),
                 // A segment: either side of its line.
                 None => all_one_side(Ordering::Less) || all_one_side(Ordering::Greater),
             }
         })
     };
-    !separated(fa, da, fb, db) && !(fb.len() >= 2 && separated(fb, db, fa, da))
+    let apart = separated(fa, da, fb, db) || (fb.len() >= 2 && separated(fb, db, fa, da));
+    !apart
+}
+
+/// Whether the centroid of the points `pts` (denominator `dp`), which lie in the plane of
+/// the facet of `p` with outward normal `n`, lies in that facet's relative interior:
+/// strictly inside every other facet's half-space. A cheap sufficient test for
+/// [`meets_relative_interior`].
+fn centroid_in_relative_interior(p: &Polytope, n: &Vec3, pts: &[Vec3], dp: &Int) -> bool {
+    let n = n.primitive();
+    let sum = pts.iter().skip(1).fold(pts[0].clone(), |s, w| s.add(w));
+    // p's stored integers are den_p times coordinates; the centroid is sum / (k dp).
+    let scale = Int::from(pts.len() as i64) * dp;
+    let c = sum.scale(p.den());
+    p.facets()
+        .iter()
+        .filter(|f| f.normal != n)
+        .all(|f| f.normal.dot(&c) < &f.offset * &scale)
 }
 
 /// The contact cone of two pieces touching across the plane with normal `n` (from `a` to
@@ -409,7 +454,9 @@ pub(crate) fn contact_polygon(
     let (ida, idb) = (support_face(a, n), support_face(b, &n.neg()));
     let (fa, fb) = (points(a, &ida), points(b, &idb));
     let face = |f: &[Vec3]| f.len() >= 3;
-    if (face(&fa) && meets_relative_interior(&fa, a.den(), &fb, b.den(), n))
+    if (face(&fa) && centroid_in_relative_interior(a, n, &fb, b.den()))
+        || (face(&fb) && centroid_in_relative_interior(b, &n.neg(), &fa, a.den()))
+        || (face(&fa) && meets_relative_interior(&fa, a.den(), &fb, b.den(), n))
         || (face(&fb) && meets_relative_interior(&fb, b.den(), &fa, a.den(), n))
     {
         return Some(Ok(PairPolygon::Polygon(
