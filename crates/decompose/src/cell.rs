@@ -6,7 +6,7 @@
 //! (never from the edge's end points), so vertex sizes stay bounded however deep the
 //! partition goes.
 
-use crate::exact::{HPoint, Plane};
+use crate::exact::{normals_det_sign, HPoint, Plane};
 use apart_kernel::{int, Int, Sign, Vec3};
 use apart_pieces::hull2d::hull_in_plane;
 use apart_pieces::{Polytope, PolytopeError};
@@ -150,6 +150,97 @@ impl Cell {
         Cell { facets, verts }
     }
 
+    /// The convex piece `K` cut from the cell by the inner half-spaces of `planes`,
+    /// given polygons `polys[i]` in `planes[i]` that make up the part of `K`'s boundary
+    /// in those planes (each point flagged when it may lie on a facet of the cell);
+    /// `None` when `K` has no interior. The planes must bound `K` inside the cell this
+    /// way (a leaf of the partition: its fragments are the facets of `K` inside the
+    /// cell).
+    ///
+    /// Why it is exact and the same as clipping the cell plane by plane: every vertex of
+    /// `K` lying in a facet of `K` is a vertex of that facet, hence of one of the polygons
+    /// making up the facet (when the facet is in some `planes[i]`) or of the cell (when
+    /// all facets through it are the cell's). So the candidates are the polygons'
+    /// points and the cell's vertices inside every plane; each gets the planes of the
+    /// polygons it is a corner of and the cell facets through it, and it is a vertex of
+    /// `K` exactly when these normals span space (three supporting planes with
+    /// independent normals meet `K` in one point, a face of `K`). A cell facet is a
+    /// facet of `K` when at least three vertices lie on it (three vertices of a convex
+    /// polytope are never collinear). Cost: points times cell facets plus cell vertices
+    /// times planes, instead of planes times the growing vertex count of the clipped
+    /// cell (quadratic for a leaf with many facets, such as the disc of a lathe).
+    pub fn carve(&self, planes: &[Plane], polys: &[Vec<(&HPoint, bool)>]) -> Option<Cell> {
+        let nc = self.facets.len();
+        let mut facets: Vec<Plane> = self.facets.clone();
+        let mut ids: FxHashMap<Plane, u32> = FxHashMap::default();
+        let mut points: Vec<(HPoint, Vec<u32>)> = Vec::new();
+        let mut index: FxHashMap<HPoint, usize> = FxHashMap::default();
+        for (pl, poly) in planes.iter().zip(polys) {
+            let k = *ids.entry(*pl).or_insert_with(|| {
+                facets.push(*pl);
+                facets.len() as u32 - 1
+            });
+            for &(p, bnd) in poly {
+                let i = *index.entry(p.clone()).or_insert_with(|| {
+                    let on: Vec<u32> = if bnd {
+                        (0..nc as u32)
+                            .filter(|&f| self.facets[f as usize].side(p) == Sign::Zero)
+                            .collect()
+                    } else {
+                        Vec::new()
+                    };
+                    points.push((p.clone(), on));
+                    points.len() - 1
+                });
+                points[i].1.push(k);
+            }
+        }
+        let cut = &facets[nc..];
+        for v in &self.verts {
+            if cut.iter().any(|pl| pl.side(&v.p) == Sign::Positive) {
+                continue;
+            }
+            let i = *index.entry(v.p.clone()).or_insert_with(|| {
+                points.push((v.p.clone(), Vec::new()));
+                points.len() - 1
+            });
+            points[i].1.extend_from_slice(&v.on);
+        }
+        let mut verts: Vec<CVert> = Vec::new();
+        let mut count = vec![0u32; facets.len()];
+        for (p, mut on) in points {
+            on.sort_unstable();
+            on.dedup();
+            if spans(&facets, &on) {
+                for &f in &on {
+                    count[f as usize] += 1;
+                }
+                verts.push(CVert { p, on });
+            }
+        }
+        // Keep the facets with at least three vertices, renumbered.
+        let mut remap = vec![u32::MAX; facets.len()];
+        let mut kept = Vec::new();
+        for (f, pl) in facets.iter().enumerate() {
+            if count[f] >= 3 {
+                remap[f] = kept.len() as u32;
+                kept.push(*pl);
+            }
+        }
+        for v in &mut verts {
+            v.on = v
+                .on
+                .iter()
+                .map(|&f| remap[f as usize])
+                .filter(|&f| f != u32::MAX)
+                .collect();
+        }
+        (kept.len() >= 4 && verts.len() >= 4).then_some(Cell {
+            facets: kept,
+            verts,
+        })
+    }
+
     /// The floating-point bounding box of the vertices (for filters only).
     pub fn bbox(&self) -> [[f64; 3]; 2] {
         let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
@@ -189,11 +280,14 @@ impl Cell {
                 Vec3::from_ints([&x[0] * &k, &x[1] * &k, &x[2] * &k])
             })
             .collect();
+        let mut on_facet: Vec<Vec<u32>> = vec![Vec::new(); self.facets.len()];
+        for (v, cv) in self.verts.iter().enumerate() {
+            for &f in &cv.on {
+                on_facet[f as usize].push(v as u32);
+            }
+        }
         let mut facets = Vec::with_capacity(self.facets.len());
-        for (f, pl) in self.facets.iter().enumerate() {
-            let ids: Vec<u32> = (0..self.verts.len() as u32)
-                .filter(|&v| self.verts[v as usize].on.contains(&(f as u32)))
-                .collect();
+        for (pl, ids) in self.facets.iter().zip(on_facet) {
             let sub: Vec<Vec3> = ids.iter().map(|&v| pts[v as usize].clone()).collect();
             let normal = Vec3::from_i128(pl.n);
             let hull = hull_in_plane(&normal, &sub);
@@ -204,6 +298,23 @@ impl Cell {
         }
         Ok(Polytope::from_facets(&pts, facets)?.with_den(den))
     }
+}
+
+/// Whether the normals of the listed facets span space (a point on them all is a
+/// vertex). Linear in the list: normals are primitive, so two are parallel exactly when
+/// equal up to sign; given the first and one not parallel to it, the normals span space
+/// exactly when some third is off their plane.
+pub(crate) fn spans(facets: &[Plane], on: &[u32]) -> bool {
+    let f = |i: &u32| &facets[*i as usize];
+    let Some(a) = on.first().map(f) else {
+        return false;
+    };
+    let neg = a.n.map(|v| -v);
+    let Some(b) = on.iter().map(f).find(|p| p.n != a.n && p.n != neg) else {
+        return false;
+    };
+    on.iter()
+        .any(|i| normals_det_sign(a, b, f(i)) != Sign::Zero)
 }
 
 #[cfg(test)]

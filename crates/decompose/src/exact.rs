@@ -311,6 +311,12 @@ impl HPoint {
         on_segment_big(&a.map(Int::from), &b.map(Int::from), &n, &Int::from(h.c))
     }
 
+    /// Whether [`HPoint::approx`] holds the coordinates within a few ulps (false only
+    /// beyond the f64 range).
+    pub fn filterable(&self) -> bool {
+        self.filterable
+    }
+
     /// Floating-point coordinates (relative error a few ulps), for bounding boxes only.
     pub fn approx(&self) -> [f64; 3] {
         self.f

@@ -8,8 +8,8 @@
 //! a plane separating A and B cuts it, so both have a facet there, and every other facet
 //! plane of A or B supports the union: the test succeeds.
 
-use crate::cell::{CVert, Cell};
-use crate::exact::{normals_det_sign, HPoint, Plane};
+use crate::cell::{spans, CVert, Cell};
+use crate::exact::{HPoint, Plane};
 use apart_kernel::Sign;
 use rustc_hash::FxHashMap;
 
@@ -18,6 +18,10 @@ use rustc_hash::FxHashMap;
 pub(crate) fn merge(cells: Vec<Cell>) -> (Vec<Cell>, usize) {
     let mut slot: Vec<Option<Cell>> = cells.into_iter().map(Some).collect();
     let mut boxes: Vec<[[f64; 3]; 2]> = slot.iter().map(|c| c.as_ref().unwrap().bbox()).collect();
+    let mut counts: Vec<Vec<u32>> = slot
+        .iter()
+        .map(|c| facet_counts(c.as_ref().unwrap()))
+        .collect();
     let mut by_plane: FxHashMap<Plane, Vec<usize>> = FxHashMap::default();
     for (i, c) in slot.iter().enumerate() {
         for f in &c.as_ref().unwrap().facets {
@@ -36,7 +40,8 @@ pub(crate) fn merge(cells: Vec<Cell>) -> (Vec<Cell>, usize) {
                         continue;
                     }
                     if let Some(b) = slot[j].as_ref() {
-                        if let Some(m) = union(a, b) {
+                        let c = [&counts[i][..], &counts[j][..]];
+                        if let Some(m) = union(a, b, c, &boxes[i], &boxes[j]) {
                             found = Some((j, m));
                             break 'search;
                         }
@@ -50,6 +55,7 @@ pub(crate) fn merge(cells: Vec<Cell>) -> (Vec<Cell>, usize) {
             slot[j] = None;
             let k = slot.len();
             boxes.push(m.bbox());
+            counts.push(facet_counts(&m));
             for f in &m.facets {
                 by_plane.entry(*f).or_default().push(k);
             }
@@ -69,21 +75,73 @@ fn touching(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
     })
 }
 
-/// The union of `a` and `b` when it is convex.
-fn union(a: &Cell, b: &Cell) -> Option<Cell> {
+/// Whether the float box `b` (of points whose floating-point shadows are within a few
+/// ulps) lies clearly inside the plane's inner side: then every point does, and the
+/// exact tests can be skipped. The slack, 1e-9 of the terms' magnitude, is far above
+/// the rounding of the shadows and of this evaluation.
+fn box_inside(pl: &Plane, b: &[[f64; 3]; 2]) -> bool {
+    let n = pl.n.map(|v| v as f64);
+    let mut v = -(pl.c as f64);
+    let mut mag = (pl.c as f64).abs();
+    for k in 0..3 {
+        let x = if n[k] > 0.0 { b[1][k] } else { b[0][k] };
+        v += n[k] * x;
+        mag += (n[k] * x).abs();
+    }
+    v.is_finite() && mag.is_finite() && v < -1e-9 * mag
+}
+
+/// The number of vertices on each facet.
+fn facet_counts(c: &Cell) -> Vec<u32> {
+    let mut n = vec![0; c.facets.len()];
+    for v in &c.verts {
+        for &f in &v.on {
+            n[f as usize] += 1;
+        }
+    }
+    n
+}
+
+/// The union of `a` and `b` (vertices per facet `counts`, float boxes `ba`, `bb`) when
+/// it is convex.
+fn union(
+    a: &Cell,
+    b: &Cell,
+    counts: [&[u32]; 2],
+    ba: &[[f64; 3]; 2],
+    bb: &[[f64; 3]; 2],
+) -> Option<Cell> {
     let fa = a
         .facets
         .iter()
         .position(|f| b.facets.contains(&f.flipped()))?;
     let shared = a.facets[fa];
     let fb = b.facets.iter().position(|f| *f == shared.flipped())?;
-    let inside = |p: &[Plane], skip: usize, verts: &[CVert]| {
+    // A convex union is cut by the shared plane in one polygon, the facet of both
+    // pieces there: the same vertices (vertex lists are complete), so as many.
+    if counts[0][fa] != counts[1][fb] {
+        return None;
+    }
+    // Every facet of one (but the shared one) holds the other's vertices. A facet whose
+    // inner side clearly holds the other's float box needs no exact test (most facets,
+    // when a large piece such as the disc of a lathe meets each of its many wedges).
+    // A facet plane of both holds both. Small piece first: its facets against the large
+    // one's vertices are the likely failures.
+    let inside = |p: &[Plane], skip: usize, other: &Cell, bx: &[[f64; 3]; 2]| {
+        let filter = other.verts.iter().all(|v| v.p.filterable());
         p.iter()
             .enumerate()
-            .filter(|&(k, _)| k != skip)
-            .all(|(_, pl)| verts.iter().all(|v| pl.side(&v.p) != Sign::Positive))
+            .filter(|&(k, pl)| {
+                k != skip && !(filter && box_inside(pl, bx)) && !other.facets.contains(pl)
+            })
+            .all(|(_, pl)| other.verts.iter().all(|v| pl.side(&v.p) != Sign::Positive))
     };
-    if !inside(&a.facets, fa, &b.verts) || !inside(&b.facets, fb, &a.verts) {
+    let ((x, fx, bx), (y, fy, by)) = if a.facets.len() <= b.facets.len() {
+        ((a, fa, ba), (b, fb, bb))
+    } else {
+        ((b, fb, bb), (a, fa, ba))
+    };
+    if !inside(&x.facets, fx, y, by) || !inside(&y.facets, fy, x, bx) {
         return None;
     }
     let mut facets: Vec<Plane> = Vec::new();
@@ -114,21 +172,6 @@ fn union(a: &Cell, b: &Cell) -> Option<Cell> {
         }
     }
     Some(Cell { facets, verts })
-}
-
-/// Whether the normals of the listed facets span space (the point is a vertex).
-fn spans(facets: &[Plane], on: &[u32]) -> bool {
-    let f = |i: u32| &facets[i as usize];
-    for x in 0..on.len() {
-        for y in x + 1..on.len() {
-            for z in y + 1..on.len() {
-                if normals_det_sign(f(on[x]), f(on[y]), f(on[z])) != Sign::Zero {
-                    return true;
-                }
-            }
-        }
-    }
-    false
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@
 //! then meets neither open part; parts only inherit elements and planes of their parent.
 
 use crate::cell::Cell;
+use crate::exact::Plane;
 use crate::fragments::{place, Frag, Placement};
 use crate::solid::Solid;
 use crate::split::{for_groups, for_live, live, Choice};
@@ -194,15 +195,14 @@ fn groups(s: &Solid, frags: &[Arc<Frag>], in_cell: &FxHashMap<u32, u32>) -> usiz
 
 /// The leaf piece: the cell cut by the inner half-spaces of its fragments' planes.
 fn leaf(s: &Solid, t: Task) -> Result<Step, DecomposeError> {
-    let mut seen = rustc_hash::FxHashSet::default();
-    let mut cell = t.cell;
-    for f in &t.frags {
-        let p = s.planes[f.tri as usize];
-        if seen.insert(p) {
-            cell = cell.split(&p, false).0.ok_or_else(|| {
-                DecomposeError::Internal("a convex leaf lost its interior".into())
-            })?;
-        }
-    }
-    Ok(Step::Piece(cell))
+    let planes: Vec<Plane> = t.frags.iter().map(|f| s.planes[f.tri as usize]).collect();
+    let pts = t
+        .frags
+        .iter()
+        .map(|f| f.pts.iter().map(|p| (&p.p, p.bnd)).collect::<Vec<_>>())
+        .collect::<Vec<_>>();
+    t.cell
+        .carve(&planes, &pts)
+        .map(Step::Piece)
+        .ok_or_else(|| DecomposeError::Internal("a convex leaf lost its interior".into()))
 }
