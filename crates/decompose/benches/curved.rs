@@ -45,7 +45,11 @@ fn shape(case: &str) -> (String, curved::Snapped) {
             // A ring-like part: a tube of radii 5 and 8, z from 0 to 10.
             vec![(
                 "sleeve".to_string(),
-                gen::lathe(&[[5.0, 10.0], [5.0, 0.0], [8.0, 0.0], [8.0, 10.0]], size, 0.0),
+                gen::lathe(
+                    &[[5.0, 10.0], [5.0, 0.0], [8.0, 0.0], [8.0, 10.0]],
+                    size,
+                    0.0,
+                ),
             )],
             "sleeve",
             format!("sleeve of {size} segments"),
@@ -80,9 +84,9 @@ fn main() {
         args
     };
     println!(
-        "| shape | triangles | reflex edges r | pieces | before merging | splits | sequential s | parallel s | verify s |"
+        "| shape | triangles | reflex edges r | pieces | before merging | splits | den bits (vertex / piece) | integral pieces | sequential s | parallel s | verify s |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in cases {
         let (label, s) = shape(&case);
         let seq = Options {
@@ -101,13 +105,26 @@ fn main() {
             verify(&s.points, &s.tris, &d.pieces).expect("verify");
         }
         let tv = t.elapsed().as_secs_f64();
+        let bits = d
+            .pieces
+            .iter()
+            .map(|p| apart_kernel::int::bit_len(p.den()))
+            .max()
+            .unwrap_or(0);
+        let integral = d
+            .pieces
+            .iter()
+            .filter(|p| p.den() == &apart_kernel::Int::ONE)
+            .count();
         println!(
-            "| {label} | {} | {} | {} | {} | {} | {ts:.3} | {tp:.3} | {tv:.3} |",
+            "| {label} | {} | {} | {} | {} | {} | {} / {} | {integral} | {ts:.3} | {tp:.3} | {tv:.3} |",
             s.tris.len(),
             d.reflex_edges,
             d.pieces.len(),
             d.stats.partition_pieces,
             d.stats.splits,
+            d.stats.max_den_bits,
+            bits.saturating_sub(1),
         );
     }
 }

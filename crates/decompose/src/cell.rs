@@ -228,12 +228,11 @@ impl Cell {
             }
         }
         for v in &mut verts {
-            v.on = v
-                .on
-                .iter()
-                .map(|&f| remap[f as usize])
-                .filter(|&f| f != u32::MAX)
-                .collect();
+            v.on =
+                v.on.iter()
+                    .map(|&f| remap[f as usize])
+                    .filter(|&f| f != u32::MAX)
+                    .collect();
         }
         (kept.len() >= 4 && verts.len() >= 4).then_some(Cell {
             facets: kept,

@@ -300,6 +300,9 @@ pub(crate) fn candidates(
     cands
 }
 
+/// Fragments scored per candidate plane at most (see [`for_live`]).
+const SAMPLE: usize = 1024;
+
 /// Chooses the best candidate plane through a live element. `in_cell` tells which
 /// triangles have a fragment here.
 pub(crate) fn for_live(
@@ -314,11 +317,26 @@ pub(crate) fn for_live(
         .map(|(p, w)| (element_score(solid, live, &p), p, w))
         .collect();
     let primary = |s: &Score| (s.key().0, s.key().1);
-    scored.sort_by(|x, y| primary(&y.0).cmp(&primary(&x.0)).then_with(|| x.1.n.cmp(&y.1.n)));
+    scored.sort_by(|x, y| {
+        primary(&y.0)
+            .cmp(&primary(&x.0))
+            .then_with(|| x.1.n.cmp(&y.1.n))
+    });
     // Fragments only break ties of the primary criteria.
     let top = scored.first().map(|s| primary(&s.0));
     scored.retain(|s| Some(primary(&s.0)) == top);
     scored.truncate(6);
+    // On large cells an evenly spread sample of the fragments estimates the counts
+    // well enough (the choice is a preference; any candidate is a valid cut).
+    let sample: Vec<Arc<Frag>>;
+    let frags = if frags.len() > SAMPLE {
+        sample = spread(frags.len(), SAMPLE)
+            .map(|i| frags[i].clone())
+            .collect();
+        &sample[..]
+    } else {
+        frags
+    };
     let mut best: Option<(Score, Plane, Witness)> = None;
     for (mut s, p, w) in scored {
         fragment_score(frags, &p, &mut s);
