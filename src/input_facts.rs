@@ -137,6 +137,8 @@ pub struct ToleranceJson {
     accepted_overlaps: usize,
     /// Pieces thinner than twice the tolerance that vanished.
     vanished_pieces: usize,
+    /// The farthest any face moved inward (input units, at least `eps`).
+    max_shift: f64,
 }
 
 /// Unit, tolerance and repairs, flattened into every command's JSON.
@@ -181,6 +183,7 @@ impl InputFacts {
                 deepest_overlap: t.deepest_overlap,
                 accepted_overlaps: t.accepted_overlaps,
                 vanished_pieces: t.vanished_pieces,
+                max_shift: t.max_shift,
             }),
         }
     }
@@ -257,8 +260,17 @@ pub fn holds_without_tolerance(
 /// The sentence every text answer under a tolerance ends with; `None` without one.
 pub fn tolerance_statement(asm: &Assembly, global: &Global) -> Option<String> {
     let t = asm.tolerance.as_ref()?;
+    let by = if t.max_shift > t.eps * (1.0 + 1e-9) {
+        format!(
+            "by {} to {}",
+            length(t.eps, global.units),
+            length(t.max_shift, global.units)
+        )
+    } else {
+        format!("by {}", length(t.eps, global.units))
+    };
     Some(format!(
-        "tolerance: this answer holds for parts made {} smaller{} (every convex piece's faces moved inward; overlaps up to a depth of {} count as contact)",
+        "tolerance: this answer holds for parts made {} smaller{} (every convex piece's faces moved inward {by}; overlaps up to a depth of {} count as contact)",
         length(t.eps, global.units),
         if t.auto { ", the smallest tolerance that makes the assembly valid (--tolerance auto)" } else { "" },
         length(2.0 * t.eps, global.units),

@@ -21,6 +21,7 @@ use crate::witness::fmt_witness;
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::{Aabb, Problem};
 use apart_pieces::interference::overlap_with_depth;
+use apart_pieces::shrink::max_face_shift;
 use apart_pieces::Polytope;
 use rayon::prelude::*;
 
@@ -56,6 +57,10 @@ pub struct AppliedTolerance {
     pub accepted_overlaps: usize,
     /// Pieces thinner than `2 eps` that vanished.
     pub vanished_pieces: usize,
+    /// The farthest any face moved inward (input units; at least `eps`): tessellated
+    /// pieces are scaled about an inner point rather than cut exactly, which moves some
+    /// faces more (see [`Polytope::shrunk`]).
+    pub max_shift: f64,
 }
 
 /// An overlap between two parts, measured on their pieces.
@@ -160,22 +165,27 @@ fn round_up_8_bits(x: f64) -> f64 {
 }
 
 /// Every piece of every part shrunk by `eps` (grid units), in parallel. Returns the
-/// number of pieces that vanished.
-fn shrink_all(parts: &mut [Part], eps: &Rational) -> usize {
+/// number of pieces that vanished and the farthest any face moved (grid units).
+fn shrink_all(parts: &mut [Part], eps: &Rational) -> (usize, f64) {
     let (num, den) = (eps.numer().clone(), eps.denom().clone());
     parts
         .par_iter_mut()
         .map(|p| {
-            let shrunk: Vec<Option<Polytope>> = p
+            let shrunk: Vec<(Option<Polytope>, f64)> = p
                 .unshrunk_pieces
                 .par_iter()
-                .map(|q| q.shrunk(&num, &den))
+                .map(|q| {
+                    let s = q.shrunk(&num, &den);
+                    let shift = s.as_ref().map_or(0.0, |s| max_face_shift(q, s));
+                    (s, shift)
+                })
                 .collect();
             let before = shrunk.len();
-            p.pieces = shrunk.into_iter().flatten().collect();
-            before - p.pieces.len()
+            let shift = shrunk.iter().map(|x| x.1).fold(0.0, f64::max);
+            p.pieces = shrunk.into_iter().filter_map(|x| x.0).collect();
+            (before - p.pieces.len(), shift)
         })
-        .sum()
+        .reduce(|| (0, 0.0), |a, b| (a.0 + b.0, a.1.max(b.1)))
 }
 
 /// Applies `tol` to an assembly whose parts have their pieces (the loader's last step,
@@ -227,9 +237,10 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
         p.unshrunk_pieces = std::mem::take(&mut p.pieces);
     }
     let mut vanished;
+    let mut max_shift;
     let mut after;
     loop {
-        vanished = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
+        (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
         after = overlaps(&asm.parts);
         // The depth is a floating-point measurement: when it fell short, double (auto
         // only; a stated tolerance is kept as stated).
@@ -286,6 +297,7 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
         deepest_overlap: deepest,
         accepted_overlaps: accepted,
         vanished_pieces: vanished,
+        max_shift: (max_shift * h).max(eps),
     });
     problems
 }

@@ -166,6 +166,149 @@ fn clip(verts: Vec<Vertex>, h: &Half, hi: u32) -> Option<Vec<Vertex>> {
     Some(out)
 }
 
+/// How far the farthest facet plane of `original` moved inward in `shrunk` (true
+/// coordinates), measured in floating point: a report of how much smaller than the
+/// stated tolerance a scaled piece became, never a decision.
+pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
+    let pts: Vec<[f64; 3]> = shrunk
+        .vertices()
+        .iter()
+        .map(|v| {
+            [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), shrunk.den().clone()).to_f64())
+        })
+        .collect();
+    original
+        .facets()
+        .iter()
+        .map(|f| {
+            let n = f.normal.approx();
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let h = apart_kernel::Rational::new(f.offset.clone(), original.den().clone()).to_f64();
+            let top = pts
+                .iter()
+                .map(|p| p[0] * n[0] + p[1] * n[1] + p[2] * n[2])
+                .fold(f64::NEG_INFINITY, f64::max);
+            (h - top) / len
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A point strictly inside `p` near the centre of its largest inscribed ball, as the
+/// integer vector `gamma` with `gamma / (den l)` the point (true coordinates): found by a
+/// damped Newton method on the log barrier of the facets in floating point, rounded,
+/// and checked exactly; the vertex centroid (rounded) when that fails.
+fn inner_point(p: &Polytope, l: &Int) -> Option<Vec3> {
+    let to_f = |v: &Vec3| {
+        [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), p.den().clone()).to_f64())
+    };
+    let verts: Vec<[f64; 3]> = p.vertices().iter().map(to_f).collect();
+    let n = verts.len() as f64;
+    let mut c = [0.0; 3];
+    for v in &verts {
+        for k in 0..3 {
+            c[k] += v[k] / n;
+        }
+    }
+    let units: Vec<([f64; 3], f64)> = p
+        .facets()
+        .iter()
+        .map(|f| {
+            let a = f.normal.approx();
+            let len = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            let u = a.map(|x| x / len);
+            // u · x <= h for the points x of the facet's plane.
+            let v = &verts[f.cycle[0] as usize];
+            (u, u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
+        })
+        .collect();
+    // The analytic centre of the facet inequalities (damped Newton on the log barrier
+    // from the vertex centroid, which lies inside): well away from every facet, also in
+    // long thin pieces where the centroid may sit close to a side.
+    let slack = |c: &[f64; 3]| -> Vec<f64> {
+        units
+            .iter()
+            .map(|(u, h)| h - (u[0] * c[0] + u[1] * c[1] + u[2] * c[2]))
+            .collect()
+    };
+    let mut best = c;
+    if slack(&c).iter().all(|&x| x > 0.0) {
+        for _ in 0..50 {
+            let sl = slack(&c);
+            let mut g = [0.0; 3];
+            let mut hm = [[0.0; 3]; 3];
+            for ((u, _), s) in units.iter().zip(&sl) {
+                for a in 0..3 {
+                    g[a] += u[a] / s;
+                    for b in 0..3 {
+                        hm[a][b] += u[a] * u[b] / (s * s);
+                    }
+                }
+            }
+            let Some(step) = solve3(&hm, &g) else { break };
+            let mut t = 1.0;
+            let mut moved = false;
+            for _ in 0..30 {
+                let next = [0, 1, 2].map(|k| c[k] - t * step[k]);
+                if slack(&next).iter().all(|&x| x > 0.0) {
+                    c = next;
+                    moved = true;
+                    break;
+                }
+                t *= 0.5;
+            }
+            if !moved {
+                break;
+            }
+        }
+        best = c;
+    }
+    let scale = int::to_f64(p.den()) * int::to_f64(l);
+    let inside = |g: &Vec3| {
+        p.facets()
+            .iter()
+            .all(|f| l * &f.offset - f.normal.dot(g) > Int::ZERO)
+    };
+    let round = |c: &[f64; 3]| -> Option<Vec3> {
+        let g = c.map(|x| (x * scale).round());
+        if g.iter().all(|x| x.is_finite() && x.abs() < 9.0e15) {
+            Some(Vec3::new(g[0] as i64, g[1] as i64, g[2] as i64))
+        } else {
+            None
+        }
+    };
+    if let Some(g) = round(&best).filter(inside) {
+        return Some(g);
+    }
+    // The exact vertex centroid, scaled to den l: (l / V) sum y, rounded down.
+    let mut sum = Vec3::new(0, 0, 0);
+    for v in p.vertices() {
+        sum = sum.add(v);
+    }
+    let nv = Int::from(p.vertices().len());
+    let g = Vec3::from_ints(sum.to_ints().map(|x| x * l / &nv));
+    inside(&g).then_some(g)
+}
+
+/// The solution of the 3×3 system `m x = b` by Cramer's rule (`None` when singular).
+fn solve3(m: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: &[[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(m);
+    if !d.is_normal() {
+        return None;
+    }
+    Some([0, 1, 2].map(|k| {
+        let mut mk = *m;
+        for r in 0..3 {
+            mk[r][k] = b[r];
+        }
+        det(&mk) / d
+    }))
+}
+
 /// `⌈256 |n|⌉`: 256 times the rational upper bound of a normal's length.
 fn length_bound_256(n: &Vec3) -> Int {
     ceil_sqrt(&(n.dot(n) * Int::from(65536)))
@@ -174,9 +317,93 @@ fn length_bound_256(n: &Vec3) -> Int {
 impl Polytope {
     /// The piece made `eps` smaller: every facet plane moved inward by at least `eps`
     /// (true coordinates; `eps > 0` given as the fraction `eps_num / eps_den` of the grid
-    /// step), exactly. `None` when nothing of positive volume is left (a piece thinner
-    /// than `2 eps`). See the module documentation for the bound.
+    /// step). `None` when nothing of positive volume is left.
+    ///
+    /// The exact intersection of the moved half-spaces ([`Polytope::shrunk_exact`]) is
+    /// used when its vertices keep a small common denominator (at most 64 bits more than
+    /// the piece's), as for axis-aligned or few-faced pieces. Otherwise (tessellated
+    /// curved pieces, whose moved planes meet at rationals with pairwise different
+    /// denominators, so that a common one runs to thousands of bits) the piece is scaled
+    /// about an inner point instead ([`Polytope::shrunk_by_scaling`]): every plane still
+    /// moves inward by at least `eps`, some by more.
     pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
+        if self.facets().len() <= 32 {
+            // Few vertices keep even a wide common denominator cheap to work with.
+            let extra = if self.vertices().len() <= 12 { 512 } else { 64 };
+            let budget = int::bit_len(self.den()) + extra;
+            match self.shrunk_exact(eps_num, eps_den) {
+                Some(p) if int::bit_len(p.den()) <= budget => return Some(p),
+                None => return None,
+                Some(_) => {}
+            }
+        }
+        self.shrunk_by_scaling(eps_num, eps_den)
+    }
+
+    /// The piece scaled about an inner point `c` by the largest dyadic factor `1 - t`
+    /// that still moves every facet plane inward by at least `eps`: facet `f` moves by
+    /// `t` times its distance from `c`, so `t >= eps r_f / (o_f - n_f · c)` for every
+    /// `f`, with `r_f = ⌈256 |n_f|⌉ / 256`. `c` is a dyadic point near the centre of the
+    /// largest inscribed ball (found in floating point; only its membership is used, and
+    /// that is checked exactly), and `t` is rounded up to 20 significant bits, so the
+    /// vertices keep the denominator `den · 2^(16 + j)`. Facets, normals and the
+    /// combinatorics are those of the piece. `None` when `t >= 1` (nothing is left).
+    pub fn shrunk_by_scaling(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
+        const L_BITS: usize = 16;
+        let l = Int::ONE << L_BITS;
+        let den = self.den();
+        let gamma = inner_point(self, &l)?; // c = gamma / (den L)
+                                            // t = max_f eps_num den k_f L / (256 eps_den (L o_f - n_f · gamma)).
+        let mut t_num = Int::ZERO;
+        let mut t_den = Int::ONE;
+        for f in self.facets() {
+            let room = &l * &f.offset - f.normal.dot(&gamma);
+            if room <= Int::ZERO {
+                return None;
+            }
+            let num = eps_num * den * length_bound_256(&f.normal) * &l;
+            let dn = Int::from(256) * eps_den * room;
+            if &num * &t_den > &t_num * &dn {
+                t_num = num;
+                t_den = dn;
+            }
+        }
+        if t_num >= t_den {
+            return None;
+        }
+        // t' = m / 2^j >= t with about 20 significant bits.
+        let shift =
+            (int::bit_len(&t_den) as i64 - int::bit_len(&t_num) as i64 + 20).max(1) as usize;
+        let scaled = &t_num << shift;
+        let mut m = &scaled / &t_den;
+        if &m * &t_den < scaled {
+            m += Int::ONE;
+        }
+        let two_j = Int::ONE << shift;
+        if m >= two_j {
+            return None;
+        }
+        // Stored vertices at den' = den L 2^j: m gamma + (2^j - m) L y.
+        let keep = (&two_j - &m) * &l;
+        let g = gamma.scale(&m);
+        let points: Vec<Vec3> = self
+            .vertices()
+            .iter()
+            .map(|y| y.scale(&keep).add(&g))
+            .collect();
+        let facets = self
+            .facets()
+            .iter()
+            .map(|f| (f.normal.clone(), f.cycle.clone()))
+            .collect();
+        let p = Polytope::from_facets(&points, facets).ok()?;
+        Some(p.with_den(den * &l * &two_j))
+    }
+
+    /// The exact intersection of the facet half-spaces moved inward by
+    /// `eps · ⌈256 |n|⌉ / 256` (see the module documentation). `None` when nothing of
+    /// positive volume is left (a piece thinner than `2 eps`).
+    pub fn shrunk_exact(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
         assert!(
             *eps_num > Int::ZERO && *eps_den > Int::ZERO,
             "tolerance must be positive"
@@ -349,6 +576,45 @@ mod tests {
         // box planes go to 8: x + y <= 16 holds at the corner (8, 8): the bevel is gone.
         assert_eq!(s.facets().len(), 6);
         assert_eq!(s.volume(), Rational::from_int(Int::from(6 * 6 * 6)));
+    }
+
+    #[test]
+    fn scaling_moves_every_face_by_at_least_eps() {
+        // A long slanted prism, scaled: every face plane moves inward by at least eps
+        // (exactly checked on the support function), the long ends by more.
+        let pts: Vec<Vec3> = [
+            [0, 0, 0],
+            [40, 3, 0],
+            [1, 20, 0],
+            [0, 0, 200],
+            [40, 3, 200],
+            [1, 20, 200],
+        ]
+        .map(Vec3::from_i64)
+        .to_vec();
+        let p = Polytope::hull_of_points(&pts).unwrap();
+        let (num, den) = (Int::ONE, Int::from(3)); // eps = 1/3
+        let s = p.shrunk_by_scaling(&num, &den).unwrap();
+        assert_eq!(s.facets().len(), p.facets().len());
+        for f in p.facets() {
+            // Shift in true units: (offset - h_s(n) / den_s) / |n| >= eps, i.e.
+            // (offset den_s - h_s)^2 >= (eps den_s)^2 |n|^2 with offset - h_s/den_s > 0.
+            let h = s.support(&f.normal).0;
+            let gap = &f.offset * s.den() - h;
+            assert!(gap > Int::ZERO);
+            let lhs = &gap * &gap * &den * &den;
+            let rhs = f.normal.dot(&f.normal) * s.den() * s.den() * &num * &num;
+            assert!(lhs >= rhs);
+        }
+        assert!(s.volume() < p.volume());
+        // The denominator stays a power of two (times the piece's, 1 here).
+        let d = s.den().clone();
+        assert_eq!(&d & &(&d - Int::ONE), Int::ZERO);
+        // The dispatcher prefers the exact shrink for this few-faced piece when its
+        // denominator stays small, and otherwise scales; either way every face moves.
+        assert!(p.shrunk(&num, &den).is_some());
+        // Too much: nothing left.
+        assert!(p.shrunk_by_scaling(&Int::from(50), &Int::ONE).is_none());
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! Property test of `Polytope::shrunk` against its definition: the intersection of the
+//! Property tests of `Polytope::shrunk_exact` against its definition: the intersection of the
 //! facet half-spaces moved inward by `eps · ⌈256 |n|⌉ / 256`. Checked exactly on random
 //! hulls, independently of the clipping code: every vertex of the result satisfies every
 //! moved half-space, lies on at least three moved planes whose normals span space, and
@@ -43,7 +43,7 @@ proptest! {
                 (f.normal.clone(), &Rational::from_int(f.offset.clone()) - &shift)
             })
             .collect();
-        match p.shrunk(&num, &den) {
+        match p.shrunk_exact(&num, &den) {
             // Nothing left is allowed for thin hulls; the unit tests check known cases.
             None => {}
             Some(s) => {
@@ -80,6 +80,38 @@ proptest! {
                         let rhs = &(&eps * &eps) * &Rational::from_int(f.normal.dot(&f.normal));
                         prop_assert!(gap > Rational::zero() && lhs >= rhs);
                     }
+                }
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Whatever way `shrunk` takes (exact or scaled), every vertex of the result lies at
+    /// least eps inside every facet plane of the piece: the piece made at least eps
+    /// smaller, the guarantee a tolerance states.
+    #[test]
+    fn shrunk_keeps_every_vertex_eps_inside(
+        pts in prop::collection::vec((-400i64..400, -400i64..400, -4000i64..4000), 5..40),
+        num in 1i64..6,
+        den in 1i64..4,
+    ) {
+        let pts: Vec<Vec3> = pts.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
+        let Ok(p) = Polytope::hull_of_points(&pts) else { return Ok(()) };
+        let (num, den) = (Int::from(num), Int::from(den));
+        for s in [p.shrunk(&num, &den), p.shrunk_by_scaling(&num, &den)].into_iter().flatten() {
+            prop_assert!(s.volume() < p.volume());
+            let eps = Rational::new(num.clone(), den.clone());
+            for v in s.vertices() {
+                for f in p.facets() {
+                    let x = |k: usize| Rational::new(v.get(k), s.den().clone());
+                    let dot = &(&(&Rational::from_int(f.normal.get(0)) * &x(0))
+                        + &(&Rational::from_int(f.normal.get(1)) * &x(1)))
+                        + &(&Rational::from_int(f.normal.get(2)) * &x(2));
+                    let gap = &Rational::from_int(f.offset.clone()) - &dot;
+                    let rhs = &(&eps * &eps) * &Rational::from_int(f.normal.dot(&f.normal));
+                    prop_assert!(gap > Rational::zero() && &gap * &gap >= rhs);
                 }
             }
         }

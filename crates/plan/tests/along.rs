@@ -61,10 +61,10 @@ fn directions(ms: &MotionSpace) -> Vec<Vec3> {
         }
     }
     let arr = ms.arrangement();
-    for v in ms.real_vertices().take(40) {
+    for v in ms.real_vertices().take(20) {
         out.push(arr.vertices()[v].point.clone());
     }
-    for cell in ms.edge_cells().iter().take(40) {
+    for cell in ms.edge_cells().iter().take(20) {
         out.push(arr.edge_arc(cell[0]).interior_point().primitive());
     }
     out
