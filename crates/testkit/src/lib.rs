@@ -10,11 +10,13 @@
 //!   in one file, self-crossing folds).
 //! - [`curved`]: tessellated curved parts (pins in holes with different segment counts,
 //!   plugs and sockets, a nut on a bolt), whose fits interpenetrate by a known depth.
+//! - [`joints`]: a five-part bolted joint whose parts are tessellated differently.
 
 #![warn(missing_docs)]
 
 pub mod curved;
 pub mod defects;
+pub mod joints;
 mod soup;
 
 pub use soup::Soup;
