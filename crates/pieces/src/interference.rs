@@ -1,6 +1,6 @@
 //! Exact interference of two convex polytopes: do their interiors meet, and where.
 
-use crate::polytope::{Containment, Polytope};
+use crate::polytope::{Containment, Polytope, Shadow};
 use apart_kernel::int::{self, Int};
 use apart_kernel::{Rational, Sign, Vec3};
 
@@ -14,10 +14,22 @@ pub fn interiors_disjoint(a: &Polytope, b: &Polytope) -> bool {
 }
 
 /// A normal `n` with `max_a n·x <= min_b n·y`, if any (the plane separates with `a` below).
+///
+/// The candidate normals are tried behind a floating-point filter: an axis along which
+/// the shadows overlap by more than a proven bound of the rounding error cannot
+/// separate and is skipped, facet normals are tried in the order of how far the other
+/// polytope's centre lies beyond the facet, and the exact support values are taken over
+/// only the vertices within the error bound of the floating-point extreme. Every
+/// decision is exact; the filter only prunes.
 pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
+    filtered_separating_normal(a, b).unwrap_or_else(|| exact_separating_normal(a, b))
+}
+
+/// [`separating_normal`] without a filter: every candidate axis, exact supports.
+fn exact_separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
     if a.den() != b.den() {
         let (a, b) = Polytope::common(a, b);
-        return separating_normal(&a, &b);
+        return exact_separating_normal(&a, &b);
     }
     let separates = |n: &Vec3| -> bool {
         let (ha, _) = a.support(n);
@@ -55,6 +67,247 @@ pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
     None
 }
 
+/// The unit vector along `n` in floating point (each component within 2^-49), `None` for
+/// the zero vector.
+fn unit(n: &Vec3) -> Option<[f64; 3]> {
+    let u = n.unit_f64();
+    (u != [0.0; 3] && u.iter().all(|c| c.is_finite())).then_some(u)
+}
+
+fn dot3(p: &[f64; 3], u: &[f64; 3]) -> f64 {
+    p[0] * u[0] + p[1] * u[1] + p[2] * u[2]
+}
+
+fn neg3(u: &[f64; 3]) -> [f64; 3] {
+    u.map(|c| -c)
+}
+
+/// The smallest and largest of `u · p` over the shadow's points.
+fn float_range(s: &Shadow, u: &[f64; 3]) -> (f64, f64) {
+    s.points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            let t = dot3(p, u);
+            (lo.min(t), hi.max(t))
+        })
+}
+
+/// The exact `max n · v` over the stored vertices of `p` whose floating-point value
+/// `u · v` is at least `floor` (which must keep every maximiser).
+fn support_among(p: &Polytope, s: &Shadow, n: &Vec3, u: &[f64; 3], floor: f64) -> Int {
+    let mut best: Option<Int> = None;
+    for (v, q) in p.vertices().iter().zip(&s.points) {
+        if dot3(q, u) < floor {
+            continue;
+        }
+        let d = n.dot(v);
+        if best.as_ref().is_none_or(|b| d > *b) {
+            best = Some(d);
+        }
+    }
+    best.expect("the floating-point maximum is among the candidates")
+}
+
+/// Two polytopes with their shadows, for exact comparisons along axes behind a
+/// floating-point filter.
+///
+/// Every float dot product is within `err` ([`Shadow::error`] of the larger) of the
+/// exact one. The filter only prunes: an axis along which the float ranges overlap by more
+/// than `2 err` cannot separate, and a vertex whose float value falls short of the float
+/// extreme by more than `2 err` is not extreme; every answer is exact.
+struct FilteredPair<'p> {
+    a: &'p Polytope,
+    b: &'p Polytope,
+    sa: &'p Shadow,
+    sb: &'p Shadow,
+    err: f64,
+}
+
+impl<'p> FilteredPair<'p> {
+    fn new(a: &'p Polytope, b: &'p Polytope) -> Option<FilteredPair<'p>> {
+        let (sa, sb) = (a.shadow()?, b.shadow()?);
+        Some(FilteredPair {
+            a,
+            b,
+            sa,
+            sb,
+            err: sa.error().max(sb.error()),
+        })
+    }
+
+    /// The exact `min_b n·y` as `-hb` (stored integers of `b`), given `blo`, the float
+    /// minimum along `u`.
+    fn min_b(&self, n: &Vec3, u: &[f64; 3], blo: f64) -> Int {
+        -support_among(self.b, self.sb, &n.neg(), &neg3(u), -blo - 2.0 * self.err)
+    }
+
+    /// Whether `a` lies weakly below `b` along `n` (`max_a n·x <= min_b n·y`), and
+    /// whether strictly; `None` when not.
+    fn below(&self, n: &Vec3, u: &[f64; 3]) -> Option<bool> {
+        let ((_, ahi), (blo, _)) = (float_range(self.sa, u), float_range(self.sb, u));
+        self.below_given(n, u, ahi, blo)
+    }
+
+    fn below_given(&self, n: &Vec3, u: &[f64; 3], ahi: f64, blo: f64) -> Option<bool> {
+        if ahi - blo > 2.0 * self.err {
+            return None;
+        }
+        let ha = support_among(self.a, self.sa, n, u, ahi - 2.0 * self.err);
+        let mb = self.min_b(n, u, blo);
+        compare(&ha, self.a.den(), &mb, self.b.den())
+    }
+
+    /// [`Self::below`] along the outward normal of facet `f` of `a` (whose support
+    /// value is its offset).
+    fn below_facet_of_a(&self, i: usize, u: &[f64; 3]) -> Option<bool> {
+        let (f, c) = (&self.a.facets()[i], self.sa.facet_levels[i]);
+        let (blo, _) = float_range(self.sb, u);
+        if c - blo > 2.0 * self.err {
+            return None;
+        }
+        let mb = self.min_b(&f.normal, u, blo);
+        compare(&f.offset, self.a.den(), &mb, self.b.den())
+    }
+
+    /// [`Self::below`] along the inward normal of facet `f` of `b`: `min_a n·x` against
+    /// `f`'s offset.
+    fn below_facet_of_b(&self, i: usize, u: &[f64; 3]) -> Option<bool> {
+        let (f, c) = (&self.b.facets()[i], self.sb.facet_levels[i]);
+        let (alo, _) = float_range(self.sa, u);
+        if c - alo > 2.0 * self.err {
+            return None;
+        }
+        let ma = -support_among(
+            self.a,
+            self.sa,
+            &f.normal.neg(),
+            &neg3(u),
+            -alo - 2.0 * self.err,
+        );
+        compare(&f.offset, self.b.den(), &ma, self.a.den())
+    }
+
+    /// Facet axes worth testing, most promising first: a facet of one can only be a
+    /// separating plane when the mean of the other's vertices (a point of it) lies
+    /// beyond it. Each entry: the score, whether the facet is `b`'s, its index, and its
+    /// float unit normal.
+    fn facet_candidates(&self) -> Vec<(f64, bool, usize, [f64; 3])> {
+        let mut out = Vec::new();
+        for (sp, so, of_b) in [(self.sa, self.sb, false), (self.sb, self.sa, true)] {
+            // The mean carries the rounding of a sum of `len` terms: prune generously.
+            let slack =
+                sp.magnitude.max(so.magnitude) * (so.points.len() as f64 + 64.0) * 2f64.powi(-44);
+            for (i, (u, level)) in sp.facet_units.iter().zip(&sp.facet_levels).enumerate() {
+                if *u == [0.0; 3] {
+                    continue;
+                }
+                let (u, score) = (*u, dot3(&so.mean, u) - level);
+                if score >= -slack {
+                    out.push((score, of_b, i, u));
+                }
+            }
+        }
+        out.sort_by(|x, y| y.0.total_cmp(&x.0));
+        out
+    }
+
+    /// [`Self::below`] for a candidate of [`Self::facet_candidates`], with the axis
+    /// oriented from `a` to `b`.
+    fn below_candidate(&self, of_b: bool, i: usize, u: &[f64; 3]) -> Option<(Vec3, bool)> {
+        if of_b {
+            self.below_facet_of_b(i, u)
+                .map(|s| (self.b.facets()[i].normal.neg(), s))
+        } else {
+            self.below_facet_of_a(i, u)
+                .map(|s| (self.a.facets()[i].normal.clone(), s))
+        }
+    }
+}
+
+/// `x / dx` against `y / dy` (positive denominators): `Some(strict)` when at most.
+fn compare(x: &Int, dx: &Int, y: &Int, dy: &Int) -> Option<bool> {
+    let o = if dx == dy {
+        x.cmp(y)
+    } else {
+        (x * dy).cmp(&(y * dx))
+    };
+    match o {
+        std::cmp::Ordering::Greater => None,
+        o => Some(o == std::cmp::Ordering::Less),
+    }
+}
+
+/// Every facet normal of `a`, and negated facet normal of `b`, along which `a` lies
+/// weakly below `b` (`max_a n·x <= min_b n·y`), with whether strictly: the facet
+/// separating axes of a pair, exact, behind the floating-point filter.
+pub fn facet_axes(a: &Polytope, b: &Polytope) -> Vec<(Vec3, bool)> {
+    let Some(fp) = FilteredPair::new(a, b) else {
+        return exact_facet_axes(a, b);
+    };
+    let mut out: Vec<(usize, bool, (Vec3, bool))> = fp
+        .facet_candidates()
+        .into_iter()
+        .filter_map(|(_, of_b, i, u)| Some((i, of_b, fp.below_candidate(of_b, i, &u)?)))
+        .collect();
+    // The order of the facets, a's first, as the unfiltered version gives.
+    out.sort_by_key(|&(i, of_b, _)| (of_b, i));
+    out.into_iter().map(|x| x.2).collect()
+}
+
+fn exact_facet_axes(a: &Polytope, b: &Polytope) -> Vec<(Vec3, bool)> {
+    let mut out = Vec::new();
+    for f in a.facets() {
+        let (hb, _) = b.support(&f.normal.neg());
+        if let Some(s) = compare(&f.offset, a.den(), &-hb, b.den()) {
+            out.push((f.normal.clone(), s));
+        }
+    }
+    for f in b.facets() {
+        let (ha, _) = a.support(&f.normal.neg());
+        if let Some(s) = compare(&f.offset, b.den(), &-ha, a.den()) {
+            out.push((f.normal.neg(), s));
+        }
+    }
+    out
+}
+
+/// Whether `a` lies weakly below `b` along `n` (`max_a n·x <= min_b n·y`, true
+/// coordinates), and whether strictly; `None` when not. Exact, behind the filter.
+pub fn below_along(a: &Polytope, b: &Polytope, n: &Vec3) -> Option<bool> {
+    match (FilteredPair::new(a, b), unit(n)) {
+        (Some(fp), Some(u)) => fp.below(n, &u),
+        _ => {
+            let (ha, _) = a.support(n);
+            let (hb, _) = b.support(&n.neg());
+            compare(&ha, a.den(), &-hb, b.den())
+        }
+    }
+}
+
+fn filtered_separating_normal(a: &Polytope, b: &Polytope) -> Option<Option<Vec3>> {
+    let fp = FilteredPair::new(a, b)?;
+    for (_, of_b, i, u) in fp.facet_candidates() {
+        if let Some((n, _)) = fp.below_candidate(of_b, i, &u) {
+            return Some(Some(n));
+        }
+    }
+    for da in a.edge_directions() {
+        for db in b.edge_directions() {
+            let n = da.cross(db);
+            let Some(u) = unit(&n) else { continue };
+            let ((alo, ahi), (blo, bhi)) = (float_range(fp.sa, &u), float_range(fp.sb, &u));
+            if fp.below_given(&n, &u, ahi, blo).is_some() {
+                return Some(Some(n.primitive()));
+            }
+            let (m, mu) = (n.neg(), neg3(&u));
+            if fp.below_given(&m, &mu, -alo, -bhi).is_some() {
+                return Some(Some(m.primitive()));
+            }
+        }
+    }
+    Some(None)
+}
+
 /// When the interiors of `a` and `b` meet, a point in both interiors (exact rational
 /// coordinates); `None` when they are disjoint or only touch.
 ///
@@ -63,12 +316,12 @@ pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
 /// combination giving every vertex of the full-dimensional intersection positive weight,
 /// hence an interior point of it.
 pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
+    if interiors_disjoint(a, b) {
+        return None;
+    }
     if a.den() != b.den() {
         let (a, b) = Polytope::common(a, b);
         return interior_witness(&a, &b);
-    }
-    if interiors_disjoint(a, b) {
-        return None;
     }
     let pts = contact_points(a, b);
     debug_assert!(!pts.is_empty());

@@ -24,4 +24,4 @@ pub mod interference;
 pub mod polytope;
 pub mod shrink;
 
-pub use polytope::{Containment, Edge, Facet, Polytope, PolytopeError};
+pub use polytope::{Containment, Edge, Facet, Polytope, PolytopeError, Shadow};

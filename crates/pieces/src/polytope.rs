@@ -43,6 +43,88 @@ pub struct Polytope {
     /// Distinct edge directions, primitive, one of each `±d` pair (computed on demand:
     /// Minkowski sums never need theirs).
     edge_dirs: std::sync::OnceLock<Vec<Vec3>>,
+    /// Floating-point coordinates for filters (computed on demand).
+    shadow: std::sync::OnceLock<Option<Shadow>>,
+}
+
+/// Floating-point true coordinates of a polytope's vertices, for filters that prune
+/// exact work: every coordinate is within a relative error of 2^-51 of the exact one.
+#[derive(Clone, Debug)]
+pub struct Shadow {
+    /// The vertices' true coordinates, in the order of [`Polytope::vertices`].
+    pub points: Vec<[f64; 3]>,
+    /// The mean of the vertices (a point of the polytope, up to rounding).
+    pub mean: [f64; 3],
+    /// The largest coordinate magnitude (at least the smallest positive normal float).
+    pub magnitude: f64,
+    /// Each facet's unit outward normal (relative error below 2^-50; zero when the
+    /// normal does not fit a float).
+    pub facet_units: Vec<[f64; 3]>,
+    /// Each facet's level `u · x` for its unit normal `u` and a point `x` of it.
+    pub facet_levels: Vec<f64>,
+}
+
+impl Shadow {
+    /// A bound on how far a float dot product of a unit float axis (each component
+    /// within 2^-49 of the exact unit axis, as `Vec3::unit_f64` gives) with a shadow
+    /// point lies from the exact value: at most `4 m 2^-49` with `m` the largest
+    /// coordinate magnitude; `m 2^-44` leaves a wide margin.
+    pub fn error(&self) -> f64 {
+        self.magnitude * 2f64.powi(-44)
+    }
+
+    fn of(vertices: &[Vec3], den: &Int, facets: &[Facet]) -> Option<Shadow> {
+        // Quotients of two correctly rounded conversions: relative error < 2^-51.
+        // Denominators beyond 2^1000 are left to the exact code.
+        if int::bit_len(den) > 1000 {
+            return None;
+        }
+        let d = int::to_f64(den);
+        let mut points = Vec::with_capacity(vertices.len());
+        let mut sum = [0f64; 3];
+        let mut magnitude = f64::MIN_POSITIVE;
+        for v in vertices {
+            let p = match v.as_small() {
+                Some(c) => [c[0] as f64 / d, c[1] as f64 / d, c[2] as f64 / d],
+                None => [0, 1, 2].map(|k| int::to_f64(&v.get(k)) / d),
+            };
+            for k in 0..3 {
+                if !p[k].is_finite() {
+                    return None;
+                }
+                sum[k] += p[k];
+                magnitude = magnitude.max(p[k].abs());
+            }
+            points.push(p);
+        }
+        let n = vertices.len().max(1) as f64;
+        let facet_units: Vec<[f64; 3]> = facets
+            .iter()
+            .map(|f| {
+                let u = f.normal.unit_f64();
+                if u.iter().all(|c| c.is_finite()) {
+                    u
+                } else {
+                    [0.0; 3]
+                }
+            })
+            .collect();
+        let facet_levels = facets
+            .iter()
+            .zip(&facet_units)
+            .map(|(f, u)| {
+                let x = points[f.cycle[0] as usize];
+                x[0] * u[0] + x[1] * u[1] + x[2] * u[2]
+            })
+            .collect();
+        Some(Shadow {
+            points,
+            mean: sum.map(|c| c / n),
+            magnitude,
+            facet_units,
+            facet_levels,
+        })
+    }
 }
 
 /// Why a set of triangles or points is not a convex polytope.
@@ -329,12 +411,21 @@ impl Polytope {
             facets,
             edges,
             edge_dirs: std::sync::OnceLock::new(),
+            shadow: std::sync::OnceLock::new(),
         })
     }
 
     /// The vertices (extreme points only), as `den` times their coordinates.
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
+    }
+
+    /// The vertices' true coordinates in floating point, for filters; `None` when they
+    /// do not fit (computed once).
+    pub fn shadow(&self) -> Option<&Shadow> {
+        self.shadow
+            .get_or_init(|| Shadow::of(&self.vertices, &self.den, &self.facets))
+            .as_ref()
     }
 
     /// The common denominator of the vertices (positive; 1 for grid pieces).
@@ -347,6 +438,7 @@ impl Polytope {
     pub fn with_den(mut self, den: Int) -> Polytope {
         assert!(den > Int::ZERO, "denominator must be positive");
         self.den = den;
+        self.shadow = std::sync::OnceLock::new();
         self
     }
 
@@ -436,9 +528,35 @@ impl Polytope {
                 return (Int::from(best), arg);
             }
         }
+        // Many big vertices: only those whose float value comes within the filter's
+        // error bound of the float maximum can attain the exact one.
+        let filter = (self.vertices.len() > 32)
+            .then(|| {
+                let s = self.shadow()?;
+                let u = n.unit_f64();
+                u.iter().all(|c| c.is_finite()).then_some((s, u))
+            })
+            .flatten();
+        let dots: Vec<f64> = match &filter {
+            Some((s, u)) => s
+                .points
+                .iter()
+                .map(|p| p[0] * u[0] + p[1] * u[1] + p[2] * u[2])
+                .collect(),
+            None => Vec::new(),
+        };
+        let floor = match &filter {
+            Some((s, _)) => {
+                dots.iter().copied().fold(f64::NEG_INFINITY, f64::max) - 2.0 * s.error()
+            }
+            None => f64::NEG_INFINITY,
+        };
         let mut best: Option<Int> = None;
         let mut arg = Vec::new();
         for (i, v) in self.vertices.iter().enumerate() {
+            if !dots.is_empty() && dots[i] < floor {
+                continue;
+            }
             let d = n.dot(v);
             match &best {
                 Some(b) if d < *b => continue,
@@ -517,6 +635,7 @@ impl Polytope {
         for f in &mut p.facets {
             f.offset += f.normal.dot(t);
         }
+        p.shadow = std::sync::OnceLock::new();
         p
     }
 
