@@ -241,9 +241,7 @@ impl<'a> DirectionQuery<'a> {
                         .any(|ax| h.contains(&ax.n.primitive()))
                         || crate::pairs::below_along_any(
                             &self.parts[i].pieces[a],
-                            &self.info[i][a],
                             &self.parts[j].pieces[b],
-                            &self.info[j][b],
                             &h,
                         ));
                 if covered {

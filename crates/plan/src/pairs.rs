@@ -23,6 +23,7 @@
 use crate::PlanError;
 use apart_kernel::{Int, Vec3};
 use apart_minkowski::{project, sum_prepared, Projection, Summand};
+use apart_pieces::interference::{below_along, facet_axes};
 use apart_pieces::Polytope;
 use apart_sphere::SphericalPolygon;
 use std::cmp::Ordering;
@@ -32,7 +33,6 @@ use std::sync::OnceLock;
 pub(crate) struct PieceInfo {
     lo: [Int; 3],
     hi: [Int; 3],
-    small: Option<Vec<[i64; 3]>>,
     fixed: OnceLock<Summand>,
     reflected: OnceLock<Summand>,
 }
@@ -41,44 +41,12 @@ impl PieceInfo {
     pub(crate) fn new(p: &Polytope) -> PieceInfo {
         let lo = [0, 1, 2].map(|k| p.vertices().iter().map(|v| v.get(k)).min().unwrap());
         let hi = [0, 1, 2].map(|k| p.vertices().iter().map(|v| v.get(k)).max().unwrap());
-        let small = p
-            .vertices()
-            .iter()
-            .map(|v| v.as_small().copied())
-            .collect::<Option<Vec<_>>>()
-            .filter(|v| v.iter().flatten().all(|c| c.unsigned_abs() < 1 << 40));
         PieceInfo {
             lo,
             hi,
-            small,
             fixed: OnceLock::new(),
             reflected: OnceLock::new(),
         }
-    }
-
-    /// `(min, max)` of `n · v` over the stored vertices.
-    fn range(&self, p: &Polytope, n: &Vec3) -> (Int, Int) {
-        if let (Some(vs), Some(nn)) = (&self.small, n.as_small()) {
-            if nn.iter().all(|c| c.unsigned_abs() < 1 << 40) {
-                let (mut lo, mut hi) = (i128::MAX, i128::MIN);
-                for c in vs {
-                    let d = nn[0] as i128 * c[0] as i128
-                        + nn[1] as i128 * c[1] as i128
-                        + nn[2] as i128 * c[2] as i128;
-                    lo = lo.min(d);
-                    hi = hi.max(d);
-                }
-                return (Int::from(lo), Int::from(hi));
-            }
-        }
-        let mut it = p.vertices().iter().map(|v| n.dot(v));
-        let first = it.next().expect("a polytope has vertices");
-        it.fold((first.clone(), first), |(lo, hi), d| {
-            (
-                if d < lo { d.clone() } else { lo },
-                if d > hi { d } else { hi },
-            )
-        })
     }
 
     pub(crate) fn fixed(&self, p: &Polytope) -> &Summand {
@@ -150,53 +118,26 @@ pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -
     if out.iter().any(|x| x.strict) {
         return out; // strictly apart: nothing more to learn at rest
     }
-    // Facets of a: a <= off_a along n; below b when min_b n·x >= off_a.
-    for f in a.facets() {
-        let (bmin, _) = ib.range(b, &f.normal);
-        match cmp_scaled(&f.offset, da, &bmin, db) {
-            Ordering::Greater => {}
-            o => out.push(Axis {
-                n: f.normal.clone(),
-                strict: o == Ordering::Less,
-            }),
-        }
-    }
-    // Facets of b: b <= off_b along n, so a lies below b along −n when min_a n·x >= off_b.
-    for f in b.facets() {
-        let (amin, _) = ia.range(a, &f.normal);
-        match cmp_scaled(&f.offset, db, &amin, da) {
-            Ordering::Greater => {}
-            o => out.push(Axis {
-                n: f.normal.neg(),
-                strict: o == Ordering::Less,
-            }),
-        }
-    }
+    // Facet normals of a, and negated ones of b (exact, behind a float filter).
+    out.extend(
+        facet_axes(a, b)
+            .into_iter()
+            .map(|(n, strict)| Axis { n, strict }),
+    );
     out
 }
 
 /// Whether `a` lies weakly below `b` along some normal of `h` that is a facet normal of
 /// `a` or the negated facet normal of `b` (the facet axes [`axes`] skips for pairs a
 /// coordinate axis already separates strictly).
-pub(crate) fn below_along_any(
-    a: &Polytope,
-    ia: &PieceInfo,
-    b: &Polytope,
-    ib: &PieceInfo,
-    h: &rustc_hash::FxHashSet<Vec3>,
-) -> bool {
-    let (da, db) = (a.den(), b.den());
-    a.facets().iter().any(|f| {
-        h.contains(&f.normal) && {
-            let (bmin, _) = ib.range(b, &f.normal);
-            cmp_scaled(&f.offset, da, &bmin, db) != Ordering::Greater
-        }
-    }) || b.facets().iter().any(|f| {
-        h.contains(&f.normal.neg()) && {
-            let (amin, _) = ia.range(a, &f.normal);
-            cmp_scaled(&f.offset, db, &amin, da) != Ordering::Greater
-        }
-    })
+pub(crate) fn below_along_any(a: &Polytope, b: &Polytope, h: &rustc_hash::FxHashSet<Vec3>) -> bool {
+    a.facets()
+        .iter()
+        .any(|f| h.contains(&f.normal) && below_along(a, b, &f.normal).is_some())
+        || b.facets().iter().any(|f| {
+            let n = f.normal.neg();
+            h.contains(&n) && below_along(a, b, &n).is_some()
+        })
 }
 
 /// What the axes say about direction `x`.
@@ -423,16 +364,37 @@ fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec
 /// the facet of `p` with outward normal `n`, lies in that facet's relative interior:
 /// strictly inside every other facet's half-space. A cheap sufficient test for
 /// [`meets_relative_interior`].
+///
+/// A facet whose plane the float centroid clears by more than the shadow's error bound
+/// is decided without exact arithmetic (a many-sided piece has many such facets).
 fn centroid_in_relative_interior(p: &Polytope, n: &Vec3, pts: &[Vec3], dp: &Int) -> bool {
     let n = n.primitive();
     let sum = pts.iter().skip(1).fold(pts[0].clone(), |s, w| s.add(w));
     // p's stored integers are den_p times coordinates; the centroid is sum / (k dp).
     let scale = Int::from(pts.len() as i64) * dp;
     let c = sum.scale(p.den());
-    p.facets()
-        .iter()
-        .filter(|f| f.normal != n)
-        .all(|f| f.normal.dot(&c) < &f.offset * &scale)
+    // The centroid in floats (each coordinate within a relative 2^-50).
+    let filter = p.shadow().and_then(|s| {
+        let d = approx(&scale) * approx(p.den());
+        let x = [0, 1, 2].map(|k| approx(&c.get(k)) / d);
+        let m = x.iter().fold(s.magnitude, |m, v| m.max(v.abs()));
+        (d.is_finite() && d > 0.0 && x.iter().all(|v| v.is_finite())).then_some((
+            s,
+            x,
+            m * 2f64.powi(-44),
+        ))
+    });
+    p.facets().iter().enumerate().all(|(i, f)| {
+        if let Some((s, x, err)) = &filter {
+            let u = &s.facet_units[i];
+            if *u != [0.0; 3]
+                && x[0] * u[0] + x[1] * u[1] + x[2] * u[2] < s.facet_levels[i] - 2.0 * err
+            {
+                return true; // clearly strictly inside (and not the facet with normal n)
+            }
+        }
+        f.normal == n || f.normal.dot(&c) < &f.offset * &scale
+    })
 }
 
 /// The contact cone of two pieces touching across the plane with normal `n` (from `a` to

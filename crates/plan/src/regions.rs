@@ -254,13 +254,7 @@ impl BlockingRegions {
             let h = &hemispheres[i * n + j];
             !h.is_empty()
                 && (pair_axes[k].iter().any(|ax| h.contains(&ax.n.primitive()))
-                    || below_along_any(
-                        &parts[i].pieces[a],
-                        &info[i][a],
-                        &parts[j].pieces[b],
-                        &info[j][b],
-                        h,
-                    ))
+                    || below_along_any(&parts[i].pieces[a], &parts[j].pieces[b], h))
         };
         let axes_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();

@@ -78,7 +78,20 @@ fn check_against_full(name: &str, parts: &[PartPieces]) {
     let ms = MotionSpace::build(&regions, &all);
     let oracle = common::oracle::Oracle::new(parts);
     let q = DirectionQuery::new(parts).unwrap();
-    for d in directions(&ms) {
+    // The LP oracle solves one program per piece pair and direction: on assemblies of
+    // many piece pairs (the ring and cone's tessellated curves) it checks four
+    // directions spread over the list, the full motion space checks them all.
+    let pairs: usize = (0..parts.len())
+        .flat_map(|i| (i + 1..parts.len()).map(move |j| (i, j)))
+        .map(|(i, j)| parts[i].pieces.len() * parts[j].pieces.len())
+        .sum();
+    let dirs = directions(&ms);
+    let stride = if pairs > 500 {
+        (dirs.len() / 4).max(1)
+    } else {
+        1
+    };
+    for (k, d) in dirs.into_iter().enumerate() {
         let got = q.answer(&d).unwrap();
         let want = dbg_at(&regions, &all, &d);
         assert_eq!(
@@ -86,11 +99,13 @@ fn check_against_full(name: &str, parts: &[PartPieces]) {
             want.arcs(),
             "{name} at {d:?}: blocking graph"
         );
-        assert_eq!(
-            got.dbg.arcs(),
-            oracle.dbg(&d).arcs(),
-            "{name} at {d:?}: oracle"
-        );
+        if k % stride == 0 {
+            assert_eq!(
+                got.dbg.arcs(),
+                oracle.dbg(&d).arcs(),
+                "{name} at {d:?}: oracle"
+            );
+        }
         assert_eq!(got.moving, want.minimal_moving_sets(), "{name} at {d:?}");
         assert_eq!(got.cell, ms.locate(&d).0, "{name} at {d:?}: cell kind");
     }
