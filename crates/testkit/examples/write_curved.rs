@@ -5,7 +5,8 @@
 //! Kinds: `plug:TRIANGLES` (stepped plug in a socket), `pin:SEGMENTS` (pin in a hole,
 //! same tessellation), `nut:SEGMENTS` (nut on a 3-ring bolt), `joint:SEGMENTS` (the
 //! five-part bolted joint, each part a different segment count near SEGMENTS, as
-//! separate CAD exports have).
+//! separate CAD exports have), `joint-same:SEGMENTS` (the joint with one tessellation
+//! for every part: its curved fits touch exactly).
 use apart_testkit::{curved, joints};
 
 fn main() -> std::io::Result<()> {
@@ -15,7 +16,7 @@ fn main() -> std::io::Result<()> {
         Some((kind.to_string(), size.parse::<usize>().ok()?))
     });
     let (Some((kind, size)), Some(dir)) = (parsed, args.get(2)) else {
-        eprintln!("usage: write_curved plug|pin|nut|joint:SIZE DIR");
+        eprintln!("usage: write_curved plug|pin|nut|joint|joint-same:SIZE DIR");
         std::process::exit(2);
     };
     let parts = match kind.as_str() {
@@ -26,8 +27,9 @@ fn main() -> std::io::Result<()> {
             let n = size.max(8);
             joints::bolted_joint([n, n - n / 25, n + n / 25, n - n / 12, n + n / 12])
         }
+        "joint-same" => joints::bolted_joint([size.max(8); 5]),
         _ => {
-            eprintln!("unknown kind {kind}: expected plug, pin, nut or joint");
+            eprintln!("unknown kind {kind}: expected plug, pin, nut, joint or joint-same");
             std::process::exit(2);
         }
     };
