@@ -133,7 +133,7 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let parts = parts_of(asm)?;
     if let Some(d) = &args.direction {
         // One direction: per-piece-pair tests only, no motion-space arrangement.
-        return direction(global, &loaded, &parts, d);
+        return direction(global, &loaded, &parts, d, load_seconds);
     }
     let pictures = args.svg.is_some() || args.png.is_some();
     if args.first && !pictures {
@@ -376,12 +376,15 @@ fn direction(
     loaded: &Loaded,
     parts: &[apart::plan::PartPieces],
     text: &str,
+    load_seconds: f64,
 ) -> anyhow::Result<ExitCode> {
     let d = parse_direction(text)?;
+    let t = Instant::now();
     let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
     let names = &names[..];
     let answer = dbg_along(parts, &d)?;
     let (cell, g, moving) = (answer.cell, answer.dbg, answer.moving);
+    let direction_seconds = t.elapsed().as_secs_f64();
     let blocks: Vec<[String; 2]> = g
         .arcs()
         .iter()
@@ -431,6 +434,14 @@ fn direction(
         }
         if let Some(t) = tolerance_statement(&loaded.assembly, global) {
             output::line(t);
+        }
+        if !global.quiet {
+            output::line("");
+            output::line(format_args!(
+                "time: load {:.1} ms, direction {:.1} ms",
+                load_seconds * 1e3,
+                direction_seconds * 1e3
+            ));
         }
     }
     Ok(if moving.is_empty() {
