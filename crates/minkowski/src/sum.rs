@@ -5,15 +5,23 @@
 //! face of `P` extreme in its normal; and the parallelogram `e_P + e_Q` for each pair of
 //! edges whose Gaussian arcs (the normals of the planes supporting the edge) cross in
 //! their relative interiors. Arcs that touch at an end point or overlap give facets of
-//! the first two kinds, so only strict crossings make new facets. Each facet's vertex
-//! cycle is the exact convex hull of the sums of the two faces' vertices.
+//! the first two kinds, so only strict crossings make new facets.
+//!
+//! A facet plus a face is a sum of two convex polygons in one plane (the face a vertex,
+//! an edge, or a facet with the same normal): its vertex cycle is the merge of the two
+//! edge cycles by angle around the normal, each comparison the exact sign of a 3×3
+//! determinant of primitive edge directions (behind the kernel's float filter). Nothing
+//! depends on the summands' scale, so two pieces with different denominators are summed
+//! as they are and only the sum's vertices are brought to the common denominator.
 
-use apart_kernel::predicates::dot_sign;
+use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, ArcPosition};
-use apart_kernel::{Int, Sign, Vec3};
-use apart_pieces::hull2d::hull_in_plane;
+use apart_kernel::{Components, Int, Sign, Vec3};
+use apart_pieces::hull2d::{hull_in_plane, plane_axes};
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap as HashMap;
+use std::borrow::Cow;
+use std::cmp::Ordering;
 
 /// `b ⊕ (−a) = {y − x : x ∈ a, y ∈ b}`: the translations of `a` that make it meet `b`.
 /// (When many sums share `a`, reflect it once and call [`minkowski_sum`].)
@@ -26,13 +34,26 @@ pub fn minkowski_sum(p: &Polytope, q: &Polytope) -> Result<Polytope, PolytopeErr
     sum_prepared(&Summand::new(p.clone()), &Summand::new(q.clone()))
 }
 
-/// A polytope with its Gaussian arcs precomputed, for summing it many times.
+/// A polytope with its Gaussian arcs and facet structure precomputed, for summing it
+/// many times. Everything here is invariant under scaling the polytope.
 #[derive(Clone, Debug)]
 pub struct Summand {
     polytope: Polytope,
     arcs: Vec<GaussArc>,
     /// Conservative boxes of the Gaussian arcs on the unit sphere, by edge.
     boxes: Vec<[[f64; 2]; 3]>,
+    /// Each edge's direction `ends[0] -> ends[1]`, primitive.
+    dirs: Vec<Vec3>,
+    /// Edge index by its end points (`min * vertices + max`).
+    edge_of: HashMap<u64, u32>,
+    /// Each facet's edges in cycle order: edge `t` runs from `cycle[t]` to
+    /// `cycle[t + 1]`, and the flag tells whether that is `ends[0] -> ends[1]`.
+    facet_edges: Vec<Vec<(u32, bool)>>,
+    /// Each facet's position in its cycle of the vertex smallest in the lexicographic
+    /// order of its plane's projection ([`plane_axes`]).
+    lexmin: Vec<u32>,
+    /// Facet index by (primitive) normal.
+    by_normal: HashMap<Vec3, u32>,
 }
 
 impl Summand {
@@ -50,10 +71,71 @@ impl Summand {
                 .bbox()
             })
             .collect();
+        let vs = polytope.vertices();
+        let nv = vs.len() as u64;
+        let key = |a: u32, b: u32| a.min(b) as u64 * nv + a.max(b) as u64;
+        let dirs = polytope
+            .edges()
+            .iter()
+            .map(|e| {
+                vs[e.ends[1] as usize]
+                    .sub(&vs[e.ends[0] as usize])
+                    .primitive()
+            })
+            .collect();
+        let edge_of: HashMap<u64, u32> = polytope
+            .edges()
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (key(e.ends[0], e.ends[1]), i as u32))
+            .collect();
+        let facet_edges = polytope
+            .facets()
+            .iter()
+            .map(|f| {
+                let c = &f.cycle;
+                (0..c.len())
+                    .map(|t| {
+                        let (a, b) = (c[t], c[(t + 1) % c.len()]);
+                        let e = edge_of[&key(a, b)];
+                        (e, polytope.edges()[e as usize].ends[0] == a)
+                    })
+                    .collect()
+            })
+            .collect();
+        let lexmin = polytope
+            .facets()
+            .iter()
+            .map(|f| {
+                let (u, v) = {
+                    let (u, v, _) = plane_axes(&f.normal);
+                    (u, v)
+                };
+                let mut best = 0;
+                for t in 1..f.cycle.len() {
+                    let (a, b) = (&vs[f.cycle[t] as usize], &vs[f.cycle[best] as usize]);
+                    if cmp_lex(a, b, u, v) == Ordering::Less {
+                        best = t;
+                    }
+                }
+                best as u32
+            })
+            .collect();
+        let by_normal = polytope
+            .facets()
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (f.normal.clone(), i as u32))
+            .collect();
         Summand {
             polytope,
             arcs,
             boxes,
+            dirs,
+            edge_of,
+            facet_edges,
+            lexmin,
+            by_normal,
         }
     }
 
@@ -61,17 +143,169 @@ impl Summand {
     pub fn polytope(&self) -> &Polytope {
         &self.polytope
     }
+
+    /// Facet `f` as a polygon: vertices and edges counter-clockwise around its normal
+    /// from its lexicographically smallest vertex (in its plane's projection).
+    fn facet_polygon(&self, f: usize) -> Polygon {
+        let c = &self.polytope.facets()[f].cycle;
+        let (es, s, m) = (&self.facet_edges[f], self.lexmin[f] as usize, c.len());
+        (
+            (0..m).map(|t| c[(s + t) % m]).collect(),
+            (0..m).map(|t| es[(s + t) % m]).collect(),
+        )
+    }
+
+    /// The edge between vertices `a` and `b` as a polygon in a plane of normal `n`: its
+    /// two vertices from the lexicographically smallest one (in the plane's projection)
+    /// and its two directed edges. `None` when `a b` is not an edge.
+    fn segment_polygon(&self, n: &Vec3, a: u32, b: u32) -> Option<Polygon> {
+        let vs = self.polytope.vertices();
+        let nv = vs.len() as u64;
+        let e = *self
+            .edge_of
+            .get(&(a.min(b) as u64 * nv + a.max(b) as u64))?;
+        let (u, v, _) = plane_axes(n);
+        let (lo, hi) = match cmp_lex(&vs[a as usize], &vs[b as usize], u, v) {
+            Ordering::Less => (a, b),
+            _ => (b, a),
+        };
+        let forward = self.polytope.edges()[e as usize].ends[0] == lo;
+        Some((vec![lo, hi], vec![(e, forward), (e, !forward)]))
+    }
+}
+
+/// A convex polygon as vertex indices and the edges from each to the next (edge index,
+/// and whether it runs `ends[0] -> ends[1]`).
+type Polygon = (Vec<u32>, Vec<(u32, bool)>);
+
+/// Compares coordinate `i` of two vectors exactly, without copying big integers.
+fn cmp_coord(a: &Vec3, b: &Vec3, i: usize) -> Ordering {
+    match (a.components(), b.components()) {
+        (Components::Small(x), Components::Small(y)) => x[i].cmp(&y[i]),
+        (Components::Big(x), Components::Big(y)) => x[i].cmp(&y[i]),
+        (Components::Small(x), Components::Big(y)) => Int::from(x[i]).cmp(&y[i]),
+        (Components::Big(x), Components::Small(y)) => x[i].cmp(&Int::from(y[i])),
+    }
+}
+
+/// Lexicographic order of coordinates `(u, v)`.
+fn cmp_lex(a: &Vec3, b: &Vec3, u: usize, v: usize) -> Ordering {
+    cmp_coord(a, b, u).then_with(|| cmp_coord(a, b, v))
+}
+
+/// The vertices of `y` attaining `max n · v`, in increasing order (as
+/// [`Polytope::support`] gives them): only those whose float value comes within the
+/// shadow's error bound of the float maximum can attain the exact one, and a single
+/// such candidate is the answer without exact arithmetic.
+fn extreme(y: &Polytope, n: &Vec3) -> Vec<u32> {
+    let filter = y.shadow().and_then(|s| {
+        let u = n.unit_f64();
+        u.iter().all(|c| c.is_finite()).then_some((s, u))
+    });
+    let Some((s, u)) = filter else {
+        return y.support(n).1;
+    };
+    let dot = |p: &[f64; 3]| p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+    let max = s.points.iter().map(dot).fold(f64::NEG_INFINITY, f64::max);
+    // Every exact value is within `error` of its float one: a vertex whose float value
+    // is below `max - 2 error` is exactly below the vertex that attains `max`.
+    let floor = max - 2.0 * s.error();
+    let cand: Vec<u32> = (0..s.points.len() as u32)
+        .filter(|&i| dot(&s.points[i as usize]) >= floor)
+        .collect();
+    match cand.len() {
+        0 => return y.support(n).1, // (only if the floats misbehave)
+        1 => return cand,
+        _ => {}
+    }
+    let vs = y.vertices();
+    let mut best: Option<Int> = None;
+    let mut arg = Vec::new();
+    for i in cand {
+        let d = n.dot(&vs[i as usize]);
+        match &best {
+            Some(b) if d < *b => continue,
+            Some(b) if d == *b => arg.push(i),
+            _ => {
+                best = Some(d);
+                arg.clear();
+                arg.push(i);
+            }
+        }
+    }
+    arg
+}
+
+/// The sum of two convex polygons in the plane of normal `n`, each given by vertices
+/// and edges (index and whether it runs `ends[0] -> ends[1]`, directions in `xd`, `yd`)
+/// counter-clockwise around `n` from a vertex extreme in one common direction (their
+/// lexicographically smallest): the vertex pairs of the sum, counter-clockwise from the
+/// pair of the two starting vertices, strictly convex.
+///
+/// Merge by angle: both edge sequences turn monotonically through less than a full turn
+/// from the common start, consecutive edges of a polygon turn by less than a half turn
+/// (exactly a half turn for a segment, whose second edge only comes after the other
+/// polygon has passed its first), so the two current edges are always less than a half
+/// turn apart and the sign of `det(n, e_x, e_y)` orders them; parallel edges advance
+/// together, which drops the vertex between them.
+fn merge_polygons(
+    n: &Vec3,
+    (xv, xe): (&[u32], &[(u32, bool)]),
+    xd: &[Vec3],
+    (yv, ye): (&[u32], &[(u32, bool)]),
+    yd: &[Vec3],
+) -> Vec<(u32, u32)> {
+    let (m, k) = (xv.len(), yv.len());
+    let (mut i, mut j) = (0, 0);
+    let mut out = Vec::with_capacity(m + k);
+    while i < m || j < k {
+        out.push((xv[i % m], yv[j % k]));
+        if i == m {
+            j += 1;
+            continue;
+        }
+        if j == k {
+            i += 1;
+            continue;
+        }
+        let ((ex, fx), (ey, fy)) = (xe[i], ye[j]);
+        let s = det3_sign(n, &xd[ex as usize], &yd[ey as usize]);
+        let s = if fx == fy { s } else { -s };
+        match s {
+            Sign::Positive => i += 1,
+            Sign::Negative => j += 1,
+            Sign::Zero => {
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out
 }
 
 /// The Minkowski sum of two prepared polytopes.
 pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
-    if sp.polytope.den() != sq.polytope.den() {
-        // Different denominators: bring both to a common one (rare: decomposed parts).
-        let (p, q) = Polytope::common(&sp.polytope, &sq.polytope);
-        return sum_prepared(&Summand::new(p), &Summand::new(q));
-    }
-    let den = sp.polytope.den().clone();
     let (p, q) = (&sp.polytope, &sq.polytope);
+    // Different denominators: the sum's vertices are `kp vp + kq vq` over the least
+    // common multiple (everything else is scale-invariant).
+    let (den, pv, qv): (Int, Cow<[Vec3]>, Cow<[Vec3]>) = if p.den() == q.den() {
+        (p.den().clone(), p.vertices().into(), q.vertices().into())
+    } else {
+        let g = apart_kernel::int::gcd(p.den(), q.den());
+        let (kp, kq) = (q.den() / &g, p.den() / &g);
+        fn scale<'a>(vs: &'a [Vec3], k: &Int) -> Cow<'a, [Vec3]> {
+            if *k == Int::ONE {
+                vs.into()
+            } else {
+                vs.iter().map(|v| v.scale(k)).collect::<Vec<_>>().into()
+            }
+        }
+        (
+            p.den() * &kp,
+            scale(p.vertices(), &kp),
+            scale(q.vertices(), &kq),
+        )
+    };
     let nq = q.vertices().len() as u64;
     // A vertex of a Minkowski sum decomposes uniquely into vertices of the summands, so
     // the index pair (i, j) identifies it.
@@ -79,21 +313,32 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
     let mut ids: HashMap<u64, u32> = HashMap::default();
     let mut vertex = |i: u32, j: u32, points: &mut Vec<Vec3>| -> u32 {
         *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-            points.push(p.vertices()[i as usize].add(&q.vertices()[j as usize]));
+            points.push(pv[i as usize].add(&qv[j as usize]));
             (points.len() - 1) as u32
         })
     };
     let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
-    let mut normals_done: HashMap<Vec3, ()> = HashMap::default();
 
     // Facets of p and of q, each with the other's extreme face.
-    for (x_is_p, x, y) in [(true, p, q), (false, q, p)] {
-        for f in x.facets() {
-            if normals_done.insert(f.normal.clone(), ()).is_some() {
+    for (x_is_p, sx, sy) in [(true, sp, sq), (false, sq, sp)] {
+        let (x, y) = (&sx.polytope, &sy.polytope);
+        for (fi, f) in x.facets().iter().enumerate() {
+            if !x_is_p && sy.by_normal.contains_key(&f.normal) {
                 continue; // both have a facet with this normal: already summed
             }
-            let (_, arg) = y.support(&f.normal);
             let pair = |a: u32, b: u32| if x_is_p { (a, b) } else { (b, a) };
+            // The face of y extreme along f's normal: y's facet with that normal, else
+            // a vertex or an edge.
+            let parallel = sy.by_normal.get(&f.normal);
+            let arg = match parallel {
+                Some(_) => Vec::new(),
+                None => extreme(y, &f.normal),
+            };
+            let polygon = match (parallel, arg.len()) {
+                (Some(&g), _) => Some(sy.facet_polygon(g as usize)),
+                (None, 2) => sy.segment_polygon(&f.normal, arg[0], arg[1]),
+                _ => None,
+            };
             let cycle: Vec<u32> = if arg.len() == 1 {
                 // Facet plus a vertex: the facet's own cycle, translated.
                 f.cycle
@@ -103,14 +348,32 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
                         vertex(i, j, &mut points)
                     })
                     .collect()
+            } else if let Some((gv, ge)) = polygon {
+                // Facet plus an edge or a parallel facet: merge the two cycles from
+                // their lexicographically smallest vertices (the order the 2-D hull of
+                // all pairwise sums would give: counter-clockwise in the projection from
+                // its smallest point, reversed when the projection flips orientation).
+                let (fv, fe) = sx.facet_polygon(fi);
+                let mut sum = merge_polygons(&f.normal, (&fv, &fe), &sx.dirs, (&gv, &ge), &sy.dirs);
+                if plane_axes(&f.normal).2 {
+                    sum.rotate_left(1);
+                }
+                sum.into_iter()
+                    .map(|(a, b)| {
+                        let (i, j) = pair(a, b);
+                        vertex(i, j, &mut points)
+                    })
+                    .collect()
             } else {
+                // Not a face of the expected shape (never for a valid polytope): the
+                // exact hull of all pairwise sums.
                 let mut cand: Vec<(u32, u32)> = Vec::with_capacity(f.cycle.len() * arg.len());
                 let mut pts = Vec::with_capacity(f.cycle.len() * arg.len());
                 for &a in &f.cycle {
                     for &b in &arg {
                         let (i, j) = pair(a, b);
                         cand.push((i, j));
-                        pts.push(p.vertices()[i as usize].add(&q.vertices()[j as usize]));
+                        pts.push(pv[i as usize].add(&qv[j as usize]));
                     }
                 }
                 let hull = hull_in_plane(&f.normal, &pts);
@@ -136,12 +399,11 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
             let [p0, p1] = ep.ends;
             let [q0, q1] = eq.ends;
             // The facet's normal is the crossing point of the two arcs, perpendicular to
-            // both edges: ±(dp × dq), far smaller than the cross of the arcs' normals. Its
-            // sign puts it on arc a (counter-clockwise after a's first normal).
-            let dp = p.vertices()[p1 as usize].sub(&p.vertices()[p0 as usize]);
-            let dq = q.vertices()[q1 as usize].sub(&q.vertices()[q0 as usize]);
-            let n = dp.cross(&dq).primitive();
-            let flip = apart_kernel::predicates::det3_sign(&ap.c, &ap.m0, &n) == Sign::Negative;
+            // both edges: ±(dp × dq), far smaller than the cross of the arcs' normals
+            // (and the same from the primitive directions). Its sign puts it on arc a
+            // (counter-clockwise after a's first normal).
+            let n = sp.dirs[ip].cross(&sq.dirs[iq]).primitive();
+            let flip = det3_sign(&ap.c, &ap.m0, &n) == Sign::Negative;
             // Counter-clockwise around n = +(dp × dq): (p0+q0, p1+q0, p1+q1, p0+q1).
             let mut cycle = vec![
                 vertex(p0, q0, &mut points),

@@ -12,24 +12,7 @@ use apart_kernel::{Int, Sign, Vec3};
 /// orientation there is exact in `i128` for inputs below 2^62 and in arbitrary precision
 /// otherwise, and is flipped when that normal component is negative.
 pub fn hull_in_plane(normal: &Vec3, points: &[Vec3]) -> Vec<usize> {
-    let a = normal.approx();
-    let k = if a[0].abs() >= a[1].abs() && a[0].abs() >= a[2].abs() {
-        0
-    } else if a[1].abs() >= a[2].abs() {
-        1
-    } else {
-        2
-    };
-    // The float choice of axis only needs a non-zero component; make sure it is one.
-    let k = if normal.get(k) != Int::ZERO {
-        k
-    } else {
-        (0..3)
-            .find(|&i| normal.get(i) != Int::ZERO)
-            .expect("zero normal")
-    };
-    let flip = normal.get(k) < Int::ZERO;
-    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+    let (u, v, flip) = plane_axes(normal);
     let mut hull = if points.iter().all(|p| p.as_small().is_some()) {
         // Coordinates below 2^62: differences below 2^63, products below 2^126.
         let proj: Vec<[i128; 2]> = points
@@ -52,6 +35,36 @@ pub fn hull_in_plane(normal: &Vec3, points: &[Vec3]) -> Vec<usize> {
         hull.reverse();
     }
     hull
+}
+
+/// The projection [`hull_in_plane`] works in for a plane with normal `normal` (non-zero):
+/// the two kept coordinates `(u, v)` (the dropped one, `k`, is where the normal is
+/// largest in floating point, or its first non-zero component if that one is zero, and
+/// `(u, v) = (k + 1, k + 2) mod 3`) and whether the normal's `k` component is negative
+/// (counter-clockwise around the normal is then clockwise in `(u, v)`).
+///
+/// [`hull_in_plane`] returns its hull starting at the point that is smallest in the
+/// lexicographic order of `(u, v)`, counter-clockwise in `(u, v)`, and reversed when
+/// flipped: code that builds facet cycles another way can reproduce its exact output.
+pub fn plane_axes(normal: &Vec3) -> (usize, usize, bool) {
+    let a = normal.approx();
+    let k = if a[0].abs() >= a[1].abs() && a[0].abs() >= a[2].abs() {
+        0
+    } else if a[1].abs() >= a[2].abs() {
+        1
+    } else {
+        2
+    };
+    // The float choice of axis only needs a non-zero component; make sure it is one.
+    let k = if normal.get(k) != Int::ZERO {
+        k
+    } else {
+        (0..3)
+            .find(|&i| normal.get(i) != Int::ZERO)
+            .expect("zero normal")
+    };
+    let flip = normal.get(k) < Int::ZERO;
+    ((k + 1) % 3, (k + 2) % 3, flip)
 }
 
 /// Andrew's monotone chain on 2-D points, keeping only strict left turns; returns the
