@@ -93,6 +93,19 @@ impl Bvh {
         visit: impl Fn(&mut A, u32, u32) + Sync,
         merge: impl Fn(A, A) -> A + Sync,
     ) -> A {
+        self.self_pairs_pruned(init, visit, merge, |_, _| false)
+    }
+
+    /// [`Bvh::self_pairs`], skipping every pair with one box under node `x` and the
+    /// other under node `y` when `prune(x, y)` (`x == y`: pairs within the subtree of
+    /// `x`). Nodes are numbered as in [`Bvh::node_labels`].
+    pub fn self_pairs_pruned<A: Send>(
+        &self,
+        init: impl Fn() -> A + Sync,
+        visit: impl Fn(&mut A, u32, u32) + Sync,
+        merge: impl Fn(A, A) -> A + Sync,
+        prune: impl Fn(usize, usize) -> bool + Sync,
+    ) -> A {
         if self.boxes.is_empty() {
             return init();
         }
@@ -102,8 +115,36 @@ impl Bvh {
             init: &init,
             visit: &visit,
             merge: &merge,
+            prune: &prune,
         };
         ctx.within(1, 0)
+    }
+
+    /// A label for every node (index `i` in heap layout: the root is 1, the children
+    /// of `i` are `2i` and `2i + 1`; index 0 is unused and gets `empty`): `leaf` of the
+    /// primitives of each leaf (`empty` for a leaf without any), `join` of the children
+    /// for inner nodes.
+    pub fn node_labels<L: Clone + Send + Sync>(
+        &self,
+        leaf: impl Fn(&[u32]) -> L + Sync,
+        join: impl Fn(&L, &L) -> L,
+        empty: L,
+    ) -> Vec<L> {
+        let mut labels = vec![empty.clone(); 2 * self.leaves];
+        labels[self.leaves..]
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(|(l, label)| {
+                let prims = self.leaf(self.leaves + l);
+                if !prims.is_empty() {
+                    *label = leaf(prims);
+                }
+            });
+        for i in (1..self.leaves).rev() {
+            labels[i] = join(&labels[2 * i], &labels[2 * i + 1]);
+        }
+        labels
     }
 
     /// The primitives of leaf node `i`.
@@ -148,24 +189,29 @@ impl Bvh {
 /// Depth down to which the self-traversal forks into parallel tasks.
 const PARALLEL_DEPTH: u32 = 10;
 
-struct PairCtx<'a, A, I, V, M> {
+struct PairCtx<'a, A, I, V, M, P> {
     bvh: &'a Bvh,
     _acc: std::marker::PhantomData<fn() -> A>,
     init: &'a I,
     visit: &'a V,
     merge: &'a M,
+    prune: &'a P,
 }
 
-impl<A, I, V, M> PairCtx<'_, A, I, V, M>
+impl<A, I, V, M, P> PairCtx<'_, A, I, V, M, P>
 where
     A: Send,
     I: Fn() -> A + Sync,
     V: Fn(&mut A, u32, u32) + Sync,
     M: Fn(A, A) -> A + Sync,
+    P: Fn(usize, usize) -> bool + Sync,
 {
     /// Pairs inside the subtree of node `i`.
     fn within(&self, i: usize, depth: u32) -> A {
         let b = self.bvh;
+        if (self.prune)(i, i) {
+            return (self.init)();
+        }
         if i >= b.leaves {
             let mut acc = (self.init)();
             let prims = b.leaf(i);
@@ -201,6 +247,9 @@ where
 
     fn within_seq(&self, i: usize, acc: &mut A) {
         let b = self.bvh;
+        if (self.prune)(i, i) {
+            return;
+        }
         if i >= b.leaves {
             let prims = b.leaf(i);
             for (k, &p) in prims.iter().enumerate() {
@@ -223,7 +272,11 @@ where
     /// Pairs with one box under node `x` and the other under node `y` (same depth).
     fn across(&self, x: usize, y: usize, depth: u32) -> A {
         let b = self.bvh;
-        if depth >= PARALLEL_DEPTH || x >= b.leaves || !b.nodes[x].overlaps(&b.nodes[y]) {
+        if depth >= PARALLEL_DEPTH
+            || x >= b.leaves
+            || !b.nodes[x].overlaps(&b.nodes[y])
+            || (self.prune)(x, y)
+        {
             let mut acc = (self.init)();
             self.across_seq(x, y, &mut acc);
             return acc;
@@ -249,7 +302,7 @@ where
 
     fn across_seq(&self, x: usize, y: usize, acc: &mut A) {
         let b = self.bvh;
-        if !b.nodes[x].overlaps(&b.nodes[y]) {
+        if !b.nodes[x].overlaps(&b.nodes[y]) || (self.prune)(x, y) {
             return;
         }
         if x >= b.leaves {

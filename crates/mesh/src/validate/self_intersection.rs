@@ -1,11 +1,64 @@
 //! Self-intersection: two triangles of one mesh that meet beyond what they share
-//! (a common vertex or edge after welding). Broad phase: the hierarchy over triangle
-//! boxes, queried in parallel for every triangle; narrow phase: the exact tests of
-//! [`crate::intersect::triangle_pair`].
+//! (a common vertex or edge after welding). Narrow phase: the exact tests of
+//! [`crate::intersect::triangle_pair`]. Two broad phases split the pairs between them:
+//!
+//! - Pairs of triangles sharing a vertex `v` (both with three distinct vertex indices)
+//!   are found around `v`. Two such triangles meet beyond what they share exactly when
+//!   their corner cones at `v` share a direction: their intersection is convex and
+//!   contains `v`, so any other common point `p` brings the whole segment `v p` with it.
+//!   A corner cone meets the unit sphere around `v` in an arc; a small box around that
+//!   arc (floating point, made larger than its rounding error) is a filter, and only
+//!   triangles whose boxes overlap are tested exactly. A fan of `n` triangles around
+//!   one vertex (a tessellated cap) then costs `O(n log n)` box work and `O(n)` exact
+//!   tests instead of `n²/2` exact tests. Each pair is taken at its smallest shared
+//!   vertex only.
+//! - All other pairs come from the hierarchy over triangle boxes, traversed against
+//!   itself in parallel. A node whose triangles all share one vertex (a piece of a
+//!   fan) is skipped against another such node with the same vertex, so a fan's pairs
+//!   are not even enumerated there.
 
+use crate::aabb::Aabb;
 use crate::bvh::Bvh;
 use crate::intersect::{triangle_pair, Contact};
 use crate::mesh::Mesh;
+use rayon::prelude::*;
+
+/// Intersecting pairs found so far: the smallest `limit` of them, their number, and
+/// how many exact narrow-phase tests were run.
+struct Found {
+    kept: Vec<(u32, u32, Contact)>,
+    count: usize,
+    tests: usize,
+}
+
+impl Found {
+    fn new() -> Found {
+        Found {
+            kept: Vec::new(),
+            count: 0,
+            tests: 0,
+        }
+    }
+
+    /// Runs the exact test on triangles `t < u`.
+    fn test(&mut self, mesh: &Mesh, t: u32, u: u32, limit: usize) {
+        let (tt, uu) = (mesh.triangles[t as usize], mesh.triangles[u as usize]);
+        self.tests += 1;
+        if let Some(c) = triangle_pair(&mesh.vertices, tt, uu) {
+            self.count += 1;
+            keep_smallest(&mut self.kept, (t, u, c), limit);
+        }
+    }
+
+    fn merge(mut self, o: Found, limit: usize) -> Found {
+        for x in o.kept {
+            keep_smallest(&mut self.kept, x, limit);
+        }
+        self.count += o.count;
+        self.tests += o.tests;
+        self
+    }
+}
 
 /// The first `limit` intersecting pairs `(t, u, contact)` with `t < u`, in order, and
 /// the total number of intersecting pairs.
@@ -14,24 +67,206 @@ pub(crate) fn self_intersections(
     bvh: &Bvh,
     limit: usize,
 ) -> (Vec<(u32, u32, Contact)>, usize) {
-    let (mut found, count) = bvh.self_pairs(
-        || (Vec::new(), 0usize),
-        |(kept, count), t, u| {
-            let (tt, uu) = (mesh.triangles[t as usize], mesh.triangles[u as usize]);
-            if let Some(c) = triangle_pair(&mesh.vertices, tt, uu) {
-                *count += 1;
-                keep_smallest(kept, (t, u, c), limit);
-            }
-        },
-        |(mut a, n), (b, m)| {
-            for x in b {
-                keep_smallest(&mut a, x, limit);
-            }
-            (a, n + m)
-        },
-    );
-    found.sort_by_key(|&(t, u, _)| (t, u));
+    let (found, count, _) = self_intersections_counted(mesh, bvh, limit);
     (found, count)
+}
+
+/// [`self_intersections`], also returning the number of exact narrow-phase tests.
+pub(crate) fn self_intersections_counted(
+    mesh: &Mesh,
+    bvh: &Bvh,
+    limit: usize,
+) -> (Vec<(u32, u32, Contact)>, usize, usize) {
+    let tris = &mesh.triangles;
+    // Triangles with three distinct vertex indices: their pairs sharing a vertex are
+    // the stars' business.
+    let distinct: Vec<bool> = tris
+        .par_iter()
+        .with_min_len(8192)
+        .map(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect();
+    let around = around_vertices(mesh, &distinct, limit);
+
+    // Every node's vertices common to all its triangles (sorted, `NONE` padding;
+    // all `NONE` when some triangle has a repeated index).
+    let labels = bvh.node_labels(
+        |prims| {
+            let first = prims[0] as usize;
+            let mut common = if distinct[first] {
+                tris[first]
+            } else {
+                [NONE; 3]
+            };
+            for &p in &prims[1..] {
+                let t = &tris[p as usize];
+                for c in common.iter_mut() {
+                    if !distinct[p as usize] || !t.contains(c) {
+                        *c = NONE;
+                    }
+                }
+            }
+            common.sort_unstable();
+            common
+        },
+        |a, b| {
+            let mut c = [NONE; 3];
+            let mut n = 0;
+            for x in a {
+                if *x != NONE && b.contains(x) {
+                    c[n] = *x;
+                    n += 1;
+                }
+            }
+            c
+        },
+        [NONE; 3],
+    );
+    let shares = |a: &[u32; 3], b: &[u32; 3]| a.iter().any(|x| *x != NONE && b.contains(x));
+    let boxes = bvh.self_pairs_pruned(
+        Found::new,
+        |found, t, u| {
+            let (tt, uu) = (&tris[t as usize], &tris[u as usize]);
+            if distinct[t as usize] && distinct[u as usize] && shares(tt, uu) {
+                return; // around their shared vertex
+            }
+            found.test(mesh, t, u, limit);
+        },
+        |a, b| a.merge(b, limit),
+        // Empty nodes have no common vertex, so they are never pruned (nothing to skip).
+        |x, y| shares(&labels[x], &labels[y]),
+    );
+    let all = boxes.merge(around, limit);
+    let mut found = all.kept;
+    found.sort_by_key(|&(t, u, _)| (t, u));
+    (found, all.count, all.tests)
+}
+
+/// No vertex (padding in a node's common vertices).
+const NONE: u32 = u32::MAX;
+
+/// Stars up to this size test all their pairs; larger ones filter by direction boxes.
+const SMALL_STAR: usize = 24;
+
+/// Pairs of triangles with distinct vertex indices sharing at least one vertex, each
+/// found around its smallest shared vertex.
+fn around_vertices(mesh: &Mesh, distinct: &[bool], limit: usize) -> Found {
+    let nv = mesh.vertices.len();
+    let mut start = vec![0u32; nv + 1];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if distinct[t] {
+            for &v in tri {
+                start[v as usize + 1] += 1;
+            }
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut star = vec![0u32; start[nv] as usize];
+    let mut next = start.clone();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if distinct[t] {
+            for &v in tri {
+                star[next[v as usize] as usize] = t as u32;
+                next[v as usize] += 1;
+            }
+        }
+    }
+    (0..nv)
+        .into_par_iter()
+        .with_min_len(256)
+        .fold(Found::new, |mut found, v| {
+            let s = &star[start[v] as usize..start[v + 1] as usize];
+            star_pairs(mesh, v as u32, s, &mut found, limit);
+            found
+        })
+        .reduce(Found::new, |a, b| a.merge(b, limit))
+}
+
+/// The pairs of the star `s` (triangles around vertex `v`) whose smallest shared
+/// vertex is `v` and whose corner cones at `v` may share a direction.
+fn star_pairs(mesh: &Mesh, v: u32, s: &[u32], found: &mut Found, limit: usize) {
+    let tris = &mesh.triangles;
+    let visit = |found: &mut Found, t: u32, u: u32| {
+        let (t, u) = (t.min(u), t.max(u));
+        let uu = &tris[u as usize];
+        let first = tris[t as usize]
+            .iter()
+            .filter(|x| uu.contains(x))
+            .min()
+            .copied();
+        if first == Some(v) {
+            found.test(mesh, t, u, limit);
+        }
+    };
+    if s.len() <= SMALL_STAR {
+        for (i, &t) in s.iter().enumerate() {
+            for &u in &s[i + 1..] {
+                visit(found, t, u);
+            }
+        }
+        return;
+    }
+    let boxes: Vec<Aabb> = s.iter().map(|&t| direction_box(mesh, v, t)).collect();
+    let local = Bvh::new(boxes);
+    let more = local.self_pairs(
+        Found::new,
+        |found, i, j| visit(found, s[i as usize], s[j as usize]),
+        |a, b| a.merge(b, limit),
+    );
+    *found = std::mem::replace(found, Found::new()).merge(more, limit);
+}
+
+/// Fixed-point scale of direction boxes (directions are at most 1 / `MIN_HALF` long).
+const DIR_SCALE: f64 = (1u64 << 40) as f64;
+/// Below this cosine of half the corner angle, a corner gets the box of all directions.
+const MIN_HALF: f64 = 1e-3;
+/// Margin added around direction boxes, far beyond their rounding error (about
+/// `1e-15 / MIN_HALF²`).
+const DIR_PAD: f64 = 1e-7;
+
+/// A box (in directions scaled by [`DIR_SCALE`]) containing every unit vector `(p − v)
+/// / |p − v|` for `p ≠ v` in triangle `t`, which has `v` as a vertex.
+///
+/// With `a`, `b` the unit vectors along the triangle's edges from `v`, the corner's
+/// directions form the shorter arc between them, which lies in the trapezoid between
+/// the chord `a b` and the chord scaled by `1 / m`, `m = |a + b| / 2` (the cosine of
+/// half the angle): the scaled chord touches the unit sphere at the arc's midpoint.
+/// Degenerate corners (an edge of length zero, collinear vertices) and corners close
+/// to a straight angle get the box of all directions.
+fn direction_box(mesh: &Mesh, v: u32, t: u32) -> Aabb {
+    let all = Aabb {
+        min: [-2 * DIR_SCALE as i64; 3],
+        max: [2 * DIR_SCALE as i64; 3],
+    };
+    let p = |x: u32| &mesh.vertices[x as usize];
+    let o = p(v);
+    let tri = mesh.triangles[t as usize];
+    let others: Vec<u32> = tri.iter().copied().filter(|&x| x != v).collect();
+    let (b, c) = (p(others[0]), p(others[1]));
+    if crate::exact::collinear(o, b, c) {
+        return all; // also when b or c coincides with v
+    }
+    let unit = |q: &[i64; 3]| {
+        let d = [0, 1, 2].map(|k| (q[k] as i128 - o[k] as i128) as f64);
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        d.map(|x| x / len)
+    };
+    let (ub, uc) = (unit(b), unit(c));
+    let s = [0, 1, 2].map(|k| ub[k] + uc[k]);
+    let m = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt() / 2.0;
+    if m.is_nan() || m < MIN_HALF {
+        return all;
+    }
+    let mut bx = Aabb::EMPTY;
+    for k in 0..3 {
+        let xs = [ub[k], uc[k], ub[k] / m, uc[k] / m];
+        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min) - DIR_PAD;
+        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max) + DIR_PAD;
+        bx.min[k] = (lo * DIR_SCALE).floor() as i64;
+        bx.max[k] = (hi * DIR_SCALE).ceil() as i64;
+    }
+    bx
 }
 
 fn keep_smallest(kept: &mut Vec<(u32, u32, Contact)>, x: (u32, u32, Contact), limit: usize) {
@@ -42,6 +277,178 @@ fn keep_smallest(kept: &mut Vec<(u32, u32, Contact)>, x: (u32, u32, Contact), li
     if let Some((i, m)) = kept.iter().enumerate().max_by_key(|(_, &(t, u, _))| (t, u)) {
         if (x.0, x.1) < (m.0, m.1) {
             kept[i] = x;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn mesh(vertices: Vec<[i64; 3]>, triangles: Vec<[u32; 3]>) -> Mesh {
+        Mesh {
+            source_faces: (0..triangles.len() as u32).collect(),
+            source_vertices: (0..vertices.len() as u32).collect(),
+            vertices,
+            triangles,
+        }
+    }
+
+    fn bvh(m: &Mesh) -> Bvh {
+        Bvh::new(
+            (0..m.triangles.len())
+                .map(|t| Aabb::of(m.corners(t)))
+                .collect(),
+        )
+    }
+
+    /// The oracle, the former search without its hierarchy: every pair of triangles
+    /// whose boxes meet, tested exactly, in order. (The box filter is part of the
+    /// answer: on degenerate triangles `triangle_pair` may report pairs whose boxes
+    /// are apart.)
+    fn brute_force(m: &Mesh) -> Vec<(u32, u32, Contact)> {
+        let n = m.triangles.len() as u32;
+        let mut out = Vec::new();
+        for t in 0..n {
+            for u in t + 1..n {
+                let (tt, uu) = (m.triangles[t as usize], m.triangles[u as usize]);
+                let apart =
+                    !Aabb::of(m.corners(t as usize)).overlaps(&Aabb::of(m.corners(u as usize)));
+                if apart {
+                    continue;
+                }
+                if let Some(c) = triangle_pair(&m.vertices, tt, uu) {
+                    out.push((t, u, c));
+                }
+            }
+        }
+        out
+    }
+
+    /// Compares the broad phases with the oracle (all pairs, and the first few), and
+    /// returns the number of exact tests.
+    fn agrees(m: &Mesh) -> Result<usize, TestCaseError> {
+        let want = brute_force(m);
+        let b = bvh(m);
+        let (got, count, tests) = self_intersections_counted(m, &b, usize::MAX);
+        prop_assert_eq!(&got, &want);
+        prop_assert_eq!(count, want.len());
+        let (first, count) = self_intersections(m, &b, 3);
+        prop_assert_eq!(&first[..], &want[..want.len().min(3)]);
+        prop_assert_eq!(count, want.len());
+        Ok(tests)
+    }
+
+    /// A fan of `n` triangles around vertex 0: the apex at the centre of a circle of
+    /// radius `r` (or on it, like a tessellated cap fanned from one rim vertex), rim
+    /// points rounded to the grid, lifted by `lift(k)` off the plane.
+    fn fan(n: usize, r: f64, on_rim: bool, lift: impl Fn(usize) -> i64) -> Mesh {
+        let mut v = vec![if on_rim { [r as i64, 0, 0] } else { [0, 0, 0] }];
+        let ring = if on_rim { n + 2 } else { n };
+        let first = usize::from(on_rim);
+        for k in first..ring {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / ring as f64;
+            v.push([
+                (r * a.cos()).round() as i64,
+                (r * a.sin()).round() as i64,
+                lift(k),
+            ]);
+        }
+        let rim = v.len() as u32 - 1;
+        let mut t = Vec::new();
+        for k in 1..=n as u32 {
+            let next = if on_rim { k + 1 } else { k % rim + 1 };
+            if next <= rim {
+                t.push([0, k, next]);
+            }
+        }
+        mesh(v, t)
+    }
+
+    #[test]
+    fn large_fans_need_few_exact_tests() {
+        for on_rim in [false, true] {
+            for lift in [0, 1] {
+                let n = 3000;
+                let m = fan(n, 1e6, on_rim, |k| lift * ((k as i64 * 7919) % 13));
+                let (found, count, tests) = self_intersections_counted(&m, &bvh(&m), 10);
+                assert!(found.is_empty() && count == 0, "{on_rim} {lift}: {found:?}");
+                // n²/2 = 4.5 million pairs share the apex; a few per triangle are tested.
+                assert!(tests < 20 * n, "{on_rim} {lift}: {tests} exact tests");
+            }
+        }
+    }
+
+    fn point(r: i64) -> impl Strategy<Value = [i64; 3]> {
+        [-r..=r, -r..=r, -r..=r]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(1000))]
+
+        /// Fans (flat, or with a wavy rim), with triangles added across them: some
+        /// in their plane, some through the apex, some on rim vertices.
+        #[test]
+        fn fans_with_crossing_triangles_match_the_oracle(
+            n in 3usize..90,
+            on_rim in any::<bool>(),
+            wavy in 0i64..3,
+            extra in prop::collection::vec(
+                (0u32..1000, 0u32..1000, point(1200), any::<bool>(), 0u8..3), 0..6),
+        ) {
+            let mut m = fan(n, 1000.0, on_rim, |k| wavy * ((k as i64 * 31) % 5 - 2));
+            let nv = m.vertices.len() as u32;
+            for (a, b, mut p, flat, kind) in extra {
+                if flat {
+                    p[2] = 0;
+                }
+                m.vertices.push(p);
+                let q = m.vertices.len() as u32 - 1;
+                let (a, b) = (a % nv, b % nv);
+                let tri = match kind {
+                    0 => [0, a, q],         // through the apex
+                    1 => [a, b, q],         // on two fan vertices
+                    _ => [a, q, (a + 1) % nv], // on a rim edge
+                };
+                if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+                    m.triangles.push(tri);
+                }
+            }
+            let tests = agrees(&m)?;
+            let _ = tests;
+        }
+
+        /// Random triangles on a tiny grid: coplanar, collinear and coincident
+        /// vertices, repeated indices, doubled faces, big stars.
+        #[test]
+        fn degenerate_meshes_match_the_oracle(
+            verts in prop::collection::vec(point(2), 1..12),
+            tris in prop::collection::vec([0u32..12, 0u32..12, 0u32..12], 0..70),
+        ) {
+            let nv = verts.len() as u32;
+            // triangle_pair takes three distinct indices (meshes never repeat one).
+            let tris = tris
+                .into_iter()
+                .map(|t| t.map(|x| x % nv))
+                .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+                .collect();
+            agrees(&mesh(verts, tris))?;
+        }
+
+        /// Big stars on a tiny grid around one vertex (the direction-box path).
+        #[test]
+        fn big_degenerate_stars_match_the_oracle(
+            verts in prop::collection::vec(point(3), 2..40),
+            tris in prop::collection::vec((0u32..40, 0u32..40), 25..80),
+        ) {
+            let nv = verts.len() as u32;
+            let tris = tris
+                .into_iter()
+                .map(|(a, b)| [0, 1 + a % (nv - 1), b % nv])
+                .filter(|t| t[2] != 0 && t[1] != t[2])
+                .collect();
+            agrees(&mesh(verts, tris))?;
         }
     }
 }
