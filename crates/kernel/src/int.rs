@@ -26,7 +26,8 @@ pub fn sign_of(v: &Int) -> Sign {
 /// Number of bits of |v| (0 for 0).
 #[inline]
 pub fn bit_len(v: &Int) -> u32 {
-    v.unsigned_abs().bit_len() as u32
+    // The magnitude's length, read in place (`unsigned_abs` of a reference would copy).
+    BitTest::bit_len(v) as u32
 }
 
 /// Number of bits of |v| (0 for 0).

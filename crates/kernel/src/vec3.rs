@@ -133,11 +133,12 @@ impl Vec3 {
         // filter.
         let bits = c.iter().map(int::bit_len).max().unwrap_or(0) as i32;
         let mut filterable = true;
-        let approx = c.clone().map(|v| {
-            if v == Int::ZERO {
+        let approx = [0, 1, 2].map(|k| {
+            let v = &c[k];
+            if *v == Int::ZERO {
                 return 0.0;
             }
-            let bl = int::bit_len(&v) as i32;
+            let bl = int::bit_len(v) as i32;
             if bits - bl > 300 {
                 filterable = false;
             }
@@ -202,6 +203,16 @@ impl Vec3 {
     /// All components as arbitrary-precision integers.
     pub fn to_ints(&self) -> [Int; 3] {
         [self.get(0), self.get(1), self.get(2)]
+    }
+
+    /// The components as arbitrary-precision integers, borrowed when stored that way
+    /// (small components convert without allocating).
+    #[inline]
+    fn ints(&self) -> std::borrow::Cow<'_, [Int; 3]> {
+        match &self.0 {
+            Repr::Small(c) => std::borrow::Cow::Owned(c.map(Int::from)),
+            Repr::Big(b) => std::borrow::Cow::Borrowed(&b.c),
+        }
     }
 
     /// Floating-point values proportional to the components (the components themselves
@@ -289,7 +300,7 @@ impl Vec3 {
                 a[2] as i128 + b[2] as i128,
             ]),
             _ => {
-                let (a, b) = (self.to_ints(), o.to_ints());
+                let (a, b) = (self.ints(), o.ints());
                 Vec3::from_ints([&a[0] + &b[0], &a[1] + &b[1], &a[2] + &b[2]])
             }
         }
@@ -304,7 +315,7 @@ impl Vec3 {
                 a[2] as i128 - b[2] as i128,
             ]),
             _ => {
-                let (a, b) = (self.to_ints(), o.to_ints());
+                let (a, b) = (self.ints(), o.ints());
                 Vec3::from_ints([&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]])
             }
         }
@@ -312,7 +323,7 @@ impl Vec3 {
 
     /// k * v.
     pub fn scale(&self, k: &Int) -> Vec3 {
-        let a = self.to_ints();
+        let a = self.ints();
         Vec3::from_ints([&a[0] * k, &a[1] * k, &a[2] * k])
     }
 
@@ -326,7 +337,7 @@ impl Vec3 {
                 Vec3::from_i128([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
             }
             _ => {
-                let (a, b) = (self.to_ints(), o.to_ints());
+                let (a, b) = (self.ints(), o.ints());
                 Vec3::from_ints([
                     &a[1] * &b[2] - &a[2] * &b[1],
                     &a[2] * &b[0] - &a[0] * &b[2],
@@ -348,7 +359,7 @@ impl Vec3 {
                 )
             }
             _ => {
-                let (a, b) = (self.to_ints(), o.to_ints());
+                let (a, b) = (self.ints(), o.ints());
                 &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
             }
         }
