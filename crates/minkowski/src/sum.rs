@@ -20,7 +20,6 @@ use apart_kernel::{Components, Int, Sign, Vec3};
 use apart_pieces::hull2d::{hull_in_plane, plane_axes};
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap as HashMap;
-use std::borrow::Cow;
 use std::cmp::Ordering;
 
 /// `b ⊕ (−a) = {y − x : x ∈ a, y ∈ b}`: the translations of `a` that make it meet `b`.
@@ -42,6 +41,8 @@ pub struct Summand {
     arcs: Vec<GaussArc>,
     /// Conservative boxes of the Gaussian arcs on the unit sphere, by edge.
     boxes: Vec<[[f64; 2]; 3]>,
+    /// Edge indices by the low x of their boxes (stable).
+    by_low_x: Vec<u32>,
     /// Each edge's direction `ends[0] -> ends[1]`, primitive.
     dirs: Vec<Vec3>,
     /// Edge index by its end points (`min * vertices + max`).
@@ -60,7 +61,7 @@ impl Summand {
     /// Prepares `polytope` for [`sum_prepared`].
     pub fn new(polytope: Polytope) -> Summand {
         let arcs = gaussian_arcs(&polytope);
-        let boxes = arcs
+        let boxes: Vec<[[f64; 2]; 3]> = arcs
             .iter()
             .map(|a| {
                 apart_sphere::Arc {
@@ -71,6 +72,8 @@ impl Summand {
                 .bbox()
             })
             .collect();
+        let mut by_low_x: Vec<u32> = (0..boxes.len() as u32).collect();
+        by_low_x.sort_by(|&i, &j| boxes[i as usize][0][0].total_cmp(&boxes[j as usize][0][0]));
         let vs = polytope.vertices();
         let nv = vs.len() as u64;
         let key = |a: u32, b: u32| a.min(b) as u64 * nv + a.max(b) as u64;
@@ -131,6 +134,7 @@ impl Summand {
             polytope,
             arcs,
             boxes,
+            by_low_x,
             dirs,
             edge_of,
             facet_edges,
@@ -195,9 +199,11 @@ fn cmp_lex(a: &Vec3, b: &Vec3, u: usize, v: usize) -> Ordering {
 
 /// The vertices of `y` attaining `max n · v`, in increasing order (as
 /// [`Polytope::support`] gives them): only those whose float value comes within the
-/// shadow's error bound of the float maximum can attain the exact one, and a single
-/// such candidate is the answer without exact arithmetic.
-fn extreme(y: &Polytope, n: &Vec3) -> Vec<u32> {
+/// shadow's error bound of the float maximum can attain the exact one; a single such
+/// candidate is the answer, and two joined by an edge compare by the sign of `n` along
+/// the edge's primitive direction (small, filtered), both without big products.
+fn extreme(sy: &Summand, n: &Vec3) -> Vec<u32> {
+    let y = &sy.polytope;
     let filter = y.shadow().and_then(|s| {
         let u = n.unit_f64();
         u.iter().all(|c| c.is_finite()).then_some((s, u))
@@ -216,6 +222,19 @@ fn extreme(y: &Polytope, n: &Vec3) -> Vec<u32> {
     match cand.len() {
         0 => return y.support(n).1, // (only if the floats misbehave)
         1 => return cand,
+        2 => {
+            // Two candidates joined by an edge: the sign of n along the edge decides.
+            let nv = y.vertices().len() as u64;
+            let (a, b) = (cand[0], cand[1]);
+            if let Some(&e) = sy.edge_of.get(&(a as u64 * nv + b as u64)) {
+                let [e0, e1] = y.edges()[e as usize].ends;
+                return match dot_sign(n, &sy.dirs[e as usize]) {
+                    Sign::Zero => cand,
+                    Sign::Positive => vec![e1],
+                    Sign::Negative => vec![e0],
+                };
+            }
+        }
         _ => {}
     }
     let vs = y.vertices();
@@ -283,37 +302,50 @@ fn merge_polygons(
     out
 }
 
+/// `k v` as integers (no float shadow: only the sum becomes a vector).
+fn scaled(v: &Vec3, k: &Int) -> [Int; 3] {
+    match v.components() {
+        Components::Small(c) => c.map(|x| Int::from(x) * k),
+        Components::Big(c) => [&c[0] * k, &c[1] * k, &c[2] * k],
+    }
+}
+
 /// The Minkowski sum of two prepared polytopes.
 pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
     let (p, q) = (&sp.polytope, &sq.polytope);
     // Different denominators: the sum's vertices are `kp vp + kq vq` over the least
     // common multiple (everything else is scale-invariant).
-    let (den, pv, qv): (Int, Cow<[Vec3]>, Cow<[Vec3]>) = if p.den() == q.den() {
-        (p.den().clone(), p.vertices().into(), q.vertices().into())
+    let (den, scaled) = if p.den() == q.den() {
+        (p.den().clone(), None)
     } else {
         let g = apart_kernel::int::gcd(p.den(), q.den());
         let (kp, kq) = (q.den() / &g, p.den() / &g);
-        fn scale<'a>(vs: &'a [Vec3], k: &Int) -> Cow<'a, [Vec3]> {
-            if *k == Int::ONE {
-                vs.into()
-            } else {
-                vs.iter().map(|v| v.scale(k)).collect::<Vec<_>>().into()
-            }
-        }
+        let scale =
+            |vs: &[Vec3], k: &Int| -> Vec<[Int; 3]> { vs.iter().map(|v| scaled(v, k)).collect() };
         (
             p.den() * &kp,
-            scale(p.vertices(), &kp),
-            scale(q.vertices(), &kq),
+            Some((scale(p.vertices(), &kp), scale(q.vertices(), &kq))),
         )
     };
-    let nq = q.vertices().len() as u64;
+    let (pv, qv) = (p.vertices(), q.vertices());
+    let nq = qv.len() as u64;
     // A vertex of a Minkowski sum decomposes uniquely into vertices of the summands, so
     // the index pair (i, j) identifies it.
+    let sum_of = |i: u32, j: u32| -> Vec3 {
+        let (i, j) = (i as usize, j as usize);
+        match &scaled {
+            None => pv[i].add(&qv[j]),
+            Some((sp, sq)) => {
+                let (x, y) = (&sp[i], &sq[j]);
+                Vec3::from_ints([&x[0] + &y[0], &x[1] + &y[1], &x[2] + &y[2]])
+            }
+        }
+    };
     let mut points: Vec<Vec3> = Vec::new();
     let mut ids: HashMap<u64, u32> = HashMap::default();
     let mut vertex = |i: u32, j: u32, points: &mut Vec<Vec3>| -> u32 {
         *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-            points.push(pv[i as usize].add(&qv[j as usize]));
+            points.push(sum_of(i, j));
             (points.len() - 1) as u32
         })
     };
@@ -321,7 +353,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
 
     // Facets of p and of q, each with the other's extreme face.
     for (x_is_p, sx, sy) in [(true, sp, sq), (false, sq, sp)] {
-        let (x, y) = (&sx.polytope, &sy.polytope);
+        let x = &sx.polytope;
         for (fi, f) in x.facets().iter().enumerate() {
             if !x_is_p && sy.by_normal.contains_key(&f.normal) {
                 continue; // both have a facet with this normal: already summed
@@ -332,7 +364,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
             let parallel = sy.by_normal.get(&f.normal);
             let arg = match parallel {
                 Some(_) => Vec::new(),
-                None => extreme(y, &f.normal),
+                None => extreme(sy, &f.normal),
             };
             let polygon = match (parallel, arg.len()) {
                 (Some(&g), _) => Some(sy.facet_polygon(g as usize)),
@@ -373,7 +405,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
                     for &b in &arg {
                         let (i, j) = pair(a, b);
                         cand.push((i, j));
-                        pts.push(pv[i as usize].add(&qv[j as usize]));
+                        pts.push(sum_of(i, j));
                     }
                 }
                 let hull = hull_in_plane(&f.normal, &pts);
@@ -390,7 +422,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
 
     // Parallelograms of edge pairs whose Gaussian arcs cross (pairs whose boxes on the
     // unit sphere overlap, by sort and sweep; then the exact test).
-    for (ip, iq) in overlapping(&sp.boxes, &sq.boxes) {
+    for (ip, iq) in overlapping(sp, sq) {
         let (ep, ap, eq, aq) = (&p.edges()[ip], &sp.arcs[ip], &q.edges()[iq], &sq.arcs[iq]);
         {
             if !crossing(ap, aq) {
@@ -431,12 +463,32 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
     Ok(Polytope::from_facets(&points, facets)?.with_den(den))
 }
 
-/// Index pairs `(i, j)` whose boxes `a[i]` and `b[j]` overlap (sort and sweep on x).
-fn overlapping(a: &[[[f64; 2]; 3]], b: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
-    let mut events: Vec<(f64, bool, usize)> = Vec::with_capacity(a.len() + b.len());
-    events.extend(a.iter().enumerate().map(|(i, x)| (x[0][0], false, i)));
-    events.extend(b.iter().enumerate().map(|(j, x)| (x[0][0], true, j)));
-    events.sort_by(|x, y| x.0.total_cmp(&y.0));
+/// Index pairs `(i, j)` whose boxes `a.boxes[i]` and `b.boxes[j]` overlap (sort and
+/// sweep on x: the two box lists come sorted by their low x, stably, and merge with
+/// ties to `a`, the order a stable sort of all of `a`'s then all of `b`'s would give).
+fn overlapping(a: &Summand, b: &Summand) -> Vec<(usize, usize)> {
+    let (ab, bb) = (&a.boxes, &b.boxes);
+    let mut events: Vec<(f64, bool, usize)> = Vec::with_capacity(ab.len() + bb.len());
+    let (mut ia, mut ib) = (a.by_low_x.iter().peekable(), b.by_low_x.iter().peekable());
+    loop {
+        let from_b = match (ia.peek(), ib.peek()) {
+            (Some(&&i), Some(&&j)) => ab[i as usize][0][0]
+                .total_cmp(&bb[j as usize][0][0])
+                .is_gt(),
+            (Some(_), None) => false,
+            (None, Some(_)) => true,
+            (None, None) => break,
+        };
+        let (k, x) = if from_b {
+            let j = *ib.next().unwrap() as usize;
+            (j, bb[j][0][0])
+        } else {
+            let i = *ia.next().unwrap() as usize;
+            (i, ab[i][0][0])
+        };
+        events.push((x, from_b, k));
+    }
+    let (a, b) = (ab, bb);
     let overlap = |x: &[[f64; 2]; 3], y: &[[f64; 2]; 3]| {
         (0..3).all(|k| x[k][0] <= y[k][1] && y[k][0] <= x[k][1])
     };
