@@ -32,9 +32,10 @@ fn bits3(vs: [&P3; 3]) -> u32 {
 #[inline]
 pub fn det3(u: &P3, v: &P3, w: &P3) -> Sign {
     let bits = bits3([u, v, w]);
-    if bits <= 30 {
-        // v × w in i64 (each product below 2^60, each difference below 2^61), then
-        // u · (v × w) with 64 x 64 -> 128-bit products.
+    if bits <= 31 {
+        // v × w in i64 (each product below 2^62, each difference below 2^63: the
+        // differences of coordinates below 2^30 fit), then u · (v × w) with 64 x 64 ->
+        // 128-bit products.
         let c = [
             v[1] * w[2] - v[2] * w[1],
             v[2] * w[0] - v[0] * w[2],
@@ -61,6 +62,30 @@ pub fn det3(u: &P3, v: &P3, w: &P3) -> Sign {
 #[inline]
 pub fn orient3d(a: &P3, b: &P3, c: &P3, d: &P3) -> Sign {
     det3(&sub(b, a), &sub(c, a), &sub(d, a))
+}
+
+/// `[orient3d(a, b, c, p) for p in ps]`, sharing the plane's normal between the three
+/// tests when the coordinates' differences fit the machine-integer path.
+#[inline]
+pub fn orient3d_many(a: &P3, b: &P3, c: &P3, ps: [&P3; 3]) -> [Sign; 3] {
+    let (u, v) = (sub(b, a), sub(c, a));
+    let w = ps.map(|p| sub(p, a));
+    if bits3([&u, &v, &w[0]]).max(bits3([&w[1], &w[2], &w[2]])) <= 31 {
+        // As in `det3`: the cross product in i64, the dot products in i128.
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        return w.map(|x| {
+            Sign::of_i128(
+                x[0] as i128 * n[0] as i128
+                    + x[1] as i128 * n[1] as i128
+                    + x[2] as i128 * n[2] as i128,
+            )
+        });
+    }
+    w.map(|x| det3(&u, &v, &x))
 }
 
 /// `(b - a) × (c - a)`, exact.
@@ -234,5 +259,26 @@ mod tests {
         assert!(!segments_meet_2d(&[0, 0], &[1, 0], &[2, 0], &[3, 0])); // collinear apart
         assert!(segments_meet_2d(&[0, 0], &[2, 0], &[1, 0], &[3, 0])); // collinear overlap
         assert!(!segments_meet_2d(&[0, 0], &[1, 1], &[0, 1], &[-1, 2]));
+    }
+
+    proptest::proptest! {
+        /// The machine-integer path at its bit limit (coordinates below 2^30, so
+        /// differences of up to 31 bits) agrees with arbitrary precision.
+        #[test]
+        fn det3_at_the_fast_path_limit(
+            c in proptest::array::uniform9(proptest::prop_oneof![
+                -(1i64 << 31) + 1..(1i64 << 31),
+                proptest::prelude::Just((1i64 << 31) - 1),
+                proptest::prelude::Just(-(1i64 << 31) + 1),
+            ]),
+        ) {
+            let (u, v, w) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
+            let want = apart_kernel::predicates::det3_sign(
+                &apart_kernel::Vec3::from_i64(u),
+                &apart_kernel::Vec3::from_i64(v),
+                &apart_kernel::Vec3::from_i64(w),
+            );
+            proptest::prop_assert_eq!(det3(&u, &v, &w), want);
+        }
     }
 }

@@ -5,8 +5,8 @@
 //! when the closed triangles meet beyond the convex hull of their shared vertices.
 
 use crate::exact::{
-    cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project,
-    segments_meet_2d, sub, P3,
+    cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, orient3d_many,
+    project, segments_meet_2d, sub, P3,
 };
 use apart_kernel::{Int, Sign};
 
@@ -47,18 +47,28 @@ pub fn segment_meets_triangle(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> bool {
 pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
     let [a, b, c] = t;
     let [d, e, f] = u;
-    let ou = [d, e, f].map(|v| orient3d(a, b, c, v));
+    let ou = orient3d_many(a, b, c, u);
     if ou[0] != Sign::Zero && ou[0] == ou[1] && ou[1] == ou[2] {
         return None;
     }
-    let ot = [a, b, c].map(|v| orient3d(d, e, f, v));
-    if ot[0] != Sign::Zero && ot[0] == ot[1] && ot[1] == ot[2] {
-        return None;
+    // When u lies in t's plane, t lies in u's (or u is degenerate and every orientation
+    // against it is zero): the test of t against u's plane below could not exit, so
+    // coplanar pairs skip it.
+    // (A degenerate t has every point in its "plane": then the test is still needed.)
+    let coplanar = ou.iter().all(|s| *s == Sign::Zero);
+    if !coplanar || crate::exact::collinear(a, b, c) {
+        let ot = orient3d_many(d, e, f, t);
+        if ot[0] != Sign::Zero && ot[0] == ot[1] && ot[1] == ot[2] {
+            return None;
+        }
     }
-    if ou.iter().all(|s| *s == Sign::Zero) {
+    if coplanar {
         let k = dominant_axis(&normal(a, b, c));
         let t2 = t.map(|v| project(v, k));
         let u2 = u.map(|v| project(v, k));
+        if coplanar_apart(&t2, &u2) {
+            return None;
+        }
         let edges_meet = (0..3).any(|i| {
             (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
         });
@@ -77,6 +87,25 @@ pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
     let hit = (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], d, e, f))
         || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], a, b, c));
     hit.then_some(Contact::Intersect)
+}
+
+/// True when some edge line of one of two non-degenerate triangles in the plane has
+/// the other strictly on its outer side: then the closed triangles are disjoint, and
+/// conversely (separating axes of two convex polygons). False for a degenerate one.
+/// A cheap first exit for the many disjoint coplanar pairs of flat tessellations
+/// (radial slivers of an annulus, whose boxes overlap widely).
+fn coplanar_apart(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
+    let st = orient2d(&t[0], &t[1], &t[2]);
+    let su = orient2d(&u[0], &u[1], &u[2]);
+    if st == Sign::Zero || su == Sign::Zero {
+        return false;
+    }
+    [(t, u, st), (u, t, su)].iter().any(|&(x, y, s)| {
+        (0..3).any(|i| {
+            let (a, b) = (&x[i], &x[(i + 1) % 3]);
+            y.iter().all(|p| orient2d(a, b, p) == -s)
+        })
+    })
 }
 
 /// True when two coplanar triangles (projected to the same plane) share interior points.
@@ -431,6 +460,79 @@ mod oracle {
 
     fn pt() -> impl Strategy<Value = [i64; 3]> {
         [-2i64..3, -2i64..3, -2i64..3]
+    }
+
+    /// `triangles_meet` as it was before its first exits for coplanar pairs.
+    fn triangles_meet_former(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
+        let [a, b, c] = t;
+        let [d, e, f] = u;
+        let ou = [d, e, f].map(|v| orient3d(a, b, c, v));
+        if ou[0] != Sign::Zero && ou[0] == ou[1] && ou[1] == ou[2] {
+            return None;
+        }
+        let ot = [a, b, c].map(|v| orient3d(d, e, f, v));
+        if ot[0] != Sign::Zero && ot[0] == ot[1] && ot[1] == ot[2] {
+            return None;
+        }
+        if ou.iter().all(|s| *s == Sign::Zero) {
+            let k = dominant_axis(&normal(a, b, c));
+            let t2 = t.map(|v| project(v, k));
+            let u2 = u.map(|v| project(v, k));
+            let edges_meet = (0..3).any(|i| {
+                (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
+            });
+            let inside = in_closed_triangle_2d(&t2[0], &u2[0], &u2[1], &u2[2])
+                || in_closed_triangle_2d(&u2[0], &t2[0], &t2[1], &t2[2]);
+            if !(edges_meet || inside) {
+                return None;
+            }
+            return Some(if coplanar_overlap_area(&t2, &u2) {
+                Contact::Overlap
+            } else {
+                Contact::Intersect
+            });
+        }
+        let hit = (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], d, e, f))
+            || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], a, b, c));
+        hit.then_some(Contact::Intersect)
+    }
+
+    fn flat_pt() -> impl Strategy<Value = [i64; 3]> {
+        [-3i64..4, -3i64..4, 0i64..1]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #[test]
+        fn coplanar_first_exit_changes_nothing(
+            t in [flat_pt(), flat_pt(), flat_pt()],
+            u in [flat_pt(), flat_pt(), flat_pt()],
+            tilt in 0i64..3,
+        ) {
+            // In z = 0, or all lifted onto one tilted plane z = tilt * x.
+            let lift = |p: [i64; 3]| [p[0], p[1], tilt * p[0]];
+            let (t, u) = (t.map(lift), u.map(lift));
+            let (tr, ur) = ([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]);
+            prop_assert_eq!(triangles_meet(tr, ur), triangles_meet_former(tr, ur));
+        }
+
+        #[test]
+        fn first_exits_change_nothing(
+            t in [pt(), pt(), pt()],
+            u in [pt(), pt(), pt()],
+        ) {
+            let (tr, ur) = ([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]);
+            prop_assert_eq!(triangles_meet(tr, ur), triangles_meet_former(tr, ur));
+        }
+
+        #[test]
+        fn plane_signs_match_orient3d(
+            p in proptest::array::uniform6(proptest::array::uniform3(-(1i64 << 30) + 1..(1i64 << 30))),
+        ) {
+            let got = orient3d_many(&p[0], &p[1], &p[2], [&p[3], &p[4], &p[5]]);
+            let want = [3, 4, 5].map(|i| orient3d(&p[0], &p[1], &p[2], &p[i]));
+            prop_assert_eq!(got, want);
+        }
     }
 
     proptest! {
