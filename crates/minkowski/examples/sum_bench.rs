@@ -7,7 +7,7 @@
 mod reference;
 
 use apart_assembly::{load, LoadOptions, Tolerance};
-use apart_minkowski::{sum_prepared, Summand};
+use apart_minkowski::{project, sum_prepared, Summand};
 use std::time::Instant;
 
 fn main() {
@@ -68,6 +68,22 @@ fn main() {
         facets += m.facets().len();
     }
     let dt = t.elapsed().as_secs_f64();
+    let sums: Vec<_> = jobs
+        .iter()
+        .map(|&(i, j, a, b)| sum_prepared(&fixed[j][b], &refl[i][a]).expect("sum"))
+        .collect();
+    let t = Instant::now();
+    for m in &sums {
+        project(m).expect("projection");
+    }
+    let dtp = t.elapsed().as_secs_f64();
+    drop(sums);
+    println!(
+        "{} projections in {:.1} ms ({:.1} µs each)",
+        jobs.len(),
+        dtp * 1e3,
+        dtp * 1e6 / jobs.len() as f64
+    );
     println!(
         "{} sums in {:.1} ms ({:.1} µs each, {} facets)",
         jobs.len(),
@@ -84,6 +100,11 @@ fn main() {
             assert!(
                 reference::identical(&m, &r),
                 "sum of pieces {i}.{a} and {j}.{b} differs from the reference"
+            );
+            let (x, y) = (project(&m), reference::reference_project(&m));
+            assert!(
+                reference::same_projection(&x.expect("projection"), &y.expect("projection")),
+                "projection of pieces {i}.{a} and {j}.{b} differs from the reference"
             );
         }
         println!(

@@ -13,8 +13,8 @@
 //! - in the interior: every direction (the parts overlap, which validation rejects).
 
 use apart_kernel::int::sign_of;
-use apart_kernel::predicates::dot_sign;
-use apart_kernel::Sign;
+use apart_kernel::predicates::{det3_sign, dot_sign};
+use apart_kernel::{Sign, Vec3};
 use apart_pieces::Polytope;
 use apart_sphere::polygon::PolygonError;
 use apart_sphere::{Arc, SphericalPolygon};
@@ -58,6 +58,7 @@ pub fn project(m: &Polytope) -> Result<Projection, PolygonError> {
 /// The polygon when the origin is outside: one side per silhouette edge.
 fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonError> {
     let mut arcs = Vec::new();
+    let mut primitive: Vec<Option<Vec3>> = vec![None; m.vertices().len()];
     for e in m.edges() {
         let (f, g) = (e.facets[0] as usize, e.facets[1] as usize);
         let (front, _back) = match (signs[f], signs[g]) {
@@ -86,7 +87,24 @@ fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonE
         } else {
             n.neg().primitive()
         };
-        arcs.push(Arc::on_circle(&q, v0, v1).expect("silhouette edge endpoints are independent"));
+        // `Arc::on_circle(&q, v0, v1)`, without making the primitive `q` primitive again
+        // and with each vertex made primitive once (it ends two silhouette edges).
+        let (a, b) = match det3_sign(&q, v0, v1) {
+            Sign::Positive => (e.ends[0], e.ends[1]),
+            Sign::Negative => (e.ends[1], e.ends[0]),
+            Sign::Zero => panic!("silhouette edge endpoints are independent"),
+        };
+        let mut unit = |i: u32| -> Vec3 {
+            primitive[i as usize]
+                .get_or_insert_with(|| m.vertices()[i as usize].primitive())
+                .clone()
+        };
+        let (start, end) = (unit(a), unit(b));
+        arcs.push(Arc {
+            normal: q,
+            start,
+            end,
+        });
     }
     SphericalPolygon::from_arcs(arcs)
 }

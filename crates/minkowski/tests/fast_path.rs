@@ -3,17 +3,18 @@
 //! 2-D hull of all pairwise vertex sums on summands brought to a common denominator):
 //! identical polytopes, vertex for vertex and facet for facet, on degenerate inputs
 //! (tiny grids: shared facet normals, parallel edges, coplanar faces, touching
-//! summands), on the same shapes under big integer linear maps and translations
+//! summands), and the central projections of the differences against the old
+//! projection, on the same shapes under big integer linear maps and translations
 //! (coordinates of hundreds of bits), and with different big denominators.
 
 #[path = "support/reference.rs"]
 mod reference;
 
 use apart_kernel::{Int, Vec3};
-use apart_minkowski::{minkowski_difference, minkowski_sum};
+use apart_minkowski::{minkowski_difference, minkowski_sum, project};
 use apart_pieces::Polytope;
 use proptest::prelude::*;
-use reference::{identical, reference_sum};
+use reference::{identical, reference_project, reference_sum, same_projection};
 
 /// Hull of small grid points (degenerate on purpose); `None` when flat.
 fn grid_hull(pts: &[[i64; 3]]) -> Option<Polytope> {
@@ -103,6 +104,11 @@ fn check(p: &Polytope, q: &Polytope) -> Result<(), TestCaseError> {
     let fast = minkowski_difference(p, q).expect("difference");
     let old = reference_sum(p, &q.reflected()).expect("reference");
     prop_assert!(identical(&fast, &old), "{:?} ⊖ {:?}", p, q);
+    // The central projection (silhouette, contact hemisphere, lune or cone).
+    match (project(&fast), reference_project(&fast)) {
+        (Ok(a), Ok(b)) => prop_assert!(same_projection(&a, &b), "projection of {:?} ⊖ {:?}", p, q),
+        (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
+    }
     Ok(())
 }
 

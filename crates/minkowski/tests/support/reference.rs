@@ -1,7 +1,8 @@
 //! The Minkowski sum as computed before the fast path (commit de98644): every facet of
 //! either summand plus the other's extreme face as the exact 2-D hull of all pairwise
 //! vertex sums, on both summands brought to a common denominator. Kept verbatim (up to
-//! the precomputed `Summand`) as the oracle the fast path must match bit for bit.
+//! the precomputed `Summand`) as the oracle the fast path must match bit for bit; and
+//! the central projection before its silhouette cached primitive vertices.
 
 #![allow(dead_code)]
 
@@ -178,4 +179,121 @@ pub fn identical(a: &Polytope, b: &Polytope) -> bool {
             .iter()
             .zip(b.facets())
             .all(|(f, g)| f.normal == g.normal && f.offset == g.offset && f.cycle == g.cycle)
+}
+
+/// The central projection as computed before the silhouette's vertex cache (commit
+/// 20d4246).
+pub fn reference_project(
+    m: &Polytope,
+) -> Result<apart_minkowski::Projection, apart_sphere::polygon::PolygonError> {
+    // Sign of each facet's offset: offset < 0 means the origin is outside that facet.
+    let signs: Vec<Sign> = m
+        .facets()
+        .iter()
+        .map(|f| apart_kernel::int::sign_of(&f.offset))
+        .collect();
+    if signs.contains(&Sign::Negative) {
+        return reference_silhouette(m, &signs).map(apart_minkowski::Projection::Polygon);
+    }
+    let active: Vec<usize> = (0..signs.len())
+        .filter(|&i| signs[i] == Sign::Zero)
+        .collect();
+    match active.len() {
+        0 => Ok(apart_minkowski::Projection::Everything),
+        1 => Ok(apart_minkowski::Projection::Polygon(
+            apart_sphere::SphericalPolygon::hemisphere(&m.facets()[active[0]].normal.neg()),
+        )),
+        2 => {
+            let (q1, q2) = (
+                m.facets()[active[0]].normal.neg(),
+                m.facets()[active[1]].normal.neg(),
+            );
+            Ok(apart_minkowski::Projection::Polygon(
+                apart_sphere::SphericalPolygon::lune(&q1, &q2),
+            ))
+        }
+        _ => reference_vertex_cone(m, &active).map(apart_minkowski::Projection::Polygon),
+    }
+}
+
+/// The polygon when the origin is outside: one side per silhouette edge.
+fn reference_silhouette(
+    m: &Polytope,
+    signs: &[Sign],
+) -> Result<apart_sphere::SphericalPolygon, apart_sphere::polygon::PolygonError> {
+    let mut arcs = Vec::new();
+    for e in m.edges() {
+        let (f, g) = (e.facets[0] as usize, e.facets[1] as usize);
+        let (front, _back) = match (signs[f], signs[g]) {
+            (Sign::Negative, Sign::Negative) => continue,
+            (Sign::Negative, _) => (f, g),
+            (_, Sign::Negative) => (g, f),
+            _ => continue,
+        };
+        let (v0, v1) = (
+            &m.vertices()[e.ends[0] as usize],
+            &m.vertices()[e.ends[1] as usize],
+        );
+        let n = v0.cross(v1);
+        if n.is_zero() {
+            continue; // the edge's line passes through the origin: it projects to a point
+        }
+        // Inward normal: the side where the rest of the front facet lies.
+        let cycle = &m.facets()[front].cycle;
+        let w = cycle
+            .iter()
+            .map(|&i| &m.vertices()[i as usize])
+            .find(|w| dot_sign(&n, w) != Sign::Zero)
+            .ok_or_else(|| {
+                apart_sphere::polygon::PolygonError(
+                    "front facet lies in a plane through the origin".into(),
+                )
+            })?;
+        let q = if dot_sign(&n, w) == Sign::Positive {
+            n.primitive()
+        } else {
+            n.neg().primitive()
+        };
+        arcs.push(
+            apart_sphere::Arc::on_circle(&q, v0, v1)
+                .expect("silhouette edge endpoints are independent"),
+        );
+    }
+    apart_sphere::SphericalPolygon::from_arcs(arcs)
+}
+
+/// The tangent cone at the vertex of `m` at the origin (three or more facets through it).
+fn reference_vertex_cone(
+    m: &Polytope,
+    active: &[usize],
+) -> Result<apart_sphere::SphericalPolygon, apart_sphere::polygon::PolygonError> {
+    let origin = m
+        .vertices()
+        .iter()
+        .position(|v| v.is_zero())
+        .ok_or_else(|| {
+            apart_sphere::polygon::PolygonError("origin on three facets but not a vertex".into())
+        })? as u32;
+    let mut arcs = Vec::new();
+    for &f in active {
+        let facet = &m.facets()[f];
+        let c = &facet.cycle;
+        let k = c.iter().position(|&v| v == origin).ok_or_else(|| {
+            apart_sphere::polygon::PolygonError("active facet misses the origin".into())
+        })?;
+        let prev = &m.vertices()[c[(k + c.len() - 1) % c.len()] as usize];
+        let next = &m.vertices()[c[(k + 1) % c.len()] as usize];
+        let q = facet.normal.neg();
+        arcs.push(
+            apart_sphere::Arc::on_circle(&q, prev, next).ok_or_else(|| {
+                apart_sphere::polygon::PolygonError("flat vertex in a facet".into())
+            })?,
+        );
+    }
+    apart_sphere::SphericalPolygon::from_arcs(arcs)
+}
+
+/// Whether two projections are identical (same arcs and normals, in the same order).
+pub fn same_projection(a: &apart_minkowski::Projection, b: &apart_minkowski::Projection) -> bool {
+    format!("{a:?}") == format!("{b:?}")
 }
