@@ -459,20 +459,74 @@ fn contained_in(p: &SphericalPolygon, q: &SphericalPolygon) -> bool {
     p.corners().all(|c| q.contains_closed(c))
 }
 
+/// A floating-point bounding cap of a pointed polygon (three or more sides): the unit
+/// mean `centre` of its corners, which lies inside it, and the cosine of the largest
+/// angle from the centre to a corner; the cap holds the whole polygon when that angle is
+/// below 90°. Only a filter: it rejects a containment that the exact test would reject.
+struct Cap {
+    centre: [f64; 3],
+    /// Cosine of the cap's radius widened by 1e-6 rad (far beyond float rounding);
+    /// `None` when the cap is not convex (no bound).
+    cos_radius: Option<f64>,
+}
+
+fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
+    if p.normals().len() < 3 {
+        return None;
+    }
+    let units: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
+    let sum = units
+        .iter()
+        .fold([0.0; 3], |s, u| [s[0] + u[0], s[1] + u[1], s[2] + u[2]]);
+    let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
+    if len.is_nan() || len <= 1e-6 {
+        return None;
+    }
+    let centre = sum.map(|c| c / len);
+    let min_cos = units
+        .iter()
+        .map(|u| u[0] * centre[0] + u[1] * centre[1] + u[2] * centre[2])
+        .fold(1.0f64, f64::min)
+        .clamp(-1.0, 1.0);
+    let radius = min_cos.acos() + 1e-6;
+    Some(Cap {
+        centre,
+        cos_radius: (radius < 1.5).then(|| radius.cos()),
+    })
+}
+
+/// False when `p` (with cap `cp`) provably cannot lie in `q` (with cap `cq`): `p`'s
+/// centre, a point of `p`, lies outside `q`'s cap.
+fn may_contain(cp: &Option<Cap>, cq: &Option<Cap>) -> bool {
+    match (cp, cq) {
+        (
+            Some(p),
+            Some(Cap {
+                centre,
+                cos_radius: Some(c),
+            }),
+        ) => p.centre[0] * centre[0] + p.centre[1] * centre[1] + p.centre[2] * centre[2] >= *c,
+        _ => true,
+    }
+}
+
 /// Drops polygons contained in another (keeping one of several equal ones).
 fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
-    let mut keep: Vec<&SphericalPolygon> = Vec::with_capacity(polygons.len());
+    let caps: Vec<Option<Cap>> = polygons.iter().map(cap_of).collect();
+    let mut keep: Vec<usize> = Vec::with_capacity(polygons.len());
     // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
     let mut order: Vec<usize> = (0..polygons.len()).collect();
     order.sort_by_key(|&k| polygons[k].normals().len());
+    let inside = |p: usize, q: usize| {
+        may_contain(&caps[p], &caps[q]) && contained_in(&polygons[p], &polygons[q])
+    };
     for k in order {
-        let p = &polygons[k];
-        if !keep.iter().any(|q| contained_in(p, q)) {
-            keep.retain(|q| !contained_in(q, p));
-            keep.push(p);
+        if !keep.iter().any(|&q| inside(k, q)) {
+            keep.retain(|&q| !inside(q, k));
+            keep.push(k);
         }
     }
-    keep
+    keep.into_iter().map(|k| &polygons[k]).collect()
 }
 
 /// The simplified union of open convex polygons.
@@ -530,4 +584,76 @@ pub fn union_of(polygons: &[SphericalPolygon]) -> RegionMap {
         s
     });
     simplify_union(&arr, &st)
+}
+
+#[cfg(test)]
+mod prune_tests {
+    use super::*;
+    use apart_minkowski::{project, Projection};
+
+    /// The projection of a box (as a Minkowski sum) that misses the origin.
+    fn box_polygon(lo: [i64; 3], hi: [i64; 3]) -> Option<SphericalPolygon> {
+        let b = Polytope::cuboid(lo, hi).ok()?;
+        match project(&b).ok()? {
+            Projection::Polygon(p) => Some(p),
+            Projection::Everything => None,
+        }
+    }
+
+    /// `prune_contained` without the cap filter.
+    fn brute(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
+        let mut keep: Vec<&SphericalPolygon> = Vec::new();
+        let mut order: Vec<usize> = (0..polygons.len()).collect();
+        order.sort_by_key(|&k| polygons[k].normals().len());
+        for k in order {
+            let p = &polygons[k];
+            if !keep.iter().any(|q| contained_in(p, q)) {
+                keep.retain(|q| !contained_in(q, p));
+                keep.push(p);
+            }
+        }
+        keep
+    }
+
+    #[test]
+    fn the_cap_filter_keeps_every_containment() {
+        let mut s = 12345u64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        let mut pruned = 0;
+        for _ in 0..200 {
+            // Boxes on a small grid, grown copies (nested projections), equal copies and
+            // boxes touching the origin's planes: many containments and shared sides.
+            let mut polygons = Vec::new();
+            for _ in 0..10 {
+                let lo = [next(9) - 4, next(9) - 4, next(5) + 1];
+                let hi = [
+                    lo[0] + next(4) + 1,
+                    lo[1] + next(4) + 1,
+                    lo[2] + next(4) + 1,
+                ];
+                polygons.extend(box_polygon(lo, hi));
+                let g = next(3);
+                polygons.extend(box_polygon(
+                    [lo[0] - g, lo[1] - g, lo[2]],
+                    [hi[0] + g, hi[1] + g, hi[2] + g],
+                ));
+            }
+            let fast: Vec<*const SphericalPolygon> = prune_contained(&polygons)
+                .into_iter()
+                .map(|p| p as *const _)
+                .collect();
+            let slow: Vec<*const SphericalPolygon> = brute(&polygons)
+                .into_iter()
+                .map(|p| p as *const _)
+                .collect();
+            assert_eq!(fast, slow);
+            pruned += polygons.len() - fast.len();
+        }
+        assert!(pruned > 100, "the generator must produce containments");
+    }
 }
