@@ -23,6 +23,16 @@ pub fn sign_of(v: &Int) -> Sign {
     }
 }
 
+/// Compares the fractions `x / dx` and `y / dy` (positive denominators) exactly, without
+/// reducing them: equal denominators compare the numerators.
+pub fn cmp_fractions(x: &Int, dx: &Int, y: &Int, dy: &Int) -> std::cmp::Ordering {
+    if dx == dy {
+        x.cmp(y)
+    } else {
+        (x * dy).cmp(&(y * dx))
+    }
+}
+
 /// Number of bits of |v| (0 for 0).
 #[inline]
 pub fn bit_len(v: &Int) -> u32 {

@@ -226,12 +226,7 @@ impl<'p> FilteredPair<'p> {
 
 /// `x / dx` against `y / dy` (positive denominators): `Some(strict)` when at most.
 fn compare(x: &Int, dx: &Int, y: &Int, dy: &Int) -> Option<bool> {
-    let o = if dx == dy {
-        x.cmp(y)
-    } else {
-        (x * dy).cmp(&(y * dx))
-    };
-    match o {
+    match int::cmp_fractions(x, dx, y, dy) {
         std::cmp::Ordering::Greater => None,
         o => Some(o == std::cmp::Ordering::Less),
     }

@@ -21,6 +21,7 @@
 //!   (same active facet normals; the cone's corner rays are the same primitive vectors).
 
 use crate::PlanError;
+use apart_kernel::int::cmp_fractions;
 use apart_kernel::{Int, Vec3};
 use apart_minkowski::{project, sum_prepared, Projection, Summand};
 use apart_pieces::interference::{below_along, facet_axes};
@@ -58,15 +59,6 @@ impl PieceInfo {
     }
 }
 
-/// Compares `x / dx` with `y / dy` (positive denominators).
-fn cmp_scaled(x: &Int, dx: &Int, y: &Int, dy: &Int) -> Ordering {
-    if dx == dy {
-        x.cmp(y)
-    } else {
-        (x * dy).cmp(&(y * dx))
-    }
-}
-
 /// An axis along which `a` lies weakly below `b` (`max_a n·x <= min_b n·x`); `strict`
 /// when strictly.
 #[derive(Clone, Debug)]
@@ -94,22 +86,22 @@ pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -
     for k in 0..3 {
         let mut e = [0i64; 3];
         // a below b along +e_k: hi_a <= lo_b.
-        match cmp_scaled(&ia.hi[k], da, &ib.lo[k], db) {
+        match cmp_fractions(&ia.hi[k], da, &ib.lo[k], db) {
             Ordering::Less | Ordering::Equal => {
                 e[k] = 1;
                 out.push(Axis {
                     n: Vec3::from_i64(e),
-                    strict: cmp_scaled(&ia.hi[k], da, &ib.lo[k], db) == Ordering::Less,
+                    strict: cmp_fractions(&ia.hi[k], da, &ib.lo[k], db) == Ordering::Less,
                 });
             }
             Ordering::Greater => {}
         }
-        match cmp_scaled(&ib.hi[k], db, &ia.lo[k], da) {
+        match cmp_fractions(&ib.hi[k], db, &ia.lo[k], da) {
             Ordering::Less | Ordering::Equal => {
                 e[k] = -1;
                 out.push(Axis {
                     n: Vec3::from_i64(e),
-                    strict: cmp_scaled(&ib.hi[k], db, &ia.lo[k], da) == Ordering::Less,
+                    strict: cmp_fractions(&ib.hi[k], db, &ia.lo[k], da) == Ordering::Less,
                 });
             }
             Ordering::Greater => {}
@@ -253,7 +245,7 @@ fn edges_meeting(p: &Polytope, ids: &[u32], other: &[Vec3], dother: &Int, n: &Ve
     // Strictly on the far side of a line g·x = h (the side without `own`).
     let beyond = |g: &Vec3, h: &Int, own: Ordering, pts: &[Vec3], dp_: &Int, dh: &Int| {
         pts.iter()
-            .all(|w| cmp_scaled(&g.dot(w), dp_, h, dh) == own.reverse())
+            .all(|w| cmp_fractions(&g.dot(w), dp_, h, dh) == own.reverse())
     };
     // Exact boxes: an edge whose box misses the other set's box cannot meet it.
     let lo = [0, 1, 2].map(|t| other.iter().map(|w| w.get(t)).min().unwrap());
@@ -262,8 +254,8 @@ fn edges_meeting(p: &Polytope, ids: &[u32], other: &[Vec3], dother: &Int, n: &Ve
         (0..3).any(|t| {
             let (a, b) = (u.get(t), w.get(t));
             let (mn, mx) = if a < b { (a, b) } else { (b, a) };
-            cmp_scaled(&mx, dp, &lo[t], dother) == Ordering::Less
-                || cmp_scaled(&mn, dp, &hi[t], dother) == Ordering::Greater
+            cmp_fractions(&mx, dp, &lo[t], dother) == Ordering::Less
+                || cmp_fractions(&mn, dp, &hi[t], dother) == Ordering::Greater
         })
     };
     let mut keep = vec![false; k];
@@ -345,7 +337,7 @@ fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec
                 .find(|o| *o != Ordering::Equal);
             let all_one_side = |want: Ordering| {
                 other.iter().all(|w| {
-                    let o = cmp_scaled(&g.dot(w), dother, &h, dc);
+                    let o = cmp_fractions(&g.dot(w), dother, &h, dc);
                     o == Ordering::Equal || o == want
                 })
             };
