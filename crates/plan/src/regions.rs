@@ -96,8 +96,9 @@ pub struct PairRegion {
     pub i: usize,
     /// The fixed part.
     pub j: usize,
-    /// One open polygon per piece pair: `i` moving along `d` hits `j` iff `d` lies in
-    /// the interior of at least one.
+    /// The open polygons of the piece pairs, less those inside another (they add no
+    /// direction): `i` moving along `d` hits `j` iff `d` lies in the interior of at
+    /// least one.
     pub polygons: Vec<SphericalPolygon>,
     /// Their union, simplified.
     pub region: RegionMap,
@@ -336,7 +337,9 @@ impl BlockingRegions {
             .zip(grouped)
             .zip(contact)
             .map(|((&(i, j), polygons), contact)| {
-                let region = union_of(&polygons);
+                // Only the polygons that add to the union are kept (memory).
+                let polygons = pruned(polygons);
+                let region = union_of_pruned(&polygons);
                 PairRegion {
                     i,
                     j,
@@ -380,13 +383,14 @@ impl BlockingRegions {
             .enumerate()
             .map(|(k, (&(i, j), polygons))| {
                 index[i * n + j] = k;
+                let polygons = pruned(polygons);
                 let region = if polygons.is_empty() {
                     RegionMap {
                         arcs: Vec::new(),
                         points: Vec::new(),
                     }
                 } else {
-                    union_of(&polygons)
+                    union_of_pruned(&polygons)
                 };
                 PairRegion {
                     i,
@@ -510,8 +514,9 @@ fn may_contain(cp: &Option<Cap>, cq: &Option<Cap>) -> bool {
     }
 }
 
-/// Drops polygons contained in another (keeping one of several equal ones).
-fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
+/// The indices of the polygons not contained in another (one of several equal ones
+/// kept), in the order the union builds them.
+fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<usize> {
     let caps: Vec<Option<Cap>> = polygons.iter().map(cap_of).collect();
     let mut keep: Vec<usize> = Vec::with_capacity(polygons.len());
     // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
@@ -526,13 +531,27 @@ fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
             keep.push(k);
         }
     }
-    keep.into_iter().map(|k| &polygons[k]).collect()
+    keep
+}
+
+/// The polygons not contained in another, in the union's order: the same open union,
+/// and the same answers to every blocking test (an open polygon inside another adds
+/// no direction), with less to store.
+fn pruned(polygons: Vec<SphericalPolygon>) -> Vec<SphericalPolygon> {
+    let keep = prune_contained(&polygons);
+    let mut slots: Vec<Option<SphericalPolygon>> = polygons.into_iter().map(Some).collect();
+    keep.into_iter()
+        .map(|k| slots[k].take().expect("each index kept once"))
+        .collect()
 }
 
 /// The simplified union of open convex polygons.
 pub fn union_of(polygons: &[SphericalPolygon]) -> RegionMap {
-    let pruned = prune_contained(polygons);
-    let polygons: Vec<SphericalPolygon> = pruned.into_iter().cloned().collect();
+    union_of_pruned(&pruned(polygons.to_vec()))
+}
+
+/// [`union_of`] for polygons none of which lies in another.
+fn union_of_pruned(polygons: &[SphericalPolygon]) -> RegionMap {
     if polygons.len() == 1 {
         let p = &polygons[0];
         return RegionMap {
@@ -601,15 +620,15 @@ mod prune_tests {
     }
 
     /// `prune_contained` without the cap filter.
-    fn brute(polygons: &[SphericalPolygon]) -> Vec<&SphericalPolygon> {
-        let mut keep: Vec<&SphericalPolygon> = Vec::new();
+    fn brute(polygons: &[SphericalPolygon]) -> Vec<usize> {
+        let mut keep: Vec<usize> = Vec::new();
         let mut order: Vec<usize> = (0..polygons.len()).collect();
         order.sort_by_key(|&k| polygons[k].normals().len());
         for k in order {
             let p = &polygons[k];
-            if !keep.iter().any(|q| contained_in(p, q)) {
-                keep.retain(|q| !contained_in(q, p));
-                keep.push(p);
+            if !keep.iter().any(|&q| contained_in(p, &polygons[q])) {
+                keep.retain(|&q| !contained_in(&polygons[q], p));
+                keep.push(k);
             }
         }
         keep
@@ -643,15 +662,8 @@ mod prune_tests {
                     [hi[0] + g, hi[1] + g, hi[2] + g],
                 ));
             }
-            let fast: Vec<*const SphericalPolygon> = prune_contained(&polygons)
-                .into_iter()
-                .map(|p| p as *const _)
-                .collect();
-            let slow: Vec<*const SphericalPolygon> = brute(&polygons)
-                .into_iter()
-                .map(|p| p as *const _)
-                .collect();
-            assert_eq!(fast, slow);
+            let fast = prune_contained(&polygons);
+            assert_eq!(fast, brute(&polygons));
             pruned += polygons.len() - fast.len();
         }
         assert!(pruned > 100, "the generator must produce containments");
