@@ -198,9 +198,6 @@ impl<'p> FilteredPair<'p> {
             let slack =
                 sp.magnitude.max(so.magnitude) * (so.points.len() as f64 + 64.0) * 2f64.powi(-44);
             for (i, (u, level)) in sp.facet_units.iter().zip(&sp.facet_levels).enumerate() {
-                if *u == [0.0; 3] {
-                    continue;
-                }
                 let (u, score) = (*u, dot3(&so.mean, u) - level);
                 if score >= -slack {
                     out.push((score, of_b, i, u));
@@ -289,7 +286,18 @@ fn filtered_separating_normal(a: &Polytope, b: &Polytope) -> Option<Option<Vec3>
     for da in a.edge_directions() {
         for db in b.edge_directions() {
             let n = da.cross(db);
-            let Some(u) = unit(&n) else { continue };
+            if n.is_zero() {
+                continue;
+            }
+            let Some(u) = unit(&n) else {
+                // No float axis: decide this one exactly.
+                for m in [n.clone(), n.neg()] {
+                    if below_along(a, b, &m).is_some() {
+                        return Some(Some(m.primitive()));
+                    }
+                }
+                continue;
+            };
             let ((alo, ahi), (blo, bhi)) = (float_range(fp.sa, &u), float_range(fp.sb, &u));
             if fp.below_given(&n, &u, ahi, blo).is_some() {
                 return Some(Some(n.primitive()));

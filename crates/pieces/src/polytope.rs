@@ -55,10 +55,9 @@ pub struct Shadow {
     pub points: Vec<[f64; 3]>,
     /// The mean of the vertices (a point of the polytope, up to rounding).
     pub mean: [f64; 3],
-    /// The largest coordinate magnitude (at least the smallest positive normal float).
+    /// The largest coordinate magnitude (between 2^-900 and 2^900, else no shadow).
     pub magnitude: f64,
-    /// Each facet's unit outward normal (relative error below 2^-50; zero when the
-    /// normal does not fit a float).
+    /// Each facet's unit outward normal (each component within 2^-49).
     pub facet_units: Vec<[f64; 3]>,
     /// Each facet's level `u · x` for its unit normal `u` and a point `x` of it.
     pub facet_levels: Vec<f64>,
@@ -97,18 +96,21 @@ impl Shadow {
             }
             points.push(p);
         }
+        // Far from both ends of the float range, so that rounding stays relative (no
+        // subnormals) and sums of coordinates stay finite.
+        if !(2f64.powi(-900)..=2f64.powi(900)).contains(&magnitude) {
+            return None;
+        }
         let n = vertices.len().max(1) as f64;
+        // Every facet gets its unit normal, or there is no shadow (a filter that skipped
+        // a facet could miss a separating plane).
         let facet_units: Vec<[f64; 3]> = facets
             .iter()
             .map(|f| {
                 let u = f.normal.unit_f64();
-                if u.iter().all(|c| c.is_finite()) {
-                    u
-                } else {
-                    [0.0; 3]
-                }
+                (u.iter().all(|c| c.is_finite()) && u != [0.0; 3]).then_some(u)
             })
-            .collect();
+            .collect::<Option<_>>()?;
         let facet_levels = facets
             .iter()
             .zip(&facet_units)

@@ -379,9 +379,7 @@ fn centroid_in_relative_interior(p: &Polytope, n: &Vec3, pts: &[Vec3], dp: &Int)
     p.facets().iter().enumerate().all(|(i, f)| {
         if let Some((s, x, err)) = &filter {
             let u = &s.facet_units[i];
-            if *u != [0.0; 3]
-                && x[0] * u[0] + x[1] * u[1] + x[2] * u[2] < s.facet_levels[i] - 2.0 * err
-            {
+            if x[0] * u[0] + x[1] * u[1] + x[2] * u[2] < s.facet_levels[i] - 2.0 * err {
                 return true; // clearly strictly inside (and not the facet with normal n)
             }
         }
