@@ -58,7 +58,7 @@ pub(crate) struct Frag {
 }
 
 /// Where a fragment goes when its cell is split.
-pub(crate) enum Placement {
+enum Placement {
     Below(Arc<Frag>),
     Above(Arc<Frag>),
     Both(Arc<Frag>, Arc<Frag>),
@@ -106,8 +106,31 @@ impl Frag {
     }
 }
 
+/// The fragments of a cell split by `h`: those below and those above (a fragment crossing
+/// `h` is cut into both; one lying in `h` goes to neither).
+pub(crate) fn split_by(
+    frags: &[Arc<Frag>],
+    h: &Plane,
+    solid: &Solid,
+) -> (Vec<Arc<Frag>>, Vec<Arc<Frag>>) {
+    let mut below = Vec::new();
+    let mut above = Vec::new();
+    for f in frags {
+        match place(f, h, solid) {
+            Placement::Below(g) => below.push(g),
+            Placement::Above(g) => above.push(g),
+            Placement::Both(g, k) => {
+                below.push(g);
+                above.push(k);
+            }
+            Placement::On => {}
+        }
+    }
+    (below, above)
+}
+
 /// Splits fragment `f` by `h`.
-pub(crate) fn place(f: &Arc<Frag>, h: &Plane, solid: &Solid) -> Placement {
+fn place(f: &Arc<Frag>, h: &Plane, solid: &Solid) -> Placement {
     let s: Vec<Sign> = f.pts.iter().map(|p| h.side(&p.p)).collect();
     let pos = s.contains(&Sign::Positive);
     let neg = s.contains(&Sign::Negative);

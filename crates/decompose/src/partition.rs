@@ -17,7 +17,7 @@
 
 use crate::cell::Cell;
 use crate::exact::Plane;
-use crate::fragments::{place, Frag, Placement};
+use crate::fragments::{split_by, Frag};
 use crate::solid::Solid;
 use crate::split::{for_groups, for_live, live, Choice};
 use crate::DecomposeError;
@@ -137,19 +137,7 @@ impl<'a> Partition<'a> {
                 "a splitting plane missed the open cell".into(),
             ));
         };
-        let mut fb = Vec::new();
-        let mut fa = Vec::new();
-        for f in &t.frags {
-            match place(f, &h, self.solid) {
-                Placement::Below(g) => fb.push(g),
-                Placement::Above(g) => fa.push(g),
-                Placement::Both(g, k) => {
-                    fb.push(g);
-                    fa.push(k);
-                }
-                Placement::On => {}
-            }
-        }
+        let (fb, fa) = split_by(&t.frags, &h, self.solid);
         Ok(Step::Split(
             Task {
                 cell: below,

@@ -45,7 +45,7 @@
 
 use crate::cell::Cell;
 use crate::exact::{HPoint, Plane};
-use crate::fragments::{place, Frag, Placement};
+use crate::fragments::{split_by, Frag};
 use crate::partition::Counters;
 use crate::solid::Solid;
 use crate::split::{for_live, live};
@@ -193,19 +193,7 @@ impl<'a> UnionPartition<'a> {
                 "a fragment's plane missed the open cell".into(),
             ));
         };
-        let mut fb = Vec::new();
-        let mut fa = Vec::new();
-        for f in &t.frags {
-            match place(f, &h, self.solid) {
-                Placement::Below(g) => fb.push(g),
-                Placement::Above(g) => fa.push(g),
-                Placement::Both(g, k) => {
-                    fb.push(g);
-                    fa.push(k);
-                }
-                Placement::On => {}
-            }
-        }
+        let (fb, fa) = split_by(&t.frags, &h, self.solid);
         Ok(Step::Split(
             Task {
                 cell: below,
