@@ -19,6 +19,19 @@ fn example(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// The shipped examples' folder names, sorted.
+fn example_names() -> Vec<String> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_dir())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 fn load_parts(dir: &Path) -> Vec<PartPieces> {
     try_load(dir).unwrap_or_else(|| panic!("{dir:?} is not a valid assembly"))
 }
@@ -113,14 +126,7 @@ fn check_against_full(name: &str, parts: &[PartPieces]) {
 
 #[test]
 fn shipped_examples_agree_with_the_full_motion_space() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.path().is_dir())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = example_names();
     assert!(names.len() >= 5);
     for name in names {
         if let Some(parts) = try_load(&example(&name)) {
@@ -220,14 +226,7 @@ fn check_first(name: &str, parts: &[PartPieces]) {
 
 #[test]
 fn first_solutions_are_verified() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.path().is_dir())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = example_names();
     for name in names {
         if let Some(parts) = try_load(&example(&name)) {
             check_first(&name, &parts);
