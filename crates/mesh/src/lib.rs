@@ -28,6 +28,7 @@
 
 pub mod aabb;
 pub mod bvh;
+pub mod escape;
 pub mod exact;
 pub mod formats;
 pub mod intersect;

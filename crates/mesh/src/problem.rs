@@ -97,23 +97,26 @@ impl Problem {
 }
 
 impl fmt::Display for Problem {
-    /// `error: parts/red.off (part "red"), face 12: zero area after snapping`.
+    /// `error: parts/red.off (part "red"), face 12: zero area after snapping`. The
+    /// file, the part and the element are escaped (they come from file and object
+    /// names): no control character reaches the terminal.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use crate::escape::{escape, path};
         write!(f, "{}: ", self.severity)?;
         let mut context = String::new();
         match (&self.file, &self.part) {
             (Some(file), Some(part)) => {
-                context = format!("{} (part \"{part}\")", file.display());
+                context = format!("{} (part \"{}\")", path(file), escape(part));
             }
-            (Some(file), None) => context = file.display().to_string(),
-            (None, Some(part)) => context = format!("part \"{part}\""),
+            (Some(file), None) => context = path(file),
+            (None, Some(part)) => context = format!("part \"{}\"", escape(part)),
             (None, None) => {}
         }
         if let Some(element) = &self.element {
             if !context.is_empty() {
                 context.push_str(", ");
             }
-            context.push_str(element);
+            context.push_str(&escape(element));
         }
         if context.is_empty() {
             write!(f, "{}", self.message)
@@ -181,5 +184,14 @@ mod tests {
         );
         assert_eq!(Problem::note("x").to_string(), "note: x");
         assert!(Severity::Error > Severity::Warning && Severity::Warning > Severity::Note);
+        // Names from files never bring control characters to the terminal.
+        let p = Problem::error("bad")
+            .in_part("a\x1b[2Jb")
+            .in_file("x\ny.off")
+            .at("face 1");
+        assert_eq!(
+            p.to_string(),
+            "error: x\\ny.off (part \"a\\x1b[2Jb\"), face 1: bad"
+        );
     }
 }

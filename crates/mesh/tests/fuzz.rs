@@ -190,6 +190,56 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Files built to hurt (issue 10): huge declared counts, a node DAG of 2^17
+/// instances, a cycle, broken rotations, positions as bytes, an accessor far beyond
+/// its view. Each must be refused quickly; mutations of them must not panic, hang or
+/// allocate beyond what their bytes describe.
+fn hostile_samples() -> Vec<(Format, Vec<u8>)> {
+    let mut out = Vec::new();
+    let xyz = "property float x\nproperty float y\nproperty float z\n";
+    for header in [
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nend_header\n".to_string(),
+        format!("ply\nformat binary_little_endian 1.0\nelement vertex 3\n{xyz}element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n"),
+        format!("ply\nformat ascii 1.0\nelement vertex 3\n{xyz}element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n"),
+    ] {
+        let mut b = header.into_bytes();
+        b.resize(250, b'0');
+        out.push((Format::Ply, b));
+    }
+    out.push((
+        Format::Off,
+        b"OFF\n4000000000 4000000000 0\n0 0 0\n".to_vec(),
+    ));
+    let mut stl = vec![0u8; 134];
+    stl[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
+    out.push((Format::Stl, stl));
+    let (json, bin) = gltf_parts(&cube());
+    let mut dag: Vec<String> = (0..17)
+        .map(|k| format!(r#"{{"children":[{},{}]}}"#, k + 1, k + 1))
+        .collect();
+    dag.push(r#"{"name":"a","mesh":0}"#.into());
+    let nodes_at = json.find("\"nodes\":[{").unwrap();
+    let nodes_end = nodes_at + json[nodes_at..].find("}],").unwrap() + 2;
+    let with_nodes = |nodes: &str| {
+        format!(
+            "{}\"nodes\":{nodes}{}",
+            &json[..nodes_at],
+            &json[nodes_end..]
+        )
+    };
+    for variant in [
+        with_nodes(&format!("[{}]", dag.join(","))).replace("\"nodes\":[0,1]", "\"nodes\":[0]"),
+        with_nodes(r#"[{"mesh":0,"children":[1]},{"mesh":0,"children":[0]}]"#),
+        json.replace("[0,0,0.7071068,0.7071068]", "[0,0,0,0]"),
+        json.replace("[0,0,0.7071068,0.7071068]", "[1e39,0,0,1]"),
+        json.replace("\"componentType\":5126", "\"componentType\":5121"),
+        json.replace("\"count\":8", "\"count\":100000000"),
+    ] {
+        out.push((Format::Gltf, glb(&variant, &bin)));
+    }
+    out
+}
+
 /// Reads, and validates whatever was read: must not panic.
 fn exercise(format: Format, bytes: &[u8]) {
     if let Ok(objects) = read_bytes(bytes, format, None) {
@@ -223,6 +273,17 @@ fn samples_are_valid_solids() {
                 "{format}"
             );
         }
+    }
+}
+
+#[test]
+fn hostile_samples_are_refused_quickly() {
+    apart_mesh::formats::quiet_parser_panics();
+    for (format, bytes) in hostile_samples() {
+        let t = std::time::Instant::now();
+        let e = read_bytes(&bytes, format, None).unwrap_err().to_string();
+        assert!(!e.contains("parser failed"), "{format}: {e}");
+        assert!(t.elapsed().as_secs() < 5, "{format}: {e}");
     }
 }
 
@@ -302,5 +363,37 @@ proptest! {
         let s = samples();
         let (format, bytes) = &s[which % s.len()];
         exercise(*format, &apply(bytes, &muts));
+    }
+
+    #[test]
+    fn mutated_hostile_files_never_panic(which in 0usize..11, muts in prop::collection::vec(mutation(), 1..6)) {
+        apart_mesh::formats::quiet_parser_panics();
+        let s = hostile_samples();
+        let (format, bytes) = &s[which % s.len()];
+        exercise(*format, &apply(bytes, &muts));
+    }
+
+    /// Any declared count in a header, with whatever bytes follow: an answer (usually
+    /// an error) without allocating for the count.
+    #[test]
+    fn declared_counts_are_bounded(
+        which in 0usize..5,
+        count in prop_oneof![0u64..16, any::<u32>().prop_map(u64::from), any::<u64>()],
+        tail in prop::collection::vec(any::<u8>(), 0..200),
+    ) {
+        apart_mesh::formats::quiet_parser_panics();
+        let (format, mut bytes) = match which {
+            0 => (Format::Ply, format!("ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\nproperty float y\nproperty float z\nend_header\n").into_bytes()),
+            1 => (Format::Ply, format!("ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement junk {count}\nend_header\n").into_bytes()),
+            2 => (Format::Ply, format!("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face {count}\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n").into_bytes()),
+            3 => (Format::Off, format!("OFF\n{count} {count} 0\n").into_bytes()),
+            _ => {
+                let mut b = vec![0u8; 80];
+                b.extend_from_slice(&(count as u32).to_le_bytes());
+                (Format::Stl, b)
+            }
+        };
+        bytes.extend_from_slice(&tail);
+        exercise(format, &bytes);
     }
 }

@@ -13,12 +13,27 @@
 //!
 //! Third-party parsers may panic on garbage; every parse runs under
 //! [`std::panic::catch_unwind`] and a panic becomes [`ReadError::Malformed`].
+//!
+//! Hostile input is bounded before anything is allocated for it:
+//!
+//! - files: only regular files, at most [`MAX_FILE_BYTES`] (4 GiB), through the one
+//!   function that opens files, [`read_regular`];
+//! - declared counts (PLY elements, OFF header, binary STL triangles, glTF accessors)
+//!   are compared with what the bytes could hold ([`ply`], [`off`], [`stl`], [`gltf`]);
+//! - glTF: referenced files stay in the file's folder ([`resolve_inside`], lifted by
+//!   [`ReadOptions::allow_outside`]), node hierarchies are acyclic and expand to at
+//!   most [`gltf::MAX_MESH_INSTANCES`] meshes, transforms are finite and rotations unit
+//!   quaternions, positions `FLOAT` `VEC3` ([`gltf`]);
+//! - messages escape whatever they quote from a file ([`crate::escape`]).
 
+mod files;
 pub mod gltf;
 pub mod obj;
 pub mod off;
 pub mod ply;
 pub mod stl;
+
+pub use files::{read_regular, resolve_inside, MAX_FILE_BYTES};
 
 use crate::raw::RawObject;
 use std::cell::Cell;
@@ -89,19 +104,79 @@ impl fmt::Display for Format {
     }
 }
 
-/// Why a file could not be read.
+/// How files are read. The default is the safe one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Let a file refer to files outside its own folder (glTF buffers given by an
+    /// absolute path, by `..` components climbing above the folder, or through a
+    /// symbolic link leading out of it). Off by default: such a file is refused with
+    /// [`ReadError::Outside`]. The command line's `--allow-outside` sets it.
+    pub allow_outside: bool,
+}
+
+impl ReadOptions {
+    /// The options with [`ReadOptions::allow_outside`] set to `allow`.
+    pub fn allow_outside(mut self, allow: bool) -> ReadOptions {
+        self.allow_outside = allow;
+        self
+    }
+}
+
+/// Why a file could not be read. Paths and text taken from files are shown escaped
+/// (see [`crate::escape`]): no message carries raw bytes or control characters.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
     /// The file could not be opened or read.
-    #[error("cannot read {}: {cause}", path.display())]
+    #[error("cannot read {}: {cause}", crate::escape::path(path))]
     Io {
         /// The file.
         path: PathBuf,
         /// The operating system's reason.
         cause: std::io::Error,
     },
+    /// The path is not a regular file (a folder, a named pipe, a device, a socket);
+    /// found before opening it.
+    #[error(
+        "cannot read {}: it is {kind}, not a regular file",
+        crate::escape::path(path)
+    )]
+    NotRegular {
+        /// The file.
+        path: PathBuf,
+        /// What it is instead: "a folder", "a named pipe (FIFO)", "a character device",
+        /// "a block device", "a socket".
+        kind: &'static str,
+    },
+    /// The file is larger than [`MAX_FILE_BYTES`]; nothing was read.
+    #[error(
+        "cannot read {}: it holds {size} bytes, more than the limit of {limit} bytes",
+        crate::escape::path(path)
+    )]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size.
+        size: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A path written in a file names a file outside that file's folder (see
+    /// [`ReadOptions::allow_outside`]).
+    #[error("{} lies outside the folder {} ({why}); --allow-outside reads it anyway", crate::escape::quoted(&reference.to_string_lossy()), crate::escape::path(folder))]
+    Outside {
+        /// The path as written.
+        reference: PathBuf,
+        /// The folder it must stay in.
+        folder: PathBuf,
+        /// How it leaves: "it is an absolute path", "a \"..\" component leaves the
+        /// folder", "a symbolic link leads to ...".
+        why: String,
+    },
     /// The extension names no supported format.
-    #[error("unsupported file extension of {} (supported: .off, .obj, .stl, .ply, .gltf, .glb)", path.display())]
+    #[error(
+        "unsupported file extension of {} (supported: .off, .obj, .stl, .ply, .gltf, .glb)",
+        crate::escape::path(path)
+    )]
     Unsupported {
         /// The file.
         path: PathBuf,
@@ -111,50 +186,89 @@ pub enum ReadError {
     Malformed {
         /// The format that was expected.
         format: Format,
-        /// What is wrong, with a line number when known.
+        /// What is wrong, with a line number or the element when known (escaped).
         detail: String,
+    },
+    /// A file the mesh file refers to (a glTF buffer) was refused or unreadable.
+    #[error("{what}: {cause}")]
+    Referenced {
+        /// Which reference: `buffer 0 ("parts.bin")`.
+        what: String,
+        /// Why it could not be read.
+        cause: Box<ReadError>,
     },
 }
 
+/// The longest detail of a [`ReadError::Malformed`], in characters: third-party
+/// parsers quote whole lines.
+const DETAIL: usize = 400;
+
 impl ReadError {
-    /// True when the message already names the file (not for malformed content).
+    /// True when the message already names the file (not for malformed content, nor
+    /// for the files it refers to, whose messages name only the reference).
     pub fn names_file(&self) -> bool {
-        !matches!(self, ReadError::Malformed { .. })
+        !matches!(
+            self,
+            ReadError::Malformed { .. } | ReadError::Referenced { .. } | ReadError::Outside { .. }
+        )
     }
 
+    /// Malformed content; `detail` is escaped and shortened here.
     pub(crate) fn malformed(format: Format, detail: impl Into<String>) -> ReadError {
-        ReadError::Malformed {
-            format,
-            detail: detail.into(),
-        }
+        let detail = crate::escape::escape(&detail.into());
+        let detail = match detail.char_indices().nth(DETAIL) {
+            Some((cut, _)) => format!("{}...", &detail[..cut]),
+            None => detail,
+        };
+        ReadError::Malformed { format, detail }
     }
 }
 
-/// Reads every object of a mesh file, choosing the format by the extension.
+/// Reads every object of a mesh file, choosing the format by the extension, with the
+/// default (safe) [`ReadOptions`]: only a regular file of at most [`MAX_FILE_BYTES`]
+/// is read, and the files it refers to must lie in its folder.
 pub fn read_file(path: &Path) -> Result<Vec<RawObject>, ReadError> {
+    read_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_file`] with explicit options.
+pub fn read_file_with(path: &Path, options: &ReadOptions) -> Result<Vec<RawObject>, ReadError> {
     let format = Format::from_path(path).ok_or_else(|| ReadError::Unsupported {
         path: path.to_path_buf(),
     })?;
-    let bytes = std::fs::read(path).map_err(|cause| ReadError::Io {
-        path: path.to_path_buf(),
-        cause,
-    })?;
-    read_bytes(&bytes, format, path.parent())
+    let bytes = read_regular(path)?;
+    read_bytes_with(
+        &bytes,
+        format,
+        Some(path.parent().unwrap_or(Path::new("."))),
+        options,
+    )
 }
 
-/// Reads every object of a mesh held in memory. `base_dir` resolves external buffers
-/// of `.gltf` files (other formats ignore it).
+/// Reads every object of a mesh held in memory. `base_dir` is the folder of the file
+/// the bytes came from: it resolves the external buffers of `.gltf` files (other
+/// formats ignore it; without it, external buffers are an error).
 pub fn read_bytes(
     bytes: &[u8],
     format: Format,
     base_dir: Option<&Path>,
+) -> Result<Vec<RawObject>, ReadError> {
+    read_bytes_with(bytes, format, base_dir, &ReadOptions::default())
+}
+
+/// [`read_bytes`] with explicit options.
+pub fn read_bytes_with(
+    bytes: &[u8],
+    format: Format,
+    base_dir: Option<&Path>,
+    options: &ReadOptions,
 ) -> Result<Vec<RawObject>, ReadError> {
     guarded(format, || match format {
         Format::Off => off::read(bytes).map(|o| vec![o]),
         Format::Obj => obj::read(bytes),
         Format::Stl => stl::read(bytes),
         Format::Ply => ply::read(bytes).map(|o| vec![o]),
-        Format::Gltf => gltf::read(bytes, base_dir),
+        Format::Gltf => gltf::read(bytes, base_dir, options),
     })
 }
 

@@ -3,6 +3,7 @@
 //! (`n i1 ... in`, extra values such as colours ignored), `#` comments.
 
 use super::{capped, Format, ReadError};
+use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
 use std::io::Write;
 
@@ -27,7 +28,7 @@ fn strip_header(first: &str, line: usize) -> Result<&str, ReadError> {
     let Some(prefix) = word.strip_suffix("OFF") else {
         return Err(bad(
             line,
-            format!("expected an OFF header, found \"{word}\""),
+            format!("expected an OFF header, found {}", quoted(word)),
         ));
     };
     let rest = first[word.len()..].trim_start();
@@ -44,7 +45,7 @@ fn strip_header(first: &str, line: usize) -> Result<&str, ReadError> {
         }
     }
     if !p.is_empty() {
-        return Err(bad(line, format!("unknown OFF header \"{word}\"")));
+        return Err(bad(line, format!("unknown OFF header {}", quoted(word))));
     }
     Ok(rest)
 }
@@ -74,6 +75,17 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     if nv > u32::MAX as usize {
         return Err(bad(nc, "too many vertices"));
     }
+    // Each vertex takes a line of at least 5 characters, each face one of at least 1.
+    let need = 6 * nv as u128 + 2 * nf as u128;
+    if need > bytes.len() as u128 + 1 {
+        return Err(bad(
+            nc,
+            format!(
+                "{nv} vertices and {nf} faces declared, more than the {} bytes of the file can hold",
+                bytes.len()
+            ),
+        ));
+    }
     let mut vertices = Vec::with_capacity(capped(nv, bytes.len()));
     for k in 0..nv {
         let (n, l) = lines.next().ok_or_else(|| {
@@ -90,7 +102,7 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
                 .ok_or_else(|| bad(n, "a vertex needs three coordinates"))?;
             *x = t
                 .parse::<f64>()
-                .map_err(|_| bad(n, format!("\"{t}\" is not a number")))?;
+                .map_err(|_| bad(n, format!("{} is not a number", quoted(t))))?;
         }
         vertices.push(c);
     }
@@ -115,7 +127,7 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
                 .ok_or_else(|| bad(n, format!("face {k} lists fewer than {count} vertices")))?;
             let i: usize = t
                 .parse()
-                .map_err(|_| bad(n, format!("\"{t}\" is not a vertex index")))?;
+                .map_err(|_| bad(n, format!("{} is not a vertex index", quoted(t))))?;
             if i >= nv {
                 return Err(bad(
                     n,
@@ -210,5 +222,29 @@ mod tests {
             vec![[0.0, 0.0, 1.5], [0.1, 2.0, -3.25], [1e-300, 0.0, 0.0]]
         );
         assert_eq!(back.faces, f);
+    }
+
+    #[test]
+    fn huge_counts_and_hostile_tokens() {
+        let e = read(b"OFF\n4000000000 4000000000 0\n0 0 0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("line 2: 4000000000 vertices and 4000000000 faces declared, more than the 34 bytes of the file can hold"),
+            "{e}"
+        );
+        assert!(read(b"OFF\n0 40 0\n").is_err());
+        // Tokens are quoted escaped, and long ones cut.
+        let e = read(b"OFF\n3 1 0\n\x1b[2J 0 0\n").unwrap_err().to_string();
+        assert!(
+            e.contains("\"\\x1b[2J\" is not a number") && !e.contains('\x1b'),
+            "{e}"
+        );
+        let mut long = b"OFF\n1 0 0\n".to_vec();
+        long.extend(std::iter::repeat_n(b'x', 10_000));
+        let e = read(&long).unwrap_err().to_string();
+        assert!(e.len() < 200, "{e}");
+        let e = read(b"\x07OFF\n").unwrap_err().to_string();
+        assert!(e.contains("\\x07OFF") && !e.contains('\x07'), "{e}");
     }
 }

@@ -3,11 +3,20 @@
 //! the `face` element's `vertex_indices` (or `vertex_index`) list. Other elements and
 //! properties are ignored. Values are read with the type the header declares: an ASCII
 //! `float` property is an `f32`, as the format says; use `double` for full precision.
+//!
+//! Before any payload is read, every element's declared count is compared with what
+//! the bytes after the header can hold (each entry at least its binary size, or one
+//! digit and one separator per ASCII value, and at least one byte even without
+//! properties), so a 250-byte file declaring four billion faces is an error at once.
 
 use super::{Format, ReadError};
+use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
-use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{Property, PropertyAccess, PropertyAccessResult};
+use ply_rs_bw::parser::{Parser, Reader};
+use ply_rs_bw::ply::{
+    ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType,
+    ScalarType,
+};
 
 #[derive(Default)]
 struct Element {
@@ -78,16 +87,111 @@ impl PropertyAccess for Element {
     }
 }
 
+/// Elements other than `vertex` and `face`: read (they must be skipped) but not kept.
+struct Skip;
+
+impl PropertyAccess for Skip {
+    fn new() -> Self {
+        Skip
+    }
+}
+
+fn scalar_size(t: &ScalarType) -> u64 {
+    match t {
+        ScalarType::Char | ScalarType::UChar => 1,
+        ScalarType::Short | ScalarType::UShort => 2,
+        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+        ScalarType::Double => 8,
+    }
+}
+
+/// The fewest bytes one entry of `e` takes: in binary, its scalars and list lengths
+/// (empty lists); in ASCII, one digit and one separator per value. An entry without
+/// properties counts as one byte, so that no element, even an empty one, may declare
+/// more entries than the file has bytes.
+fn min_entry_bytes(e: &ElementDef, encoding: &Encoding) -> u64 {
+    let bytes: u64 = match encoding {
+        Encoding::Ascii => 2 * e.properties.len() as u64,
+        _ => e
+            .properties
+            .values()
+            .map(|p| match &p.data_type {
+                PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t),
+            })
+            .sum(),
+    };
+    bytes.max(1)
+}
+
+/// Compares every element's declared count with what the `payload` bytes after the
+/// header could hold, before anything is allocated for them.
+fn check_counts(header: &Header, payload: usize) -> Result<(), ReadError> {
+    let mut need: u128 = 0;
+    for e in header.elements.values() {
+        let min = min_entry_bytes(e, &header.encoding);
+        need += e.count as u128 * min as u128;
+        // An ASCII file's last line may lack its line break.
+        let slack = u128::from(header.encoding == Encoding::Ascii);
+        if need > payload as u128 + slack {
+            return Err(ReadError::malformed(
+                Format::Ply,
+                format!(
+                    "element {} declares {} entries of at least {min} byte{} each, more than the {payload} bytes after the header can hold",
+                    quoted(&e.name),
+                    e.count,
+                    if min == 1 { "" } else { "s" },
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Parses a PLY file.
 pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
-    let mut src = bytes;
-    let ply = Parser::<Element>::new()
-        .read_ply(&mut src)
-        .map_err(|e| ReadError::malformed(Format::Ply, e.to_string()))?;
-    let vertex_elems = ply
-        .payload
+    let bad = |e: ply_rs_bw::parser::ParseError| ReadError::malformed(Format::Ply, e.to_string());
+    let mut reader = Reader::new(bytes);
+    let header = Parser::<Skip>::new()
+        .read_header(&mut reader)
+        .map_err(bad)?;
+    check_counts(&header, reader.get_ref().len())?;
+    let vertex = header
+        .elements
         .get("vertex")
         .ok_or_else(|| ReadError::malformed(Format::Ply, "no \"vertex\" element"))?;
+    for axis in ["x", "y", "z"] {
+        if !matches!(
+            vertex.properties.get(axis).map(|p| &p.data_type),
+            Some(PropertyType::Scalar(_))
+        ) {
+            return Err(ReadError::malformed(
+                Format::Ply,
+                format!("the \"vertex\" element has no number property \"{axis}\""),
+            ));
+        }
+    }
+    let keep = Parser::<Element>::new();
+    let skip = Parser::<Skip>::new();
+    let mut vertex_elems = Vec::new();
+    let mut face_elems = Vec::new();
+    for (name, def) in &header.elements {
+        match name.as_str() {
+            "vertex" => {
+                vertex_elems = keep
+                    .read_payload_for_element(&mut reader, def, &header)
+                    .map_err(bad)?
+            }
+            "face" => {
+                face_elems = keep
+                    .read_payload_for_element(&mut reader, def, &header)
+                    .map_err(bad)?
+            }
+            _ => drop(
+                skip.read_payload_for_element(&mut reader, def, &header)
+                    .map_err(bad)?,
+            ),
+        }
+    }
     let mut vertices = Vec::with_capacity(vertex_elems.len());
     for (i, v) in vertex_elems.iter().enumerate() {
         if v.seen != 7 {
@@ -100,7 +204,7 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     }
     let n = vertices.len();
     let mut faces = Polygons::new();
-    for (k, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
+    for (k, f) in face_elems.iter().enumerate() {
         if f.negative_index {
             return Err(ReadError::malformed(
                 Format::Ply,
@@ -161,5 +265,61 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("vertex 1"));
+    }
+
+    #[test]
+    fn huge_counts_are_refused_before_allocating() {
+        let xyz = "property float x\nproperty float y\nproperty float z\n";
+        for (format, elements, want) in [
+            // No properties at all: each entry still counts one byte.
+            (
+                "binary_little_endian",
+                "element vertex 4000000000\n".to_string(),
+                "element \"vertex\" declares 4000000000 entries of at least 1 byte each",
+            ),
+            (
+                "binary_little_endian",
+                format!("element vertex 3\n{xyz}element junk 4000000000\n"),
+                "element \"junk\" declares 4000000000 entries of at least 1 byte each",
+            ),
+            (
+                "binary_big_endian",
+                format!("element vertex 3\n{xyz}element face 4000000000\nproperty list uchar int vertex_indices\n"),
+                "element \"face\" declares 4000000000 entries of at least 1 byte each",
+            ),
+            (
+                "ascii",
+                format!("element vertex 3\n{xyz}element face 4000000000\nproperty list uchar int vertex_indices\n"),
+                "element \"face\" declares 4000000000 entries of at least 2 bytes each",
+            ),
+            (
+                "binary_little_endian",
+                format!("element vertex 1000\n{xyz}"),
+                "element \"vertex\" declares 1000 entries of at least 12 bytes each",
+            ),
+        ] {
+            let mut b = format!("ply\nformat {format} 1.0\n{elements}end_header\n").into_bytes();
+            b.resize(250, b'0');
+            let t = std::time::Instant::now();
+            let e = read(&b).unwrap_err().to_string();
+            assert!(e.contains(want) && e.contains("bytes after the header can hold"), "{e}");
+            assert!(t.elapsed().as_secs() < 2);
+        }
+        // A vertex element without coordinates is refused from the header.
+        let e = read(b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no number property \"y\""), "{e}");
+        // Elements other than vertex and face are read past, and not kept.
+        let text = format!("ply\nformat ascii 1.0\nelement vertex 3\n{xyz}element junk 2\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n\n\n3 0 1 2\n");
+        let o = read(text.as_bytes()).unwrap();
+        assert_eq!(o.faces.get(0), &[0, 1, 2]);
+    }
+
+    #[test]
+    fn messages_escape_file_text() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 \x1b[2J\n";
+        let e = read(text.as_bytes()).unwrap_err().to_string();
+        assert!(!e.contains('\x1b') && !e.contains('\n'), "{e}");
     }
 }

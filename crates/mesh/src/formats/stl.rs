@@ -5,6 +5,7 @@
 //! vertex order. Writing uses stl_io (binary, `f32`).
 
 use super::{Format, ReadError};
+use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
 use rayon::prelude::*;
 use std::io::Write;
@@ -129,7 +130,7 @@ fn read_ascii(bytes: &[u8]) -> Result<Vec<RawObject>, ReadError> {
                 };
                 o.faces.push(&l);
             }
-            _ => return Err(bad(n, &format!("unexpected \"{word}\""))),
+            _ => return Err(bad(n, &format!("unexpected {}", quoted(word)))),
         }
     }
     if let Some(o) = current {
@@ -214,5 +215,22 @@ mod tests {
     fn garbage_is_an_error() {
         assert!(read(b"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n").is_err());
         assert!(read(b"hello").is_err());
+    }
+
+    #[test]
+    fn huge_counts_and_hostile_tokens() {
+        // A binary header declaring 2^32 - 1 triangles in a 134-byte file.
+        let mut b = vec![0u8; 134];
+        b[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
+        let e = read(&b).unwrap_err().to_string();
+        assert!(
+            e.contains("declares 4294967295 triangles but holds only 1"),
+            "{e}"
+        );
+        let e = read(b"solid x\n\x1b[31m 1 2\n").unwrap_err().to_string();
+        assert!(
+            e.contains("line 2: unexpected \"\\x1b[31m\"") && !e.contains('\x1b'),
+            "{e}"
+        );
     }
 }
