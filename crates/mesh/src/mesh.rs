@@ -38,7 +38,7 @@ pub fn fmt_point(grid: &Grid, p: &[i64; 3]) -> String {
 impl Mesh {
     /// Snaps, welds and triangulates an object. Problems: non-finite or out-of-grid
     /// coordinates and bad indices (errors, no mesh), zero-area faces (dropped, warning),
-    /// non-planar or non-simple polygons (split by a fan, warning).
+    /// non-planar or non-simple polygons (split without new vertices, warning).
     pub fn from_raw(raw: &RawObject, grid: &Grid) -> (Option<Mesh>, Vec<Problem>) {
         let mut problems = Vec::new();
         let n = raw.vertices.len();
@@ -111,11 +111,11 @@ impl Mesh {
                         zero.push(|| Problem::warning("zero area after snapping; dropped").at(at))
                     }
                     Outcome::NonPlanar => nonplanar.push(|| {
-                        Problem::warning("not planar after snapping; split into a fan of triangles")
+                        Problem::warning("not planar after snapping; split into triangles")
                             .at(at)
                     }),
                     Outcome::NotSimple => nonsimple.push(|| {
-                        Problem::warning("not a simple polygon; split into a fan of triangles")
+                        Problem::warning("not a simple polygon; split into triangles (a fan, or a strip above 32 vertices), which may overlap")
                             .at(at)
                     }),
                     Outcome::Ok => {}

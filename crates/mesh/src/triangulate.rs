@@ -1,16 +1,36 @@
 //! Splitting snapped polygons into triangles, exactly.
 //!
 //! - triangles are kept as they are (unless they have zero area);
-//! - planar, strictly convex polygons are split by a fan;
+//! - planar, strictly convex polygons are split by a fan (up to [`SMALL`] vertices) or
+//!   by a strip zigzagging between the two ends of the vertex list (larger ones);
 //! - other planar polygons (non-convex, or with vertices in the middle of a side) are
-//!   split by ear clipping, with every turn and containment decided by exact
-//!   orientation tests in the plane's projection;
-//! - polygons that snapping made non-planar are split by a fan, and reported.
+//!   split by ear clipping (up to [`SMALL`] vertices) or by a sweep into monotone
+//!   pieces (larger ones, `O(n log n)`, [`sweep`]), with every turn and containment
+//!   decided by exact orientation tests in the plane's projection;
+//! - polygons that snapping made non-planar are split like their projection when it is
+//!   simple (a fan up to [`SMALL`] vertices), and reported;
+//! - polygons that are not simple are split by a fan (a strip above [`SMALL`]
+//!   vertices), and reported.
+//!
+//! Large polygons get strips and sweeps rather than fans and ear clipping because both
+//! are quadratic: ear clipping in its search for ears, and a fan in the validation
+//! that follows: every triangle of a fan spans the polygon, so its bounding box meets
+//! those of the faces around the polygon's rim (a prism over a 100,000-gon has ten
+//! billion such pairs, and took minutes to check). A strip's and a sweep's triangles are
+//! thin slabs across the polygon, each meeting the boxes of a few rim faces only.
+
+mod sweep;
 
 use crate::exact::{
     collinear, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project,
 };
 use apart_kernel::Sign;
+
+/// Polygons up to this many vertices keep the simple methods (fan, ear clipping).
+pub(crate) const SMALL: usize = 32;
+/// When the sweep fails on a planar polygon (one touching itself), ear clipping is
+/// still tried up to this many vertices (its cost grows with the square).
+const EAR_CLIP_MAX: usize = 1024;
 
 /// What happened to a polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,9 +39,9 @@ pub(crate) enum Outcome {
     Ok,
     /// No area: dropped.
     ZeroArea,
-    /// Not planar after snapping: split by a fan.
+    /// Not planar after snapping: split like its projection, or by a fan or strip.
     NonPlanar,
-    /// Planar but not a simple polygon: split by a fan from its first vertex.
+    /// Planar but not a simple polygon: split by a fan or strip.
     NotSimple,
 }
 
@@ -52,34 +72,113 @@ pub(crate) fn triangulate(
         out.push([p[0], p[1], p[2]]);
         return Outcome::Ok;
     }
+    let n = p.len();
     // A reference plane through three non-collinear vertices.
     let Some((i, j)) = reference_pair(&p, points) else {
         return Outcome::ZeroArea;
     };
     let (a, b, c) = (at(p[0]), at(p[i]), at(p[j]));
     if p.iter().any(|&v| orient3d(a, b, c, at(v)) != Sign::Zero) {
-        fan(&p, points, out);
+        if n > SMALL {
+            // Project along the axis the polygon faces most (Newell's normal, in
+            // floating point: any axis is exact, this one keeps it simple).
+            let axis = newell_axis(&p, points);
+            let q: Vec<[i64; 2]> = p.iter().map(|&v| project(at(v), axis)).collect();
+            let before = out.len();
+            if let Some(s) = orientation_2d(&q) {
+                if strictly_convex(&q, s) {
+                    strip(&p, points, out);
+                    return Outcome::NonPlanar;
+                }
+                if sweep::triangulate(&p, &q, s, out) {
+                    return Outcome::NonPlanar;
+                }
+            }
+            out.truncate(before);
+            strip(&p, points, out);
+        } else {
+            fan(&p, points, out);
+        }
         return Outcome::NonPlanar;
     }
     let axis = dominant_axis(&normal(a, b, c));
     let q: Vec<[i64; 2]> = p.iter().map(|&v| project(at(v), axis)).collect();
+    let not_simple = |out: &mut Vec<[u32; 3]>| {
+        if n > SMALL {
+            strip(&p, points, out);
+        } else {
+            fan(&p, points, out);
+        }
+        Outcome::NotSimple
+    };
     let Some(orientation) = orientation_2d(&q) else {
-        fan(&p, points, out);
-        return Outcome::NotSimple;
+        return not_simple(out);
     };
     if strictly_convex(&q, orientation) {
-        for k in 1..p.len() - 1 {
-            out.push([p[0], p[k], p[k + 1]]);
+        if n > SMALL {
+            strip(&p, points, out);
+        } else {
+            for k in 1..n - 1 {
+                out.push([p[0], p[k], p[k + 1]]);
+            }
         }
         return Outcome::Ok;
     }
+    if n > SMALL && sweep::triangulate(&p, &q, orientation, out) {
+        return Outcome::Ok;
+    }
     let before = out.len();
-    if ear_clip(&p, &q, orientation, out) {
+    if n <= EAR_CLIP_MAX && ear_clip(&p, &q, orientation, out) {
         Outcome::Ok
     } else {
         out.truncate(before);
-        fan(&p, points, out);
-        Outcome::NotSimple
+        not_simple(out)
+    }
+}
+
+/// The axis of the largest component of the polygon's Newell normal (its area vector).
+fn newell_axis(p: &[u32], points: &[[i64; 3]]) -> usize {
+    let mut n = [0f64; 3];
+    for (k, &v) in p.iter().enumerate() {
+        let (a, b) = (&points[v as usize], &points[p[(k + 1) % p.len()] as usize]);
+        let f = |i: usize| a[i] as f64;
+        let g = |i: usize| b[i] as f64;
+        n[0] += (f(1) - g(1)) * (f(2) + g(2));
+        n[1] += (f(2) - g(2)) * (f(0) + g(0));
+        n[2] += (f(0) - g(0)) * (f(1) + g(1));
+    }
+    let m = n.map(f64::abs);
+    if m[0] >= m[1] && m[0] >= m[2] {
+        0
+    } else if m[1] >= m[2] {
+        1
+    } else {
+        2
+    }
+}
+
+/// A strip zigzagging between the two ends of the vertex list, skipping triangles of
+/// zero area: `(0, 1, n-1), (1, n-2, n-1), (1, 2, n-2), ...`. For a convex polygon
+/// its triangles are slabs across the polygon (a valid triangulation, like a fan).
+fn strip(p: &[u32], points: &[[i64; 3]], out: &mut Vec<[u32; 3]>) {
+    let (mut lo, mut hi) = (0usize, p.len() - 1);
+    let mut forward = true;
+    while hi - lo >= 2 {
+        let t = if forward {
+            lo += 1;
+            [p[lo - 1], p[lo], p[hi]]
+        } else {
+            hi -= 1;
+            [p[lo], p[hi], p[hi + 1]]
+        };
+        forward = !forward;
+        if !collinear(
+            &points[t[0] as usize],
+            &points[t[1] as usize],
+            &points[t[2] as usize],
+        ) {
+            out.push(t);
+        }
     }
 }
 
@@ -338,5 +437,81 @@ mod tests {
         let q: Vec<[i64; 2]> = vec![[0, 10], [6, -8], [-10, 3], [10, 3], [-6, -8]];
         let s = orientation_2d(&q).unwrap();
         assert!(!strictly_convex(&q, s));
+    }
+
+    /// A ring of `n` points (radius `r`, every other one at `inner` times it), lifted
+    /// by `lift(k)` off the plane z = 0.
+    fn ring(n: usize, r: f64, inner: f64, lift: impl Fn(usize) -> i64) -> Vec<[i64; 3]> {
+        (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                let r = if k % 2 == 1 { r * inner } else { r };
+                [
+                    (r * a.cos()).round() as i64,
+                    (r * a.sin()).round() as i64,
+                    lift(k),
+                ]
+            })
+            .collect()
+    }
+
+    /// `n - 2` triangles of non-zero area covering the polygon's projected area once.
+    fn covers(poly: &[u32], pts: &[[i64; 3]], out: &[[u32; 3]]) {
+        assert_eq!(out.len(), poly.len() - 2);
+        let q: Vec<[i64; 2]> = poly.iter().map(|&v| project(&pts[v as usize], 2)).collect();
+        let twice: i128 = (0..q.len())
+            .map(|i| {
+                let (a, b) = (q[i], q[(i + 1) % q.len()]);
+                a[0] as i128 * b[1] as i128 - b[0] as i128 * a[1] as i128
+            })
+            .sum();
+        assert_eq!(area2(out, pts), twice);
+        for t in out {
+            assert_eq!(
+                orient2d(
+                    &project(&pts[t[0] as usize], 2),
+                    &project(&pts[t[1] as usize], 2),
+                    &project(&pts[t[2] as usize], 2)
+                ),
+                Sign::of_i128(twice)
+            );
+        }
+    }
+
+    #[test]
+    fn large_polygons() {
+        let n = 5000;
+        let poly: Vec<u32> = (0..n as u32).collect();
+        // Convex: a strip, whose triangles are slabs (none spans from one side of the
+        // circle to a point a quarter turn away, as a fan's do).
+        // (Radius 1e9: the rounded ring stays strictly convex; at 1e6 it does not,
+        // and goes to the sweep, whose triangles are slabs too.)
+        for r in [1e9, 1e6] {
+            let pts = ring(n, r, 1.0, |_| 0);
+            let mut out = Vec::new();
+            assert_eq!(triangulate(&poly, &pts, &mut out), Outcome::Ok);
+            covers(&poly, &pts, &out);
+            assert!(out.iter().filter(|t| t.contains(&0)).count() <= 3);
+        }
+        // Non-convex, both orientations: the sweep.
+        let pts = ring(n, 1e6, 0.9, |_| 7);
+        for poly in [poly.clone(), poly.iter().rev().copied().collect()] {
+            let mut out = Vec::new();
+            assert_eq!(triangulate(&poly, &pts, &mut out), Outcome::Ok);
+            covers(&poly, &pts, &out);
+        }
+        // Not planar (a wavy rim): split like its projection, and reported.
+        for inner in [1.0, 0.9] {
+            let pts = ring(n, 1e6, inner, |k| (k % 3) as i64);
+            let mut out = Vec::new();
+            assert_eq!(triangulate(&poly, &pts, &mut out), Outcome::NonPlanar);
+            covers(&poly, &pts, &out);
+        }
+        // Not simple (a vertex moved across the polygon): a strip, reported.
+        let mut pts = ring(n, 1e6, 0.9, |_| 0);
+        pts[10] = [-pts[10][0], -pts[10][1], 0];
+        let mut out = Vec::new();
+        assert_eq!(triangulate(&poly, &pts, &mut out), Outcome::NotSimple);
+        assert!(out.len() <= n - 2);
     }
 }

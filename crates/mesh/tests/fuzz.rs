@@ -240,6 +240,34 @@ fn hostile_samples() -> Vec<(Format, Vec<u8>)> {
     out
 }
 
+/// Prisms over 40-gons (beyond the 32 vertices where triangulation switches from fans
+/// and ear clipping to strips and the sweep), convex and toothed: mutations make their
+/// caps non-planar, non-simple or touching, and must not panic.
+fn polygon_samples() -> Vec<(Format, Vec<u8>)> {
+    [1.0, 0.8]
+        .iter()
+        .map(|&inner| {
+            let k = 40u32;
+            let mut vertices = Vec::new();
+            for z in [0.0, 3.0] {
+                for i in 0..k {
+                    let a = std::f64::consts::TAU * i as f64 / k as f64;
+                    let r = if i % 2 == 1 { 20.0 * inner } else { 20.0 };
+                    vertices.push([(r * a.cos()).round(), (r * a.sin()).round(), z]);
+                }
+            }
+            let mut faces = vec![(0..k).rev().collect::<Vec<_>>(), (k..2 * k).collect()];
+            for i in 0..k {
+                let j = (i + 1) % k;
+                faces.push(vec![i, j, k + j, k + i]);
+            }
+            let mut b = Vec::new();
+            off::write(&mut b, &vertices, &Polygons::from(faces)).unwrap();
+            (Format::Off, b)
+        })
+        .collect()
+}
+
 /// Reads, and validates whatever was read: must not panic.
 fn exercise(format: Format, bytes: &[u8]) {
     if let Ok(objects) = read_bytes(bytes, format, None) {
@@ -273,6 +301,17 @@ fn samples_are_valid_solids() {
                 "{format}"
             );
         }
+    }
+}
+
+#[test]
+fn polygon_samples_are_valid_solids() {
+    for (format, bytes) in polygon_samples() {
+        let objects = read_bytes(&bytes, format, None).unwrap();
+        let grid = Grid::choose(objects[0].vertices.iter().flatten().copied(), 30).unwrap();
+        let (_, info, problems) = check_solid(&objects[0], &grid);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(info.unwrap().triangles, 4 * 40 - 4);
     }
 }
 
@@ -361,6 +400,14 @@ proptest! {
     fn mutated_files_never_panic(which in 0usize..9, muts in prop::collection::vec(mutation(), 1..6)) {
         apart_mesh::formats::quiet_parser_panics();
         let s = samples();
+        let (format, bytes) = &s[which % s.len()];
+        exercise(*format, &apply(bytes, &muts));
+    }
+
+    #[test]
+    fn mutated_large_polygons_never_panic(which in 0usize..2, muts in prop::collection::vec(mutation(), 1..6)) {
+        apart_mesh::formats::quiet_parser_panics();
+        let s = polygon_samples();
         let (format, bytes) = &s[which % s.len()];
         exercise(*format, &apply(bytes, &muts));
     }

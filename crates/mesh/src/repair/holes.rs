@@ -5,8 +5,8 @@
 //! loops through a vertex with more (two holes touching at a corner) are left open, as
 //! are loops longer than the limit and a loop that is exactly the rim of one existing
 //! triangle (a stray triangle is not a hole). The loop is triangulated exactly by the
-//! crate's polygon triangulation (ear clipping when planar, a fan otherwise, which
-//! validation then judges), and the new triangles are oriented against the faces
+//! crate's polygon triangulation (exact when planar and simple, a fan or strip
+//! otherwise, which validation then judges), and the new triangles are oriented against the faces
 //! along the loop (by majority, since orientation is only made consistent afterwards).
 
 use super::edges::{runs, uses, Use};
