@@ -71,6 +71,18 @@ pub fn parse_tolerance(text: &str, units: Option<Units>) -> anyhow::Result<Toler
     if t.eq_ignore_ascii_case("auto") {
         return Ok(Tolerance::Auto);
     }
+    let positive = |v: f64| {
+        anyhow::ensure!(
+            v.is_finite() && v > 0.0,
+            "--tolerance must be a finite, positive length, not \"{text}\""
+        );
+        Ok(())
+    };
+    if let Ok(v) = t.parse::<f64>() {
+        // Also "nan" and "inf", which would otherwise read as a number and a unit.
+        positive(v)?;
+        return Ok(Tolerance::Fixed(v));
+    }
     let split = t
         .find(|c: char| c.is_ascii_alphabetic() && c != 'e' && c != 'E' || c == 'µ')
         .unwrap_or(t.len());
@@ -78,10 +90,7 @@ pub fn parse_tolerance(text: &str, units: Option<Units>) -> anyhow::Result<Toler
     let v: f64 = number.trim().parse().map_err(|_| {
         anyhow::anyhow!("--tolerance \"{text}\" is neither `auto` nor a length such as 1e-6 or 5um")
     })?;
-    anyhow::ensure!(
-        v.is_finite() && v > 0.0,
-        "--tolerance must be a positive length, not \"{text}\""
-    );
+    positive(v)?;
     let unit = unit.trim();
     if unit.is_empty() {
         return Ok(Tolerance::Fixed(v));

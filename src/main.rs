@@ -3,14 +3,28 @@
 
 mod commands;
 mod input_facts;
+mod limits;
 mod output;
 
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
 
+/// Counts live heap bytes against `--max-memory` (nothing is counted without it).
+#[global_allocator]
+static ALLOCATOR: limits::Budget = limits::Budget;
+
+/// The exit codes, in every `--help` and in the README.
+const EXIT_CODES: &str = "\
+Exit codes:
+  0  the answer is yes (valid, comes apart, fits, every part stacked), or there is
+     nothing to separate (an assembly of one part)
+  1  usage error (unknown command or option, missing path, option value out of its
+     range), invalid input, a failure, or a run stopped by --timeout or --max-memory
+  2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete";
+
 /// Exact assembly partitioning of polyhedral parts.
 #[derive(Parser)]
-#[command(name = "apart", version, about, long_about = None)]
+#[command(name = "apart", version, about, long_about = None, after_help = EXIT_CODES)]
 struct Cli {
     #[command(flatten)]
     global: Global,
@@ -24,15 +38,21 @@ pub struct Global {
     /// Print the result as JSON on standard output.
     #[arg(long, global = true)]
     pub json: bool,
-    /// Number of worker threads (default: one per core).
-    #[arg(long, global = true, value_name = "N")]
+    /// Number of worker threads, 1 to 1024 (default: one per core).
+    #[arg(long, global = true, value_name = "N", value_parser = limits::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Print only errors and warnings, and no progress bar.
     #[arg(long, short, global = true)]
     pub quiet: bool,
-    /// Bits of a snapped coordinate: the grid is the finest power of two that keeps
-    /// every coordinate below 2^N steps.
-    #[arg(long, global = true, value_name = "N", default_value_t = apart::kernel::grid::DEFAULT_BITS)]
+    #[arg(
+        long,
+        global = true,
+        value_name = "N",
+        default_value_t = apart::kernel::grid::DEFAULT_BITS,
+        value_parser = limits::grid_bits,
+        allow_negative_numbers = true,
+        help = limits::grid_bits_help()
+    )]
     pub grid_bits: u32,
     /// Verify every automatic convex decomposition exactly (pieces convex, interiors
     /// disjoint, inside the part, volumes adding up).
@@ -43,7 +63,7 @@ pub struct Global {
     /// 5um, 0.01mm, 1e-4in together with --units), and every answer says it holds for
     /// parts made EPS smaller. `auto` finds the smallest EPS, up to 1e-3 of the
     /// assembly's size, that makes the assembly valid.
-    #[arg(long, global = true, value_name = "EPS|auto")]
+    #[arg(long, global = true, value_name = "EPS|auto", value_parser = limits::tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<String>,
     /// The length unit of the input files, stated in answers (coordinates are not
     /// rescaled).
@@ -55,6 +75,16 @@ pub struct Global {
     /// Read each file as one part, even when it holds several separate solids.
     #[arg(long, global = true)]
     pub one_part_per_file: bool,
+    /// Stop the run after this many seconds (more than 0, at most 604800), with
+    /// "stopped after S s: <phase>" and exit code 1. A watchdog ends the process; files
+    /// being written may be incomplete.
+    #[arg(long, global = true, value_name = "SECONDS", value_parser = limits::timeout, allow_negative_numbers = true)]
+    pub timeout: Option<f64>,
+    /// Stop the run, with exit code 1, when its live heap memory would pass SIZE (4G,
+    /// 500M, 1.5G or bytes; K, M, G, T are powers of 1024; at least 1M). Counts heap
+    /// allocations only (the resident size is a few MB more). Default: no limit.
+    #[arg(long, global = true, value_name = "SIZE", value_parser = limits::memory_size, allow_negative_numbers = true)]
+    pub max_memory: Option<u64>,
 }
 
 #[derive(Subcommand)]
@@ -86,7 +116,23 @@ enum Command {
 
 fn main() -> ExitCode {
     apart::mesh::formats::quiet_parser_panics();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(e),
+    };
+    limits::set_json(cli.global.json);
+    // Every option is checked before any work: the numbers by their parsers, the
+    // tolerance's unit against --units here.
+    if let Err(e) = input_facts::tolerance(&cli.global) {
+        output::fail(&cli.global, &e);
+        return ExitCode::FAILURE;
+    }
+    if let Some(bytes) = cli.global.max_memory {
+        limits::set_memory_budget(bytes);
+    }
+    if let Some(s) = cli.global.timeout {
+        limits::start_watchdog(s);
+    }
     if let Some(n) = cli.global.threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -112,6 +158,26 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(e) => {
             output::fail(&cli.global, &e);
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Help and version exit with 0; every other command-line error (no arguments, an
+/// unknown command or option, a missing path, a value out of range) with 1, not clap's
+/// 2, which apart reserves for a "no" answer.
+fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let _ = e.print();
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => ExitCode::SUCCESS,
+        _ => {
+            if std::env::args().any(|a| a == "--json") {
+                let text = e.render().to_string();
+                let msg = text.lines().next().unwrap_or("usage error");
+                let msg = msg.strip_prefix("error: ").unwrap_or(msg);
+                let _ = output::json(&serde_json::json!({ "valid": false, "error": msg }));
+            }
             ExitCode::FAILURE
         }
     }

@@ -108,31 +108,87 @@ pub fn problems(global: &Global, problems: &[Problem]) {
     }
 }
 
-/// Prints a value as pretty JSON on standard output.
+/// Prints a value as pretty JSON on standard output, written as it is serialized (a
+/// large answer is never held in memory as one string). A closed pipe is not an error.
 pub fn json<T: serde::Serialize>(value: &T) -> anyhow::Result<()> {
-    line(serde_json::to_string_pretty(value)?);
+    use std::io::Write;
+    crate::limits::set_phase("writing the answer");
+    let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+    match serde_json::to_writer_pretty(&mut w, value) {
+        Ok(()) => {}
+        Err(e) if e.is_io() => return Ok(()),
+        Err(e) => return Err(e.into()),
+    }
+    let _ = writeln!(w);
+    let _ = w.flush();
     Ok(())
 }
 
-/// A progress bar on standard error when it is a terminal and not quiet; `None` (no
-/// hook, silence) otherwise.
-pub fn progress(global: &Global) -> Option<(ProgressBar, ProgressFn)> {
-    if global.quiet || global.json || !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let bar = ProgressBar::new(0);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:>10} [{bar:30}] {pos}/{len}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
+/// Whether progress is drawn: standard error is a terminal, and neither `--quiet` nor
+/// `--json` was given.
+fn shows_progress(global: &Global) -> bool {
+    !global.quiet && !global.json && std::io::stderr().is_terminal()
+}
+
+/// The loader's hook: records each loading stage as the run's phase (for the messages
+/// of `--timeout` and `--max-memory`) and, on a terminal, drives a progress bar.
+pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
+    crate::limits::set_phase("loading");
+    let bar = shows_progress(global).then(|| {
+        let bar = ProgressBar::new(0);
+        bar.set_style(
+            ProgressStyle::with_template("{msg:>10} [{bar:30}] {pos}/{len} {elapsed}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar
+    });
     let b = bar.clone();
     let hook: ProgressFn = Arc::new(move |p: Progress| {
-        b.set_message(p.stage.label());
-        b.set_length(p.total as u64);
-        b.set_position(p.done as u64);
+        if p.done == 0 {
+            crate::limits::set_phase(match p.stage.label() {
+                "reading" => "loading (reading files)",
+                "validating" => "loading (validating parts)",
+                "decomposing" => "loading (convex decomposition)",
+                "overlaps" => "loading (overlaps between parts)",
+                _ => "loading",
+            });
+        }
+        if let Some(b) = &b {
+            b.set_message(p.stage.label());
+            b.set_length(p.total as u64);
+            b.set_position(p.done as u64);
+        }
     });
-    Some((bar, hook))
+    (bar, hook)
+}
+
+/// A phase of a run, from [`phase`] until dropped.
+pub struct Phase(Option<ProgressBar>);
+
+impl Drop for Phase {
+    fn drop(&mut self) {
+        if let Some(bar) = &self.0 {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// Enters a phase: names it to the `--timeout` and `--max-memory` messages and, on a
+/// terminal, shows it with a spinner and the time spent (the planners report no counts
+/// of their own, so a long phase shows that it is still working and for how long).
+pub fn phase(global: &Global, label: &'static str) -> Phase {
+    crate::limits::set_phase(label);
+    Phase(shows_progress(global).then(|| {
+        let bar = ProgressBar::new_spinner();
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        bar.set_message(label);
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        bar
+    }))
 }
 
 /// Reports a failure that stopped a command: one clear line on standard error (and a

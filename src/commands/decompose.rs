@@ -1,6 +1,7 @@
 //! `apart decompose <assembly> -o <folder>`: exact convex decomposition of every part
 //! without declared pieces, written as one OFF mesh per piece plus an assembly.json
-//! manifest that declares them.
+//! manifest that declares them. Refuses to write where the input is, and gives parts
+//! whose safe file names collide unique ones.
 
 use crate::commands::load::load_valid;
 use crate::output;
@@ -41,6 +42,8 @@ struct Manifest {
 #[derive(Serialize)]
 struct PartReport {
     name: String,
+    /// The part's files: `FILE.off` and the folder `FILE/` of its pieces.
+    file: String,
     convex: bool,
     reflex_edges: usize,
     pieces: usize,
@@ -64,6 +67,17 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let loaded = load_valid(&args.assembly, global)?;
     let seconds = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
+    let files = file_names(&asm.parts);
+    refuse_to_write_into_input(&args.assembly, &args.output, &asm.parts, &files)?;
+    for (part, file) in asm.parts.iter().zip(&files) {
+        if *file != safe_name(&part.name) && !global.quiet {
+            output::eline(format_args!(
+                "note: part \"{}\" is written as {file}.off and {file}/ (its file name would collide with another part's)",
+                part.name
+            ));
+        }
+    }
+    let _phase = output::phase(global, "writing pieces");
     std::fs::create_dir_all(&args.output)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.output.display()))?;
     let mut manifest = Manifest {
@@ -71,8 +85,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
         parts: Vec::new(),
     };
     let mut report = Vec::new();
-    for part in &asm.parts {
-        let dir = safe_name(&part.name);
+    for (part, dir) in asm.parts.iter().zip(&files) {
         let mesh = match &part.mesh {
             Some(m) => {
                 let file = format!("{dir}.off");
@@ -85,7 +98,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
             }
             None => None,
         };
-        let piece_dir = args.output.join(&dir);
+        let piece_dir = args.output.join(dir);
         std::fs::create_dir_all(&piece_dir)
             .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", piece_dir.display()))?;
         let mut pieces = Vec::new();
@@ -95,7 +108,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
             write_off(&args.output.join(&file), &vertices, &faces)?;
             pieces.push(file);
         }
-        report.push(part_report(part));
+        report.push(part_report(part, dir));
         manifest.parts.push(PartOut {
             name: part.name.clone(),
             mesh,
@@ -153,9 +166,10 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn part_report(p: &Part) -> PartReport {
+fn part_report(p: &Part, file: &str) -> PartReport {
     PartReport {
         name: p.name.clone(),
+        file: file.to_string(),
         convex: p.convex,
         reflex_edges: p.reflex_edges,
         pieces: p.pieces.len(),
@@ -167,6 +181,118 @@ fn part_report(p: &Part) -> PartReport {
             .filter(|q| *q.den() != apart::kernel::Int::ONE)
             .count(),
     }
+}
+
+/// Each part's file name (`NAME.off`, and `NAME/` for its pieces): its name made safe
+/// for file systems, then unique: two names that become the same (`a b` and `a_b`), or
+/// differ only in case (file systems that ignore case), or a part named like another's
+/// file (`x` and `x.off`) get `_2`, `_3`, ...; `assembly.json` is the manifest's.
+fn file_names(parts: &[Part]) -> Vec<String> {
+    let mut used: std::collections::HashSet<String> =
+        std::iter::once("assembly.json".to_string()).collect();
+    parts
+        .iter()
+        .map(|p| {
+            let base = safe_name(&p.name);
+            let mut name = base.clone();
+            let mut k = 2;
+            let taken = |used: &std::collections::HashSet<String>, n: &str| {
+                let n = n.to_lowercase();
+                used.contains(&n) || used.contains(&format!("{n}.off"))
+            };
+            while taken(&used, &name) {
+                name = format!("{base}_{k}");
+                k += 1;
+            }
+            used.insert(name.to_lowercase());
+            used.insert(format!("{}.off", name.to_lowercase()));
+            name
+        })
+        .collect()
+}
+
+/// `path` made absolute with symbolic links resolved, also when its last components do
+/// not exist yet (they are appended to the nearest existing ancestor, resolved).
+fn resolved(path: &Path) -> anyhow::Result<PathBuf> {
+    let abs = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir()?.join(path)
+    };
+    let mut rest = Vec::new();
+    let mut base = abs.as_path();
+    loop {
+        if let Ok(c) = std::fs::canonicalize(base) {
+            let mut out = c;
+            for part in rest.iter().rev() {
+                match part {
+                    std::path::Component::ParentDir => {
+                        out.pop();
+                    }
+                    std::path::Component::CurDir => {}
+                    c => out.push(c.as_os_str()),
+                }
+            }
+            return Ok(out);
+        }
+        match (base.parent(), base.components().next_back()) {
+            (Some(parent), Some(last)) => {
+                rest.push(last);
+                base = parent;
+            }
+            _ => return Ok(abs),
+        }
+    }
+}
+
+/// Refuses an output folder that would write into the input: the input folder itself
+/// or a folder inside it, the folder holding the manifest or a mesh or piece file, or a
+/// part's piece folder that is one of these (all compared as resolved paths).
+fn refuse_to_write_into_input(
+    input: &Path,
+    out: &Path,
+    parts: &[Part],
+    files: &[String],
+) -> anyhow::Result<()> {
+    let mut folders = Vec::new();
+    let mut inputs = Vec::new();
+    let sources = parts
+        .iter()
+        .flat_map(|p| std::iter::once(&p.source).chain(&p.piece_sources));
+    for src in std::iter::once(&input.to_path_buf()).chain(sources) {
+        if let Ok(c) = std::fs::canonicalize(src) {
+            if c.is_dir() {
+                folders.push(c);
+            } else {
+                inputs.push(c);
+            }
+        }
+    }
+    let out_dir = resolved(out)?;
+    let mut written = vec![out_dir.clone()];
+    for f in files {
+        written.push(resolved(&out.join(f))?);
+    }
+    for dir in &written {
+        if let Some(f) = folders.iter().find(|f| dir.starts_with(f)) {
+            anyhow::bail!(
+                "refusing to write to {}: {} is {}the input folder {}; choose another folder with -o",
+                out.display(),
+                dir.display(),
+                if dir == f { "" } else { "inside " },
+                f.display()
+            );
+        }
+        if let Some(f) = inputs.iter().find(|f| f.parent() == Some(dir.as_path())) {
+            anyhow::bail!(
+                "refusing to write to {}: {} holds the input file {}, which could be overwritten; choose another folder with -o",
+                out.display(),
+                dir.display(),
+                f.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// A file-system-safe version of a part name.

@@ -9,18 +9,21 @@ use std::path::Path;
 /// Loads `path` with the global options, a progress bar on a terminal, and the given
 /// decomposition policy.
 pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::Result<Loaded> {
-    let bar = output::progress(global);
+    let (bar, hook) = output::progress(global);
+    // The loader's other options keep their defaults (also any added later).
+    #[allow(clippy::needless_update)]
     let opts = LoadOptions {
         grid_bits: global.grid_bits,
-        progress: bar.as_ref().map(|(_, hook)| hook.clone()),
+        progress: Some(hook),
         decompose,
         verify: global.verify,
         tolerance: crate::input_facts::tolerance(global)?,
         repair: !global.strict,
         split_bodies: !global.one_part_per_file,
+        ..LoadOptions::default()
     };
     let loaded = load(path, &opts);
-    if let Some((bar, _)) = &bar {
+    if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
     Ok(loaded?)

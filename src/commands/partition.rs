@@ -1,24 +1,34 @@
 //! `apart partition <assembly>`: every direction and minimal subset that separates the
 //! assembly by one infinite translation; or, with `--direction`, the blocking graph of
-//! one direction. Exit code 0 when some subset can move, 2 when the assembly is
-//! interlocked, 1 on error.
+//! one direction. Exit code 0 when some subset can move (or the assembly has one part:
+//! nothing to separate), 2 when the assembly is interlocked, 1 on error. The listing is
+//! grouped by moving set and bounded (`--limit`, `--all`): assemblies of many loose
+//! parts have millions of solutions.
 
 use crate::commands::load::load_valid;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
 use crate::output;
-use crate::Global;
+use crate::{limits, Global};
 use anyhow::Context;
 use apart::assembly::Loaded;
 use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSvgOptions};
 use apart::kernel::{Grid, Vec3};
 use apart::plan::{
     dbg_along, partition_first, partition_subset, parts_of, BlockingRegions, CellKind, Options,
-    Partitioning, Solution,
+    Partitioning,
 };
 use serde::Serialize;
+use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
+
+/// Moving sets listed by default (text and JSON).
+pub const DEFAULT_LIMIT: usize = 20;
+/// Solutions of each kind (face, edge, vertex) listed per moving set, unless `--all`.
+pub const EXAMPLES_PER_KIND: usize = 5;
+/// A count of solutions worth a warning even when all of them are asked for.
+const LARGE: usize = 10_000;
 
 /// Arguments of `apart partition`.
 #[derive(clap::Args, Debug)]
@@ -31,7 +41,7 @@ pub struct PartitionArgs {
     pub first: bool,
     /// Evaluate one direction exactly instead ("X,Y,Z", snapped like coordinates): its
     /// blocking graph, the kind of cell it lies in, and the minimal subsets that move.
-    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = limits::direction)]
     pub direction: Option<String>,
     /// Draw the motion-space sphere (both hemispheres, blocked regions shaded by how
     /// many pairs block them, solutions marked) as SVG.
@@ -43,7 +53,13 @@ pub struct PartitionArgs {
     /// Projection of the sphere pictures.
     #[arg(long, value_enum, default_value_t = Projection::EqualArea)]
     pub projection: Projection,
-    /// In the text summary, list every solution instead of the first few per kind.
+    /// List at most N moving sets (default 20), each with at most 5 solutions of each
+    /// kind (face, edge, vertex), in the text and the JSON; the counts always cover every
+    /// solution. N is 1 or more.
+    #[arg(long, value_name = "N", value_parser = limits::limit, conflicts_with = "all", allow_negative_numbers = true)]
+    pub limit: Option<usize>,
+    /// List every moving set and every solution, in the text and the JSON (assemblies of
+    /// many loose parts have millions).
     #[arg(long)]
     pub all: bool,
 }
@@ -67,11 +83,11 @@ impl From<Projection> for SphereProjection {
 }
 
 #[derive(Serialize)]
-struct SolutionJson {
+struct SolutionJson<'a> {
     cell: &'static str,
     direction: [f64; 3],
     exact_direction: [String; 3],
-    moving: Vec<String>,
+    moving: Vec<&'a str>,
     clearance_deg: f64,
     /// Under a tolerance: the motion also holds for the parts as given.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -99,13 +115,41 @@ struct StatsJson {
     seconds: Seconds,
 }
 
+/// One moving set and how many solutions move it.
+#[derive(Serialize)]
+struct GroupJson<'a> {
+    moving: Vec<&'a str>,
+    /// Solutions moving this set (faces + edges + vertices).
+    solutions: usize,
+    faces: usize,
+    edges: usize,
+    vertices: usize,
+    /// The largest clearance of its face solutions; null without a face solution.
+    best_clearance_deg: Option<f64>,
+    /// How many of its solutions `solutions` lists.
+    listed: usize,
+}
+
 #[derive(Serialize)]
 struct PartitionJson<'a> {
     #[serde(flatten)]
     input: InputFacts,
     interlocked: bool,
+    /// The assembly has one part: there is nothing to separate (exit code 0).
+    nothing_to_separate: bool,
     parts: &'a [String],
-    solutions: Vec<SolutionJson>,
+    /// Every solution found (not only those listed).
+    solution_count: usize,
+    /// Distinct moving sets among them.
+    moving_set_count: usize,
+    /// Moving sets listed at most (null with --all).
+    limit: Option<usize>,
+    /// Some solutions are counted but not listed (--limit, --all).
+    truncated: bool,
+    /// The listed moving sets, in the order of their best solution.
+    groups: Vec<GroupJson<'a>>,
+    /// The listed solutions: faces by decreasing clearance, then edges, then vertices.
+    solutions: Listed<'a>,
     stats: StatsJson,
 }
 
@@ -131,6 +175,9 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let load_seconds = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
     let parts = parts_of(asm)?;
+    if parts.len() < 2 {
+        return nothing_to_separate(&loaded, global, load_seconds);
+    }
     if let Some(d) = &args.direction {
         // One direction: per-piece-pair tests only, no motion-space arrangement.
         return direction(global, &loaded, &parts, d, load_seconds);
@@ -138,7 +185,10 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let pictures = args.svg.is_some() || args.png.is_some();
     if args.first && !pictures {
         // Likely directions first; the full computation only when none separates.
-        let p = partition_first(&parts)?;
+        let p = {
+            let _phase = output::phase(global, "first solution");
+            partition_first(&parts)?
+        };
         report(&p, &loaded, args, global, load_seconds)?;
         return Ok(if p.interlocked {
             ExitCode::from(2)
@@ -146,10 +196,17 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
             ExitCode::SUCCESS
         });
     }
-    let regions = BlockingRegions::compute(&parts)?;
+    let regions = {
+        let _phase = output::phase(global, "pair regions");
+        BlockingRegions::compute(&parts)?
+    };
     let all: Vec<usize> = (0..parts.len()).collect();
-    let (p, _) = partition_subset(&regions, &all, &Options { first: args.first });
+    let (p, _) = {
+        let _phase = output::phase(global, "motion space and solutions");
+        partition_subset(&regions, &all, &Options { first: args.first })
+    };
     if pictures {
+        let _phase = output::phase(global, "pictures");
         let opts = SphereSvgOptions {
             title: format!("{}: motion space", asm.name),
             projection: args.projection.into(),
@@ -170,8 +227,112 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
+/// The answer for an assembly of one part: nothing to separate, which is not "no"
+/// (exit code 0), the same meaning in partition, sequence and separate.
+fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::Result<ExitCode> {
+    let asm = &loaded.assembly;
+    let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
+    if global.json {
+        let p = Partitioning {
+            names: names.clone(),
+            interlocked: false,
+            solutions: Vec::new(),
+            stats: Default::default(),
+        };
+        let list = listing(&p, Some(DEFAULT_LIMIT));
+        let mut json = to_json(&p, &list, load, InputFacts::of(loaded, global), &None);
+        json.nothing_to_separate = true;
+        output::json(&json)?;
+    } else {
+        output::line(format_args!(
+            "assembly \"{}\" has {} part{}: nothing to separate",
+            asm.name,
+            names.len(),
+            if names.len() == 1 { "" } else { "s" }
+        ));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The solutions grouped by moving set, and which of them are listed.
+struct Listing {
+    /// Every moving set, in the order of its first (best) solution.
+    groups: Vec<Group>,
+    /// How many groups are listed.
+    listed_groups: usize,
+    /// Indices of the listed solutions, in the planner's order.
+    kept: Vec<usize>,
+    /// The moving sets listed at most (`None`: all).
+    limit: Option<usize>,
+}
+
+struct Group {
+    /// The group's first solution (its moving set, and its best).
+    first: usize,
+    /// Solutions per kind: face, edge, vertex.
+    counts: [usize; 3],
+    best_clearance: Option<f64>,
+    /// Positions in `Listing::kept` of the group's listed solutions.
+    kept: Vec<usize>,
+}
+
+impl Listing {
+    fn truncated(&self, total: usize) -> bool {
+        self.kept.len() < total
+    }
+}
+
+fn kind_index(c: CellKind) -> usize {
+    match c {
+        CellKind::Face => 0,
+        CellKind::Edge => 1,
+        CellKind::Vertex => 2,
+    }
+}
+
+/// Groups the solutions by moving set (one pass, a hash of the sets): with `limit`,
+/// the first `limit` groups are listed with at most [`EXAMPLES_PER_KIND`] solutions of
+/// each kind; without, everything.
+fn listing(p: &Partitioning, limit: Option<usize>) -> Listing {
+    let mut index: HashMap<&[usize], usize> = HashMap::new();
+    let mut groups: Vec<Group> = Vec::new();
+    let mut kept = Vec::new();
+    for (k, s) in p.solutions.iter().enumerate() {
+        let g = *index.entry(s.moving.as_slice()).or_insert_with(|| {
+            groups.push(Group {
+                first: k,
+                counts: [0; 3],
+                best_clearance: None,
+                kept: Vec::new(),
+            });
+            groups.len() - 1
+        });
+        let group = &mut groups[g];
+        let kind = kind_index(s.cell);
+        let listed = match limit {
+            None => true,
+            Some(n) => g < n && group.counts[kind] < EXAMPLES_PER_KIND,
+        };
+        if listed {
+            group.kept.push(kept.len());
+            kept.push(k);
+        }
+        group.counts[kind] += 1;
+        if s.cell == CellKind::Face {
+            let c = group.best_clearance.get_or_insert(s.clearance_deg);
+            *c = c.max(s.clearance_deg);
+        }
+    }
+    Listing {
+        listed_groups: limit.map_or(groups.len(), |n| n.min(groups.len())),
+        groups,
+        kept,
+        limit,
+    }
+}
+
 /// Prints the solutions (JSON or text), with the tolerance they hold under and, under a
-/// tolerance, which of them also hold for the parts as given.
+/// tolerance, which of the listed ones also hold for the parts as given.
 fn report(
     p: &Partitioning,
     loaded: &Loaded,
@@ -180,16 +341,38 @@ fn report(
     load: f64,
 ) -> anyhow::Result<()> {
     let asm = &loaded.assembly;
-    let motions: Vec<Motion> = p
-        .solutions
-        .iter()
-        .map(|s| (s.moving.as_slice(), None, &s.direction))
-        .collect();
-    let holds = holds_without_tolerance(asm, &motions)?;
-    if global.json {
-        output::json(&to_json(p, load, InputFacts::of(loaded, global), &holds))?;
+    let limit = if args.all {
+        None
     } else {
-        print_text(p, asm, args, global, load, &holds);
+        Some(args.limit.unwrap_or(DEFAULT_LIMIT))
+    };
+    let list = listing(p, limit);
+    warn_size(p, &list, global);
+    let holds = {
+        let _phase = output::phase(
+            global,
+            "checking the listed solutions without the tolerance",
+        );
+        let motions: Vec<Motion> = list
+            .kept
+            .iter()
+            .map(|&k| {
+                let s = &p.solutions[k];
+                (s.moving.as_slice(), None, &s.direction)
+            })
+            .collect();
+        holds_without_tolerance(asm, &motions)?
+    };
+    if global.json {
+        output::json(&to_json(
+            p,
+            &list,
+            load,
+            InputFacts::of(loaded, global),
+            &holds,
+        ))?;
+    } else {
+        print_text(p, &list, asm, args, global, load, &holds);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -197,34 +380,98 @@ fn report(
     Ok(())
 }
 
+/// A warning on standard error when the listing leaves out moving sets, when the JSON
+/// leaves out solutions, or when the count is large.
+fn warn_size(p: &Partitioning, list: &Listing, global: &Global) {
+    let total = p.solutions.len();
+    let sets = list.groups.len();
+    let counts = format!(
+        "{total} solution{} in {sets} moving set{}",
+        if total == 1 { "" } else { "s" },
+        if sets == 1 { "" } else { "s" }
+    );
+    match list.limit {
+        None if total > LARGE => output::eline(format_args!(
+            "warning: {counts}: listing all of them (--all)"
+        )),
+        Some(n) if list.truncated(total)
+            && (sets > n || global.json || total > LARGE) =>
+        {
+            output::eline(format_args!(
+                "warning: {counts}; listing {} moving set{} with at most {EXAMPLES_PER_KIND} solutions of each kind (--limit N for more moving sets, --all for every solution)",
+                list.listed_groups,
+                if list.listed_groups == 1 { "" } else { "s" }
+            ))
+        }
+        _ => {}
+    }
+}
+
 fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| names[k].clone()).collect()
 }
 
+fn name_refs<'a>(names: &'a [String], set: &[usize]) -> Vec<&'a str> {
+    set.iter().map(|&k| names[k].as_str()).collect()
+}
+
+/// The listed solutions, serialized one at a time (never all built in memory).
+struct Listed<'a> {
+    p: &'a Partitioning,
+    kept: &'a [usize],
+    holds: &'a Option<Vec<bool>>,
+}
+
+impl Serialize for Listed<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.kept.iter().enumerate().map(|(i, &k)| {
+            let s = &self.p.solutions[k];
+            SolutionJson {
+                cell: s.cell.name(),
+                direction: s.unit,
+                exact_direction: s.direction.to_strings(),
+                moving: name_refs(&self.p.names, &s.moving),
+                clearance_deg: s.clearance_deg,
+                holds_without_tolerance: self.holds.as_ref().map(|h| h[i]),
+            }
+        }))
+    }
+}
+
 fn to_json<'a>(
     p: &'a Partitioning,
+    list: &'a Listing,
     load: f64,
     input: InputFacts,
-    holds: &Option<Vec<bool>>,
+    holds: &'a Option<Vec<bool>>,
 ) -> PartitionJson<'a> {
     let s = &p.stats;
     PartitionJson {
         input,
         interlocked: p.interlocked,
+        nothing_to_separate: false,
         parts: &p.names,
-        solutions: p
-            .solutions
+        solution_count: p.solutions.len(),
+        moving_set_count: list.groups.len(),
+        limit: list.limit,
+        truncated: list.truncated(p.solutions.len()),
+        groups: list.groups[..list.listed_groups]
             .iter()
-            .enumerate()
-            .map(|(k, s)| SolutionJson {
-                cell: s.cell.name(),
-                direction: s.unit,
-                exact_direction: s.direction.to_strings(),
-                moving: names_of(&p.names, &s.moving),
-                clearance_deg: s.clearance_deg,
-                holds_without_tolerance: holds.as_ref().map(|h| h[k]),
+            .map(|g| GroupJson {
+                moving: name_refs(&p.names, &p.solutions[g.first].moving),
+                solutions: g.counts.iter().sum(),
+                faces: g.counts[0],
+                edges: g.counts[1],
+                vertices: g.counts[2],
+                best_clearance_deg: g.best_clearance,
+                listed: g.kept.len(),
             })
             .collect(),
+        solutions: Listed {
+            p,
+            kept: &list.kept,
+            holds,
+        },
         stats: StatsJson {
             pieces: s.pieces,
             sums: s.sums,
@@ -244,8 +491,13 @@ fn to_json<'a>(
     }
 }
 
+fn plural(k: usize, one: &str, many: &str) -> String {
+    format!("{k} {}", if k == 1 { one } else { many })
+}
+
 fn print_text(
     p: &Partitioning,
+    list: &Listing,
     asm: &apart::assembly::Assembly,
     args: &PartitionArgs,
     global: &Global,
@@ -261,23 +513,21 @@ fn print_text(
             s.pieces,
             s.sums
         ));
-        let n =
-            |k: usize, one: &str, many: &str| format!("{k} {}", if k == 1 { one } else { many });
         output::line(format_args!(
             "motion space: {}, {}, {} ({})",
-            n(s.vertices, "vertex", "vertices"),
-            n(s.edges, "edge", "edges"),
-            n(s.faces, "face", "faces"),
-            n(s.arcs, "arc", "arcs")
+            plural(s.vertices, "vertex", "vertices"),
+            plural(s.edges, "edge", "edges"),
+            plural(s.faces, "face", "faces"),
+            plural(s.arcs, "arc", "arcs")
         ));
     }
     if p.interlocked {
         output::line("interlocked: no subset of parts can translate away from the rest");
     } else {
         output::line(format_args!(
-            "not interlocked: {} solution{}{}",
-            p.solutions.len(),
-            if p.solutions.len() == 1 { "" } else { "s" },
+            "not interlocked: {} in {}{}",
+            plural(p.solutions.len(), "solution", "solutions"),
+            plural(list.groups.len(), "moving set", "moving sets"),
             if args.first {
                 " (stopped at the first)"
             } else {
@@ -285,34 +535,42 @@ fn print_text(
             }
         ));
     }
-    // Group by moving subset, in the order of each subset's best solution.
-    let mut groups: Vec<(Vec<usize>, Vec<&Solution>)> = Vec::new();
-    for sol in &p.solutions {
-        match groups.iter_mut().find(|(m, _)| *m == sol.moving) {
-            Some((_, v)) => v.push(sol),
-            None => groups.push((sol.moving.clone(), vec![sol])),
-        }
-    }
-    let limit = if args.all { usize::MAX } else { 5 };
-    for (moving, sols) in &groups {
+    // Per moving set, in the order of each set's best solution.
+    for g in &list.groups[..list.listed_groups] {
+        let moving = &p.solutions[g.first].moving;
+        let [faces, edges, vertices] = g.counts;
+        let counts: Vec<String> = [
+            (faces, plural(faces, "face", "faces")),
+            (edges, plural(edges, "edge", "edges")),
+            (vertices, plural(vertices, "vertex", "vertices")),
+        ]
+        .into_iter()
+        .filter(|(k, _)| *k > 0)
+        .map(|(_, t)| t)
+        .collect();
         output::line("");
         output::line(format_args!(
-            "{} move{}:",
+            "{} move{} ({}):",
             names_of(&p.names, moving).join(", "),
-            if moving.len() == 1 { "s" } else { "" }
+            if moving.len() == 1 { "s" } else { "" },
+            counts.join(", ")
         ));
         for kind in [CellKind::Face, CellKind::Edge, CellKind::Vertex] {
-            let of_kind: Vec<&&Solution> = sols.iter().filter(|x| x.cell == kind).collect();
-            for sol in of_kind.iter().take(limit) {
+            let mut shown = 0;
+            for &i in &g.kept {
+                let sol = &p.solutions[list.kept[i]];
+                if sol.cell != kind {
+                    continue;
+                }
+                shown += 1;
                 let d = sol.direction.to_strings();
                 let mut extra = match kind {
                     CellKind::Face => format!("clearance {:.2}°", sol.clearance_deg),
                     CellKind::Edge => "sliding".into(),
                     CellKind::Vertex => "isolated direction".into(),
                 };
-                let k = p.solutions.iter().position(|x| std::ptr::eq(x, **sol));
-                if let (Some(h), Some(k)) = (holds, k) {
-                    if !h[k] {
+                if let Some(h) = holds {
+                    if !h[i] {
                         extra.push_str(" (only under the tolerance)");
                     }
                 }
@@ -326,14 +584,33 @@ fn print_text(
                     extra
                 ));
             }
-            if of_kind.len() > limit {
-                output::line(format_args!(
-                    "  ... and {} more {}s (--all or --json)",
-                    of_kind.len() - limit,
-                    kind.name()
-                ));
+            let more = g.counts[kind_index(kind)] - shown;
+            if more > 0 {
+                let what = match (kind, more) {
+                    (CellKind::Face, 1) => "face",
+                    (CellKind::Face, _) => "faces",
+                    (CellKind::Edge, 1) => "edge",
+                    (CellKind::Edge, _) => "edges",
+                    (CellKind::Vertex, 1) => "vertex",
+                    (CellKind::Vertex, _) => "vertices",
+                };
+                output::line(format_args!("  ... and {more} more {what} (--all)"));
             }
         }
+    }
+    if list.groups.len() > list.listed_groups {
+        let more = list.groups.len() - list.listed_groups;
+        let solutions: usize = list.groups[list.listed_groups..]
+            .iter()
+            .map(|g| g.counts.iter().sum::<usize>())
+            .sum();
+        output::line("");
+        output::line(format_args!(
+            "... and {} more moving set{} ({}) (--limit N, --all)",
+            more,
+            if more == 1 { "" } else { "s" },
+            plural(solutions, "solution", "solutions")
+        ));
     }
     if !global.quiet {
         let t = &s.seconds;
@@ -382,7 +659,10 @@ fn direction(
     let t = Instant::now();
     let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
     let names = &names[..];
-    let answer = dbg_along(parts, &d)?;
+    let answer = {
+        let _phase = output::phase(global, "direction");
+        dbg_along(parts, &d)?
+    };
     let (cell, g, moving) = (answer.cell, answer.dbg, answer.moving);
     let direction_seconds = t.elapsed().as_secs_f64();
     let blocks: Vec<[String; 2]> = g

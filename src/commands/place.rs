@@ -7,7 +7,7 @@
 use crate::commands::load::{files_manifest, load_valid_but};
 use crate::commands::stack::percent;
 use crate::output;
-use crate::Global;
+use crate::{limits, Global};
 use apart::assembly::Assembly;
 use apart::draw::View;
 use apart::stack::exact::{q_from_f64, QBox, Q};
@@ -33,20 +33,22 @@ pub struct PlaceArgs {
         long,
         default_value = "0,0,0",
         value_name = "X,Y,Z",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = limits::three_numbers
     )]
     pub target: String,
     /// Minimize paper 004 eq. (1) with this weight in [0, 1] instead of the distance to
     /// --target: w times the spread of the part's vertices about the floor point in x
     /// and y, plus (1 − w) times the height of its centre of gravity above it.
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", value_parser = limits::weight, allow_negative_numbers = true)]
     pub weight: Option<f64>,
     /// The floor point (x0, y0, z0) of eq. (1), with --weight.
     #[arg(
         long,
         default_value = "0,0,0",
         value_name = "X,Y,Z",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = limits::three_numbers
     )]
     pub floor_point: String,
     /// Box "X0,Y0,Z0,X1,Y1,Z1" the whole placed part must lie in. Default: the bounding
@@ -55,25 +57,29 @@ pub struct PlaceArgs {
         long,
         value_name = "X0,Y0,Z0,X1,Y1,Z1",
         conflicts_with = "translations",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = limits::box_numbers
     )]
     pub region: Option<String>,
     /// Box "X0,Y0,Z0,X1,Y1,Z1" of allowed translations instead (Ω itself; Z0 = Z1 asks
     /// for positions in a plane).
-    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true)]
+    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true, value_parser = limits::box_numbers)]
     pub translations: Option<String>,
-    /// Step of the orientations about z, in degrees (360: keep the part as given).
-    #[arg(long, default_value_t = 360.0, value_name = "DEG")]
+    /// Step of the orientations about z, in degrees from 0.1 to 360 (360: keep the part
+    /// as given).
+    #[arg(long, default_value_t = 360.0, value_name = "DEG", value_parser = limits::dtheta, allow_negative_numbers = true)]
     pub dtheta: f64,
     /// A base orientation "PHI,PSI" (multiples of 90 degrees about x, then y) to try;
     /// repeat for several. Default: the part as given.
-    #[arg(long = "base", value_name = "PHI,PSI", allow_hyphen_values = true)]
+    #[arg(long = "base", value_name = "PHI,PSI", allow_hyphen_values = true, value_parser = limits::base)]
     pub bases: Vec<String>,
-    /// Clearance kept from the fixed parts (robot positioning error, input units).
-    #[arg(long, value_name = "C")]
+    /// Clearance kept from the fixed parts (robot positioning error, input units), 0 or
+    /// more.
+    #[arg(long, value_name = "C", value_parser = limits::nonnegative, allow_negative_numbers = true)]
     pub clearance: Option<f64>,
-    /// Number of candidate positions to list (one per free-space cell, cheapest first).
-    #[arg(long, default_value_t = 5, value_name = "K")]
+    /// Number of candidate positions to list (one per free-space cell, cheapest first),
+    /// 1 to 1000.
+    #[arg(long, default_value_t = 5, value_name = "K", value_parser = limits::candidates, allow_negative_numbers = true)]
     pub candidates: usize,
     #[command(flatten)]
     pub pictures: PictureArgs,
@@ -359,7 +365,10 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             .transpose()?,
         extrapolate: true,
     };
-    let result = place(&scene, &moving, &opts, args.candidates.max(1))?;
+    let result = {
+        let _phase = output::phase(global, "placement");
+        place(&scene, &moving, &opts, args.candidates)?
+    };
     let seconds = start.elapsed().as_secs_f64();
     if let Some(best) = result.candidates.first() {
         let placed = apart::stack::stability::placed_pieces(

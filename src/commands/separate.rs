@@ -82,6 +82,12 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     let loaded = load_valid(&path, global)?;
     let asm = &loaded.assembly;
+    anyhow::ensure!(
+        asm.parts.len() >= 2,
+        "separate needs two parts, and {} has only one (\"{}\"): nothing to separate",
+        path.display(),
+        asm.parts.first().map_or("", |p| p.name.as_str())
+    );
     let index = |n: &str| {
         asm.parts
             .iter()
@@ -90,8 +96,14 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     let (a, b) = (index(&a_name)?, index(&b_name)?);
     anyhow::ensure!(a != b, "the two parts must differ");
-    let regions = BlockingRegions::compute(&parts_of(asm)?)?;
-    let s = separate(&regions, a, b);
+    let regions = {
+        let _phase = output::phase(global, "pair regions");
+        BlockingRegions::compute(&parts_of(asm)?)?
+    };
+    let s = {
+        let _phase = output::phase(global, "separation");
+        separate(&regions, a, b)
+    };
     let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
     let best = s.best();
     let pair = [a, b];

@@ -1,13 +1,14 @@
 //! `apart sequence <assembly>`: a complete disassembly plan by recursive two-handed
 //! partitioning (its reverse is an assembly plan), with pictures and animated exports.
-//! Exit code 0 when every part comes apart, 2 when a subassembly is interlocked (the
-//! partial plan is printed and names it), 1 on error.
+//! Exit code 0 when every part comes apart (an assembly of one part: nothing to
+//! separate, no step), 2 when a subassembly is interlocked (the partial plan is printed
+//! and names it), 1 on error.
 
 use crate::commands::load::load_valid;
 use crate::commands::partition::Projection;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
 use crate::output;
-use crate::Global;
+use crate::{limits, Global};
 use apart::draw::{
     assembly_png, disassembly_glb, disassembly_html, step_motion_space_png, step_motion_space_svg,
     step_pngs, SphereSvgOptions, View,
@@ -37,8 +38,8 @@ pub struct SequenceArgs {
     /// A part that never moves (the other side moves instead).
     #[arg(long, value_name = "NAME")]
     pub base: Option<String>,
-    /// Split at most this many levels deep (subassemblies below stay whole).
-    #[arg(long, value_name = "N")]
+    /// Split at most this many levels deep, 1 or more (subassemblies below stay whole).
+    #[arg(long, value_name = "N", value_parser = limits::positive, allow_negative_numbers = true)]
     pub max_depth: Option<usize>,
     /// For each step, the largest uniform growth of the parts that keeps it possible
     /// (compare with manufacturing tolerances).
@@ -51,7 +52,7 @@ pub struct SequenceArgs {
     #[arg(long, value_name = "FILE")]
     pub png: Option<PathBuf>,
     /// The step (1-based) the sphere pictures show.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(long, value_name = "K", default_value_t = 1, value_parser = limits::positive, allow_negative_numbers = true)]
     pub step: usize,
     /// Projection of the sphere pictures.
     #[arg(long, value_enum, default_value_t = Projection::EqualArea)]
@@ -89,6 +90,8 @@ struct StepJson {
 struct SequenceJson {
     interlocked: bool,
     complete: bool,
+    /// The assembly has one part: there is nothing to separate (complete, no step).
+    nothing_to_separate: bool,
     parts: Vec<String>,
     steps: Vec<StepJson>,
     /// Subassemblies no single translation can split.
@@ -114,7 +117,10 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let load = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
     let t = Instant::now();
-    let regions = BlockingRegions::compute(&parts_of(asm)?)?;
+    let regions = {
+        let _phase = output::phase(global, "pair regions");
+        BlockingRegions::compute(&parts_of(asm)?)?
+    };
     let regions_s = t.elapsed().as_secs_f64();
     let base =
         match &args.base {
@@ -131,8 +137,14 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         max_depth: args.max_depth,
         tolerance: args.growth,
     };
-    let plan = sequence(&regions, &opts);
-    pictures(args, asm, &regions, &plan)?;
+    let plan = {
+        let _phase = output::phase(global, "sequence steps");
+        sequence(&regions, &opts)
+    };
+    {
+        let _phase = output::phase(global, "pictures and exports");
+        pictures(args, asm, &regions, &plan)?;
+    }
     let step_unit = asm.grid.step();
     let motions: Vec<Motion> = plan
         .steps
@@ -145,7 +157,10 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             )
         })
         .collect();
-    let holds = holds_without_tolerance(asm, &motions)?;
+    let holds = {
+        let _phase = output::phase(global, "checking the steps without the tolerance");
+        holds_without_tolerance(asm, &motions)?
+    };
     if global.json {
         let input = InputFacts::of(&loaded, global);
         output::json(&to_json(&plan, step_unit, load, regions_s, input, &holds))?;
@@ -231,6 +246,7 @@ fn to_json(
         input,
         interlocked: !plan.stuck.is_empty(),
         complete: plan.complete(),
+        nothing_to_separate: plan.names.len() < 2,
         parts: plan.names.clone(),
         steps: plan
             .steps
@@ -296,10 +312,19 @@ fn print_text(
     } else {
         "stopped at the depth limit".to_string()
     };
+    if plan.names.len() < 2 {
+        output::line(format_args!(
+            "disassembly of \"{}\" ({} part): nothing to separate",
+            asm.name,
+            plan.names.len()
+        ));
+        return;
+    }
     output::line(format_args!(
-        "disassembly of \"{}\" ({} parts): {} step{}, {status}",
+        "disassembly of \"{}\" ({} part{}): {} step{}, {status}",
         asm.name,
         plan.names.len(),
+        if plan.names.len() == 1 { "" } else { "s" },
         plan.steps.len(),
         if plan.steps.len() == 1 { "" } else { "s" }
     ));

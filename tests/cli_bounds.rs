@@ -1,0 +1,582 @@
+//! Hostile and careless command lines (issue 10), end to end on the built binary: every
+//! numeric option checked with its range before any work, usage errors exiting with 1
+//! (2 is the "no" answer), one-part assemblies meaning "nothing to separate" in every
+//! command, partition listings bounded and grouped by moving set, decompose never losing
+//! a part to a file-name collision nor writing into its input, and --timeout and
+//! --max-memory ending a run with a clear message.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn example(name: &str) -> String {
+    root().join("examples").join(name).display().to_string()
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_apart"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn json(out: &Output) -> Value {
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("not JSON ({e}): {}\n{}", stdout(out), stderr(out)))
+}
+
+/// A fresh folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("apart-bounds-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The unit cube at `origin` as an OFF file.
+fn cube_off(origin: [i64; 3]) -> String {
+    let mut s = String::from("OFF\n8 6 0\n");
+    for i in 0..8 {
+        s.push_str(&format!(
+            "{} {} {}\n",
+            origin[0] + (i & 1),
+            origin[1] + (i >> 1 & 1),
+            origin[2] + (i >> 2 & 1)
+        ));
+    }
+    for f in [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ] {
+        s.push_str(&format!("4 {} {} {} {}\n", f[0], f[1], f[2], f[3]));
+    }
+    s
+}
+
+/// `n` unit cubes, 2 apart on a grid, one file each in `dir`: no cube touches another,
+/// so every cube moves alone and the partition has a moving set per cube.
+fn loose_cubes(dir: &Path, n: i64) {
+    let side = (1..).find(|s| s * s * s >= n).unwrap();
+    for k in 0..n {
+        let o = [
+            3 * (k % side),
+            3 * (k / side % side),
+            3 * (k / (side * side)),
+        ];
+        std::fs::write(dir.join(format!("c{k:04}.off")), cube_off(o)).unwrap();
+    }
+}
+
+#[test]
+fn numeric_options_are_checked_with_their_range_before_any_work() {
+    // The path does not exist: a message about the value, not the path, shows that the
+    // option was checked first.
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--threads", "1000000", "check", "nowhere"],
+            "from 1 to 1024",
+        ),
+        (&["--threads", "0", "check", "nowhere"], "from 1 to 1024"),
+        (&["check", "nowhere", "--threads", "-3"], "from 1 to 1024"),
+        (
+            &["check", "nowhere", "--tolerance", "-1"],
+            "finite, positive length",
+        ),
+        (
+            &["check", "nowhere", "--tolerance", "nan"],
+            "finite, positive length",
+        ),
+        (
+            &["check", "nowhere", "--tolerance", "0"],
+            "finite, positive length",
+        ),
+        (&["check", "nowhere", "--tolerance", "5um"], "--units"),
+        (&["check", "nowhere", "--timeout", "0"], "more than 0"),
+        (&["check", "nowhere", "--timeout", "-5"], "more than 0"),
+        (&["check", "nowhere", "--timeout", "nan"], "finite"),
+        (&["check", "nowhere", "--timeout", "1e9"], "at most 604800"),
+        (&["check", "nowhere", "--max-memory", "4X"], "such as 4G"),
+        (&["check", "nowhere", "--max-memory", "0"], "at least 1M"),
+        (
+            &["stack", "nowhere.off", "--count", "1000000000"],
+            "from 1 to 1000",
+        ),
+        (&["stack", "nowhere.off", "--count", "0"], "from 1 to 1000"),
+        (
+            &["stack", "nowhere.off", "--dtheta", "-90"],
+            "between 0.1 and 360",
+        ),
+        (
+            &["stack", "nowhere.off", "--dtheta", "1e-9"],
+            "between 0.1 and 360",
+        ),
+        (
+            &["stack", "nowhere.off", "--dtheta", "1e-7"],
+            "between 0.1 and 360",
+        ),
+        (
+            &["stack", "nowhere.off", "--dtheta", "nan"],
+            "must be a finite number",
+        ),
+        (
+            &["stack", "nowhere.off", "--weight", "2"],
+            "between 0 and 1",
+        ),
+        (&["stack", "nowhere.off", "--weight", "nan"], "finite"),
+        (
+            &["stack", "nowhere.off", "--max-height", "-1"],
+            "more than 0",
+        ),
+        (&["stack", "nowhere.off", "--clearance", "-1"], "0 or more"),
+        (
+            &["stack", "nowhere.off", "--max-candidates", "0"],
+            "from 1 to 100000",
+        ),
+        (&["stack", "nowhere.off", "--floor", "1,1,0,0"], "is empty"),
+        (
+            &["stack", "nowhere.off", "--floor", "0,0,1"],
+            "4 comma-separated",
+        ),
+        (&["stack", "nowhere.off", "--floor-z", "inf"], "finite"),
+        (
+            &["stack", "nowhere.off", "--base", "45,0"],
+            "multiples of 90",
+        ),
+        (
+            &["place", "a.off", "b.off", "--dtheta", "0"],
+            "between 0.1 and 360",
+        ),
+        (
+            &["place", "a.off", "b.off", "--candidates", "0"],
+            "from 1 to 1000",
+        ),
+        (
+            &["place", "a.off", "b.off", "--weight", "-0.5"],
+            "between 0 and 1",
+        ),
+        (&["place", "a.off", "b.off", "--clearance", "nan"], "finite"),
+        (
+            &["place", "a.off", "b.off", "--target", "1,2"],
+            "3 comma-separated",
+        ),
+        (
+            &["place", "a.off", "b.off", "--region", "1,1,1,0,0,0"],
+            "is empty",
+        ),
+        (&["sequence", "nowhere", "--max-depth", "0"], "at least 1"),
+        (&["sequence", "nowhere", "--max-depth", "-1"], "at least 1"),
+        (&["sequence", "nowhere", "--step", "0"], "at least 1"),
+        (&["partition", "nowhere", "--limit", "0"], "at least 1"),
+        (&["partition", "nowhere", "--direction", "0,0,0"], "is zero"),
+        (
+            &["partition", "nowhere", "--direction", "1,nan,0"],
+            "non-finite",
+        ),
+    ];
+    // --grid-bits: the range the kernel's grid supports.
+    use apart::kernel::grid::{MAX_BITS, MIN_BITS};
+    let above = (MAX_BITS + 1).to_string();
+    let below = (MIN_BITS - 1).to_string();
+    let bits = format!("from {MIN_BITS} to {MAX_BITS}");
+    let over = ["check", "nowhere", "--grid-bits", &above];
+    let under = ["check", "nowhere", "--grid-bits", &below];
+    let mut cases = cases.to_vec();
+    cases.push((&over, &bits));
+    cases.push((&under, &bits));
+    for (args, want) in &cases {
+        let out = run(args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: wanted \"{want}\" in: {err}");
+        assert!(!err.contains("nowhere"), "{args:?} did work first: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(!err.contains("grip"), "{args:?}: {err}");
+    }
+    // Negative values are values (not "unexpected argument '-9'").
+    let err = stderr(&run(&["stack", "nowhere.off", "--dtheta", "-90"]));
+    assert!(
+        err.contains("'-90'") && !err.contains("unexpected argument"),
+        "{err}"
+    );
+    // The ranges are in the help.
+    let help = stdout(&run(&["stack", "--help"]));
+    assert!(
+        help.contains("1 to 1000") && help.contains("0.1 to 360"),
+        "{help}"
+    );
+    // Values inside the ranges work.
+    let cube = example("sheet-metal/cube.off");
+    let out = run(&[
+        "stack",
+        &cube,
+        "--count",
+        "2",
+        "--dtheta",
+        "360",
+        "--threads",
+        "2",
+        "--quiet",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
+fn usage_errors_exit_1_and_the_help_lists_the_exit_codes() {
+    for args in [
+        &[][..],
+        &["frobnicate"][..],
+        &["partition"][..],
+        &["partition", "--no-such-flag", "x"][..],
+        &["separate", "only-one"][..],
+    ] {
+        let out = run(args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+        assert!(!stderr(&out).is_empty(), "{args:?}");
+    }
+    // With --json, a usage error is also a JSON object.
+    let out = run(&["partition", "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(json(&out)["valid"], false);
+    let out = run(&["--help"]);
+    assert_eq!(out.status.code(), Some(0));
+    let help = stdout(&out);
+    assert!(help.contains("Exit codes:"), "{help}");
+    assert!(help.contains("2  the answer is no"), "{help}");
+    assert!(
+        help.contains("--timeout") && help.contains("--max-memory"),
+        "{help}"
+    );
+    assert_eq!(run(&["--version"]).status.code(), Some(0));
+    assert_eq!(run(&["partition", "--help"]).status.code(), Some(0));
+}
+
+#[test]
+fn a_one_part_assembly_has_nothing_to_separate_in_every_command() {
+    let dir = scratch("one");
+    std::fs::write(dir.join("only.off"), cube_off([0, 0, 0])).unwrap();
+    let path = dir.display().to_string();
+    for extra in [&[][..], &["--first"][..], &["--direction", "0,0,1"][..]] {
+        let mut args = vec!["partition", path.as_str(), "--json"];
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(0), "{extra:?}: {}", stderr(&out));
+        let v = json(&out);
+        assert_eq!(v["nothing_to_separate"], true, "{extra:?}");
+        assert_eq!(v["interlocked"], false, "{extra:?}");
+        assert_eq!(v["solutions"].as_array().unwrap().len(), 0);
+    }
+    let out = run(&["partition", &path]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        stdout(&out).contains("nothing to separate"),
+        "{}",
+        stdout(&out)
+    );
+
+    let out = run(&["sequence", &path, "--json"]);
+    assert_eq!(out.status.code(), Some(0));
+    let v = json(&out);
+    assert_eq!(v["nothing_to_separate"], true);
+    assert_eq!(v["complete"], true);
+    assert_eq!(v["steps"].as_array().unwrap().len(), 0);
+    let out = run(&["sequence", &path]);
+    assert!(
+        stdout(&out).contains("nothing to separate"),
+        "{}",
+        stdout(&out)
+    );
+
+    // separate names two parts: one part is an input error, said clearly.
+    let out = run(&["separate", &path, "only", "only"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("needs two parts"), "{}", stderr(&out));
+
+    // Two parts are not "nothing to separate".
+    std::fs::write(dir.join("other.off"), cube_off([3, 0, 0])).unwrap();
+    let v = json(&run(&["partition", &path, "--json"]));
+    assert_eq!(v["nothing_to_separate"], false);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn partition_listings_are_grouped_by_moving_set_and_bounded() {
+    let dir = scratch("loose");
+    loose_cubes(&dir, 24);
+    let path = dir.display().to_string();
+
+    // Everything: every cube moves alone, in many cells.
+    let out = run(&["partition", &path, "--json", "--all"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let all = json(&out);
+    let total = all["solution_count"].as_u64().unwrap() as usize;
+    assert_eq!(all["solutions"].as_array().unwrap().len(), total);
+    assert_eq!(all["moving_set_count"], 24);
+    assert_eq!(all["truncated"], false);
+    assert!(all["limit"].is_null());
+    let groups = all["groups"].as_array().unwrap();
+    assert_eq!(groups.len(), 24);
+    let sum: u64 = groups
+        .iter()
+        .map(|g| g["solutions"].as_u64().unwrap())
+        .sum();
+    assert_eq!(sum as usize, total);
+    for g in groups {
+        assert_eq!(g["moving"].as_array().unwrap().len(), 1);
+        let n = ["faces", "edges", "vertices"]
+            .iter()
+            .map(|k| g[*k].as_u64().unwrap())
+            .sum::<u64>();
+        assert_eq!(n, g["solutions"].as_u64().unwrap());
+    }
+    assert!(total > 24 * 15, "{total}");
+
+    // The default: 20 moving sets, at most 5 solutions of each kind each, a warning.
+    let out = run(&["partition", &path, "--json"]);
+    assert_eq!(out.status.code(), Some(0));
+    let v = json(&out);
+    assert_eq!(v["solution_count"].as_u64().unwrap() as usize, total);
+    assert_eq!(v["moving_set_count"], 24);
+    assert_eq!(v["limit"], 20);
+    assert_eq!(v["truncated"], true);
+    let groups = v["groups"].as_array().unwrap();
+    assert_eq!(groups.len(), 20);
+    // The same groups, in the same order, as the full listing.
+    for (g, h) in groups.iter().zip(all["groups"].as_array().unwrap()) {
+        assert_eq!(g["moving"], h["moving"]);
+        assert_eq!(g["solutions"], h["solutions"]);
+    }
+    let sols = v["solutions"].as_array().unwrap();
+    let listed: u64 = groups.iter().map(|g| g["listed"].as_u64().unwrap()).sum();
+    assert_eq!(listed as usize, sols.len());
+    assert!(sols.len() <= 20 * 15);
+    for g in groups {
+        for kind in ["face", "edge", "vertex"] {
+            let n = sols
+                .iter()
+                .filter(|s| s["moving"] == g["moving"] && s["cell"] == kind)
+                .count();
+            assert!(n <= 5, "{kind}: {n}");
+        }
+    }
+    // Every listed solution is one of the full listing.
+    let key = |s: &Value| format!("{}{}{}", s["cell"], s["moving"], s["exact_direction"]);
+    let every: std::collections::HashSet<String> = all["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(key)
+        .collect();
+    assert!(sols.iter().all(|s| every.contains(&key(s))));
+    assert!(stderr(&out).contains("warning:"), "{}", stderr(&out));
+    assert!(stderr(&out).contains("--all"), "{}", stderr(&out));
+
+    // --limit 3, in text: three moving sets, the rest counted.
+    let out = run(&["partition", &path, "--limit", "3"]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = stdout(&out);
+    assert_eq!(text.matches(" moves (").count(), 3, "{text}");
+    assert!(text.contains("... and 21 more moving sets"), "{text}");
+    assert!(
+        text.contains(&format!("{total} solutions in 24 moving sets")),
+        "{text}"
+    );
+    assert!(stderr(&out).contains("warning:"));
+    // --limit and --all contradict each other.
+    assert_eq!(
+        run(&["partition", &path, "--limit", "3", "--all"])
+            .status
+            .code(),
+        Some(1)
+    );
+
+    // A small answer is listed whole, without a warning (the Split Star's eight).
+    let out = run(&["partition", &example("split-star"), "--json"]);
+    let v = json(&out);
+    assert_eq!(v["truncated"], false);
+    assert_eq!(v["solutions"].as_array().unwrap().len(), 8);
+    assert_eq!(v["groups"].as_array().unwrap().len(), 8);
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn decompose_keeps_parts_whose_file_names_collide_and_never_writes_into_its_input() {
+    let dir = scratch("decompose");
+    let input = dir.join("input");
+    std::fs::create_dir_all(&input).unwrap();
+    std::fs::write(input.join("one.off"), cube_off([0, 0, 0])).unwrap();
+    std::fs::write(input.join("two.off"), cube_off([3, 0, 0])).unwrap();
+    std::fs::write(input.join("three.off"), cube_off([6, 0, 0])).unwrap();
+    let manifest = input.join("assembly.json");
+    // "a b" and "a_b" become the same safe name; "A_B" differs only in case.
+    let text = r#"{"name": "collide", "parts": [
+        {"name": "a b", "mesh": "one.off"},
+        {"name": "a_b", "mesh": "two.off"},
+        {"name": "A_B", "mesh": "three.off"}]}"#;
+    std::fs::write(&manifest, text).unwrap();
+    let out_dir = dir.join("out");
+    let out = run(&[
+        "decompose",
+        manifest.to_str().unwrap(),
+        "-o",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(stderr(&out).contains("collide"), "{}", stderr(&out));
+    // Every part is read back, each from its own files.
+    let out = run(&["check", out_dir.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v = json(&out);
+    let parts = v["parts"].as_array().unwrap();
+    let names: Vec<&str> = parts.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["a b", "a_b", "A_B"]);
+    let mut files: Vec<String> = parts
+        .iter()
+        .map(|p| p["source"].as_str().unwrap().to_lowercase())
+        .collect();
+    files.sort();
+    files.dedup();
+    assert_eq!(files.len(), 3, "{files:?}");
+    // Each part is where its input was (none overwrote another).
+    let xs: Vec<f64> = parts
+        .iter()
+        .map(|p| p["bbox"]["min"][0].as_f64().unwrap())
+        .collect();
+    assert_eq!(xs, [0.0, 3.0, 6.0]);
+
+    // Writing into the input is refused, and the input stays as it was.
+    let before: Vec<Vec<u8>> = ["one.off", "two.off", "three.off", "assembly.json"]
+        .iter()
+        .map(|f| std::fs::read(input.join(f)).unwrap())
+        .collect();
+    let m = manifest.to_str().unwrap().to_string();
+    let i = input.to_str().unwrap().to_string();
+    let dotted = format!("{}/../input/.", i);
+    let inside = format!("{i}/pieces");
+    for (from, to) in [
+        (&m, &i),
+        (&m, &dotted),
+        (&i, &i),
+        (&i, &inside),
+        (&input.join("one.off").to_str().unwrap().to_string(), &i),
+    ] {
+        let out = run(&["decompose", from, "-o", to]);
+        assert_eq!(out.status.code(), Some(1), "{from} -o {to}");
+        assert!(
+            stderr(&out).contains("refusing to write"),
+            "{}",
+            stderr(&out)
+        );
+    }
+    #[cfg(unix)]
+    {
+        // Also through a symbolic link to the input folder.
+        let link = dir.join("link");
+        std::os::unix::fs::symlink(&input, &link).unwrap();
+        let out = run(&["decompose", &m, "-o", link.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(1));
+        assert!(
+            stderr(&out).contains("refusing to write"),
+            "{}",
+            stderr(&out)
+        );
+    }
+    assert!(!input.join("pieces").exists());
+    let after: Vec<Vec<u8>> = ["one.off", "two.off", "three.off", "assembly.json"]
+        .iter()
+        .map(|f| std::fs::read(input.join(f)).unwrap())
+        .collect();
+    assert_eq!(before, after);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn timeout_ends_a_long_run_naming_its_phase() {
+    let dir = scratch("timeout");
+    loose_cubes(&dir, 150);
+    let start = std::time::Instant::now();
+    let out = run(&["partition", dir.to_str().unwrap(), "--timeout", "0.5"]);
+    let seconds = start.elapsed().as_secs_f64();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("stopped after 0.5 s: "), "{err}");
+    assert!(seconds < 30.0, "{seconds}");
+    // With --json the answer is a JSON error object.
+    let out = run(&[
+        "partition",
+        dir.to_str().unwrap(),
+        "--timeout",
+        "0.5",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let v = json(&out);
+    assert_eq!(v["valid"], false);
+    assert!(v["error"]
+        .as_str()
+        .unwrap()
+        .starts_with("stopped after 0.5 s"));
+    // A run within its time is unchanged.
+    let out = run(&[
+        "partition",
+        &example("split-star"),
+        "--timeout",
+        "600",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(json(&out)["solutions"].as_array().unwrap().len(), 8);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn max_memory_ends_a_run_over_its_budget_naming_its_phase() {
+    let dir = scratch("memory");
+    loose_cubes(&dir, 60);
+    let out = run(&["partition", dir.to_str().unwrap(), "--max-memory", "20M"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("out of memory budget (--max-memory 20M) during "),
+        "{err}"
+    );
+    assert!(
+        !err.contains("panicked") && !err.contains("memory allocation of"),
+        "{err}"
+    );
+    let out = run(&[
+        "partition",
+        dir.to_str().unwrap(),
+        "--max-memory",
+        "20M",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = stdout(&out);
+    let last = text.trim().lines().last().unwrap_or("");
+    let v: Value = serde_json::from_str(last).unwrap_or_else(|e| panic!("{e}: {text}"));
+    assert_eq!(v["valid"], false);
+    // Within the budget the answer is the same as without one.
+    let star = example("split-star");
+    let free = json(&run(&["partition", &star, "--json"]));
+    let out = run(&["partition", &star, "--json", "--max-memory", "1G"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(json(&out)["solutions"], free["solutions"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
