@@ -210,17 +210,19 @@ impl Data<'_> {
         Ok(&data[offset..need as usize])
     }
 
-    /// Every element of `acc` (`size` bytes each), sparse substitutions applied, given
-    /// to `put(k, bytes)` in order; elements without data are all zero bytes.
-    fn elements(
+    /// Every element of `acc` (`size` bytes each) decoded, sparse substitutions
+    /// applied; elements without data are all zero bytes. Every size is checked before
+    /// anything is allocated for the elements.
+    fn elements<T: Copy>(
         &self,
         what: &str,
         acc: &gltf::Accessor,
         size: usize,
-        mut put: impl FnMut(usize, &[u8]),
-    ) -> Result<(), ReadError> {
+        decode: impl Fn(&[u8]) -> T,
+    ) -> Result<Vec<T>, ReadError> {
         let count = acc.count();
-        match acc.view() {
+        // The dense data (bytes and stride), or `None` for zeros.
+        let dense = match acc.view() {
             Some(view) => {
                 let stride = view.stride().unwrap_or(size);
                 if stride < size {
@@ -229,10 +231,10 @@ impl Data<'_> {
                         view.index()
                     )));
                 }
-                let bytes = self.view_bytes(what, &view, acc.offset(), count, size, stride)?;
-                for k in 0..count {
-                    put(k, &bytes[k * stride..k * stride + size]);
-                }
+                Some((
+                    self.view_bytes(what, &view, acc.offset(), count, size, stride)?,
+                    stride,
+                ))
             }
             None => {
                 if count as u128 * size as u128 > self.budget {
@@ -241,38 +243,47 @@ impl Data<'_> {
                         self.budget
                     )));
                 }
-                let zero = vec![0u8; size];
-                for k in 0..count {
-                    put(k, &zero);
+                None
+            }
+        };
+        let sparse = match acc.sparse() {
+            None => None,
+            Some(sparse) => {
+                let n = sparse.count();
+                if n > count {
+                    return Err(malformed(format!(
+                        "{what}: {n} sparse substitutions for {count} elements"
+                    )));
                 }
+                let indices = sparse.indices();
+                let isize = indices.index_type().size();
+                let ibytes = self.view_bytes(
+                    &format!("{what}, sparse indices"),
+                    &indices.view(),
+                    indices.offset(),
+                    n,
+                    isize,
+                    isize,
+                )?;
+                let values = sparse.values();
+                let vbytes = self.view_bytes(
+                    &format!("{what}, sparse values"),
+                    &values.view(),
+                    values.offset(),
+                    n,
+                    size,
+                    size,
+                )?;
+                Some((n, isize, ibytes, vbytes))
             }
-        }
-        if let Some(sparse) = acc.sparse() {
-            let n = sparse.count();
-            if n > count {
-                return Err(malformed(format!(
-                    "{what}: {n} sparse substitutions for {count} elements"
-                )));
-            }
-            let indices = sparse.indices();
-            let isize = indices.index_type().size();
-            let ibytes = self.view_bytes(
-                &format!("{what}, sparse indices"),
-                &indices.view(),
-                indices.offset(),
-                n,
-                isize,
-                isize,
-            )?;
-            let values = sparse.values();
-            let vbytes = self.view_bytes(
-                &format!("{what}, sparse values"),
-                &values.view(),
-                values.offset(),
-                n,
-                size,
-                size,
-            )?;
+        };
+        let mut out = match dense {
+            Some((bytes, stride)) => (0..count)
+                .map(|k| decode(&bytes[k * stride..k * stride + size]))
+                .collect(),
+            None => vec![decode(&vec![0u8; size]); count],
+        };
+        if let Some((n, isize, ibytes, vbytes)) = sparse {
             for j in 0..n {
                 let b = &ibytes[j * isize..(j + 1) * isize];
                 let k = match isize {
@@ -285,10 +296,10 @@ impl Data<'_> {
                         "{what}: sparse index {k} is not below the count {count}"
                     )));
                 }
-                put(k, &vbytes[j * size..(j + 1) * size]);
+                out[k] = decode(&vbytes[j * size..(j + 1) * size]);
             }
         }
-        Ok(())
+        Ok(out)
     }
 
     fn positions(&self, what: &str, acc: &gltf::Accessor) -> Result<Vec<[f64; 3]>, ReadError> {
@@ -300,12 +311,10 @@ impl Data<'_> {
                 type_name(acc.dimensions())
             )));
         }
-        let mut out = vec![[0.0; 3]; acc.count()];
-        self.elements(what, acc, 12, |k, b| {
+        self.elements(what, acc, 12, |b| {
             let f = |o: usize| f32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]) as f64;
-            out[k] = [f(0), f(4), f(8)];
-        })?;
-        Ok(out)
+            [f(0), f(4), f(8)]
+        })
     }
 
     fn indices(&self, what: &str, acc: &gltf::Accessor) -> Result<Vec<u32>, ReadError> {
@@ -323,15 +332,11 @@ impl Data<'_> {
                 type_name(acc.dimensions())
             )));
         }
-        let mut out = vec![0u32; acc.count()];
-        self.elements(what, acc, size, |k, b| {
-            out[k] = match size {
-                1 => b[0] as u32,
-                2 => u16::from_le_bytes([b[0], b[1]]) as u32,
-                _ => u32::from_le_bytes([b[0], b[1], b[2], b[3]]),
-            };
-        })?;
-        Ok(out)
+        self.elements(what, acc, size, |b| match size {
+            1 => b[0] as u32,
+            2 => u16::from_le_bytes([b[0], b[1]]) as u32,
+            _ => u32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        })
     }
 }
 
@@ -619,6 +624,15 @@ pub fn read(
         .or_else(|| document.scenes().next());
     let Some(scene) = scene else {
         // No scene: every mesh once, untransformed.
+        let values = document
+            .meshes()
+            .map(|m| mesh_values(&m))
+            .fold(0u64, u64::saturating_add);
+        if values > MAX_EXPANDED_VALUES {
+            return Err(malformed(format!(
+                "the meshes hold {values} vertices and indices, more than the limit of {MAX_EXPANDED_VALUES}"
+            )));
+        }
         for mesh in document.meshes() {
             let name = mesh.name().map(str::to_string);
             objects.push(mesh_object(&mesh, &data, &Affine::IDENTITY, name)?);
@@ -1004,6 +1018,34 @@ mod tests {
             let e = err(&doc(node, "[0]", &accessors, None));
             assert!(e.contains(want), "{e}");
         }
+        // Without a scene, every mesh once: bounded too.
+        let j = String::from_utf8(doc(
+            node,
+            "[0]",
+            &ACCESSORS.replace(
+                "\"count\":3,\"type\":\"VEC3\"",
+                "\"count\":200000000,\"type\":\"VEC3\"",
+            ),
+            None,
+        ))
+        .unwrap();
+        let no_scene = j.replace("\"scene\":0,\"scenes\":[{\"nodes\":[0]}],", "");
+        let three = no_scene.replace(
+            r#"[{"attributes":{"POSITION":0},"indices":1}]"#,
+            r#"[{"attributes":{"POSITION":0}},{"attributes":{"POSITION":0}}]"#,
+        );
+        let e = err(three.as_bytes());
+        assert!(
+            e.contains("the meshes hold 400000000 vertices and indices"),
+            "{e}"
+        );
+        let t = std::time::Instant::now();
+        let e = err(no_scene.as_bytes());
+        assert!(
+            e.contains("need 2400000000 bytes, but buffer view 0 holds 36"),
+            "{e}"
+        );
+        assert!(t.elapsed().as_millis() < 500);
         // A buffer view beyond its buffer, and a buffer shorter than its byteLength.
         let j = String::from_utf8(doc(node, "[0]", ACCESSORS, None)).unwrap();
         let e = err(j

@@ -21,6 +21,8 @@ pub fn read(bytes: &[u8]) -> Result<Vec<RawObject>, ReadError> {
     })
     .map_err(|e| ReadError::malformed(Format::Obj, e.to_string()))?;
     let mut objects: Vec<RawObject> = Vec::new();
+    // Where each name's object is (a hash map: a file of many groups stays linear).
+    let mut by_name: std::collections::HashMap<Option<String>, usize> = Default::default();
     for model in models {
         let m = &model.mesh;
         if m.indices.is_empty() {
@@ -64,9 +66,12 @@ pub fn read(bytes: &[u8]) -> Result<Vec<RawObject>, ReadError> {
             vertices,
             faces,
         };
-        match objects.iter_mut().find(|o| o.name == object.name) {
-            Some(existing) => existing.append(&object),
-            None => objects.push(object),
+        match by_name.get(&object.name) {
+            Some(&k) => objects[k].append(&object),
+            None => {
+                by_name.insert(object.name.clone(), objects.len());
+                objects.push(object);
+            }
         }
     }
     Ok(objects)
@@ -115,6 +120,20 @@ o first\nf 1 2 3\nf 1 3 4\no second\nv 5 5 5\nf 2 3 4 5\n";
         // Indices are per object: the quad uses 4 distinct vertices of its own list.
         let q = objs[1].faces.get(0);
         assert_eq!(objs[1].vertices[q[3] as usize], [5.0, 5.0, 5.0]);
+    }
+
+    #[test]
+    fn many_groups_take_linear_time() {
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for k in 0..30_000 {
+            text.push_str(&format!("o part{}\nf 1 2 3\n", k % 20_000));
+        }
+        let t = std::time::Instant::now();
+        let objs = read(text.as_bytes()).unwrap();
+        assert_eq!(objs.len(), 20_000);
+        assert_eq!(objs[5].faces.len(), 2);
+        assert_eq!(objs[19_999].faces.len(), 1);
+        assert!(t.elapsed().as_secs() < 20, "{:?}", t.elapsed());
     }
 
     #[test]
