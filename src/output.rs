@@ -141,6 +141,9 @@ pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> "),
         );
+        // Redrawn every 200 ms, so the time keeps counting while one long item (the
+        // convex decomposition of a large part) runs.
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
         bar
     });
     let b = bar.clone();
