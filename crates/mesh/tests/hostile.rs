@@ -173,6 +173,12 @@ fn gltf_buffers_stay_in_the_folder_of_the_file() {
         allow_outside: true,
     };
     assert_eq!(read_file_with(&up, &lifted).unwrap().len(), 1);
+    // A bare file name: its folder is shown as ".".
+    let cwd = std::env::current_dir().unwrap();
+    std::env::set_current_dir(d.join("model")).unwrap();
+    let e = error_within(Path::new("up.gltf"), ReadOptions::default());
+    std::env::set_current_dir(cwd).unwrap();
+    assert!(e.contains("lies outside the folder . (a"), "{e}");
     let abs = write("abs.gltf", "/etc/passwd");
     let e = error_within(&abs, ReadOptions::default());
     assert!(e.contains("it is an absolute path"), "{e}");

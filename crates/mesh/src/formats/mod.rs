@@ -237,12 +237,12 @@ pub fn read_file_with(path: &Path, options: &ReadOptions) -> Result<Vec<RawObjec
         path: path.to_path_buf(),
     })?;
     let bytes = read_regular(path)?;
-    read_bytes_with(
-        &bytes,
-        format,
-        Some(path.parent().unwrap_or(Path::new("."))),
-        options,
-    )
+    // The folder, named "." rather than "" for a bare file name (messages show it).
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    read_bytes_with(&bytes, format, Some(folder), options)
 }
 
 /// Reads every object of a mesh held in memory. `base_dir` is the folder of the file
