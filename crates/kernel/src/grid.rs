@@ -12,9 +12,12 @@ use std::fmt;
 pub const DEFAULT_BITS: u32 = 30;
 /// Smallest accepted number of grid bits.
 pub const MIN_BITS: u32 = 4;
-/// Largest accepted number of grid bits: inputs are at best `f64`, whose 53-bit
-/// significand is exactly representable with this many bits.
-pub const MAX_BITS: u32 = 53;
+/// Largest accepted number of grid bits. Below 2^52 an `f64` still has a spacing of at
+/// most 1/2, so a scaled coordinate keeps the fraction that snapping rounds, and the
+/// mesh crate's snapper rejects every scaled value of 2^52 or more. (With 53 bits the
+/// grid chosen for a non-integer input put the largest coordinate in [2^52, 2^53): every
+/// such input was rejected as outside the grid.)
+pub const MAX_BITS: u32 = 52;
 
 /// The integer grid an assembly is snapped to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
