@@ -1,6 +1,7 @@
 //! Why an assembly could not be loaded at all (problems with single parts are
 //! [`apart_mesh::Problem`]s instead, collected in [`crate::Loaded`]).
 
+use apart_mesh::escape::{escape, path as escaped};
 use apart_mesh::formats::ReadError;
 use std::path::PathBuf;
 
@@ -8,10 +9,10 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     /// The path does not exist.
-    #[error("{}: no such file or folder", .0.display())]
+    #[error("{}: no such file or folder", escaped(.0))]
     NotFound(PathBuf),
     /// A folder could not be listed.
-    #[error("cannot read folder {}: {cause}", path.display())]
+    #[error("cannot read folder {}: {cause}", escaped(path))]
     Folder {
         /// The folder.
         path: PathBuf,
@@ -27,15 +28,27 @@ pub enum LoadError {
         cause: ReadError,
     },
     /// The manifest is not valid.
-    #[error("{}: {detail}", path.display())]
+    #[error("{}: {}", escaped(path), escape(detail))]
     Manifest {
         /// The manifest file.
         path: PathBuf,
         /// What is wrong.
         detail: String,
     },
+    /// The path names something that is not a regular file or a folder (a named pipe, a
+    /// socket, a device): it is never opened.
+    #[error(
+        "{}: is {kind}, not a regular file or a folder; only regular files are read",
+        escaped(path)
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is: "a named pipe (FIFO)", "a socket", "a character device"...
+        kind: &'static str,
+    },
     /// Nothing to load.
-    #[error("{}: no parts found (expected mesh files .off .obj .stl .ply .gltf .glb, or assembly.json)", .0.display())]
+    #[error("{}: no parts found (expected mesh files .off .obj .stl .ply .gltf .glb, or assembly.json)", escaped(.0))]
     NoParts(PathBuf),
     /// No grid fits the coordinates.
     #[error("cannot choose the grid: {0}")]
@@ -46,6 +59,6 @@ fn read_message(path: &std::path::Path, cause: &ReadError) -> String {
     if cause.names_file() {
         cause.to_string()
     } else {
-        format!("{}: {cause}", path.display())
+        format!("{}: {cause}", crate::error::escaped(path))
     }
 }

@@ -4,7 +4,8 @@
 
 use crate::error::LoadError;
 use crate::manifest;
-use apart_mesh::formats::{read_file, Format};
+use apart_mesh::escape::path as escaped;
+use apart_mesh::formats::{read_file_with, Format, ReadOptions};
 use apart_mesh::transform::Affine;
 use apart_mesh::{Problem, RawObject};
 use std::collections::HashMap;
@@ -37,6 +38,9 @@ pub(crate) struct PartSpec {
 /// read (a multi-object file is read to learn its objects).
 pub(crate) struct Plan {
     pub name: String,
+    /// The assembly's folder, which every mesh file it names must resolve inside (unless
+    /// [`crate::LoadOptions::allow_outside`]); `None` for one mesh file named directly.
+    pub root: Option<PathBuf>,
     pub parts: Vec<PartSpec>,
     pub problems: Vec<Problem>,
     pub preloaded: HashMap<PathBuf, Vec<RawObject>>,
@@ -56,17 +60,134 @@ fn plain(path: PathBuf) -> SourceRef {
     }
 }
 
+/// What kind of file system entry `meta` describes, when it is not a regular file or a
+/// folder: `"a named pipe (FIFO)"`, `"a socket"`, `"a character device"`...
+pub(crate) fn special_kind(meta: &std::fs::Metadata) -> Option<&'static str> {
+    let t = meta.file_type();
+    if t.is_file() || t.is_dir() {
+        return None;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a named pipe (FIFO)");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+    }
+    Some("not a regular file")
+}
+
+/// Fails unless `path` (followed through symbolic links) is a regular file: a named
+/// pipe would block the reader forever and a device such as `/dev/zero` would be read
+/// until the memory runs out. Only the metadata is looked at; nothing is opened.
+pub(crate) fn regular_file(path: &Path) -> Result<(), String> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => Err("is a folder, not a mesh file".to_string()),
+        Ok(m) => match special_kind(&m) {
+            None => Ok(()),
+            Some(kind) => Err(format!(
+                "is {kind}, not a regular file; only regular files are read as meshes"
+            )),
+        },
+        // The reader reports missing files and permissions with the system's words.
+        Err(_) => Ok(()),
+    }
+}
+
+/// `path` made absolute with `.` and `..` resolved by their names alone (no symbolic
+/// link is followed): where a path that does not exist would lie.
+fn lexical(path: &Path) -> PathBuf {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut out = PathBuf::new();
+    for c in abs.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// The assembly folder, resolved once for [`inside`].
+pub(crate) struct Root {
+    /// As given, for messages.
+    given: PathBuf,
+    /// With every symbolic link resolved.
+    real: PathBuf,
+    /// Made absolute by name only.
+    named: PathBuf,
+}
+
+impl Root {
+    pub(crate) fn new(dir: &Path) -> Root {
+        Root {
+            given: dir.to_path_buf(),
+            real: dir.canonicalize().unwrap_or_else(|_| lexical(dir)),
+            named: lexical(dir),
+        }
+    }
+
+    /// Fails when `path` resolves outside the folder: an absolute path or one whose
+    /// `..` leave it, or a symbolic link (of the file or of a folder on the way) to a
+    /// place outside.
+    pub(crate) fn inside(&self, path: &Path) -> Result<(), String> {
+        let inside = match path.canonicalize() {
+            Ok(real) => real.starts_with(&self.real),
+            // Not there (the reader will say so), unless its name alone leaves the folder.
+            Err(_) => lexical(path).starts_with(&self.named),
+        };
+        if inside {
+            return Ok(());
+        }
+        let target = path
+            .canonicalize()
+            .map(|r| format!(" (it resolves to {})", escaped(&r)))
+            .unwrap_or_default();
+        let folder = match self.given.as_os_str().is_empty() {
+            true => Path::new("."),
+            false => self.given.as_path(),
+        };
+        Err(format!(
+            "lies outside the assembly folder {}{target}; mesh files must be inside it (--allow-outside lifts this)",
+            escaped(folder)
+        ))
+    }
+}
+
 /// Decides what `path` is and lists its parts.
-pub(crate) fn plan(path: &Path) -> Result<Plan, LoadError> {
+pub(crate) fn plan(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
     if !path.exists() {
         return Err(LoadError::NotFound(path.to_path_buf()));
     }
     if path.is_dir() {
         let m = path.join("assembly.json");
-        if m.is_file() {
-            return from_manifest(&m);
+        if let Ok(meta) = std::fs::metadata(&m) {
+            if let Some(kind) = special_kind(&meta) {
+                return Err(LoadError::NotAFile { path: m, kind });
+            }
+            if meta.is_file() {
+                return from_manifest(&m);
+            }
         }
         return from_folder(path);
+    }
+    if let Some(kind) = std::fs::metadata(path).ok().and_then(|m| special_kind(&m)) {
+        return Err(LoadError::NotAFile {
+            path: path.to_path_buf(),
+            kind,
+        });
     }
     let is_json = path
         .extension()
@@ -74,7 +195,7 @@ pub(crate) fn plan(path: &Path) -> Result<Plan, LoadError> {
     if is_json {
         return from_manifest(path);
     }
-    from_file(path)
+    from_file(path, read)
 }
 
 fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
@@ -113,6 +234,7 @@ fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
         .collect();
     Ok(Plan {
         name,
+        root: Some(dir.to_path_buf()),
         parts,
         problems: Vec::new(),
         preloaded: HashMap::new(),
@@ -138,13 +260,21 @@ fn list(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
     Ok(out)
 }
 
+/// The mesh files of a piece folder: every entry with a mesh extension that is not a
+/// folder. Entries that are not regular files (named pipes, sockets, devices) stay in
+/// the list, so that reading reports them by name rather than skipping them silently;
+/// nothing is opened here.
 fn mesh_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
     Ok(list(dir)?
         .into_iter()
-        .filter(|p| p.is_file() && Format::from_path(p).is_some())
+        .filter(|p| !p.is_dir() && Format::from_path(p).is_some())
         .collect())
 }
 
+/// A folder: one part per mesh file, named by its stem. Only metadata is looked at
+/// here; an entry with a mesh extension that is not a regular file (a named pipe, a
+/// socket, a link to a device) becomes a part whose reading fails with an error naming
+/// it, and entries without a mesh extension are ignored whatever they are.
 fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
     let mut files: HashMap<String, Vec<PathBuf>> = HashMap::new();
     let mut folders: HashMap<String, PathBuf> = HashMap::new();
@@ -167,7 +297,7 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
     for name in names {
         let mesh = files.get(&name).map(|fs| {
             if fs.len() > 1 {
-                let list: Vec<String> = fs.iter().map(|f| f.display().to_string()).collect();
+                let list: Vec<String> = fs.iter().map(|f| escaped(f)).collect();
                 problems.push(
                     Problem::error(format!(
                         "several files for one part: {}; using the first",
@@ -204,14 +334,15 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
         .unwrap_or_else(|| stem(dir));
     Ok(Plan {
         name,
+        root: Some(dir.to_path_buf()),
         parts,
         problems,
         preloaded: HashMap::new(),
     })
 }
 
-fn from_file(path: &Path) -> Result<Plan, LoadError> {
-    let objects = read_file(path).map_err(|cause| LoadError::Read {
+fn from_file(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
+    let objects = read_file_with(path, read).map_err(|cause| LoadError::Read {
         path: path.to_path_buf(),
         cause,
     })?;
@@ -221,19 +352,14 @@ fn from_file(path: &Path) -> Result<Plan, LoadError> {
     let base = stem(path);
     let mut parts: Vec<PartSpec> = Vec::new();
     let single = objects.len() == 1;
+    let mut names = Names::default();
     for (k, o) in objects.iter().enumerate() {
-        let mut name = match &o.name {
+        let name = match &o.name {
             Some(n) if !n.trim().is_empty() => n.trim().to_string(),
             _ if single => base.clone(),
             _ => format!("{base}-{k}"),
         };
-        if parts.iter().any(|p| p.name == name) {
-            let mut i = 2;
-            while parts.iter().any(|p| p.name == format!("{name}-{i}")) {
-                i += 1;
-            }
-            name = format!("{name}-{i}");
-        }
+        let name = names.unique(name).unwrap_or_else(|(_, new)| new);
         parts.push(PartSpec {
             name,
             source: path.to_path_buf(),
@@ -250,8 +376,37 @@ fn from_file(path: &Path) -> Result<Plan, LoadError> {
     preloaded.insert(path.to_path_buf(), objects);
     Ok(Plan {
         name: base,
+        root: None,
         parts,
         problems: Vec::new(),
         preloaded,
     })
+}
+
+/// Unique names in linear time: a name already taken becomes `name-k` with the smallest
+/// `k >= 2` not taken. Each name remembers the next `k` to try, which stays correct
+/// because names are never released, so `n` equal names cost `O(n)` rather than the
+/// `O(n^2)` probes (each an `O(n)` search) of restarting from 2.
+#[derive(Default)]
+pub(crate) struct Names {
+    taken: std::collections::HashSet<String>,
+    next: HashMap<String, u64>,
+}
+
+impl Names {
+    /// `Ok(name)` when it was free, `Err((name, new))` with the new name otherwise; either
+    /// way the returned name is taken from now on.
+    pub(crate) fn unique(&mut self, name: String) -> Result<String, (String, String)> {
+        if self.taken.insert(name.clone()) {
+            return Ok(name);
+        }
+        let k = self.next.entry(name.clone()).or_insert(2);
+        loop {
+            let candidate = format!("{name}-{k}");
+            *k += 1;
+            if self.taken.insert(candidate.clone()) {
+                return Err((name, candidate));
+            }
+        }
+    }
 }

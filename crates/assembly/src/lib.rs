@@ -9,8 +9,16 @@
 //! - one mesh file: each object (OBJ `o`/`g` group, glTF mesh node) is a part;
 //! - an `assembly.json` manifest, or a folder containing one (see [`manifest`]).
 //!
+//! Only regular files are read: a folder entry with a mesh extension, or a path a
+//! manifest names, that is a named pipe, a socket or a device is an error naming the
+//! file and the part, and is never opened. Every mesh file of a folder or manifest must
+//! resolve inside the assembly's folder (`..`, absolute paths and symbolic links
+//! followed), unless [`LoadOptions::allow_outside`].
+//!
 //! The grid is chosen once from every coordinate of every part and piece (after
-//! transforms). Loading collects every problem rather than stopping at the first: the
+//! transforms); a part the grid collapses says which part's coordinates set the step,
+//! and two parts whose relation (apart, touching, overlapping) snapping changed get a
+//! warning naming both, the distance or depth, and the grid bits that keep it. Loading collects every problem rather than stopping at the first: the
 //! validity of each part as a solid, of each declared piece (closed, convex), of the
 //! pieces of a part (disjoint interiors, volumes adding up to the part's), and of the
 //! parts together (disjoint interiors, each overlap with a witness point strictly

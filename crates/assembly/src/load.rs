@@ -3,14 +3,16 @@
 //! check the parts against each other.
 
 use crate::error::LoadError;
-use crate::inputs::{self, PartSpec, SourceRef};
+use crate::inputs::{self, Names, PartSpec, Root, SourceRef};
 use crate::model::Repairs;
 use crate::model::{Assembly, Loaded, Part};
 use crate::options::{Decompose, LoadOptions, Stage, Tracker};
 use crate::tolerance::{self, Tolerance};
 use crate::{overlap, pieces};
+use apart_kernel::grid::{GridError, MAX_BITS, MIN_BITS};
 use apart_kernel::{Grid, Int, Rational};
-use apart_mesh::formats::{read_file, ReadError};
+use apart_mesh::escape::escape;
+use apart_mesh::formats::{read_file_with, ReadOptions};
 use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::{validate, MeshInfo};
 use apart_mesh::{Aabb, Mesh, Problem, RawObject};
@@ -23,10 +25,17 @@ use std::path::{Path, PathBuf};
 /// Fails only when nothing can be loaded; every problem with parts, pieces or their
 /// relations is collected in [`Loaded::problems`].
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    let plan = inputs::plan(path)?;
+    // Before reading anything: the bits the snapper can honour (see `apart_kernel::grid`).
+    if !(MIN_BITS..=MAX_BITS).contains(&opts.grid_bits) {
+        return Err(GridError::BitsOutOfRange(opts.grid_bits).into());
+    }
+    // glTF buffers outside the file's folder follow the same rule as mesh files.
+    let read_opts = ReadOptions::default().allow_outside(opts.allow_outside);
+    let plan = inputs::plan(path, &read_opts)?;
     let mut problems = plan.problems.clone();
 
-    // Read every file once.
+    // Read every file once; a file outside the assembly's folder or that is not a
+    // regular file is never opened.
     let mut files: Vec<&Path> = plan
         .parts
         .iter()
@@ -36,11 +45,19 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         .collect();
     files.sort();
     files.dedup();
+    let root = match opts.allow_outside {
+        false => plan.root.as_deref().map(Root::new),
+        true => None,
+    };
     let tracker = Tracker::start(opts, Stage::Reading, files.len());
-    let mut read: HashMap<PathBuf, Result<Vec<RawObject>, ReadError>> = files
+    let mut read: HashMap<PathBuf, Result<Vec<RawObject>, String>> = files
         .par_iter()
         .map(|p| {
-            let r = read_file(p);
+            let r = root
+                .as_ref()
+                .map_or(Ok(()), |root| root.inside(p))
+                .and_then(|()| inputs::regular_file(p))
+                .and_then(|()| read_file_with(p, &read_opts).map_err(|e| e.to_string()));
             tracker.tick();
             (p.to_path_buf(), r)
         })
@@ -97,17 +114,10 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     drop(read);
 
     // One grid for everything. `Grid::choose` depends only on the largest magnitude and
-    // on whether some value is not an integer, so both are found in parallel and the
-    // grid is chosen from that value and one non-integer witness.
-    let solids: Vec<&RawObject> = raw
-        .iter()
-        .flat_map(|r| {
-            r.mesh
-                .iter()
-                .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
-        })
-        .collect();
-    let scan = |o: &&RawObject| {
+    // on whether some value is not an integer, so both are found in parallel (per part,
+    // to name the part that sets the step) and the grid is chosen from that value and
+    // one non-integer witness.
+    let scan = |o: &RawObject| {
         o.vertices
             .par_iter()
             .with_min_len(8192)
@@ -123,11 +133,35 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
             )
             .reduce(|| (0f64, None), |(m, f), (n, g)| (m.max(n), f.or(g)))
     };
-    let (max_abs, non_integer) = solids
+    let per_part: Vec<(f64, Option<f64>)> = raw
         .iter()
-        .map(scan)
-        .fold((0f64, None), |(m, f), (n, g)| (m.max(n), f.or(g)));
+        .map(|r| {
+            r.mesh
+                .iter()
+                .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
+                .map(scan)
+                .fold((0f64, None), |(m, f), (n, g)| (m.max(n), f.or(g)))
+        })
+        .collect();
+    let (max_abs, non_integer) = per_part
+        .iter()
+        .fold((0f64, None), |(m, f), &(n, g)| (m.max(n), f.or(g)));
     let grid = Grid::choose(std::iter::once(max_abs).chain(non_integer), opts.grid_bits)?;
+    let largest = per_part
+        .iter()
+        .position(|&(m, _)| m == max_abs)
+        .map(|k| Largest {
+            part: raw[k].spec.name.clone(),
+            magnitude: max_abs,
+        });
+    let solids: Vec<&RawObject> = raw
+        .iter()
+        .flat_map(|r| {
+            r.mesh
+                .iter()
+                .chain(r.pieces.iter().filter_map(|p| p.1.as_ref()))
+        })
+        .collect();
     let max_snap_displacement = solids
         .iter()
         .map(|o| {
@@ -143,30 +177,43 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
                 .reduce(|| 0.0, f64::max)
         })
         .fold(0.0, f64::max);
+    drop(solids);
+    let ctx = Ctx {
+        grid: &grid,
+        opts,
+        largest: largest.as_ref(),
+    };
 
     // Parts, in parallel.
     let tracker = Tracker::start(opts, Stage::Validating, raw.len());
     let built: Vec<Built> = raw
         .into_par_iter()
         .map(|r| {
-            let out = build_parts(r, &grid, opts);
+            let out = build_parts(r, &ctx);
             tracker.tick();
             out
         })
         .collect();
     let mut parts = Vec::with_capacity(built.len());
+    let mut raw_points = Vec::with_capacity(built.len());
     let mut repairs = Vec::new();
-    for b in built {
+    // Part names are made unique (files split into bodies may collide with other names)
+    // before the problems are gathered, so that a renamed part's problems name it.
+    let mut names = Names::default();
+    for mut b in built {
+        for (part, probs, _) in &mut b.parts {
+            unique_name(&mut names, part, probs);
+        }
         if let Some(mut record) = b.repairs {
-            record.parts = b.parts.iter().map(|(p, _)| p.name.clone()).collect();
+            record.parts = b.parts.iter().map(|(p, _, _)| p.name.clone()).collect();
             repairs.push(record);
         }
-        for (part, probs) in b.parts {
+        for (part, probs, points) in b.parts {
             parts.push(part);
+            raw_points.push(points);
             problems.extend(probs);
         }
     }
-    problems.extend(unique_names(&mut parts));
     // A tolerance shrinks convex pieces, so every part needs its pieces.
     let decompose = match opts.decompose {
         _ if opts.tolerance != Tolerance::None => true,
@@ -177,6 +224,10 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     if decompose {
         problems.extend(decompose_parts(&mut parts, opts));
     }
+    // Relations between parts that snapping changed (needs the pieces, for the exact
+    // overlap test of the few pairs it asks about).
+    problems.extend(snapping::changed_relations(&parts, &raw_points, &grid));
+    drop(raw_points);
     let mut assembly = Assembly {
         name: plan.name,
         grid,
@@ -259,10 +310,10 @@ struct RawPart<'a> {
 /// out of the file's list rather than copying it.
 fn resolve(
     s: &SourceRef,
-    objects: Result<&mut Vec<RawObject>, &ReadError>,
+    objects: Result<&mut Vec<RawObject>, &String>,
     last: bool,
 ) -> Result<RawObject, Problem> {
-    let objects = objects.map_err(|e| Problem::error(e.to_string()))?;
+    let objects = objects.map_err(|e| Problem::error(e.clone()))?;
     let take = |o: &mut RawObject| if last { std::mem::take(o) } else { o.clone() };
     let mut o = match s.object {
         Some(k) => take(
@@ -310,13 +361,32 @@ pub(crate) fn polytope_bbox(p: &Polytope) -> Aabb {
 /// The parts one specification gave (several when its mesh holds separate solids), and
 /// what repair did to its mesh.
 struct Built {
-    parts: Vec<(Part, Vec<Problem>)>,
+    /// Each part, its problems, and for a part with a usable mesh the input coordinates
+    /// (before snapping) of each of its vertices.
+    parts: Vec<BuiltPart>,
     repairs: Option<Repairs>,
+}
+
+/// A part, its problems, and the input coordinates of its mesh's vertices.
+type BuiltPart = (Part, Vec<Problem>, Option<Vec<[f64; 3]>>);
+
+/// The part whose coordinates reach the largest magnitude, which sets the grid step.
+struct Largest {
+    part: String,
+    magnitude: f64,
+}
+
+/// What building every part shares.
+struct Ctx<'a> {
+    grid: &'a Grid,
+    opts: &'a LoadOptions,
+    largest: Option<&'a Largest>,
 }
 
 /// Snaps the mesh of a specification, repairs it (unless strict), splits it into its
 /// separate solids when allowed, and builds one part per solid.
-fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
+fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
+    let (grid, opts) = (ctx.grid, ctx.opts);
     let spec = r.spec;
     let (Some(raw), Some(src)) = (&r.mesh, &spec.mesh) else {
         return Built {
@@ -325,8 +395,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
                 spec.name.clone(),
                 None,
                 r.problems.clone(),
-                grid,
-                opts.repair,
+                ctx,
             )],
             repairs: None,
         };
@@ -340,14 +409,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
     );
     let Some(mut mesh) = mesh else {
         return Built {
-            parts: vec![build_part(
-                &r,
-                spec.name.clone(),
-                None,
-                problems,
-                grid,
-                opts.repair,
-            )],
+            parts: vec![build_part(&r, spec.name.clone(), None, problems, ctx)],
             repairs: None,
         };
     };
@@ -376,14 +438,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
     if solids.len() <= 1 {
         let m = solids.into_iter().next();
         return Built {
-            parts: vec![build_part(
-                &r,
-                spec.name.clone(),
-                m,
-                problems,
-                grid,
-                opts.repair,
-            )],
+            parts: vec![build_part(&r, spec.name.clone(), m, problems, ctx)],
             repairs,
         };
     }
@@ -408,7 +463,7 @@ fn build_parts(r: RawPart, grid: &Grid, opts: &LoadOptions) -> Built {
             } else {
                 Vec::new()
             };
-            build_part(&r, name, Some(m), probs, grid, opts.repair)
+            build_part(&r, name, Some(m), probs, ctx)
         })
         .collect();
     Built { parts, repairs }
@@ -490,28 +545,27 @@ fn merged(mut m: Mesh, other: &Mesh) -> Mesh {
     m
 }
 
-/// Makes part names unique (files split into bodies may collide with other names),
-/// in one pass over a set of the names in use.
-fn unique_names(parts: &mut [Part]) -> Vec<Problem> {
-    let mut used: std::collections::HashSet<String> = std::collections::HashSet::new();
-    let mut problems = Vec::new();
-    for p in parts.iter_mut() {
-        if used.insert(p.name.clone()) {
-            continue;
+/// Gives `part` a name no earlier part has (`name-2`, `name-3`...), renaming its own
+/// problems with it so that none names the other part, and notes the renaming.
+fn unique_name(names: &mut Names, part: &mut Part, problems: &mut Vec<Problem>) {
+    let Err((old, new)) = names.unique(part.name.clone()) else {
+        return;
+    };
+    for p in problems.iter_mut() {
+        if p.part.as_deref() == Some(old.as_str()) {
+            p.part = Some(new.clone());
         }
-        let mut k = 2;
-        while used.contains(&format!("{}-{k}", p.name)) {
-            k += 1;
-        }
-        let name = format!("{}-{k}", p.name);
-        problems.push(
-            Problem::note(format!("renamed to \"{name}\": the name was taken"))
-                .in_part(p.name.clone()),
-        );
-        p.name = name.clone();
-        used.insert(name);
     }
-    problems
+    problems.push(
+        Problem::note(format!(
+            "renamed from \"{}\" to \"{}\": another part has that name",
+            escape(&old),
+            escape(&new)
+        ))
+        .in_file(&part.source)
+        .in_part(new.clone()),
+    );
+    part.name = new;
 }
 
 /// True for validation's reports of faces that cross.
@@ -545,10 +599,11 @@ fn build_part(
     name: String,
     mesh: Option<Mesh>,
     mut problems: Vec<Problem>,
-    grid: &Grid,
-    repair: bool,
-) -> (Part, Vec<Problem>) {
+    ctx: &Ctx,
+) -> BuiltPart {
+    let (grid, repair) = (ctx.grid, ctx.opts.repair);
     let spec = r.spec;
+    let mut raw_points = None;
     let name = &name;
     let mut part = Part {
         name: name.clone(),
@@ -581,6 +636,21 @@ fn build_part(
             }
         }
         mesh_ok = info.volume6.is_some() && !probs.iter().any(Problem::is_error);
+        if let Some(raw) = &r.mesh {
+            explain_collapse(&mut probs, raw, &spec.name, ctx);
+            if info.closed && info.volume6.is_some() && info.self_intersections == 0 {
+                raw_points = Some(
+                    mesh.source_vertices
+                        .iter()
+                        .zip(&mesh.vertices)
+                        .map(|(&s, v)| match raw.vertices.get(s as usize) {
+                            Some(p) => *p,
+                            None => v.map(|c| grid.to_units(c)),
+                        })
+                        .collect(),
+                );
+            }
+        }
         problems.extend(
             probs
                 .into_iter()
@@ -607,7 +677,8 @@ fn build_part(
                 part.pieces.push(p);
                 part.piece_sources.push(path.clone());
             }
-            Err(probs) => {
+            Err(mut probs) => {
+                explain_collapse(&mut probs, raw, &spec.name, ctx);
                 pieces_ok = false;
                 problems.extend(probs.into_iter().map(|p| p.in_file(path).in_part(name)));
             }
@@ -659,5 +730,716 @@ fn build_part(
     if spec.mesh.is_none() && spec.pieces.is_empty() {
         problems.push(Problem::error("the part has neither a mesh nor pieces").in_part(name));
     }
-    (part, problems)
+    (part, problems, raw_points)
+}
+
+/// True when some face of `raw` has a non-zero area before snapping (its Newell normal
+/// is not zero).
+fn has_area(raw: &RawObject) -> bool {
+    raw.faces.iter().any(|f| {
+        let mut n = [0f64; 3];
+        for (k, &i) in f.iter().enumerate() {
+            let j = f[(k + 1) % f.len()];
+            let (Some(a), Some(b)) = (raw.vertices.get(i as usize), raw.vertices.get(j as usize))
+            else {
+                return false;
+            };
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        }
+        n.iter().any(|c| *c != 0.0 && c.is_finite())
+    })
+}
+
+/// Says why a mesh with faces of non-zero area is empty after snapping: the grid step,
+/// the part's size, and the part whose coordinates set the step (validation alone only
+/// knows that no face is left).
+fn explain_collapse(problems: &mut [Problem], raw: &RawObject, part: &str, ctx: &Ctx) {
+    let Some(p) = problems
+        .iter_mut()
+        .find(|p| p.is_error() && p.element.is_none() && p.message.starts_with("empty mesh"))
+    else {
+        return;
+    };
+    if !has_area(raw) {
+        return;
+    }
+    let (lo, hi) = raw.vertices.iter().fold(
+        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+        |(lo, hi), v| {
+            (
+                [0, 1, 2].map(|k| lo[k].min(v[k])),
+                [0, 1, 2].map(|k| hi[k].max(v[k])),
+            )
+        },
+    );
+    let size = [0, 1, 2].map(|k| fmt_len(hi[k] - lo[k]));
+    let grid = ctx.grid;
+    let why = match ctx.largest {
+        Some(l) if l.part == part => format!("its own coordinates reach {}", fmt_len(l.magnitude)),
+        Some(l) => format!(
+            "part \"{}\" has coordinates reaching {}",
+            escape(&l.part),
+            fmt_len(l.magnitude)
+        ),
+        None => "the assembly's coordinates".to_string(),
+    };
+    p.message = format!(
+        "empty mesh after snapping: every face has zero area on the grid of step {} (2^{}), which is coarser than this part ({} x {} x {}); the step is that coarse because {why} and every coordinate must stay below 2^{} steps; a larger --grid-bits (at most {MAX_BITS}) makes the step finer",
+        fmt_len(grid.step()),
+        grid.exp,
+        size[0],
+        size[1],
+        size[2],
+        grid.bits,
+    );
+}
+
+/// A length in input units for messages: 4 significant digits.
+fn fmt_len(v: f64) -> String {
+    // Rounded to 4 significant digits first, so that 0.000999999 prints as 0.001.
+    let v: f64 = format!("{v:.3e}").parse().unwrap_or(v);
+    if v == 0.0 || !v.is_finite() {
+        return v.abs().to_string();
+    }
+    let a = v.abs();
+    if (1e-3..1e6).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{v:.digits$}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        return s;
+    }
+    format!("{v:.3e}")
+}
+
+/// Relations between parts that snapping changed: two parts apart before snapping that
+/// touch (or overlap) after, two that overlapped by less than a grid step and only touch
+/// (or are apart) after, two that touched and are apart after. Each is a warning naming
+/// both parts, the distance or depth before snapping, a point near it, and the grid
+/// bits that would keep the relation.
+///
+/// Cheap by construction: only pairs of triangles of different parts whose snapped boxes
+/// come within [`REACH`] grid steps of each other are looked at. Snapping rounds each
+/// coordinate on its own and is monotone, so two input triangles whose boxes meet keep
+/// meeting boxes, and snapped triangles that meet have meeting boxes: every pair whose
+/// relation can change is among those.
+///
+/// The relation after snapping is exact: snapped triangles meet by the mesh crate's exact
+/// test, and interiors overlap by the loader's exact overlap test (asked only for the few
+/// pairs where it decides the warning). The relation before snapping is measured in
+/// `f64` on the input coordinates of the same triangles, which only decides whether to
+/// warn:
+///
+/// - *apart*: every pair of triangles is farther apart than the rounding noise of its
+///   coordinates (the distance reported is the smallest);
+/// - *overlapping*: some point of a triangle of one part lies behind a face of the other,
+///   strictly inside the prism over that face, less than two grid steps deep, with no
+///   other face of that part in between (so the point lies inside it); the depth
+///   reported is the deepest such;
+/// - *touching* otherwise.
+// Float measures here are written so that a NaN (from a degenerate triangle) fails
+// every test: `!(x > 0.0)` is meant, not `x <= 0.0`.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+mod snapping {
+    use super::fmt_len;
+    use crate::model::Part;
+    use crate::overlap;
+    use apart_kernel::grid::MAX_BITS;
+    use apart_kernel::Grid;
+    use apart_mesh::bvh::Bvh;
+    use apart_mesh::escape::escape;
+    use apart_mesh::intersect::triangles_meet;
+    use apart_mesh::{Aabb, Mesh, Problem};
+    use rayon::prelude::*;
+
+    type F3 = [f64; 3];
+    type Tri = [F3; 3];
+
+    /// Grid steps by which triangle boxes are grown when looking for pairs: snapping
+    /// moves a point by at most `sqrt(3)/2` steps, two points by at most `sqrt(3)`
+    /// steps relative to each other.
+    pub(crate) const REACH: i64 = 2;
+
+    /// Rounding noise of a float measure, relative to the magnitude of the (local)
+    /// coordinates it is computed from.
+    const NOISE: f64 = 64.0 * f64::EPSILON;
+
+    fn sub(a: F3, b: F3) -> F3 {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+    fn add(a: F3, b: F3) -> F3 {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+    fn mul(a: F3, s: f64) -> F3 {
+        [a[0] * s, a[1] * s, a[2] * s]
+    }
+    fn dot(a: F3, b: F3) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+    fn cross(a: F3, b: F3) -> F3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    fn len(a: F3) -> f64 {
+        dot(a, a).sqrt()
+    }
+    fn lerp(a: F3, b: F3, t: f64) -> F3 {
+        add(a, mul(sub(b, a), t))
+    }
+    fn max_abs<'a>(points: impl IntoIterator<Item = &'a F3>) -> f64 {
+        points
+            .into_iter()
+            .flat_map(|p| p.iter())
+            .fold(0.0, |m: f64, c| m.max(c.abs()))
+    }
+
+    /// The point of triangle `t` nearest to `p` (Ericson, Real-Time Collision Detection,
+    /// 5.1.5).
+    fn closest_on_triangle(p: F3, t: &Tri) -> F3 {
+        let [a, b, c] = *t;
+        let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+        let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+        if d1 <= 0.0 && d2 <= 0.0 {
+            return a;
+        }
+        let bp = sub(p, b);
+        let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+        if d3 >= 0.0 && d4 <= d3 {
+            return b;
+        }
+        let vc = d1 * d4 - d3 * d2;
+        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+            return add(a, mul(ab, d1 / (d1 - d3)));
+        }
+        let cp = sub(p, c);
+        let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+        if d6 >= 0.0 && d5 <= d6 {
+            return c;
+        }
+        let vb = d5 * d2 - d1 * d6;
+        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+            return add(a, mul(ac, d2 / (d2 - d6)));
+        }
+        let va = d3 * d6 - d5 * d4;
+        if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+            return add(b, mul(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+        }
+        let denom = 1.0 / (va + vb + vc);
+        add(a, add(mul(ab, vb * denom), mul(ac, vc * denom)))
+    }
+
+    /// The nearest points of segments `p1 q1` and `p2 q2` (Ericson 5.1.9).
+    fn closest_on_segments(p1: F3, q1: F3, p2: F3, q2: F3) -> (F3, F3) {
+        let (d1, d2, r) = (sub(q1, p1), sub(q2, p2), sub(p1, p2));
+        let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
+        let (s, t);
+        if a == 0.0 && e == 0.0 {
+            return (p1, p2);
+        }
+        if a == 0.0 {
+            s = 0.0;
+            t = (f / e).clamp(0.0, 1.0);
+        } else {
+            let c = dot(d1, r);
+            if e == 0.0 {
+                t = 0.0;
+                s = (-c / a).clamp(0.0, 1.0);
+            } else {
+                let b = dot(d1, d2);
+                let denom = a * e - b * b;
+                let s0 = match denom != 0.0 {
+                    true => ((b * f - c * e) / denom).clamp(0.0, 1.0),
+                    false => 0.0,
+                };
+                let t0 = (b * s0 + f) / e;
+                (s, t) = if t0 < 0.0 {
+                    ((-c / a).clamp(0.0, 1.0), 0.0)
+                } else if t0 > 1.0 {
+                    (((b - c) / a).clamp(0.0, 1.0), 1.0)
+                } else {
+                    (s0, t0)
+                };
+            }
+        }
+        (add(p1, mul(d1, s)), add(p2, mul(d2, t)))
+    }
+
+    /// Where segment `p q` crosses triangle `t` (not in its plane), if it does.
+    fn segment_crosses(p: F3, q: F3, t: &Tri) -> Option<F3> {
+        let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+        let (dp, dq) = (dot(n, sub(p, t[0])), dot(n, sub(q, t[0])));
+        if (dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || dp == dq {
+            return None;
+        }
+        let x = lerp(p, q, dp / (dp - dq));
+        let inside = (0..3).all(|i| {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            dot(n, cross(sub(b, a), sub(x, a))) >= 0.0
+        });
+        inside.then_some(x)
+    }
+
+    /// The distance between segment `p q` and triangle `t`.
+    fn segment_distance(p: F3, q: F3, t: &Tri) -> f64 {
+        if segment_crosses(p, q, t).is_some() {
+            return 0.0;
+        }
+        let mut best = len(sub(p, closest_on_triangle(p, t)));
+        best = best.min(len(sub(q, closest_on_triangle(q, t))));
+        for i in 0..3 {
+            let (x, y) = closest_on_segments(p, q, t[i], t[(i + 1) % 3]);
+            best = best.min(len(sub(x, y)));
+        }
+        best
+    }
+
+    /// The distance between two triangles, and the point halfway between their nearest
+    /// points. NaN measures of degenerate triangles are skipped.
+    fn distance(a: &Tri, b: &Tri) -> (f64, F3) {
+        for (s, t) in [(a, b), (b, a)] {
+            for i in 0..3 {
+                if let Some(x) = segment_crosses(s[i], s[(i + 1) % 3], t) {
+                    return (0.0, x);
+                }
+            }
+        }
+        let mut best = (f64::INFINITY, a[0]);
+        let mut consider = |x: F3, y: F3| {
+            let d = len(sub(x, y));
+            if d < best.0 {
+                best = (d, lerp(x, y, 0.5));
+            }
+        };
+        for (s, t) in [(a, b), (b, a)] {
+            for p in s {
+                consider(*p, closest_on_triangle(*p, t));
+            }
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                let (x, y) = closest_on_segments(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]);
+                consider(x, y);
+            }
+        }
+        best
+    }
+
+    /// The part of convex polygon `poly` on the side `dot(w, x - a) >= 0`.
+    fn clip(poly: &[F3], a: F3, w: F3) -> Vec<F3> {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for (i, &p) in poly.iter().enumerate() {
+            let q = poly[(i + 1) % poly.len()];
+            let (dp, dq) = (dot(w, sub(p, a)), dot(w, sub(q, a)));
+            if dp >= 0.0 {
+                out.push(p);
+            }
+            if (dp >= 0.0) != (dq >= 0.0) {
+                out.push(lerp(p, q, dp / (dp - dq)));
+            }
+        }
+        out
+    }
+
+    /// A point of triangle `t` (of one part) inside the other part just behind its face
+    /// `f = faces[k]` (outward, counter-clockwise), less than `cap` deep: the deepest
+    /// depth of `t` behind `f` within the prism over `f`, and the point. The other
+    /// `faces` are those of the other part near `t`: none may lie between the point and
+    /// `f`.
+    /// Coordinates are relative to a nearby origin; only depths above `floor` count.
+    fn witness(t: &Tri, faces: &[(Tri, F3)], k: usize, cap: f64, floor: f64) -> Option<(f64, F3)> {
+        let (f, n) = (&faces[k].0, faces[k].1);
+        if n == [0.0; 3] {
+            return None;
+        }
+        let noise = NOISE * max_abs(t.iter().chain(f));
+        let z = |x: F3| dot(n, sub(x, f[0]));
+        // The part of `t` over `f` lies between the heights of `t`'s corners.
+        let zt = t.map(z);
+        let (lo, hi) = (zt[0].min(zt[1]).min(zt[2]), zt[0].max(zt[1]).max(zt[2]));
+        if !(lo < -noise) || hi < -cap || -lo <= floor {
+            return None;
+        }
+        let mut walls = [(f[0], n); 3];
+        let mut poly: Vec<F3> = t.to_vec();
+        for i in 0..3 {
+            let (a, b) = (f[i], f[(i + 1) % 3]);
+            let w = cross(n, sub(b, a));
+            let lw = len(w);
+            if !(lw > 0.0) {
+                return None;
+            }
+            walls[i] = (a, mul(w, 1.0 / lw));
+            poly = clip(&poly, a, walls[i].1);
+            if poly.is_empty() {
+                return None;
+            }
+        }
+        let (vmin, zmin) =
+            poly.iter()
+                .map(|&v| (v, z(v)))
+                .fold(
+                    (poly[0], f64::INFINITY),
+                    |a, b| if b.1 < a.1 { b } else { a },
+                );
+        if !(zmin < -noise) || -zmin > cap || -zmin <= floor {
+            return None;
+        }
+        let c = mul(
+            poly.iter().fold([0.0; 3], |s, &v| add(s, v)),
+            1.0 / poly.len() as f64,
+        );
+        let margin = |x: F3| {
+            walls
+                .iter()
+                .map(|(a, w)| dot(*w, sub(x, *a)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mc = margin(c);
+        if !(mc > noise) {
+            return None;
+        }
+        // A point strictly inside the prism and strictly behind the face: the centroid,
+        // or a point between the deepest vertex and the centroid.
+        let zc = z(c);
+        let x = if zc < -noise {
+            c
+        } else {
+            let l = 0.5 * (-noise - zmin) / (zc - zmin);
+            if !(l * mc > noise) {
+                return None;
+            }
+            lerp(vmin, c, l)
+        };
+        let foot = sub(x, mul(n, z(x)));
+        let between = faces
+            .iter()
+            .enumerate()
+            .any(|(j, o)| j != k && segment_distance(x, foot, &o.0) <= noise);
+        if between {
+            return None;
+        }
+        Some((-zmin, x))
+    }
+
+    /// What the pairs of triangles of two parts say.
+    #[derive(Clone, Copy)]
+    struct Acc {
+        /// Some snapped triangles meet (exact).
+        meet: bool,
+        /// Some input triangles are within rounding noise of each other.
+        touch: bool,
+        /// The smallest distance between input triangles, and where.
+        gap: (f64, F3),
+        /// The deepest overlap of the input parts found (0: none), and where.
+        depth: (f64, F3),
+    }
+
+    impl Acc {
+        fn new() -> Acc {
+            Acc {
+                meet: false,
+                touch: false,
+                gap: (f64::INFINITY, [0.0; 3]),
+                depth: (0.0, [0.0; 3]),
+            }
+        }
+
+        fn merge(self, o: Acc) -> Acc {
+            Acc {
+                meet: self.meet || o.meet,
+                touch: self.touch || o.touch,
+                gap: if o.gap.0 < self.gap.0 {
+                    o.gap
+                } else {
+                    self.gap
+                },
+                depth: if o.depth.0 > self.depth.0 {
+                    o.depth
+                } else {
+                    self.depth
+                },
+            }
+        }
+    }
+
+    fn grow(b: Aabb, r: i64) -> Aabb {
+        Aabb {
+            min: b.min.map(|c| c.saturating_sub(r)),
+            max: b.max.map(|c| c.saturating_add(r)),
+        }
+    }
+
+    fn tri_box(m: &Mesh, t: u32) -> Aabb {
+        let [a, b, c] = m.corners(t as usize);
+        Aabb::of([a, b, c])
+    }
+
+    /// Input coordinates of triangle `t`, relative to `origin`.
+    fn input_tri(m: &Mesh, raw: &[F3], t: u32, origin: F3) -> Tri {
+        m.triangles[t as usize].map(|v| sub(raw[v as usize], origin))
+    }
+
+    /// One side of a part pair: a part's mesh, input coordinates, and the unit normals
+    /// of its input triangles near the other part (zero elsewhere, and for degenerate
+    /// ones).
+    #[derive(Clone, Copy)]
+    struct Side<'a> {
+        mesh: &'a Mesh,
+        raw: &'a [F3],
+        normals: &'a [F3],
+    }
+
+    /// Unit normals of the input triangles `near` of `m` (indexed by triangle).
+    fn unit_normals(m: &Mesh, raw: &[F3], near: &[u32]) -> Vec<F3> {
+        let mut out = vec![[0.0; 3]; m.triangles.len()];
+        for &t in near {
+            let [a, b, c] = m.triangles[t as usize].map(|v| raw[v as usize]);
+            let n = cross(sub(b, a), sub(c, a));
+            let l = len(n);
+            if l > 0.0 && l.is_finite() {
+                out[t as usize] = mul(n, 1.0 / l);
+            }
+        }
+        out
+    }
+
+    /// Witnesses of triangle `t` of `s` inside the part of `o`, behind its triangles
+    /// `near`.
+    fn witnesses(acc: &mut Acc, s: Side, t: u32, o: Side, near: &[u32], cap: f64) {
+        let origin = s.raw[s.mesh.triangles[t as usize][0] as usize];
+        let tt = input_tri(s.mesh, s.raw, t, origin);
+        let faces: Vec<(Tri, F3)> = near
+            .iter()
+            .map(|&u| (input_tri(o.mesh, o.raw, u, origin), o.normals[u as usize]))
+            .collect();
+        for k in 0..faces.len() {
+            if let Some((d, x)) = witness(&tt, &faces, k, cap, acc.depth.0) {
+                acc.depth = (d, add(x, origin));
+            }
+        }
+    }
+
+    /// For each triangle `t` of `ts` (of mesh `m`), the triangles of `os` (of mesh `o`)
+    /// whose boxes come within [`REACH`] steps of its box, when there are some.
+    fn near_lists(m: &Mesh, ts: &[u32], o: &Mesh, os: &[u32]) -> Vec<(u32, Vec<u32>)> {
+        let bvh = Bvh::new(os.iter().map(|&u| grow(tri_box(o, u), REACH)).collect());
+        ts.par_iter()
+            .map(|&t| {
+                let mut c = Vec::new();
+                bvh.query(&tri_box(m, t), |k| c.push(os[k as usize]));
+                (t, c)
+            })
+            .filter(|(_, c)| !c.is_empty())
+            .collect()
+    }
+
+    /// Compares parts `a` and `b` (with input coordinates `ra`, `rb` of their vertices)
+    /// pair of near triangles by pair of near triangles.
+    fn compare(a: &Part, ra: &[F3], b: &Part, rb: &[F3], grid: &Grid) -> Option<Acc> {
+        let (ma, mb) = (a.mesh.as_ref()?, b.mesh.as_ref()?);
+        let (ga, gb) = (grow(a.bbox?, REACH), grow(b.bbox?, REACH));
+        let region = Aabb {
+            min: [0, 1, 2].map(|k| ga.min[k].max(gb.min[k])),
+            max: [0, 1, 2].map(|k| ga.max[k].min(gb.max[k])),
+        };
+        if region.is_empty() {
+            return None;
+        }
+        let near = |m: &Mesh| -> Vec<u32> {
+            (0..m.triangles.len() as u32)
+                .filter(|&t| tri_box(m, t).overlaps(&region))
+                .collect()
+        };
+        let (na, nb) = (near(ma), near(mb));
+        if na.is_empty() || nb.is_empty() {
+            return None;
+        }
+        let lists = near_lists(ma, &na, mb, &nb);
+        if lists.is_empty() {
+            return None;
+        }
+        let (qa, qb) = (unit_normals(ma, ra, &na), unit_normals(mb, rb, &nb));
+        let sa = Side {
+            mesh: ma,
+            raw: ra,
+            normals: &qa,
+        };
+        let sb = Side {
+            mesh: mb,
+            raw: rb,
+            normals: &qb,
+        };
+        let cap = 2.0 * grid.step();
+        let from_a = lists
+            .par_iter()
+            .fold(Acc::new, |mut acc, (t, near)| {
+                let ta = ma.corners(*t as usize);
+                let boxed = tri_box(ma, *t);
+                let origin = ra[ma.triangles[*t as usize][0] as usize];
+                let fa = input_tri(ma, ra, *t, origin);
+                for &u in near {
+                    if !acc.meet && boxed.overlaps(&tri_box(mb, u)) {
+                        acc.meet = triangles_meet(ta, mb.corners(u as usize)).is_some();
+                    }
+                    if !acc.touch {
+                        let fb = input_tri(mb, rb, u, origin);
+                        let (d, x) = distance(&fa, &fb);
+                        if d <= NOISE * max_abs(fa.iter().chain(&fb)) {
+                            acc.touch = true;
+                        } else if d < acc.gap.0 {
+                            acc.gap = (d, add(x, origin));
+                        }
+                    }
+                }
+                witnesses(&mut acc, sa, *t, sb, near, cap);
+                acc
+            })
+            .reduce(Acc::new, Acc::merge);
+        // The same pairs seen from `b`'s triangles, for witnesses of `b` inside `a`.
+        let from_b = near_lists(mb, &nb, ma, &na)
+            .par_iter()
+            .fold(Acc::new, |mut acc, (t, near)| {
+                witnesses(&mut acc, sb, *t, sa, near, cap);
+                acc
+            })
+            .reduce(Acc::new, Acc::merge);
+        Some(from_a.merge(from_b))
+    }
+
+    /// The smallest `--grid-bits` whose step is at most a quarter of `len`, if any.
+    fn bits_for(grid: &Grid, len: f64) -> Option<u32> {
+        if !(len > 0.0) {
+            return None;
+        }
+        let more = (4.0 * grid.step() / len).log2().ceil().max(1.0);
+        let bits = grid.bits as f64 + more;
+        (bits <= MAX_BITS as f64).then_some(bits as u32)
+    }
+
+    /// `--grid-bits N (step S) keeps <what>`, or why no grid does.
+    fn finer(grid: &Grid, len: f64, what: &str) -> String {
+        match bits_for(grid, len) {
+            Some(b) => format!(
+                "--grid-bits {b} (step {}) keeps {what}",
+                fmt_len(grid.step() / 2f64.powi((b - grid.bits) as i32))
+            ),
+            None => format!(
+                "even --grid-bits {MAX_BITS} (step {}) is too coarse to keep {what} at these coordinates",
+                fmt_len(grid.step() / 2f64.powi((MAX_BITS - grid.bits) as i32))
+            ),
+        }
+    }
+
+    fn fmt_point(p: F3) -> String {
+        let c = p.map(|v| {
+            if v == 0.0 {
+                "0".to_string()
+            } else if (1e-3..1e12).contains(&v.abs()) {
+                let s = format!("{v:.6}");
+                s.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                format!("{v:.6e}")
+            }
+        });
+        format!("near ({}, {}, {})", c[0], c[1], c[2])
+    }
+
+    /// The warning for parts `a` and `b`, if snapping changed how they meet.
+    fn judge(a: &Part, b: &Part, acc: Acc, grid: &Grid) -> Option<Problem> {
+        let step = fmt_len(grid.step());
+        let pair = format!(
+            "part \"{}\" and part \"{}\"",
+            escape(&a.name),
+            escape(&b.name)
+        );
+        let (message, at) = if acc.depth.0 > 0.0 {
+            if overlap::part_overlap(a, b, grid).is_some() {
+                return None;
+            }
+            let depth = acc.depth.0;
+            let after = match acc.meet {
+                true => "they only touch after snapping",
+                false => "they are apart after snapping",
+            };
+            (
+                format!(
+                    "snapping to the grid (step {step}) removed an overlap of depth {} between {pair}: {after}; {}, and --tolerance {} then accepts it as contact",
+                    fmt_len(depth),
+                    finer(grid, depth, "the overlap (reported as an error)"),
+                    fmt_len(depth)
+                ),
+                acc.depth.1,
+            )
+        } else if acc.touch {
+            if acc.meet {
+                return None;
+            }
+            (
+                format!(
+                    "snapping to the grid (step {step}) separated {pair}, which touched before snapping: they are apart after it; a larger --grid-bits (at most {MAX_BITS}) makes the gap smaller"
+                ),
+                acc.gap.1,
+            )
+        } else {
+            if !acc.meet || !acc.gap.0.is_finite() {
+                return None;
+            }
+            let gap = acc.gap.0;
+            let after = match overlap::part_overlap(a, b, grid).is_some() {
+                true => "they overlap after snapping",
+                false => "they touch after snapping",
+            };
+            (
+                format!(
+                    "snapping to the grid (step {step}) closed a gap of {} between {pair}: {after}; {}",
+                    fmt_len(gap),
+                    finer(grid, gap, "the gap")
+                ),
+                acc.gap.1,
+            )
+        };
+        Some(
+            Problem::warning(message)
+                .at(fmt_point(at))
+                .in_part(a.name.clone()),
+        )
+    }
+
+    /// Warnings for every pair of parts whose relation snapping changed. `raw[k]` holds
+    /// the input coordinates of the vertices of part `k`'s mesh (`None`: the part has no
+    /// usable mesh and is left out).
+    pub(crate) fn changed_relations(
+        parts: &[Part],
+        raw: &[Option<Vec<F3>>],
+        grid: &Grid,
+    ) -> Vec<Problem> {
+        let usable: Vec<usize> = (0..parts.len())
+            .filter(|&k| raw[k].is_some() && parts[k].mesh.is_some() && parts[k].bbox.is_some())
+            .collect();
+        let mut pairs = Vec::new();
+        for (x, &i) in usable.iter().enumerate() {
+            let bi = grow(parts[i].bbox.expect("usable"), REACH);
+            for &j in &usable[x + 1..] {
+                if bi.overlaps(&parts[j].bbox.expect("usable")) {
+                    pairs.push((i, j));
+                }
+            }
+        }
+        pairs
+            .par_iter()
+            .filter_map(|&(i, j)| {
+                let (ra, rb) = (raw[i].as_deref()?, raw[j].as_deref()?);
+                let acc = compare(&parts[i], ra, &parts[j], rb, grid)?;
+                judge(&parts[i], &parts[j], acc, grid)
+            })
+            .collect()
+    }
 }

@@ -7,7 +7,9 @@
 //!    "pieces": ["red/p0.off", "red/p1.off"]}]}
 //! ```
 //!
-//! Paths are relative to the manifest's folder. `transform` is either
+//! Paths are relative to the manifest's folder, and must resolve inside it when loaded
+//! (the loader checks, through symbolic links; [`crate::LoadOptions::allow_outside`]
+//! lifts this). `transform` is either
 //! `{"matrix": [16 numbers]}` (4x4, row-major, last row `0 0 0 1`) or
 //! `{"translation": [x, y, z], "rotation": ...}` with the rotation given as
 //! `{"axis": [x, y, z], "angle_deg": a}` or `{"quaternion": [x, y, z, w]}`; the rotation

@@ -77,6 +77,10 @@ pub struct LoadOptions {
     /// Load a mesh that holds several separate solids as several parts (only where the
     /// part name comes from a file or object, not from a manifest).
     pub split_bodies: bool,
+    /// Read mesh files that resolve outside the assembly's folder (absolute paths, `..`
+    /// leaving it, symbolic links to elsewhere) named by a manifest or found in a folder.
+    /// `false` (the default): such a file is an error and is never opened.
+    pub allow_outside: bool,
 }
 
 impl Default for LoadOptions {
@@ -89,6 +93,7 @@ impl Default for LoadOptions {
             tolerance: Tolerance::None,
             repair: true,
             split_bodies: true,
+            allow_outside: false,
         }
     }
 }
@@ -103,6 +108,7 @@ impl std::fmt::Debug for LoadOptions {
             .field("tolerance", &self.tolerance)
             .field("repair", &self.repair)
             .field("split_bodies", &self.split_bodies)
+            .field("allow_outside", &self.allow_outside)
             .finish()
     }
 }
