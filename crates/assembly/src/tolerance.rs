@@ -126,18 +126,10 @@ fn to_grid_units(v: f64, grid: &Grid) -> Rational {
     &dyadic(v) * &pow2(-grid.exp)
 }
 
-/// The exact value of a finite `f64`.
+/// The exact value of a finite `f64` (zero for infinities and NaN, which [`apply`]
+/// rejects first).
 pub fn dyadic(v: f64) -> Rational {
-    let bits = v.to_bits();
-    let sign = if bits >> 63 == 1 { -1 } else { 1 };
-    let exp = ((bits >> 52) & 0x7ff) as i32;
-    let frac = bits & ((1u64 << 52) - 1);
-    let (m, e) = if exp == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1u64 << 52), exp - 1075)
-    };
-    &Rational::from_int(Int::from(sign) * Int::from(m)) * &pow2(e)
+    Rational::from_f64(v).unwrap_or_else(Rational::zero)
 }
 
 fn pow2(e: i32) -> Rational {
@@ -214,6 +206,13 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
     let mut problems = Vec::new();
     let (mut eps, auto) = match tol {
         Tolerance::None => unreachable!("apply is called with a tolerance"),
+        Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => {
+            asm.tolerance = None;
+            problems.push(Problem::error(format!(
+                "tolerance {e} is not a finite positive length"
+            )));
+            return problems;
+        }
         Tolerance::Fixed(e) => (e, false),
         Tolerance::Auto => {
             if before.is_empty() {

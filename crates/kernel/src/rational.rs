@@ -79,6 +79,28 @@ impl Rational {
         }
     }
 
+    /// The exact value of a finite `f64` (every double is a dyadic rational); `None`
+    /// for infinities and NaN.
+    pub fn from_f64(x: f64) -> Option<Rational> {
+        if !x.is_finite() {
+            return None;
+        }
+        let bits = x.to_bits();
+        let exp = ((bits >> 52) & 0x7ff) as i32;
+        let frac = (bits & ((1u64 << 52) - 1)) as i64;
+        let (m, e) = if exp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1i64 << 52), exp - 1075)
+        };
+        let m = Int::from(if x < 0.0 { -m } else { m });
+        Some(if e >= 0 {
+            Rational::from_int(m << e as usize)
+        } else {
+            Rational::new(m, Int::ONE << (-e) as usize)
+        })
+    }
+
     /// Nearest `f64` (to within a few ulps).
     pub fn to_f64(&self) -> f64 {
         let (n, d) = (int::to_f64(&self.num), int::to_f64(&self.den));

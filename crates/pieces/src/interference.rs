@@ -22,7 +22,19 @@ pub fn interiors_disjoint(a: &Polytope, b: &Polytope) -> bool {
 /// only the vertices within the error bound of the floating-point extreme. Every
 /// decision is exact; the filter only prunes.
 pub fn separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
-    filtered_separating_normal(a, b).unwrap_or_else(|| exact_separating_normal(a, b))
+    match filtered_relation(a, b) {
+        Some(Relation::Apart(n)) => Some(n),
+        Some(Relation::Overlapping(_)) => None,
+        None => exact_separating_normal(a, b),
+    }
+}
+
+/// What the filtered separating-axis test found.
+enum Relation {
+    /// A separating normal (`a` below).
+    Apart(Vec3),
+    /// No separating axis; with a common interior point `(X, W)` when one was found.
+    Overlapping(Option<(Vec3, Int)>),
 }
 
 /// [`separating_normal`] without a filter: every candidate axis, exact supports.
@@ -221,6 +233,81 @@ impl<'p> FilteredPair<'p> {
     }
 }
 
+impl FilteredPair<'_> {
+    /// A point strictly inside both polytopes, as homogeneous integers `(X, W)` (true
+    /// coordinates `X / W`, `W > 0`): the floating-point centroid of the vertices of
+    /// `a ∩ b` (every edge of one clipped to the other), checked exactly; `None` when the
+    /// centroid is not inside both (which proves nothing: the pair may only touch).
+    fn common_interior_point(&self) -> Option<(Vec3, Int)> {
+        let mut sum = [0f64; 3];
+        let mut count = 0usize;
+        for (p, sp, sq) in [(self.a, self.sa, self.sb), (self.b, self.sb, self.sa)] {
+            for e in p.edges() {
+                let (s, t) = (
+                    &sp.points[e.ends[0] as usize],
+                    &sp.points[e.ends[1] as usize],
+                );
+                if let Some((lo, hi)) = clip(s, t, sq) {
+                    for l in [lo, hi] {
+                        for k in 0..3 {
+                            sum[k] += s[k] + l * (t[k] - s[k]);
+                        }
+                    }
+                    count += 2;
+                }
+            }
+        }
+        if count == 0 {
+            return None;
+        }
+        let c = sum.map(|x| x / count as f64);
+        let (x, w) = dyadic_point(&c)?;
+        (strictly_inside_homogeneous(self.a, &x, &w) && strictly_inside_homogeneous(self.b, &x, &w))
+            .then_some((x, w))
+    }
+}
+
+/// The part `[lo, hi]` of the segment `s + λ (t - s)`, `λ ∈ [0, 1]`, inside the shadow
+/// polytope `q` (floating point: only a candidate for an exact check), if not empty.
+fn clip(s: &[f64; 3], t: &[f64; 3], q: &Shadow) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (0f64, 1f64);
+    for (u, l) in q.facet_units.iter().zip(&q.facet_levels) {
+        let (ds, dt) = (dot3(s, u) - l, dot3(t, u) - l);
+        if ds > 0.0 && dt > 0.0 {
+            return None;
+        }
+        if ds > 0.0 {
+            lo = lo.max(ds / (ds - dt));
+        } else if dt > 0.0 {
+            hi = hi.min(ds / (ds - dt));
+        }
+        if lo > hi {
+            return None;
+        }
+    }
+    Some((lo, hi))
+}
+
+/// The exact value of a finite float point as homogeneous integers `(X, W)`.
+fn dyadic_point(c: &[f64; 3]) -> Option<(Vec3, Int)> {
+    let q = [
+        Rational::from_f64(c[0])?,
+        Rational::from_f64(c[1])?,
+        Rational::from_f64(c[2])?,
+    ];
+    // Denominators are powers of two: the largest is a multiple of the others.
+    let w = q.iter().map(|r| r.denom()).max().expect("three").clone();
+    let x = q.map(|r| r.numer() * &(&w / r.denom()));
+    Some((Vec3::from_ints(x), w))
+}
+
+/// Whether the true point `x / w` (`w > 0`) lies in the interior of `p`: stored
+/// coordinates `den x / w`, so `n · (den x) < offset w` for every facet.
+fn strictly_inside_homogeneous(p: &Polytope, x: &Vec3, w: &Int) -> bool {
+    let dx = x.scale(p.den());
+    p.facets().iter().all(|f| f.normal.dot(&dx) < &f.offset * w)
+}
+
 /// `x / dx` against `y / dy` (positive denominators): `Some(strict)` when at most.
 fn compare(x: &Int, dx: &Int, y: &Int, dy: &Int) -> Option<bool> {
     match int::cmp_fractions(x, dx, y, dy) {
@@ -276,12 +363,17 @@ pub fn below_along(a: &Polytope, b: &Polytope, n: &Vec3) -> Option<bool> {
     }
 }
 
-fn filtered_separating_normal(a: &Polytope, b: &Polytope) -> Option<Option<Vec3>> {
+fn filtered_relation(a: &Polytope, b: &Polytope) -> Option<Relation> {
     let fp = FilteredPair::new(a, b)?;
     for (_, of_b, i, u) in fp.facet_candidates() {
         if let Some((n, _)) = fp.below_candidate(of_b, i, &u) {
-            return Some(Some(n));
+            return Some(Relation::Apart(n));
         }
+    }
+    // Before the edge axes (quadratic in the edge directions): a common interior point
+    // proves that nothing separates.
+    if let Some(p) = fp.common_interior_point() {
+        return Some(Relation::Overlapping(Some(p)));
     }
     for da in a.edge_directions() {
         for db in b.edge_directions() {
@@ -293,34 +385,44 @@ fn filtered_separating_normal(a: &Polytope, b: &Polytope) -> Option<Option<Vec3>
                 // No float axis: decide this one exactly.
                 for m in [n.clone(), n.neg()] {
                     if below_along(a, b, &m).is_some() {
-                        return Some(Some(m.primitive()));
+                        return Some(Relation::Apart(m.primitive()));
                     }
                 }
                 continue;
             };
             let ((alo, ahi), (blo, bhi)) = (float_range(fp.sa, &u), float_range(fp.sb, &u));
             if fp.below_given(&n, &u, ahi, blo).is_some() {
-                return Some(Some(n.primitive()));
+                return Some(Relation::Apart(n.primitive()));
             }
             let (m, mu) = (n.neg(), neg3(&u));
             if fp.below_given(&m, &mu, -alo, -bhi).is_some() {
-                return Some(Some(m.primitive()));
+                return Some(Relation::Apart(m.primitive()));
             }
         }
     }
-    Some(None)
+    Some(Relation::Overlapping(None))
 }
 
 /// When the interiors of `a` and `b` meet, a point in both interiors (exact rational
 /// coordinates); `None` when they are disjoint or only touch.
 ///
-/// The witness is the average of a superset of the vertices of `a ∩ b` (vertices of one
-/// inside the other, and crossings of edges of one with facets of the other): a convex
-/// combination giving every vertex of the full-dimensional intersection positive weight,
-/// hence an interior point of it.
+/// The witness is an average of vertices of each lying inside the other when the
+/// floating-point filter finds one that checks exactly; otherwise the average of a
+/// superset of the vertices of `a ∩ b` (vertices of one inside the other, and crossings
+/// of edges of one with facets of the other): a convex combination giving every vertex
+/// of the full-dimensional intersection positive weight, hence an interior point of it.
 pub fn interior_witness(a: &Polytope, b: &Polytope) -> Option<[Rational; 3]> {
-    if interiors_disjoint(a, b) {
-        return None;
+    match filtered_relation(a, b) {
+        Some(Relation::Apart(_)) => return None,
+        Some(Relation::Overlapping(Some((x, w)))) => {
+            return Some([0, 1, 2].map(|k| Rational::new(x.get(k), w.clone())));
+        }
+        Some(Relation::Overlapping(None)) => {}
+        None => {
+            if exact_separating_normal(a, b).is_some() {
+                return None;
+            }
+        }
     }
     if a.den() != b.den() {
         let (a, b) = Polytope::common(a, b);
@@ -414,7 +516,7 @@ mod tests {
         Polytope::cuboid(lo, hi).unwrap()
     }
 
-    fn strictly_inside(p: &Polytope, w: &[Rational; 3]) -> bool {
+    pub(super) fn strictly_inside(p: &Polytope, w: &[Rational; 3]) -> bool {
         p.facets().iter().all(|f| {
             let mut s = Rational::from_int(-f.offset.clone());
             for (k, c) in w.iter().enumerate() {
@@ -497,98 +599,200 @@ mod den_tests {
 /// upper bound of it when the cross products were left out. Zero for touching or
 /// disjoint polytopes.
 pub fn overlap_depth(a: &Polytope, b: &Polytope) -> f64 {
-    signed_depth(a, b).depth.max(0.0)
+    signed_depth(a, b).max(0.0)
 }
 
-/// Whether the interiors of `a` and `b` overlap (exact), and how deep (measured, as
-/// [`overlap_depth`]; 0 when they do not). A floating-point filter decides first: a
-/// clear gap along one axis proves them apart, a clear overlap along every candidate
-/// axis proves them overlapping, each beyond a proven bound of the rounding error; the
-/// exact separating-axis test decides the rest.
+/// Whether the interiors of `a` and `b` overlap (exact, [`interiors_disjoint`]), and
+/// how deep (measured, as [`overlap_depth`], only for overlapping pairs; 0 when they do
+/// not).
 pub fn overlap_with_depth(a: &Polytope, b: &Polytope) -> (bool, f64) {
-    let s = signed_depth(a, b);
-    let overlapping = if s.depth < -s.error {
-        false
-    } else if s.depth > s.error && s.all_axes {
-        true
+    if interiors_disjoint(a, b) {
+        (false, 0.0)
     } else {
-        !interiors_disjoint(a, b)
-    };
-    (
-        overlapping,
-        if overlapping { s.depth.max(0.0) } else { 0.0 },
-    )
+        (true, overlap_depth(a, b))
+    }
 }
 
-/// The smallest signed overlap over the candidate axes (negative: a gap), whether every
-/// candidate axis was tried, and a bound of the rounding error.
-struct SignedDepth {
-    depth: f64,
-    all_axes: bool,
-    error: f64,
-}
-
-fn signed_depth(a: &Polytope, b: &Polytope) -> SignedDepth {
-    let pts = |p: &Polytope| -> Vec<[f64; 3]> {
-        // Exact values divided once: `approx` is only proportional for big vectors.
-        p.vertices()
-            .iter()
-            .map(|v| [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()))
-            .collect()
-    };
-    let (pa, pb) = (pts(a), pts(b));
-    // Every coordinate is below m in magnitude. Each vertex coordinate and each unit
-    // axis component carries a relative error of at most 2^-52, so a dot product of a
-    // vertex with a unit axis is off by less than 8 m 2^-52, and a signed overlap (a
-    // difference of two extremes) by less than 16 m 2^-52; 2^-40 m leaves a margin.
-    let m = pa
-        .iter()
-        .chain(&pb)
-        .flatten()
-        .fold(0f64, |x, c| x.max(c.abs()));
-    let error = m * 2f64.powi(-40);
-    let range = |ps: &[[f64; 3]], u: &[f64; 3]| {
-        ps.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                let t = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
-                (lo.min(t), hi.max(t))
-            })
-    };
-    let overlap_along = |n: [f64; 3]| -> f64 {
+/// The smallest signed overlap of `a` and `b` over the candidate axes (negative: a gap),
+/// in floating point.
+fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
+    let (mut wa, mut wb) = (Extremes::new(a), Extremes::new(b));
+    let overlap_along = |n: [f64; 3], wa: &mut Extremes, wb: &mut Extremes| -> f64 {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         if len == 0.0 || !len.is_finite() {
             return f64::INFINITY;
         }
         let u = n.map(|c| c / len);
-        let ((alo, ahi), (blo, bhi)) = (range(&pa, &u), range(&pb, &u));
+        let ((alo, ahi), (blo, bhi)) = (wa.range(&u), wb.range(&u));
         (ahi - blo).min(bhi - alo)
     };
     let mut best = f64::INFINITY;
     for f in a.facets().iter().chain(b.facets()) {
-        best = best.min(overlap_along(f.normal.approx()));
+        best = best.min(overlap_along(f.normal.approx(), &mut wa, &mut wb));
     }
     let (ea, eb) = (a.edge_directions(), b.edge_directions());
-    let all_axes = ea.len() * eb.len() <= 4096;
-    if all_axes {
+    if ea.len() * eb.len() <= 4096 {
         for da in ea {
             for db in eb {
                 let n = da.cross(db);
                 if !n.is_zero() {
-                    best = best.min(overlap_along(n.approx()));
+                    best = best.min(overlap_along(n.approx(), &mut wa, &mut wb));
                 }
             }
         }
     }
-    SignedDepth {
-        depth: if best.is_finite() { best } else { 0.0 },
-        all_axes: all_axes && best.is_finite(),
-        error: if m.is_finite() { error } else { f64::INFINITY },
+    if best.is_finite() {
+        best
+    } else {
+        0.0
+    }
+}
+
+/// Floating-point extremes of a polytope's vertices along unit axes: a scan for small
+/// polytopes, for big ones a walk along the edges from the last extreme found (on a
+/// convex polytope a vertex with no better neighbour is extreme; in floating point the
+/// walk may stop within rounding of it, which a measurement allows).
+struct Extremes {
+    points: Vec<[f64; 3]>,
+    /// Neighbours of each vertex (empty for a scan).
+    neighbours: Vec<Vec<u32>>,
+    /// The last maximum and minimum found.
+    hint: [usize; 2],
+}
+
+impl Extremes {
+    fn new(p: &Polytope) -> Extremes {
+        let points = match p.shadow() {
+            Some(s) => s.points.clone(),
+            // Exact values divided once: `approx` is only proportional for big vectors.
+            None => p
+                .vertices()
+                .iter()
+                .map(|v| [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()))
+                .collect(),
+        };
+        let mut neighbours = Vec::new();
+        if points.len() > 64 {
+            neighbours = vec![Vec::new(); points.len()];
+            for e in p.edges() {
+                let [s, t] = e.ends;
+                neighbours[s as usize].push(t);
+                neighbours[t as usize].push(s);
+            }
+        }
+        Extremes {
+            points,
+            neighbours,
+            hint: [0, 0],
+        }
+    }
+
+    /// The smallest and largest `u · x` over the vertices.
+    fn range(&mut self, u: &[f64; 3]) -> (f64, f64) {
+        if self.neighbours.is_empty() {
+            return self
+                .points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    let t = dot3(p, u);
+                    (lo.min(t), hi.max(t))
+                });
+        }
+        let hi = self.climb(0, u);
+        let lo = -self.climb(1, &neg3(u));
+        (lo, hi)
+    }
+
+    fn climb(&mut self, slot: usize, u: &[f64; 3]) -> f64 {
+        let mut v = self.hint[slot];
+        let mut best = dot3(&self.points[v], u);
+        loop {
+            let next = self.neighbours[v]
+                .iter()
+                .map(|&w| (w as usize, dot3(&self.points[w as usize], u)))
+                .max_by(|x, y| x.1.total_cmp(&y.1));
+            match next {
+                Some((w, t)) if t > best => {
+                    v = w;
+                    best = t;
+                }
+                _ => break,
+            }
+        }
+        self.hint[slot] = v;
+        best
     }
 }
 
 #[cfg(test)]
 mod depth_tests {
     use super::*;
+
+    /// A prism over a `k`-gon of radius `r` (vertices rounded to integers, hull taken).
+    fn prism(k: usize, r: f64, z: [i64; 2], phase: f64) -> Polytope {
+        let mut pts = Vec::new();
+        for i in 0..k {
+            let t = phase + i as f64 * std::f64::consts::TAU / k as f64;
+            let (x, y) = ((r * t.cos()).round() as i64, (r * t.sin()).round() as i64);
+            pts.push(Vec3::new(x, y, z[0]));
+            pts.push(Vec3::new(x, y, z[1]));
+        }
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn walking_extremes_agree_with_a_scan() {
+        let p = prism(48, 1.0e6, [-50_000, 70_000], 0.1);
+        assert!(p.vertices().len() > 64, "the walk is used");
+        let mut walk = Extremes::new(&p);
+        assert!(!walk.neighbours.is_empty());
+        let pts = &p.shadow().unwrap().points;
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        for _ in 0..500 {
+            let n = [next(), next(), next() * 0.1];
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let u = n.map(|c| c / len);
+            let (lo, hi) = walk.range(&u);
+            let scan = pts
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
+                    (l.min(dot3(q, &u)), h.max(dot3(q, &u)))
+                });
+            assert!(
+                (lo - scan.0).abs() <= 1e-6 && (hi - scan.1).abs() <= 1e-6,
+                "{u:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn crossing_pieces_get_an_exact_common_interior_point() {
+        // A 48-gon prism and a box cutting into its side, and a box whose corner
+        // region overlaps it: a point strictly inside both is found without the edge
+        // axes, and checked here independently with rationals.
+        let p = prism(48, 1.0e6, [0, 100_000], 0.0);
+        for b in [
+            Polytope::cuboid([990_000, -30_000, -10], [1_200_000, 30_000, 50_000]).unwrap(),
+            Polytope::cuboid([-500, -500, 99_000], [500, 500, 200_000]).unwrap(),
+        ] {
+            let fp = FilteredPair::new(&p, &b).unwrap();
+            let (x, w) = fp.common_interior_point().expect("a certificate");
+            let q = [0, 1, 2].map(|k| Rational::new(x.get(k), w.clone()));
+            assert!(tests::strictly_inside(&p, &q) && tests::strictly_inside(&b, &q));
+            assert!(separating_normal(&p, &b).is_none());
+        }
+        // Touching along the prism's top face: no certificate, a separating plane.
+        let b = Polytope::cuboid([-500, -500, 100_000], [500, 500, 200_000]).unwrap();
+        let fp = FilteredPair::new(&p, &b).unwrap();
+        assert!(fp.common_interior_point().is_none());
+        assert!(separating_normal(&p, &b).is_some());
+    }
 
     #[test]
     fn depth_of_overlapping_boxes_is_the_smallest_push() {

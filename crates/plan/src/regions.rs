@@ -12,7 +12,7 @@ use apart_kernel::Vec3;
 use apart_minkowski::{project, sum_prepared, Projection};
 use apart_pieces::Polytope;
 use apart_sphere::overlay::{cell_statuses, PointStatus, SideLabel};
-use apart_sphere::region::{simplify_union, RegionMap, Sides};
+use apart_sphere::region::{region_inputs, simplify_union, RegionMap, Sides};
 use apart_sphere::{Arrangement, BitSet, InputArc, InputPoint, SphericalPolygon};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -143,6 +143,24 @@ pub struct RegionStats {
     pub unions_seconds: f64,
 }
 
+/// A touching piece pair's contact cone, and whether the pieces touch.
+type Cone = (SphericalPolygon, bool);
+
+/// Piece pairs whose data may be alive at once (see [`BlockingRegions::compute`]).
+const PAIR_BATCH: usize = 1 << 16;
+
+impl RegionStats {
+    /// Adds the counts and times of another computation.
+    fn add(&mut self, o: &RegionStats) {
+        self.sums += o.sums;
+        self.contact_cones += o.contact_cones;
+        self.skipped += o.skipped;
+        self.sums_seconds += o.sums_seconds;
+        self.projection_seconds += o.projection_seconds;
+        self.unions_seconds += o.unions_seconds;
+    }
+}
+
 /// The blocked regions of every pair of parts.
 #[derive(Clone, Debug)]
 pub struct BlockingRegions {
@@ -178,178 +196,45 @@ impl BlockingRegions {
         let pairs: Vec<(usize, usize)> = (0..n)
             .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
             .collect();
-        let jobs: Vec<(usize, usize, usize, usize)> = pairs
-            .iter()
-            .flat_map(|&(i, j)| {
-                (0..parts[i].pieces.len())
-                    .flat_map(move |a| (0..parts[j].pieces.len()).map(move |b| (i, j, a, b)))
-            })
-            .collect();
         let mut stats = RegionStats {
             pieces: parts.iter().map(|p| p.pieces.len()).sum(),
             ..Default::default()
         };
-
-        let t = Instant::now();
-        // Separating axes of every piece pair (exact; coordinate axes first, which settle
-        // far-apart pairs at once).
         let info: Vec<Vec<PieceInfo>> = parts
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
-        let pair_axes: Vec<Vec<Axis>> = jobs
-            .par_iter()
-            .with_min_len(16)
-            .map(|&(i, j, a, b)| {
-                axes(
-                    &parts[i].pieces[a],
-                    &info[i][a],
-                    &parts[j].pieces[b],
-                    &info[j][b],
-                )
-            })
-            .collect();
-        let name_err = |i: usize, j: usize, e: String| {
-            PlanError::Internal(format!(
-                "pieces of {} and {}: {e}",
-                parts[i].name, parts[j].name
-            ))
-        };
-        let overlap = |i: usize, j: usize, a: usize, b: usize| PlanError::Overlap {
-            parts: (i, j),
-            names: (parts[i].name.clone(), parts[j].name.clone()),
-            pieces: (a, b),
-        };
-        // Touching pairs: their projection is the contact cone, from the small sum of the
-        // face neighbourhoods (the same polygon as the full sum's).
-        let cones: Vec<Option<(SphericalPolygon, bool)>> = jobs
-            .par_iter()
-            .zip(&pair_axes)
-            .map(|(&(i, j, a, b), ax)| {
-                let Some(n) = crate::pairs::touching_normal(ax) else {
-                    return Ok(None);
-                };
-                match contact_polygon(&parts[i].pieces[a], &parts[j].pieces[b], n) {
-                    None => Ok(None),
-                    Some(Ok(PairPolygon::Polygon(p, touch))) => Ok(Some((p, touch))),
-                    Some(Ok(PairPolygon::Overlap)) => Err(overlap(i, j, a, b)),
-                    Some(Err(e)) => Err(name_err(i, j, e)),
+        // Pairs of parts in batches of at most PAIR_BATCH piece pairs (a bigger pair
+        // alone), each pair's piece pairs in parallel: only a batch's piece-pair data is
+        // alive at once, and what is kept is each pair's pruned polygons and union.
+        let mut regions = Vec::with_capacity(pairs.len());
+        let mut rest = &pairs[..];
+        while !rest.is_empty() {
+            let mut take = 0;
+            let mut load = 0;
+            while take < rest.len() {
+                let (i, j) = rest[take];
+                let jobs = parts[i].pieces.len() * parts[j].pieces.len();
+                if take > 0 && load + jobs > PAIR_BATCH {
+                    break;
                 }
-            })
-            .collect::<Result<_, _>>()?;
-        stats.contact_cones = cones.iter().filter(|c| c.is_some()).count();
-        // Open hemispheres already in each pair's union (face contacts).
-        let mut hemispheres: Vec<rustc_hash::FxHashSet<Vec3>> = vec![Default::default(); n * n];
-        for (c, &(i, j, _, _)) in cones.iter().zip(&jobs) {
-            if let Some((p, _)) = c {
-                if p.normals().len() == 1 {
-                    hemispheres[i * n + j].insert(p.normals()[0].clone());
-                }
+                load += jobs;
+                take += 1;
+            }
+            let (batch, tail) = rest.split_at(take);
+            rest = tail;
+            let done: Vec<(PairRegion, RegionStats)> = batch
+                .par_iter()
+                .map(|&(i, j)| {
+                    let mut s = RegionStats::default();
+                    pair_region(parts, &info, i, j, &mut s).map(|r| (r, s))
+                })
+                .collect::<Result<_, _>>()?;
+            for (r, s) in done {
+                stats.add(&s);
+                regions.push(r);
             }
         }
-        // A pair lying weakly below along an axis n has its projection in the closed
-        // hemisphere {n·x >= 0}: it adds nothing when the open one is in the union.
-        let covered = |k: usize| {
-            let (i, j, _, _) = jobs[k];
-            let (_, _, a, b) = jobs[k];
-            let h = &hemispheres[i * n + j];
-            !h.is_empty()
-                && (pair_axes[k].iter().any(|ax| h.contains(&ax.n.primitive()))
-                    || below_along_any(&parts[i].pieces[a], &parts[j].pieces[b], h))
-        };
-        let axes_seconds = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let cpu = |t: Instant| t.elapsed().as_nanos() as u64;
-        let sum_ns = std::sync::atomic::AtomicU64::new(0);
-        let proj_ns = std::sync::atomic::AtomicU64::new(0);
-        let todo: Vec<usize> = (0..jobs.len())
-            .filter(|&k| cones[k].is_none() && !covered(k))
-            .collect();
-        stats.sums = todo.len();
-        stats.skipped = jobs.len() - todo.len() - stats.contact_cones;
-        let full: Vec<(SphericalPolygon, bool)> = todo
-            .par_iter()
-            .map(|&k| {
-                let (i, j, a, b) = jobs[k];
-                let t0 = Instant::now();
-                let m = sum_prepared(
-                    info[j][b].fixed(&parts[j].pieces[b]),
-                    info[i][a].reflected(&parts[i].pieces[a]),
-                )
-                .map_err(|e| {
-                    PlanError::Internal(format!(
-                        "Minkowski sum of {} and {}: {e}",
-                        parts[i].name, parts[j].name
-                    ))
-                })?;
-                sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
-                let t1 = Instant::now();
-                let out = match project(&m) {
-                    Ok(Projection::Polygon(p)) => {
-                        // Touching: no facet has the origin strictly outside.
-                        let contact = m
-                            .facets()
-                            .iter()
-                            .all(|f| f.offset >= apart_kernel::Int::ZERO);
-                        Ok((p, contact))
-                    }
-                    Ok(Projection::Everything) => Err(overlap(i, j, a, b)),
-                    Err(e) => Err(PlanError::Internal(format!(
-                        "projection for {} and {}: {e}",
-                        parts[i].name, parts[j].name
-                    ))),
-                };
-                proj_ns.fetch_add(cpu(t1), std::sync::atomic::Ordering::Relaxed);
-                out
-            })
-            .collect::<Result<_, _>>()?;
-        // Back in job order (the order of the polygons of each pair is kept).
-        let mut slots: Vec<Option<(SphericalPolygon, bool)>> = cones;
-        for (k, p) in todo.into_iter().zip(full) {
-            slots[k] = Some(p);
-        }
-        let polys: Vec<(SphericalPolygon, bool, usize)> = slots
-            .into_iter()
-            .enumerate()
-            .filter_map(|(k, p)| p.map(|(p, c)| (p, c, k)))
-            .collect();
-        let wall = t.elapsed().as_secs_f64();
-        let (sn, pn) = (sum_ns.into_inner() as f64, proj_ns.into_inner() as f64);
-        let share = if sn + pn > 0.0 { sn / (sn + pn) } else { 1.0 };
-        stats.sums_seconds = axes_seconds + wall * share;
-        stats.projection_seconds = wall * (1.0 - share);
-
-        let t = Instant::now();
-        let mut grouped: Vec<Vec<SphericalPolygon>> = vec![Vec::new(); pairs.len()];
-        let mut contact = vec![false; pairs.len()];
-        let mut pair_index = vec![usize::MAX; n * n];
-        for (k, &(i, j)) in pairs.iter().enumerate() {
-            pair_index[i * n + j] = k;
-        }
-        for (p, touch, job) in polys {
-            let (i, j, _, _) = jobs[job];
-            let k = pair_index[i * n + j];
-            grouped[k].push(p);
-            contact[k] |= touch;
-        }
-        let regions: Vec<PairRegion> = pairs
-            .par_iter()
-            .zip(grouped)
-            .zip(contact)
-            .map(|((&(i, j), polygons), contact)| {
-                // Only the polygons that add to the union are kept (memory).
-                let polygons = pruned(polygons);
-                let region = union_of_pruned(&polygons);
-                PairRegion {
-                    i,
-                    j,
-                    polygons,
-                    region,
-                    contact,
-                }
-            })
-            .collect();
-        stats.unions_seconds = t.elapsed().as_secs_f64();
         stats.region_arcs = regions.iter().map(|r| r.region.arcs.len()).sum();
         let mut index = vec![usize::MAX; n * n];
         for (k, r) in regions.iter().enumerate() {
@@ -452,6 +337,150 @@ impl BlockingRegions {
     }
 }
 
+/// The region of parts `i < j`: separating axes of every piece pair, contact cones of
+/// touching ones, full sums for the rest except those a face contact's hemisphere
+/// already covers, then the pruned polygons' union (timings added to `stats`).
+fn pair_region(
+    parts: &[PartPieces],
+    info: &[Vec<PieceInfo>],
+    i: usize,
+    j: usize,
+    stats: &mut RegionStats,
+) -> Result<PairRegion, PlanError> {
+    let (pi, pj) = (&parts[i].pieces, &parts[j].pieces);
+    let jobs: Vec<(usize, usize)> = (0..pi.len())
+        .flat_map(|a| (0..pj.len()).map(move |b| (a, b)))
+        .collect();
+    let t = Instant::now();
+    let name_err = |e: String| {
+        PlanError::Internal(format!(
+            "pieces of {} and {}: {e}",
+            parts[i].name, parts[j].name
+        ))
+    };
+    let overlap = |a: usize, b: usize| PlanError::Overlap {
+        parts: (i, j),
+        names: (parts[i].name.clone(), parts[j].name.clone()),
+        pieces: (a, b),
+    };
+    // Separating axes of every piece pair (exact; coordinate axes first, which settle
+    // far-apart pairs at once). Touching pairs get their projection, the contact cone,
+    // from the small sum of their face neighbourhoods (the same polygon as the full
+    // sum's); the others keep their axes for the cover test below.
+    let first: Vec<(Option<Cone>, Vec<Axis>)> = jobs
+        .par_iter()
+        .with_min_len(16)
+        .map(|&(a, b)| {
+            let ax = axes(&pi[a], &info[i][a], &pj[b], &info[j][b]);
+            let Some(n) = crate::pairs::touching_normal(&ax) else {
+                return Ok((None, ax));
+            };
+            match contact_polygon(&pi[a], &pj[b], n) {
+                None => Ok((None, ax)),
+                Some(Ok(PairPolygon::Polygon(p, touch))) => Ok((Some((p, touch)), Vec::new())),
+                Some(Ok(PairPolygon::Overlap)) => Err(overlap(a, b)),
+                Some(Err(e)) => Err(name_err(e)),
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    let (cones, pair_axes): (Vec<_>, Vec<_>) = first.into_iter().unzip();
+    let cone_count = cones.iter().filter(|c| c.is_some()).count();
+    stats.contact_cones += cone_count;
+    // Open hemispheres already in the union (face contacts).
+    let mut hemispheres: rustc_hash::FxHashSet<Vec3> = Default::default();
+    for (p, _) in cones.iter().flatten() {
+        if p.normals().len() == 1 {
+            hemispheres.insert(p.normals()[0].clone());
+        }
+    }
+    // A pair lying weakly below along an axis n has its projection in the closed
+    // hemisphere {n·x >= 0}: it adds nothing when the open one is in the union.
+    let covered = |k: usize| {
+        let (a, b) = jobs[k];
+        !hemispheres.is_empty()
+            && (pair_axes[k]
+                .iter()
+                .any(|ax| hemispheres.contains(&ax.n.primitive()))
+                || below_along_any(&pi[a], &pj[b], &hemispheres))
+    };
+    let axes_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let cpu = |t: Instant| t.elapsed().as_nanos() as u64;
+    let sum_ns = std::sync::atomic::AtomicU64::new(0);
+    let proj_ns = std::sync::atomic::AtomicU64::new(0);
+    let todo: Vec<usize> = (0..jobs.len())
+        .filter(|&k| cones[k].is_none() && !covered(k))
+        .collect();
+    drop(pair_axes);
+    stats.sums += todo.len();
+    stats.skipped += jobs.len() - todo.len() - cone_count;
+    let full: Vec<(SphericalPolygon, bool)> =
+        todo.par_iter()
+            .map(|&k| {
+                let (a, b) = jobs[k];
+                let t0 = Instant::now();
+                let m = sum_prepared(info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a]))
+                    .map_err(|e| {
+                        PlanError::Internal(format!(
+                            "Minkowski sum of {} and {}: {e}",
+                            parts[i].name, parts[j].name
+                        ))
+                    })?;
+                sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
+                let t1 = Instant::now();
+                let out = match project(&m) {
+                    Ok(Projection::Polygon(p)) => {
+                        // Touching: no facet has the origin strictly outside.
+                        let contact = m
+                            .facets()
+                            .iter()
+                            .all(|f| f.offset >= apart_kernel::Int::ZERO);
+                        Ok((p, contact))
+                    }
+                    Ok(Projection::Everything) => Err(overlap(a, b)),
+                    Err(e) => Err(PlanError::Internal(format!(
+                        "projection for {} and {}: {e}",
+                        parts[i].name, parts[j].name
+                    ))),
+                };
+                proj_ns.fetch_add(cpu(t1), std::sync::atomic::Ordering::Relaxed);
+                out
+            })
+            .collect::<Result<_, _>>()?;
+    // Back in job order (the union's order).
+    let mut slots: Vec<Option<(SphericalPolygon, bool)>> = cones;
+    for (k, p) in todo.into_iter().zip(full) {
+        slots[k] = Some(p);
+    }
+    let mut contact = false;
+    let polygons: Vec<SphericalPolygon> = slots
+        .into_iter()
+        .flatten()
+        .map(|(p, touch)| {
+            contact |= touch;
+            p
+        })
+        .collect();
+    let wall = t.elapsed().as_secs_f64();
+    let (sn, pn) = (sum_ns.into_inner() as f64, proj_ns.into_inner() as f64);
+    let share = if sn + pn > 0.0 { sn / (sn + pn) } else { 1.0 };
+    stats.sums_seconds += axes_seconds + wall * share;
+    stats.projection_seconds += wall * (1.0 - share);
+
+    let t = Instant::now();
+    // Only the polygons that add to the union are kept (memory).
+    let polygons = pruned(polygons);
+    let region = union_of_pruned(&polygons);
+    stats.unions_seconds += t.elapsed().as_secs_f64();
+    Ok(PairRegion {
+        i,
+        j,
+        polygons,
+        region,
+        contact,
+    })
+}
+
 /// True when the open polygon `p` lies inside the open polygon `q` (then `p` adds
 /// nothing to a union containing `q`). A pointed polygon or lune is the conic hull of its
 /// corners, so it suffices that every corner lies in the closed `q`; a hemisphere lies in
@@ -550,8 +579,35 @@ pub fn union_of(polygons: &[SphericalPolygon]) -> RegionMap {
     union_of_pruned(&pruned(polygons.to_vec()))
 }
 
-/// [`union_of`] for polygons none of which lies in another.
+/// Polygons united in one arrangement; more are united by halves.
+const UNION_LEAF: usize = 16;
+
+/// [`union_of`] for polygons none of which lies in another: divide and conquer. The two
+/// halves' simplified unions are overlaid (their boundaries only, which are far smaller
+/// than all the polygons' when the polygons overlap), and the overlay's cells take their
+/// status from the two maps' labels, from one cell evaluated exactly on the polygons.
 fn union_of_pruned(polygons: &[SphericalPolygon]) -> RegionMap {
+    if polygons.len() <= UNION_LEAF {
+        return union_in_one_arrangement(polygons);
+    }
+    let (lo, hi) = polygons.split_at(polygons.len() / 2);
+    let (a, b) = rayon::join(|| union_of_pruned(lo), || union_of_pruned(hi));
+    let (arcs, points) = region_inputs(&[&a, &b]);
+    let (arr, _) = Arrangement::build(arcs, points);
+    let st = cell_statuses(&arr, 2, |x, y| {
+        let mut s = BitSet::new(2);
+        s.set(0, lo.iter().any(|p| p.contains_open_perturbed(x, y)));
+        s.set(1, hi.iter().any(|p| p.contains_open_perturbed(x, y)));
+        s
+    });
+    simplify_union(&arr, &st)
+}
+
+/// The union of a few polygons in one arrangement of all their arcs.
+fn union_in_one_arrangement(polygons: &[SphericalPolygon]) -> RegionMap {
+    if polygons.is_empty() {
+        return RegionMap::default();
+    }
     if polygons.len() == 1 {
         let p = &polygons[0];
         return RegionMap {
@@ -632,6 +688,62 @@ mod prune_tests {
             }
         }
         keep
+    }
+
+    /// The status of `map` at `d`, read off the labels of an arrangement of the map and
+    /// the point `d` (the polygons only give the status of one cell).
+    fn map_status_at(map: &RegionMap, d: &Vec3, polygons: &[SphericalPolygon]) -> bool {
+        let (arcs, mut points) = region_inputs(&[map]);
+        points.push(InputPoint {
+            point: d.clone(),
+            label: PointStatus { map: 1, on: true },
+        });
+        let (arr, _) = Arrangement::build(arcs, points);
+        let st = cell_statuses(&arr, 2, |x, y| {
+            let mut s = BitSet::new(2);
+            s.set(0, polygons.iter().any(|p| p.contains_open_perturbed(x, y)));
+            s
+        });
+        let v = arr
+            .vertices()
+            .iter()
+            .position(|v| v.point.primitive() == d.primitive())
+            .expect("the point is a vertex");
+        st.vertices[v].get(0)
+    }
+
+    #[test]
+    fn halves_united_give_the_union() {
+        let mut s = 987u64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        for _ in 0..6 {
+            let mut polygons = Vec::new();
+            while polygons.len() < 3 * UNION_LEAF {
+                let lo = [next(13) - 6, next(13) - 6, next(13) - 6];
+                let hi = [
+                    lo[0] + next(5) + 1,
+                    lo[1] + next(5) + 1,
+                    lo[2] + next(5) + 1,
+                ];
+                polygons.extend(box_polygon(lo, hi));
+            }
+            let polygons = pruned(polygons);
+            assert!(polygons.len() > UNION_LEAF, "the halves are used");
+            let map = union_of_pruned(&polygons);
+            for _ in 0..25 {
+                let d = Vec3::new(next(21) - 10, next(21) - 10, next(21) - 10);
+                if d.is_zero() {
+                    continue;
+                }
+                let inside = polygons.iter().any(|p| p.contains_open(&d));
+                assert_eq!(map_status_at(&map, &d, &polygons), inside, "{d:?}");
+            }
+        }
     }
 
     #[test]
