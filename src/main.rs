@@ -75,6 +75,11 @@ pub struct Global {
     /// Read each file as one part, even when it holds several separate solids.
     #[arg(long, global = true)]
     pub one_part_per_file: bool,
+    /// Read mesh files (and glTF buffers) that lie outside the assembly's folder: by
+    /// default every file an assembly names must resolve inside its folder, symbolic
+    /// links included.
+    #[arg(long, global = true)]
+    pub allow_outside: bool,
     /// Stop the run after this many seconds (more than 0, at most 604800), with
     /// "stopped after S s: <phase>" and exit code 1. A watchdog ends the process; files
     /// being written may be incomplete.

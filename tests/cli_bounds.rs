@@ -580,3 +580,47 @@ fn max_memory_ends_a_run_over_its_budget_naming_its_phase() {
     assert_eq!(json(&out)["solutions"], free["solutions"]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn files_outside_the_assembly_need_allow_outside() {
+    // A manifest naming a mesh in a sibling folder: refused by default, naming the file
+    // and the folder; read with --allow-outside; two files named on the command line
+    // (place and separate build a temporary manifest) are always read.
+    let dir = scratch("outside");
+    let (asm, other) = (dir.join("asm"), dir.join("other"));
+    std::fs::create_dir_all(&asm).unwrap();
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::write(asm.join("a.off"), cube_off([0, 0, 0])).unwrap();
+    std::fs::write(other.join("b.off"), cube_off([1, 0, 0])).unwrap();
+    std::fs::write(
+        asm.join("assembly.json"),
+        r#"{"parts": [{"name": "a", "mesh": "a.off"}, {"name": "b", "mesh": "../other/b.off"}]}"#,
+    )
+    .unwrap();
+    let manifest = asm.join("assembly.json").display().to_string();
+    let out = run(&["check", &manifest]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let text = stdout(&out) + &stderr(&out);
+    assert!(text.contains("b.off") && text.contains("outside"), "{text}");
+    let out = run(&["check", "--allow-outside", &manifest]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&out),
+        stderr(&out)
+    );
+    let (a, b) = (
+        asm.join("a.off").display().to_string(),
+        other.join("b.off").display().to_string(),
+    );
+    let out = run(&["separate", &a, &b]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&out),
+        stderr(&out)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

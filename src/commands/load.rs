@@ -20,6 +20,7 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
         tolerance: crate::input_facts::tolerance(global)?,
         repair: !global.strict,
         split_bodies: !global.one_part_per_file,
+        allow_outside: global.allow_outside,
         ..LoadOptions::default()
     };
     let loaded = load(path, &opts);
@@ -74,9 +75,18 @@ pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyho
     Ok(loaded)
 }
 
+/// The global options for loading a [`files_manifest`]: the files were named on the
+/// command line, so they may lie outside the manifest's temporary folder.
+pub fn for_named_files(global: &Global) -> Global {
+    Global {
+        allow_outside: true,
+        ..global.clone()
+    }
+}
+
 /// A temporary manifest naming mesh files as parts of one assembly (so that they are
 /// snapped to one grid), with the part names (file stems, made unique) and a guard that
-/// removes the manifest's folder when dropped.
+/// removes the manifest's folder when dropped. Load it with [`for_named_files`].
 pub fn files_manifest(
     files: &[&String],
     tag: &str,

@@ -4,7 +4,7 @@
 //! each cell, over discrete orientations about z. Exit code 0 when a position was found,
 //! 2 when the part fits nowhere in the region.
 
-use crate::commands::load::{files_manifest, load_valid_but};
+use crate::commands::load::{files_manifest, for_named_files, load_valid_but};
 use crate::commands::stack::percent;
 use crate::output;
 use crate::{limits, Global};
@@ -279,7 +279,7 @@ struct PlaceJson {
 pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     crate::input_facts::no_tolerance(global, "place")?;
     let start = std::time::Instant::now();
-    let (path, name, _tmp) = match args.inputs.as_slice() {
+    let (path, name, tmp) = match args.inputs.as_slice() {
         [asm, name] if !Path::new(name).is_file() => (PathBuf::from(asm), name.clone(), None),
         [fixed, new] => {
             let (file, names, tmp) = files_manifest(&[fixed, new], "place")?;
@@ -287,7 +287,8 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         }
         _ => anyhow::bail!("give an assembly and a part name, or two mesh files"),
     };
-    let loaded = load_valid_but(&path, global, Some(&name))?;
+    let named = tmp.as_ref().map(|_| for_named_files(global));
+    let loaded = load_valid_but(&path, named.as_ref().unwrap_or(global), Some(&name))?;
     let asm = &loaded.assembly;
     let h = asm.grid.step();
     let k = asm

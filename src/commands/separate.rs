@@ -2,7 +2,7 @@
 //! spherical regions, sliding arcs and isolated directions, with the free area and the
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
-use crate::commands::load::{files_manifest, load_valid};
+use crate::commands::load::{files_manifest, for_named_files, load_valid};
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
@@ -71,7 +71,7 @@ fn arc_json(a: &Arc) -> ArcJson {
 
 /// Runs the command.
 pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
-    let (path, a_name, b_name, _tmp) = match args.inputs.as_slice() {
+    let (path, a_name, b_name, tmp) = match args.inputs.as_slice() {
         [asm, a, b] => (PathBuf::from(asm), a.clone(), b.clone(), None),
         [a, b] => {
             let (file, names, tmp) = files_manifest(&[a, b], "separate")?;
@@ -80,7 +80,8 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
         }
         _ => anyhow::bail!("give an assembly and two part names, or two mesh files"),
     };
-    let loaded = load_valid(&path, global)?;
+    let named = tmp.as_ref().map(|_| for_named_files(global));
+    let loaded = load_valid(&path, named.as_ref().unwrap_or(global))?;
     let asm = &loaded.assembly;
     anyhow::ensure!(
         asm.parts.len() >= 2,
