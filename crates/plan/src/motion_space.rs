@@ -43,6 +43,7 @@ pub struct MotionSpace {
     vertex_is_cell: Vec<bool>,
     edge_cell_of: Vec<u32>,
     edge_cells: Vec<Vec<u32>>,
+    vertex_edge_cell: Vec<u32>,
     /// Arcs of the real edges (by edge index; structural edges get a dummy) and their index.
     edge_arcs: Vec<Arc>,
     edge_index: apart_sphere::index::ArcIndex,
@@ -110,7 +111,12 @@ impl MotionSpace {
             }
             s
         });
-        let (vertex_is_cell, edge_cell_of, edge_cells) = cells(&arr, &st);
+        let Cells {
+            vertex_is_cell,
+            edge_cell_of,
+            edge_cells,
+            vertex_edge_cell,
+        } = cells(&arr, &st);
         let edge_arcs: Vec<Arc> = (0..arr.edges().len() as u32)
             .map(|e| arr.edge_arc(e))
             .collect();
@@ -138,6 +144,7 @@ impl MotionSpace {
             vertex_is_cell,
             edge_cell_of,
             edge_cells,
+            vertex_edge_cell,
             edge_arcs: real_arcs,
             edge_index,
             real_edge_ids: real_ids,
@@ -203,47 +210,47 @@ impl MotionSpace {
         self.maps.len()
     }
 
-    /// The vertices that are cells of the motion space (something changes there).
+    /// The vertices that are cells of the motion space: isolated cells whose blocking
+    /// status differs from that of every face and edge around them.
     pub fn real_vertices(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.arr.vertices().len()).filter(|&v| self.vertex_is_cell[v])
     }
 
-    /// The edge cells: maximal runs of arrangement edges along one circle through vertices
-    /// that are not cells; each a list of arrangement edge indices.
+    /// The edge cells: maximal connected sets of arrangement edges (and the vertices
+    /// between them) with one blocking status that differs from the status of the faces
+    /// on both sides; each a list of arrangement edge indices.
     pub fn edge_cells(&self) -> &[Vec<u32>] {
         &self.edge_cells
     }
 
-    /// The real edge cell an arrangement edge belongs to (`None` for structural edges).
+    /// The edge cell an arrangement edge belongs to (`None` for structural edges and for
+    /// edges with the status of a face beside them, which belong to that face).
     pub fn edge_cell_of(&self, e: usize) -> Option<usize> {
         let c = self.edge_cell_of[e];
         (c != u32::MAX).then_some(c as usize)
     }
 
-    /// Where direction `d` lies: a vertex, a real edge (cell index) or the inside of a
-    /// face (`None` index: faces are not located, their DBG is evaluated directly).
+    /// The maximal cell direction `d` lies in: a vertex, an edge cell (cell index) or a
+    /// face (`None` index: faces are not located, their DBG is evaluated directly). A
+    /// direction on an arc or at a vertex with the status of a face beside it is in
+    /// that face.
     pub fn locate(&self, d: &Vec3) -> (CellKind, Option<usize>) {
         let p = d.primitive();
         if let Some(&v) = self.vertex_at.get(&p) {
-            let vert = &self.arr.vertices()[v as usize];
             if self.vertex_is_cell[v as usize] {
                 return (CellKind::Vertex, Some(v as usize));
             }
             // A vertex that is no cell lies inside an edge cell or a face.
-            return match vert
-                .around
-                .iter()
-                .find_map(|&h| self.edge_cell_of((h / 2) as usize))
-            {
-                Some(c) => (CellKind::Edge, Some(c)),
-                None => (CellKind::Face, None),
+            return match self.vertex_edge_cell[v as usize] {
+                u32::MAX => (CellKind::Face, None),
+                c => (CellKind::Edge, Some(c as usize)),
             };
         }
         match self.edge_index.locate(&self.edge_arcs, &p) {
-            Some((k, _)) => (
-                CellKind::Edge,
-                self.edge_cell_of(self.real_edge_ids[k as usize] as usize),
-            ),
+            Some((k, _)) => match self.edge_cell_of(self.real_edge_ids[k as usize] as usize) {
+                Some(c) => (CellKind::Edge, Some(c)),
+                None => (CellKind::Face, None),
+            },
             None => (CellKind::Face, None),
         }
     }
@@ -302,12 +309,21 @@ impl MotionSpace {
 }
 
 /// Which vertices are genuine cells, and the grouping of arrangement edges into edge
-/// cells. A vertex is not a cell when nothing changes there: a structural vertex, a
-/// vertex where exactly two real edges of one circle continue straight with the
-/// vertex's own blocking status (for example a point that only splits a hemisphere's
-/// boundary into minor arcs), or an isolated point with its face's status. Edges are
-/// grouped across such vertices.
-fn cells(arr: &RegionArrangement, st: &CellStatuses) -> (Vec<bool>, Vec<u32>, Vec<Vec<u32>>) {
+/// cells: the cells are the *maximal* connected sets of one blocking status, so that a
+/// direction is reported in the largest cell around it.
+///
+/// - An edge whose status equals that of a face on either side is no cell: it belongs to
+///   that face (the boundary arc of an open blocked set, where nothing else changes, has
+///   the status of the face outside the set; for cubes touching along an edge or at a
+///   vertex, every arc of the motion space is such a boundary).
+/// - A vertex is no cell when it is structural, or when its status equals that of a face
+///   around it (it belongs to the face), or else that of a real edge through it that is a
+///   cell (it joins that edge cell, and every such edge cell through it becomes one).
+///
+/// So a straight continuation of two edges with the vertex's own status (a point that
+/// only splits a hemisphere's boundary into minor arcs) is one edge cell, and an isolated
+/// point with its face's status is no cell.
+fn cells(arr: &RegionArrangement, st: &CellStatuses) -> Cells {
     let n = arr.edges().len();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
@@ -317,42 +333,69 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses) -> (Vec<bool>, Vec<u32>, Ve
         }
         x
     }
+    // Real edges that are cells: a status different from both faces beside them.
+    let edge_is_cell: Vec<bool> = (0..n)
+        .map(|e| {
+            let s = &st.edges[e];
+            !arr.edges()[e].structural
+                && *s != st.cycles[arr.cycle_of(2 * e as u32) as usize]
+                && *s != st.cycles[arr.cycle_of(2 * e as u32 + 1) as usize]
+        })
+        .collect();
     let mut is_cell = vec![false; arr.vertices().len()];
+    // For a vertex that is no cell: one arrangement edge of the edge cell it joins.
+    let mut joins = vec![u32::MAX; arr.vertices().len()];
     for (v, vert) in arr.vertices().iter().enumerate() {
-        let real: Vec<u32> = vert
+        let s = &st.vertices[v];
+        let real = || {
+            vert.around
+                .iter()
+                .map(|&h| (h / 2) as usize)
+                .filter(|&e| !arr.edges()[e].structural)
+        };
+        if vert.structural {
+            // A structural vertex on a real arc joins the two halves of that arc.
+            let r: Vec<usize> = real().filter(|&e| edge_is_cell[e]).collect();
+            if let [a, b] = r[..] {
+                if st.edges[a] == st.edges[b] {
+                    let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                    parent[ra] = rb;
+                    joins[v] = a as u32;
+                }
+            }
+            continue;
+        }
+        if vert.around.is_empty() {
+            // A point alone on the sphere (no arc at all): a cell when its status is not
+            // the sphere's.
+            is_cell[v] = st.faces.first().is_some_and(|f| f != s);
+            continue;
+        }
+        if vert
             .around
             .iter()
-            .copied()
-            .filter(|&h| !arr.edges()[(h / 2) as usize].structural)
-            .collect();
-        let straight = real.len() == 2 && {
-            let (a, b) = ((real[0] / 2) as usize, (real[1] / 2) as usize);
-            arr.edges()[a].circle == arr.edges()[b].circle && real[0] % 2 != real[1] % 2
-        };
-        if straight {
-            let (a, b) = ((real[0] / 2) as usize, (real[1] / 2) as usize);
-            let same = st.edges[a] == st.edges[b] && st.vertices[v] == st.edges[a];
-            if vert.structural || same {
-                let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-                parent[ra] = rb;
-                continue;
-            }
+            .any(|&h| st.cycles[arr.cycle_of(h) as usize] == *s)
+        {
+            continue;
         }
-        is_cell[v] = if vert.structural {
-            false
-        } else if real.is_empty() {
-            vert.around
-                .first()
-                .is_some_and(|&h| st.vertices[v] != st.cycles[arr.cycle_of(h) as usize])
-        } else {
-            true
-        };
+        let same: Vec<usize> = real()
+            .filter(|&e| edge_is_cell[e] && st.edges[e] == *s)
+            .collect();
+        if let Some(&first) = same.first() {
+            for &e in &same[1..] {
+                let (ra, rb) = (find(&mut parent, first), find(&mut parent, e));
+                parent[ra] = rb;
+            }
+            joins[v] = first as u32;
+            continue;
+        }
+        is_cell[v] = true;
     }
     let mut ids: HashMap<usize, u32> = HashMap::default();
     let mut groups: Vec<Vec<u32>> = Vec::new();
     let mut of = vec![u32::MAX; n];
     for (e, slot) in of.iter_mut().enumerate() {
-        if arr.edges()[e].structural {
+        if !edge_is_cell[e] {
             continue;
         }
         let root = find(&mut parent, e);
@@ -363,5 +406,29 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses) -> (Vec<bool>, Vec<u32>, Ve
         groups[c as usize].push(e as u32);
         *slot = c;
     }
-    (is_cell, of, groups)
+    let vertex_edge_cell = joins
+        .iter()
+        .map(|&e| {
+            if e == u32::MAX {
+                u32::MAX
+            } else {
+                of[e as usize]
+            }
+        })
+        .collect();
+    Cells {
+        vertex_is_cell: is_cell,
+        edge_cell_of: of,
+        edge_cells: groups,
+        vertex_edge_cell,
+    }
+}
+
+/// The cells of a motion space (see [`cells`]).
+struct Cells {
+    vertex_is_cell: Vec<bool>,
+    edge_cell_of: Vec<u32>,
+    edge_cells: Vec<Vec<u32>>,
+    /// For a vertex that is no cell but lies in an edge cell, that cell (else `u32::MAX`).
+    vertex_edge_cell: Vec<u32>,
 }

@@ -24,7 +24,10 @@ pub struct Options {
 pub struct Solution {
     /// The kind of solution: `Face`, a region of directions (faces of the motion space
     /// and the arcs between them) where `moving` is free with positive clearance; `Edge`,
-    /// a sliding arc; `Vertex`, an isolated direction.
+    /// a sliding arc; `Vertex`, an isolated direction. Cells are maximal: an arc or a
+    /// vertex with the blocking graph of a face beside it is part of that face (the
+    /// boundary of one pair's open blocked set where nothing else changes), and a vertex
+    /// with the graph of an edge cell through it is part of that edge.
     pub cell: CellKind,
     /// An exact integer direction of the solution where `moving` is a minimal moving set:
     /// the vertex itself, an interior point of the edge, or a simple direction deep

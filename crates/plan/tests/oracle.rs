@@ -76,7 +76,7 @@ fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseE
         );
         if s.cell == CellKind::Face {
             prop_assert!(s.clearance_deg > 0.0, "{:?}", s);
-            for q in cap_directions(&s.unit, 0.97 * s.clearance_deg.to_radians()) {
+            for q in common::cap_directions(&s.unit, 0.97 * s.clearance_deg.to_radians()) {
                 prop_assert!(
                     oracle.dbg(&q).can_move(&s.moving),
                     "{:?} is blocked at {:?}, inside its clearance",
@@ -87,41 +87,6 @@ fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseE
         }
     }
     Ok(())
-}
-
-/// Integer directions at angle `r` (and `r / 2`) around unit `u`: twelve on each circle,
-/// rounded at a scale of 2^20 (far below the 3% margin the callers leave).
-fn cap_directions(u: &[f64; 3], r: f64) -> Vec<Vec3> {
-    let helper = if u[0].abs() < 0.9 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let cross = |a: &[f64; 3], b: &[f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let v = cross(u, &helper);
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let v = v.map(|x| x / n);
-    let w = cross(u, &v);
-    let mut out = Vec::new();
-    for radius in [r, r / 2.0] {
-        for k in 0..12 {
-            let t = k as f64 * std::f64::consts::PI / 6.0;
-            let q: Vec<i64> = (0..3)
-                .map(|i| {
-                    let x = u[i] * radius.cos() + (v[i] * t.cos() + w[i] * t.sin()) * radius.sin();
-                    (x * (1u64 << 20) as f64).round() as i64
-                })
-                .collect();
-            out.push(Vec3::new(q[0], q[1], q[2]));
-        }
-    }
-    out
 }
 
 /// Random voxel assemblies: a small grid of unit-scaled cells, each cell a box piece of a
