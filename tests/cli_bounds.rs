@@ -549,11 +549,11 @@ fn timeout_ends_a_long_run_naming_its_phase() {
 fn max_memory_ends_a_run_over_its_budget_naming_its_phase() {
     let dir = scratch("memory");
     loose_cubes(&dir, 60);
-    let out = run(&["partition", dir.to_str().unwrap(), "--max-memory", "20M"]);
+    let out = run(&["partition", dir.to_str().unwrap(), "--max-memory", "2M"]);
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(
-        err.contains("out of memory budget (--max-memory 20M) during "),
+        err.contains("out of memory budget (--max-memory 2M) during "),
         "{err}"
     );
     assert!(
@@ -564,7 +564,7 @@ fn max_memory_ends_a_run_over_its_budget_naming_its_phase() {
         "partition",
         dir.to_str().unwrap(),
         "--max-memory",
-        "20M",
+        "2M",
         "--json",
     ]);
     assert_eq!(out.status.code(), Some(1));
