@@ -146,18 +146,26 @@ pub struct RegionStats {
 /// A touching piece pair's contact cone, and whether the pieces touch.
 type Cone = (SphericalPolygon, bool);
 
+/// Full sums whose polygons are made before those inside another are dropped.
+const PRUNE_CHUNK: usize = 1 << 14;
+
 /// Piece pairs whose data may be alive at once (see [`BlockingRegions::compute`]).
 const PAIR_BATCH: usize = 1 << 16;
 
 impl RegionStats {
-    /// Adds the counts and times of another computation.
-    fn add(&mut self, o: &RegionStats) {
+    /// Adds the counts of another computation, and its times scaled by `scale`.
+    fn add(&mut self, o: &RegionStats, scale: f64) {
         self.sums += o.sums;
         self.contact_cones += o.contact_cones;
         self.skipped += o.skipped;
-        self.sums_seconds += o.sums_seconds;
-        self.projection_seconds += o.projection_seconds;
-        self.unions_seconds += o.unions_seconds;
+        self.sums_seconds += o.sums_seconds * scale;
+        self.projection_seconds += o.projection_seconds * scale;
+        self.unions_seconds += o.unions_seconds * scale;
+    }
+
+    /// The time of the three phases.
+    fn seconds(&self) -> f64 {
+        self.sums_seconds + self.projection_seconds + self.unions_seconds
     }
 }
 
@@ -223,6 +231,7 @@ impl BlockingRegions {
             }
             let (batch, tail) = rest.split_at(take);
             rest = tail;
+            let t = Instant::now();
             let done: Vec<(PairRegion, RegionStats)> = batch
                 .par_iter()
                 .map(|&(i, j)| {
@@ -230,8 +239,12 @@ impl BlockingRegions {
                     pair_region(parts, &info, i, j, &mut s).map(|r| (r, s))
                 })
                 .collect::<Result<_, _>>()?;
+            // Pairs ran side by side: their phase times are shares of the batch's.
+            let wall = t.elapsed().as_secs_f64();
+            let busy: f64 = done.iter().map(|(_, s)| s.seconds()).sum();
+            let scale = if busy > wall { wall / busy } else { 1.0 };
             for (r, s) in done {
-                stats.add(&s);
+                stats.add(&s, scale);
                 regions.push(r);
             }
         }
@@ -414,46 +427,42 @@ fn pair_region(
     drop(pair_axes);
     stats.sums += todo.len();
     stats.skipped += jobs.len() - todo.len() - cone_count;
-    let full: Vec<(SphericalPolygon, bool)> =
-        todo.par_iter()
-            .map(|&k| {
-                let (a, b) = jobs[k];
-                let t0 = Instant::now();
-                let m = sum_prepared(info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a]))
-                    .map_err(|e| {
-                        PlanError::Internal(format!(
-                            "Minkowski sum of {} and {}: {e}",
-                            parts[i].name, parts[j].name
-                        ))
-                    })?;
-                sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
-                let t1 = Instant::now();
-                let out = match project(&m) {
-                    Ok(Projection::Polygon(p)) => {
-                        // Touching: no facet has the origin strictly outside.
-                        let contact = m
-                            .facets()
-                            .iter()
-                            .all(|f| f.offset >= apart_kernel::Int::ZERO);
-                        Ok((p, contact))
-                    }
-                    Ok(Projection::Everything) => Err(overlap(a, b)),
-                    Err(e) => Err(PlanError::Internal(format!(
-                        "projection for {} and {}: {e}",
-                        parts[i].name, parts[j].name
-                    ))),
-                };
-                proj_ns.fetch_add(cpu(t1), std::sync::atomic::Ordering::Relaxed);
-                out
-            })
-            .collect::<Result<_, _>>()?;
-    // Back in job order (the union's order).
-    let mut slots: Vec<Option<(SphericalPolygon, bool)>> = cones;
-    for (k, p) in todo.into_iter().zip(full) {
-        slots[k] = Some(p);
-    }
+    let polygon_of = |k: usize| -> Result<Cone, PlanError> {
+        let (a, b) = jobs[k];
+        let t0 = Instant::now();
+        let m =
+            sum_prepared(info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a])).map_err(|e| {
+                PlanError::Internal(format!(
+                    "Minkowski sum of {} and {}: {e}",
+                    parts[i].name, parts[j].name
+                ))
+            })?;
+        sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
+        let t1 = Instant::now();
+        let out = match project(&m) {
+            Ok(Projection::Polygon(p)) => {
+                // Touching: no facet has the origin strictly outside.
+                let contact = m
+                    .facets()
+                    .iter()
+                    .all(|f| f.offset >= apart_kernel::Int::ZERO);
+                Ok((p, contact))
+            }
+            Ok(Projection::Everything) => Err(overlap(a, b)),
+            Err(e) => Err(PlanError::Internal(format!(
+                "projection for {} and {}: {e}",
+                parts[i].name, parts[j].name
+            ))),
+        };
+        proj_ns.fetch_add(cpu(t1), std::sync::atomic::Ordering::Relaxed);
+        out
+    };
+    // The contact cones, then the full sums' polygons a chunk at a time, each chunk
+    // pruned of polygons inside another before the next is made (memory: a polygon
+    // inside another of its chunk lies inside a kept one, so pruning by chunks and then
+    // all the kept ones together keeps the same union).
     let mut contact = false;
-    let polygons: Vec<SphericalPolygon> = slots
+    let mut polygons: Vec<SphericalPolygon> = cones
         .into_iter()
         .flatten()
         .map(|(p, touch)| {
@@ -461,7 +470,28 @@ fn pair_region(
             p
         })
         .collect();
-    let wall = t.elapsed().as_secs_f64();
+    let mut prune_seconds = 0.0;
+    for chunk in todo.chunks(PRUNE_CHUNK) {
+        let made: Vec<Cone> = chunk
+            .par_iter()
+            .map(|&k| polygon_of(k))
+            .collect::<Result<_, _>>()?;
+        let t0 = Instant::now();
+        let made: Vec<SphericalPolygon> = made
+            .into_iter()
+            .map(|(p, touch)| {
+                contact |= touch;
+                p
+            })
+            .collect();
+        polygons.extend(if todo.len() > PRUNE_CHUNK {
+            pruned(made)
+        } else {
+            made
+        });
+        prune_seconds += t0.elapsed().as_secs_f64();
+    }
+    let wall = t.elapsed().as_secs_f64() - prune_seconds;
     let (sn, pn) = (sum_ns.into_inner() as f64, proj_ns.into_inner() as f64);
     let share = if sn + pn > 0.0 { sn / (sn + pn) } else { 1.0 };
     stats.sums_seconds += axes_seconds + wall * share;
@@ -471,7 +501,7 @@ fn pair_region(
     // Only the polygons that add to the union are kept (memory).
     let polygons = pruned(polygons);
     let region = union_of_pruned(&polygons);
-    stats.unions_seconds += t.elapsed().as_secs_f64();
+    stats.unions_seconds += prune_seconds + t.elapsed().as_secs_f64();
     Ok(PairRegion {
         i,
         j,
@@ -710,6 +740,44 @@ mod prune_tests {
             .position(|v| v.point.primitive() == d.primitive())
             .expect("the point is a vertex");
         st.vertices[v].get(0)
+    }
+
+    #[test]
+    fn pruning_by_chunks_keeps_the_union() {
+        // What pair_region does with many sums: prune each chunk, then all kept ones.
+        let mut s = 4242u64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        for _ in 0..20 {
+            let mut all = Vec::new();
+            for _ in 0..30 {
+                let lo = [next(9) - 4, next(9) - 4, next(5) + 1];
+                let hi = [
+                    lo[0] + next(4) + 1,
+                    lo[1] + next(4) + 1,
+                    lo[2] + next(4) + 1,
+                ];
+                all.extend(box_polygon(lo, hi));
+            }
+            let mut kept = Vec::new();
+            for chunk in all.chunks(7) {
+                kept.extend(pruned(chunk.to_vec()));
+            }
+            let kept = pruned(kept);
+            assert_eq!(kept.len(), prune_contained(&all).len());
+            for _ in 0..40 {
+                let d = Vec3::new(next(15) - 7, next(15) - 7, next(9) - 1);
+                if d.is_zero() {
+                    continue;
+                }
+                let blocked = |ps: &[SphericalPolygon]| ps.iter().any(|p| p.contains_open(&d));
+                assert_eq!(blocked(&kept), blocked(&all), "{d:?}");
+            }
+        }
     }
 
     #[test]
