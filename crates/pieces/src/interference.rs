@@ -96,7 +96,12 @@ fn neg3(u: &[f64; 3]) -> [f64; 3] {
 
 /// The smallest and largest of `u · p` over the shadow's points.
 fn float_range(s: &Shadow, u: &[f64; 3]) -> (f64, f64) {
-    s.points
+    range_of(&s.points, u)
+}
+
+/// The smallest and largest of `u · p` over `points`.
+fn range_of(points: &[[f64; 3]], u: &[f64; 3]) -> (f64, f64) {
+    points
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
             let t = dot3(p, u);
@@ -690,13 +695,7 @@ impl Extremes {
     /// The smallest and largest `u · x` over the vertices.
     fn range(&mut self, u: &[f64; 3]) -> (f64, f64) {
         if self.neighbours.is_empty() {
-            return self
-                .points
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                    let t = dot3(p, u);
-                    (lo.min(t), hi.max(t))
-                });
+            return range_of(&self.points, u);
         }
         let hi = self.climb(0, u);
         let lo = -self.climb(1, &neg3(u));
