@@ -17,5 +17,5 @@ pub mod region;
 
 pub use arc::Arc;
 pub use arrangement::{ArcLabel, Arrangement, InputArc, InputPoint};
-pub use bitset::BitSet;
+pub use bitset::{BitSet, MapSet};
 pub use polygon::SphericalPolygon;

@@ -11,7 +11,7 @@
 //! through it or a point at it.
 
 use crate::arrangement::{ArcLabel, Arrangement};
-use crate::bitset::BitSet;
+use crate::bitset::{BitSet, MapSet};
 use crate::polygon::perpendicular;
 use apart_kernel::Vec3;
 use std::collections::VecDeque;
@@ -52,31 +52,76 @@ pub struct PointStatus {
 /// An arrangement of region-map arcs and points.
 pub type RegionArrangement = Arrangement<SideLabel, PointStatus>;
 
+/// The set of maps whose status is `true` at a cell: dense bits ([`BitSet`]) for few maps,
+/// a sorted list ([`MapSet`]) when there are many and few cover any one cell.
+pub trait Status: Clone + PartialEq + std::fmt::Debug {
+    /// The empty set for `maps` maps.
+    fn empty(maps: usize) -> Self;
+    /// Sets map `map` to `on`.
+    fn assign(&mut self, map: usize, on: bool);
+    /// Applies `changes` in order (a later change of a map wins); may reorder them.
+    fn assign_all(&mut self, changes: &mut [(u32, bool)]) {
+        for &(m, on) in changes.iter() {
+            self.assign(m as usize, on);
+        }
+    }
+}
+
+impl Status for BitSet {
+    fn empty(maps: usize) -> Self {
+        BitSet::new(maps)
+    }
+    fn assign(&mut self, map: usize, on: bool) {
+        self.set(map, on);
+    }
+}
+
+impl Status for MapSet {
+    fn empty(_maps: usize) -> Self {
+        MapSet::new()
+    }
+    fn assign(&mut self, map: usize, on: bool) {
+        self.set(map, on);
+    }
+    fn assign_all(&mut self, changes: &mut [(u32, bool)]) {
+        if changes.len() <= 4 {
+            for &(m, on) in changes.iter() {
+                self.set(m as usize, on);
+            }
+        } else {
+            // One merge instead of an insertion per change (an edge where many pairs'
+            // arcs coincide carries many labels).
+            changes.sort_by_key(|c| c.0); // stable: the last change of a map stays last
+            self.merge(changes);
+        }
+    }
+}
+
 /// For every cell, the set of maps whose status there is `true`.
 #[derive(Clone, Debug)]
-pub struct CellStatuses {
+pub struct CellStatuses<S = BitSet> {
     /// Per vertex.
-    pub vertices: Vec<BitSet>,
+    pub vertices: Vec<S>,
     /// Per edge.
-    pub edges: Vec<BitSet>,
+    pub edges: Vec<S>,
     /// Per face.
-    pub faces: Vec<BitSet>,
+    pub faces: Vec<S>,
     /// Per boundary cycle (equal to its face's).
-    pub cycles: Vec<BitSet>,
+    pub cycles: Vec<S>,
 }
 
 /// Computes the statuses of `maps` maps on every cell of `arr`.
 ///
 /// `oracle(x, y)` must return the exact statuses of all maps at the points `x + εy` for
 /// every small enough `ε > 0` (a symbolic perturbation); it is called once.
-pub fn cell_statuses(
+pub fn cell_statuses<S: Status>(
     arr: &RegionArrangement,
     maps: usize,
-    oracle: impl Fn(&Vec3, &Vec3) -> BitSet,
-) -> CellStatuses {
-    let point_override = |v: usize, s: &mut BitSet| {
+    oracle: impl Fn(&Vec3, &Vec3) -> S,
+) -> CellStatuses<S> {
+    let point_override = |v: usize, s: &mut S| {
         for l in &arr.vertices()[v].labels {
-            s.set(l.map as usize, l.on);
+            s.assign(l.map as usize, l.on);
         }
     };
     if arr.edges().is_empty() {
@@ -104,20 +149,29 @@ pub fn cell_statuses(
     // Exact statuses just left of edge 0 (its positive side), then breadth-first.
     let e0 = arr.edge_arc(0);
     let start = oracle(&e0.interior_point(), &e0.normal);
-    let mut cycles: Vec<Option<BitSet>> = vec![None; arr.cycle_count()];
+    let mut cycles: Vec<Option<S>> = vec![None; arr.cycle_count()];
     let c0 = arr.cycle_of(0);
     cycles[c0 as usize] = Some(start);
     let mut queue = VecDeque::from([c0]);
+    let mut changes: Vec<(u32, bool)> = Vec::new();
     while let Some(c) = queue.pop_front() {
         let status = cycles[c as usize].clone().unwrap();
         for h in arr.cycle_half_edges(c) {
             let twin = h ^ 1;
             let d = arr.cycle_of(twin);
+            if cycles[d as usize].is_some() && !cfg!(debug_assertions) {
+                continue;
+            }
             let mut s = status.clone();
             let forward = Arrangement::<SideLabel, PointStatus>::is_forward(twin);
-            for l in &arr.edges()[(h / 2) as usize].labels {
-                s.set(l.map as usize, if forward { l.pos } else { l.neg });
-            }
+            changes.clear();
+            changes.extend(
+                arr.edges()[(h / 2) as usize]
+                    .labels
+                    .iter()
+                    .map(|l| (l.map, if forward { l.pos } else { l.neg })),
+            );
+            s.assign_all(&mut changes);
             match &cycles[d as usize] {
                 None => {
                     cycles[d as usize] = Some(s);
@@ -129,7 +183,7 @@ pub fn cell_statuses(
             }
         }
     }
-    let cycles: Vec<BitSet> = cycles
+    let cycles: Vec<S> = cycles
         .into_iter()
         .map(|s| s.expect("unreached cycle"))
         .collect();
@@ -144,9 +198,9 @@ pub fn cell_statuses(
         .enumerate()
         .map(|(e, edge)| {
             let mut s = cycles[arr.cycle_of(2 * e as u32) as usize].clone();
-            for l in &edge.labels {
-                s.set(l.map as usize, l.on);
-            }
+            changes.clear();
+            changes.extend(edge.labels.iter().map(|l| (l.map, l.on)));
+            s.assign_all(&mut changes);
             s
         })
         .collect();
@@ -157,14 +211,19 @@ pub fn cell_statuses(
         .map(|(v, vert)| {
             let mut s = match vert.around.first() {
                 Some(&h) => cycles[arr.cycle_of(h) as usize].clone(),
-                None => BitSet::new(maps),
+                None => S::empty(maps),
             };
+            changes.clear();
             for &h in &vert.around {
-                for l in &arr.edges()[(h / 2) as usize].labels {
-                    s.set(l.map as usize, l.on);
-                }
+                changes.extend(
+                    arr.edges()[(h / 2) as usize]
+                        .labels
+                        .iter()
+                        .map(|l| (l.map, l.on)),
+                );
             }
-            point_override(v, &mut s);
+            changes.extend(arr.vertices()[v].labels.iter().map(|l| (l.map, l.on)));
+            s.assign_all(&mut changes);
             s
         })
         .collect();

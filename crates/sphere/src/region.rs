@@ -260,8 +260,111 @@ pub fn region_inputs(
     (arcs, points)
 }
 
+/// Inserts every region map of `maps` and its antipodal image as labelled arcs and
+/// points: `maps[k]` is map `2k`, its image under `x -> -x` map `2k + 1` (as
+/// [`region_inputs`] of the maps interleaved with their [`RegionMap::antipodal`] images,
+/// without building those images).
+pub fn region_inputs_with_antipodes(
+    maps: &[&RegionMap],
+) -> (
+    Vec<crate::arrangement::InputArc<SideLabel>>,
+    Vec<crate::arrangement::InputPoint<PointStatus>>,
+) {
+    let arc_count: usize = maps.iter().map(|m| 2 * m.arcs.len()).sum();
+    let mut arcs = Vec::with_capacity(arc_count);
+    let mut points = Vec::new();
+    for (k, map) in maps.iter().enumerate() {
+        let (m, anti) = (2 * k as u32, 2 * k as u32 + 1);
+        for (a, s) in &map.arcs {
+            arcs.push(crate::arrangement::InputArc {
+                arc: a.clone(),
+                label: Some(s.label(m)),
+            });
+        }
+        for (a, s) in &map.arcs {
+            let flipped = Sides {
+                pos: s.neg,
+                on: s.on,
+                neg: s.pos,
+            };
+            arcs.push(crate::arrangement::InputArc {
+                arc: a.antipodal(),
+                label: Some(flipped.label(anti)),
+            });
+        }
+        for (p, b) in &map.points {
+            points.push(crate::arrangement::InputPoint {
+                point: p.clone(),
+                label: PointStatus { map: m, on: *b },
+            });
+        }
+        for (p, b) in &map.points {
+            points.push(crate::arrangement::InputPoint {
+                point: p.neg(),
+                label: PointStatus { map: anti, on: *b },
+            });
+        }
+    }
+    (arcs, points)
+}
+
 /// Builds the arrangement of one region map alone (for inspection and drawing).
 pub fn arrangement_of(map: &RegionMap) -> RegionArrangement {
     let (arcs, points) = region_inputs(&[map]);
     Arrangement::build(arcs, points).0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inputs_with_antipodes_match_the_interleaved_maps() {
+        let p = |x, y, z| Vec3::new(x, y, z);
+        let a = RegionMap {
+            arcs: vec![
+                (
+                    Arc::between(&p(1, 0, 0), &p(0, 1, 0)).unwrap(),
+                    Sides {
+                        pos: true,
+                        on: false,
+                        neg: false,
+                    },
+                ),
+                (
+                    Arc::between(&p(0, 1, 0), &p(0, 0, 1)).unwrap(),
+                    Sides {
+                        pos: false,
+                        on: true,
+                        neg: true,
+                    },
+                ),
+            ],
+            points: vec![(p(1, 2, 3), true)],
+        };
+        let b = RegionMap {
+            arcs: Vec::new(),
+            points: vec![(p(-1, 0, 5), false)],
+        };
+        let (anti_a, anti_b) = (a.antipodal(), b.antipodal());
+        let (want_arcs, want_points) = region_inputs(&[&a, &anti_a, &b, &anti_b]);
+        let (arcs, points) = region_inputs_with_antipodes(&[&a, &b]);
+        let key = |x: &crate::arrangement::InputArc<SideLabel>| {
+            (
+                x.arc.start.clone(),
+                x.arc.end.clone(),
+                x.arc.normal.clone(),
+                x.label,
+            )
+        };
+        assert_eq!(
+            arcs.iter().map(key).collect::<Vec<_>>(),
+            want_arcs.iter().map(key).collect::<Vec<_>>()
+        );
+        let pkey = |x: &crate::arrangement::InputPoint<PointStatus>| (x.point.clone(), x.label);
+        assert_eq!(
+            points.iter().map(pkey).collect::<Vec<_>>(),
+            want_points.iter().map(pkey).collect::<Vec<_>>()
+        );
+    }
 }
