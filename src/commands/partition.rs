@@ -201,9 +201,17 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
         BlockingRegions::compute(&parts)?
     };
     let all: Vec<usize> = (0..parts.len()).collect();
+    limits::check_motion_space(&regions, &all, global)?;
     let (p, _) = {
         let _phase = output::phase(global, "motion space and solutions");
-        partition_subset(&regions, &all, &Options { first: args.first })
+        partition_subset(
+            &regions,
+            &all,
+            &Options {
+                first: args.first,
+                ..Default::default()
+            },
+        )
     };
     if pictures {
         let _phase = output::phase(global, "pictures");
@@ -237,6 +245,8 @@ fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::R
             names: names.clone(),
             interlocked: false,
             solutions: Vec::new(),
+            truncated: false,
+            sets: Vec::new(),
             stats: Default::default(),
         };
         let list = listing(&p, Some(DEFAULT_LIMIT));
@@ -323,6 +333,18 @@ fn listing(p: &Partitioning, limit: Option<usize>) -> Listing {
             *c = c.max(s.clearance_deg);
         }
     }
+    // The planner counts every solution, listed or not (it keeps only a few per set
+    // unless --all).
+    let tally: HashMap<&[usize], [usize; 3]> = p
+        .sets
+        .iter()
+        .map(|s| (s.moving.as_slice(), s.counts))
+        .collect();
+    for g in &mut groups {
+        if let Some(c) = tally.get(p.solutions[g.first].moving.as_slice()) {
+            g.counts = *c;
+        }
+    }
     Listing {
         listed_groups: limit.map_or(groups.len(), |n| n.min(groups.len())),
         groups,
@@ -383,7 +405,7 @@ fn report(
 /// A warning on standard error when the listing leaves out moving sets, when the JSON
 /// leaves out solutions, or when the count is large.
 fn warn_size(p: &Partitioning, list: &Listing, global: &Global) {
-    let total = p.solutions.len();
+    let total = p.solution_count();
     let sets = list.groups.len();
     let counts = format!(
         "{total} solution{} in {sets} moving set{}",
@@ -451,10 +473,10 @@ fn to_json<'a>(
         interlocked: p.interlocked,
         nothing_to_separate: false,
         parts: &p.names,
-        solution_count: p.solutions.len(),
+        solution_count: p.solution_count(),
         moving_set_count: list.groups.len(),
         limit: list.limit,
-        truncated: list.truncated(p.solutions.len()),
+        truncated: list.truncated(p.solution_count()),
         groups: list.groups[..list.listed_groups]
             .iter()
             .map(|g| GroupJson {
@@ -526,7 +548,7 @@ fn print_text(
     } else {
         output::line(format_args!(
             "not interlocked: {} in {}{}",
-            plural(p.solutions.len(), "solution", "solutions"),
+            plural(p.solution_count(), "solution", "solutions"),
             plural(list.groups.len(), "moving set", "moving sets"),
             if args.first {
                 " (stopped at the first)"

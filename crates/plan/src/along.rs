@@ -491,7 +491,16 @@ pub fn partition_first(parts: &[PartPieces]) -> Result<Partitioning, PlanError> 
         return Ok(Partitioning {
             names: parts.iter().map(|p| p.name.clone()).collect(),
             interlocked: false,
+            sets: vec![crate::partition::MovingSet {
+                moving: s.moving.clone(),
+                counts: match s.cell {
+                    crate::CellKind::Face => [1, 0, 0],
+                    crate::CellKind::Edge => [0, 1, 0],
+                    crate::CellKind::Vertex => [0, 0, 1],
+                },
+            }],
             solutions: vec![s],
+            truncated: false,
             stats: Stats {
                 pieces: parts.iter().map(|p| p.pieces.len()).sum(),
                 sums: st.sums + st.contact_cones,
@@ -505,5 +514,13 @@ pub fn partition_first(parts: &[PartPieces]) -> Result<Partitioning, PlanError> 
     }
     let regions = BlockingRegions::compute(parts)?;
     let all: Vec<usize> = (0..parts.len()).collect();
-    Ok(crate::partition_subset(&regions, &all, &crate::Options { first: true }).0)
+    Ok(crate::partition_subset(
+        &regions,
+        &all,
+        &crate::Options {
+            first: true,
+            ..Default::default()
+        },
+    )
+    .0)
 }

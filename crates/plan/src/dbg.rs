@@ -1,8 +1,5 @@
 //! Directional blocking graphs and the subsets that can move.
 
-use petgraph::algo::tarjan_scc;
-use petgraph::graph::{DiGraph, NodeIndex};
-
 /// The directional blocking graph of one direction (or cell): an arc `i → j` when part
 /// `i`, moving along the direction, would hit part `j` (indices local to a subassembly).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -40,7 +37,11 @@ impl Dbg {
         if self.n <= 64 {
             return self.minimal_moving_sets_small();
         }
-        self.minimal_moving_sets_scc()
+        let mut g = BitGraph::new(self.n);
+        for &(a, b) in &self.arcs {
+            g.block(a, b);
+        }
+        g.minimal_moving_sets()
     }
 
     /// [`Self::minimal_moving_sets`] for at most 64 nodes, with bit masks.
@@ -52,8 +53,12 @@ impl Dbg {
         m.minimal_moving_set_lists()
     }
 
-    /// [`Self::minimal_moving_sets`] by Tarjan's strongly connected components.
+    /// [`Self::minimal_moving_sets`] by petgraph's strongly connected components (the
+    /// reference the bit-set versions are tested against).
+    #[cfg(test)]
     fn minimal_moving_sets_scc(&self) -> Vec<Vec<usize>> {
+        use petgraph::algo::tarjan_scc;
+        use petgraph::graph::{DiGraph, NodeIndex};
         let mut g: DiGraph<(), ()> = DiGraph::with_capacity(self.n, self.arcs.len());
         for _ in 0..self.n {
             g.add_node(());
@@ -223,6 +228,170 @@ impl Masks {
     }
 }
 
+/// A blocking graph on any number of nodes as rows of adjacency bits, with the minimal
+/// moving sets by Tarjan's strongly connected components over the bits: no sorting of
+/// arcs and no graph library, so that one can be built for every cell of a large motion
+/// space (thousands of arcs on hundreds of parts) in microseconds.
+#[derive(Clone, Debug)]
+pub struct BitGraph {
+    n: usize,
+    words: usize,
+    adj: Vec<u64>,
+}
+
+impl BitGraph {
+    /// The graph without arcs on `n` nodes.
+    pub fn new(n: usize) -> BitGraph {
+        let words = n.div_ceil(64).max(1);
+        BitGraph {
+            n,
+            words,
+            adj: vec![0; n * words],
+        }
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        self.n
+    }
+
+    /// Adds the arc `a → b` (`a` moving hits `b`).
+    #[inline]
+    pub fn block(&mut self, a: usize, b: usize) {
+        self.adj[a * self.words + b / 64] |= 1 << (b % 64);
+    }
+
+    fn row(&self, a: usize) -> &[u64] {
+        &self.adj[a * self.words..(a + 1) * self.words]
+    }
+
+    /// The successors of `a`, ascending.
+    fn successors(&self, a: usize) -> impl Iterator<Item = usize> + '_ {
+        self.row(a).iter().enumerate().flat_map(|(k, &w)| {
+            let mut w = w;
+            std::iter::from_fn(move || {
+                if w == 0 {
+                    return None;
+                }
+                let t = w.trailing_zeros() as usize;
+                w &= w - 1;
+                Some(k * 64 + t)
+            })
+        })
+    }
+
+    /// True when `set` (distinct nodes) can move: not empty, not everything, no arc
+    /// leaving it.
+    pub fn can_move(&self, set: &[usize]) -> bool {
+        if set.is_empty() || set.len() >= self.n {
+            return false;
+        }
+        let mut mask = vec![0u64; self.words];
+        for &v in set {
+            mask[v / 64] |= 1 << (v % 64);
+        }
+        set.iter()
+            .all(|&v| self.row(v).iter().zip(&mask).all(|(r, m)| r & !m == 0))
+    }
+
+    /// The minimal moving sets, as [`Dbg::minimal_moving_sets`]: the strongly connected
+    /// components with no arc leaving them, unless there is only one; each sorted, the
+    /// list sorted.
+    pub fn minimal_moving_sets(&self) -> Vec<Vec<usize>> {
+        let n = self.n;
+        if n <= 1 {
+            return Vec::new();
+        }
+        // Iterative Tarjan: `index` 0 = unvisited; `low`; components numbered in the
+        // order they close (sinks first, but every component is checked below).
+        const NONE: u32 = u32::MAX;
+        let mut index = vec![0u32; n];
+        let mut low = vec![0u32; n];
+        let mut comp = vec![NONE; n];
+        let mut stack: Vec<usize> = Vec::new();
+        let mut next = 1u32;
+        let mut comps = 0u32;
+        // Call frames: node and the next word/bits of its row to scan.
+        let mut frames: Vec<(usize, usize, u64)> = Vec::new();
+        for root in 0..n {
+            if index[root] != 0 {
+                continue;
+            }
+            index[root] = next;
+            low[root] = next;
+            next += 1;
+            stack.push(root);
+            frames.push((root, 0, self.row(root)[0]));
+            while let Some(&mut (v, ref mut k, ref mut bits)) = frames.last_mut() {
+                // Next successor of v.
+                let mut succ = None;
+                loop {
+                    if *bits != 0 {
+                        let t = bits.trailing_zeros() as usize;
+                        *bits &= *bits - 1;
+                        succ = Some(*k * 64 + t);
+                        break;
+                    }
+                    *k += 1;
+                    if *k >= self.words {
+                        break;
+                    }
+                    *bits = self.adj[v * self.words + *k];
+                }
+                match succ {
+                    Some(w) if index[w] == 0 => {
+                        index[w] = next;
+                        low[w] = next;
+                        next += 1;
+                        stack.push(w);
+                        frames.push((w, 0, self.row(w)[0]));
+                    }
+                    Some(w) => {
+                        if comp[w] == NONE {
+                            low[v] = low[v].min(index[w]);
+                        }
+                    }
+                    None => {
+                        frames.pop();
+                        if let Some(&(u, _, _)) = frames.last() {
+                            low[u] = low[u].min(low[v]);
+                        }
+                        if low[v] == index[v] {
+                            while let Some(w) = stack.pop() {
+                                comp[w] = comps;
+                                if w == v {
+                                    break;
+                                }
+                            }
+                            comps += 1;
+                        }
+                    }
+                }
+            }
+        }
+        if comps == 1 {
+            return Vec::new();
+        }
+        let mut has_out = vec![false; comps as usize];
+        for v in 0..n {
+            if self.successors(v).any(|w| comp[w] != comp[v]) {
+                has_out[comp[v] as usize] = true;
+            }
+        }
+        let mut sets: Vec<Vec<usize>> = vec![Vec::new(); comps as usize];
+        for v in 0..n {
+            if !has_out[comp[v] as usize] {
+                sets[comp[v] as usize].push(v);
+            }
+        }
+        let mut out: Vec<Vec<usize>> = sets.into_iter().filter(|s| !s.is_empty()).collect();
+        // Members are pushed in increasing order; sink components are disjoint, so their
+        // smallest members order them.
+        out.sort_unstable_by_key(|s| s[0]);
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -250,6 +419,48 @@ mod tests {
     }
 
     #[test]
+    fn bit_graphs_agree_with_tarjan_beyond_64_nodes() {
+        // Random graphs of 65 to 300 nodes: sparse (many components), a cycle through
+        // all, and a few extra arcs; can_move agrees on the sink sets and their unions.
+        let mut s = 777u64;
+        let mut next = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % m
+        };
+        for round in 0..60 {
+            let n = 65 + next(236) as usize;
+            let mut arcs = Vec::new();
+            let count = next(4 * n as u64) as usize;
+            for _ in 0..count {
+                let (a, b) = (next(n as u64) as usize, next(n as u64) as usize);
+                if a != b {
+                    arcs.push((a, b));
+                }
+            }
+            if round % 10 == 0 {
+                arcs.extend((0..n).map(|v| (v, (v + 1) % n)));
+            }
+            let mut b = BitGraph::new(n);
+            for &(x, y) in &arcs {
+                b.block(x, y);
+            }
+            let g = Dbg::new(n, arcs);
+            let want = g.minimal_moving_sets_scc();
+            assert_eq!(b.minimal_moving_sets(), want);
+            for m in &want {
+                assert!(b.can_move(m) && g.can_move(m));
+            }
+            let all: Vec<usize> = (0..n).collect();
+            assert!(!b.can_move(&all) && !b.can_move(&[]));
+            for v in 0..n.min(20) {
+                assert_eq!(b.can_move(&[v]), g.can_move(&[v]), "{v}");
+            }
+        }
+    }
+
+    #[test]
     fn bit_masks_agree_with_tarjan() {
         // Random graphs of 2 to 64 nodes and various densities (a small LCG keeps the
         // test deterministic), including complete and empty ones.
@@ -271,8 +482,13 @@ mod tests {
                     }
                 }
             }
+            let mut b = BitGraph::new(n);
+            for &(x, y) in &arcs {
+                b.block(x, y);
+            }
             let g = Dbg::new(n, arcs);
             assert_eq!(g.minimal_moving_sets_small(), g.minimal_moving_sets_scc());
+            assert_eq!(b.minimal_moving_sets(), g.minimal_moving_sets_scc());
         }
     }
 }

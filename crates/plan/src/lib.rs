@@ -51,10 +51,11 @@ pub mod separate;
 pub mod sequence;
 
 pub use along::{dbg_along, partition_first, DirectionAnswer, DirectionQuery, QueryStats};
-pub use dbg::Dbg;
-pub use motion_space::{CellKind, MotionSpace};
+pub use dbg::{BitGraph, Dbg};
+pub use motion_space::{CellKind, MotionSpace, OverlayEstimate};
 pub use partition::{
-    dbg_at, partition, partition_pieces, partition_subset, Options, Partitioning, Solution, Stats,
+    dbg_at, partition, partition_pieces, partition_subset, MovingSet, Options, Partitioning,
+    Solution, Stats,
 };
 pub use regions::{decompose_part, parts_of, parts_of_with};
 pub use regions::{BlockingRegions, PartPieces};

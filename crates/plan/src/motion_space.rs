@@ -7,8 +7,8 @@ use apart_kernel::spherical::ArcPosition;
 use apart_kernel::Vec3;
 use apart_sphere::arrangement::BuildStats;
 use apart_sphere::overlay::{cell_statuses, CellStatuses, RegionArrangement};
-use apart_sphere::region::region_inputs;
-use apart_sphere::{Arc, Arrangement, BitSet};
+use apart_sphere::region::region_inputs_with_antipodes;
+use apart_sphere::{Arc, Arrangement, BitSet, MapSet};
 use rustc_hash::FxHashMap as HashMap;
 
 /// The kind of a cell of the motion space.
@@ -39,7 +39,7 @@ pub struct MotionSpace {
     parts: Vec<usize>,
     maps: Vec<(usize, usize)>,
     arr: RegionArrangement,
-    st: CellStatuses,
+    st: CellStatuses<MapSet>,
     vertex_is_cell: Vec<bool>,
     edge_cell_of: Vec<u32>,
     edge_cells: Vec<Vec<u32>>,
@@ -55,7 +55,96 @@ pub struct MotionSpace {
     pub build_stats: BuildStats,
 }
 
+/// What overlaying the pair regions of a subassembly would cost, estimated from the pair
+/// regions alone before anything is built (see [`MotionSpace::estimate`]): enough for a
+/// caller to warn or refuse before the arrangement takes the memory.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OverlayEstimate {
+    /// Parts in the subassembly.
+    pub parts: usize,
+    /// Ordered pairs of parts (maps of the overlay).
+    pub maps: usize,
+    /// Arcs the overlay would insert (exact): every pair region's arcs and their antipodes.
+    pub arcs: usize,
+    /// Distinct end points of those arcs (exact): the arrangement has at least this many
+    /// vertices, plus one per crossing of arcs.
+    pub endpoints: usize,
+    /// Estimated vertices of the arrangement: the end points and, for the crossings, as
+    /// many again (on lattices of separated or touching cubes the crossings add 10% to
+    /// 120% of the end points).
+    pub vertices: usize,
+    /// Blocked ordered pairs at a direction, on average over a few fixed directions: the
+    /// size of a cell's blocking status.
+    pub blocked_per_cell: f64,
+    /// Estimated peak memory of building the motion space, in bytes: the input arcs and
+    /// their sorted copies while the arrangement is built, and the vertices, edges and
+    /// faces with their blocking statuses after.
+    pub bytes: u64,
+}
+
+/// Bytes per inserted arc while the arrangement is built (input arc, canonical copy,
+/// sort keys), measured on 200 to 1000 separated or touching cubes.
+const BYTES_PER_ARC: u64 = 300;
+/// Cells (vertices, edges, faces and their boundary cycles) per vertex of the arrangement,
+/// and bytes per cell besides its blocking status (topology, status header).
+const CELLS_PER_VERTEX: u64 = 6;
+const BYTES_PER_CELL: u64 = 120;
+
 impl MotionSpace {
+    /// Estimates what [`MotionSpace::build`] of `subset` would cost, in time linear in the
+    /// pair regions' arcs and without building anything.
+    pub fn estimate(regions: &BlockingRegions, subset: &[usize]) -> OverlayEstimate {
+        let mut parts = subset.to_vec();
+        parts.sort_unstable();
+        parts.dedup();
+        let mut arcs = 0usize;
+        let mut points: rustc_hash::FxHashSet<Vec3> = Default::default();
+        for (li, &i) in parts.iter().enumerate() {
+            for &j in &parts[li + 1..] {
+                let r = &regions.pair(i, j).region;
+                arcs += 2 * r.arcs.len();
+                for (a, _) in &r.arcs {
+                    for p in [&a.start, &a.end] {
+                        if points.insert(p.primitive()) {
+                            points.insert(p.neg().primitive());
+                        }
+                    }
+                }
+                for (p, _) in &r.points {
+                    if points.insert(p.primitive()) {
+                        points.insert(p.neg().primitive());
+                    }
+                }
+            }
+        }
+        let n = parts.len();
+        let endpoints = points.len();
+        let vertices = 2 * endpoints;
+        // Blocked pairs at a few generic directions (exact tests on the pair polygons).
+        let probes = [[1, 2, 3], [-3, 1, 2], [2, -3, 1], [-1, -2, 3]].map(Vec3::from_i64);
+        let mut blocked = 0usize;
+        for (li, &i) in parts.iter().enumerate() {
+            for &j in &parts[li + 1..] {
+                let r = regions.pair(i, j);
+                for d in &probes {
+                    blocked += usize::from(r.blocks(d)) + usize::from(r.blocks(&d.neg()));
+                }
+            }
+        }
+        let blocked_per_cell = blocked as f64 / probes.len() as f64;
+        let cells = vertices as u64 * CELLS_PER_VERTEX;
+        let status = (4.0 * blocked_per_cell) as u64;
+        OverlayEstimate {
+            parts: n,
+            maps: n * n.saturating_sub(1),
+            arcs,
+            endpoints,
+            vertices,
+            blocked_per_cell,
+            bytes: arcs as u64 * BYTES_PER_ARC + cells * (BYTES_PER_CELL + status),
+        }
+    }
+
     /// Overlays the regions of every pair of parts in `subset` (global part indices);
     /// `Q_ji` is inserted as the antipode of `Q_ij`.
     pub fn build(regions: &BlockingRegions, subset: &[usize]) -> MotionSpace {
@@ -75,22 +164,22 @@ impl MotionSpace {
         parts.dedup();
         let mut maps = Vec::new();
         let mut region_maps = Vec::new();
-        let mut owned = Vec::new();
         for (li, &i) in parts.iter().enumerate() {
             for (lj, &j) in parts.iter().enumerate().skip(li + 1) {
-                let r = regions.pair(i, j);
                 maps.push((li, lj));
                 maps.push((lj, li));
-                owned.push(r.region.antipodal());
-                region_maps.push((r, maps.len() - 2));
+                debug_assert_eq!(
+                    maps.len(),
+                    2 * (li * parts.len() - li * (li + 1) / 2 + (lj - li - 1)) + 2
+                );
+                region_maps.push(regions.pair(i, j));
             }
         }
-        let mut refs: Vec<&apart_sphere::region::RegionMap> = Vec::with_capacity(maps.len());
-        for (k, (r, _)) in region_maps.iter().enumerate() {
-            refs.push(&r.region);
-            refs.push(&owned[k]);
-        }
-        let (mut arcs, points) = region_inputs(&refs);
+        // Map 2k is the k-th pair's region, map 2k + 1 its antipode (the reversed pair).
+        let refs: Vec<&apart_sphere::region::RegionMap> =
+            region_maps.iter().map(|r| &r.region).collect();
+        let (mut arcs, points) = region_inputs_with_antipodes(&refs);
+        drop(refs);
         let input_arcs = arcs.len();
         let guide_map = maps.len() as u32;
         arcs.extend(guides.iter().map(|g| apart_sphere::InputArc {
@@ -103,13 +192,18 @@ impl MotionSpace {
             }),
         }));
         let (arr, build_stats) = Arrangement::build(arcs, points);
+        // Sparse statuses: a cell is covered by few of the n (n − 1) maps.
         let st = cell_statuses(&arr, maps.len() + 1, |x, y| {
-            let mut s = BitSet::new(maps.len() + 1);
-            for (k, (r, _)) in region_maps.iter().enumerate() {
-                s.set(2 * k, r.blocks_perturbed(x, y));
-                s.set(2 * k + 1, r.blocks_perturbed(&x.neg(), &y.neg()));
+            let mut s = Vec::new();
+            for (k, r) in region_maps.iter().enumerate() {
+                if r.blocks_perturbed(x, y) {
+                    s.push(2 * k as u32);
+                }
+                if r.blocks_perturbed(&x.neg(), &y.neg()) {
+                    s.push(2 * k as u32 + 1);
+                }
             }
-            s
+            MapSet::from_sorted(s)
         });
         let Cells {
             vertex_is_cell,
@@ -166,7 +260,7 @@ impl MotionSpace {
 
     /// Blocking statuses of all cells (bit `2k` / `2k+1` = the two orders of the `k`-th
     /// pair, see [`MotionSpace::map_pair`]).
-    pub fn statuses(&self) -> &CellStatuses {
+    pub fn statuses(&self) -> &CellStatuses<MapSet> {
         &self.st
     }
 
@@ -176,7 +270,7 @@ impl MotionSpace {
     }
 
     /// The directional blocking graph for a status set.
-    pub fn dbg(&self, status: &BitSet) -> Dbg {
+    pub fn dbg(&self, status: &MapSet) -> Dbg {
         Dbg::new(
             self.parts.len(),
             status
@@ -188,7 +282,7 @@ impl MotionSpace {
     }
 
     /// The blocking graph of a status set as bit masks, when there are at most 64 parts.
-    pub fn masks(&self, status: &BitSet) -> Option<crate::dbg::Masks> {
+    pub fn masks(&self, status: &MapSet) -> Option<crate::dbg::Masks> {
         if self.parts.len() > 64 {
             return None;
         }
@@ -200,8 +294,78 @@ impl MotionSpace {
         Some(m)
     }
 
+    /// The minimal moving sets (local indices) of a cell of status `status`: by bit masks
+    /// up to 64 parts, else by a [`crate::dbg::BitGraph`].
+    pub fn minimal_moving_sets(&self, status: &MapSet) -> Vec<Vec<usize>> {
+        match self.masks(status) {
+            Some(m) => m.minimal_moving_set_lists(),
+            None => self.bit_graph(status).minimal_moving_sets(),
+        }
+    }
+
+    /// The blocking graph of a status set as adjacency bits (any number of parts).
+    pub fn bit_graph(&self, status: &MapSet) -> crate::dbg::BitGraph {
+        let mut g = crate::dbg::BitGraph::new(self.parts.len());
+        for k in status.iter().take_while(|&k| k < self.maps.len()) {
+            let (a, b) = self.maps[k];
+            g.block(a, b);
+        }
+        g
+    }
+
+    /// The map of "local part `a`, moving, hits local part `b`" (`a != b`): maps come in
+    /// the order of the pairs `(a, b)`, `a < b`, each followed by its reverse.
+    pub fn map_of(&self, a: usize, b: usize) -> usize {
+        let n = self.parts.len();
+        let (i, j) = (a.min(b), a.max(b));
+        let k = i * n - i * (i + 1) / 2 + (j - i - 1);
+        2 * k + usize::from(a > b)
+    }
+
+    /// True when the local set `set` (sorted, distinct) can move in a cell of status
+    /// `status`: not empty, not everything, and no member hits a part outside it. Reads
+    /// the blocked pairs or looks up the pairs leaving the set, whichever are fewer,
+    /// without building a graph.
+    pub fn can_move(&self, status: &MapSet, set: &[usize]) -> bool {
+        let n = self.parts.len();
+        if set.is_empty() || set.len() >= n {
+            return false;
+        }
+        if status.count() <= set.len() * (n - set.len()) {
+            let inside = |p: usize| set.binary_search(&p).is_ok();
+            return status.iter().take_while(|&k| k < self.maps.len()).all(|k| {
+                let (a, b) = self.maps[k];
+                !inside(a) || inside(b)
+            });
+        }
+        set.iter().all(|&a| {
+            let mut inside = set.iter().copied().peekable();
+            (0..n).all(|b| {
+                if inside.peek() == Some(&b) {
+                    inside.next();
+                    return true;
+                }
+                !status.get(self.map_of(a, b))
+            })
+        })
+    }
+
+    /// The local parts that can move alone in a cell of status `status` (no blocked pair
+    /// leaves them), in one pass over the status.
+    pub fn free_alone(&self, status: &MapSet) -> BitSet {
+        let n = self.parts.len();
+        let mut free = BitSet::new(n);
+        for p in 0..n {
+            free.set(p, true);
+        }
+        for k in status.iter().take_while(|&k| k < self.maps.len()) {
+            free.set(self.maps[k].0, false);
+        }
+        free
+    }
+
     /// Number of ordered pairs blocked in a status set.
-    pub fn blocked_pairs(&self, status: &BitSet) -> usize {
+    pub fn blocked_pairs(&self, status: &MapSet) -> usize {
         status.iter().filter(|&m| m < self.maps.len()).count()
     }
 
@@ -323,7 +487,7 @@ impl MotionSpace {
 /// So a straight continuation of two edges with the vertex's own status (a point that
 /// only splits a hemisphere's boundary into minor arcs) is one edge cell, and an isolated
 /// point with its face's status is no cell.
-fn cells(arr: &RegionArrangement, st: &CellStatuses) -> Cells {
+fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
     let n = arr.edges().len();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {

@@ -2,12 +2,11 @@
 //! infinite translation.
 
 use crate::clearance::{deep_direction, FArc};
-use crate::dbg::{Dbg, Masks};
+use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
 use apart_kernel::Vec3;
-use apart_sphere::BitSet;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
@@ -17,6 +16,16 @@ use std::time::Instant;
 pub struct Options {
     /// Stop at the first solution found (faces, then edges, then vertices).
     pub first: bool,
+    /// List at most this many solutions (`None`: all). Enumeration stops once the list is
+    /// full, so memory and the time spent on solutions stay bounded; the solutions kept
+    /// are the best faces, then the first edges and vertices found, and
+    /// [`Partitioning::truncated`] says whether any was left out.
+    pub max_solutions: Option<usize>,
+    /// List at most this many solutions of each cell kind per moving set (`None`: all):
+    /// the faces of widest clearance, then the first edges and vertices found. Every
+    /// solution is still counted in [`Partitioning::sets`], so a listing of many loose
+    /// parts stays small without losing its counts.
+    pub max_per_set: Option<usize>,
 }
 
 /// One way to separate: `moving` translates along `direction`, the rest stays.
@@ -85,10 +94,37 @@ pub struct Partitioning {
     pub names: Vec<String>,
     /// True when no proper subset can move along any direction.
     pub interlocked: bool,
-    /// All solutions: faces by decreasing clearance, then edges, then vertices.
+    /// All solutions (or those the limits of [`Options`] keep): faces by decreasing
+    /// clearance, then edges, then vertices.
     pub solutions: Vec<Solution>,
+    /// True when [`Options::max_solutions`] or [`Options::max_per_set`] left out at least
+    /// one solution (never set by [`Options::first`], which asks for one).
+    pub truncated: bool,
+    /// Every moving set found, with its number of solutions of each kind (listed or
+    /// not), in the order of first discovery; complete unless
+    /// [`Options::max_solutions`] or [`Options::first`] stopped the enumeration.
+    pub sets: Vec<MovingSet>,
     /// Sizes and timings.
     pub stats: Stats,
+}
+
+/// A moving set and how many solutions it has.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MovingSet {
+    /// The parts that move (global indices, sorted).
+    pub moving: Vec<usize>,
+    /// Its solutions of each kind: faces, edges, vertices.
+    pub counts: [usize; 3],
+}
+
+impl Partitioning {
+    /// The number of solutions found, listed or not.
+    pub fn solution_count(&self) -> usize {
+        self.sets
+            .iter()
+            .map(|s| s.counts.iter().sum::<usize>())
+            .sum()
+    }
 }
 
 /// Partitions an assembly loaded by `apart-assembly` (parts without declared pieces must
@@ -118,7 +154,7 @@ pub fn partition_subset(
     let ms = MotionSpace::build(regions, subset);
     let overlay = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let solutions = solutions(regions, &ms, opts);
+    let (solutions, truncated, sets) = solutions(regions, &ms, opts);
     let graphs = t.elapsed().as_secs_f64();
     let arr = ms.arrangement();
     let rs = regions.stats;
@@ -139,106 +175,215 @@ pub fn partition_subset(
     };
     let p = Partitioning {
         names: regions.names().to_vec(),
-        interlocked: solutions.is_empty(),
+        interlocked: sets.is_empty(),
         solutions,
+        truncated,
+        sets,
         stats,
     };
     (p, ms)
 }
 
-/// Every (cell, minimal moving subset) of the motion space, or the first one.
-fn solutions(regions: &BlockingRegions, ms: &MotionSpace, opts: &Options) -> Vec<Solution> {
-    let arr = ms.arrangement();
-    let st = ms.statuses();
-    let mut memo: HashMap<BitSet, Vec<Vec<usize>>> = HashMap::default();
-    let mut sets = |s: &BitSet| -> Vec<Vec<usize>> {
-        // Up to 64 parts the bit-mask graph is cheaper to rebuild than to look up.
-        if let Some(m) = ms.masks(s) {
-            return m.minimal_moving_set_lists();
-        }
-        memo.entry(s.clone())
-            .or_insert_with(|| ms.dbg(s).minimal_moving_sets())
-            .clone()
-    };
-    let global =
-        |local: Vec<usize>| -> Vec<usize> { local.into_iter().map(|k| ms.parts()[k]).collect() };
-    let mut out = Vec::new();
+/// Every (cell, minimal moving subset) of the motion space, or the first one, or as
+/// many as the limits of `opts` keep; whether a limit left one out; and the count of
+/// every moving set.
+fn solutions(
+    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    opts: &Options,
+) -> (Vec<Solution>, bool, Vec<MovingSet>) {
+    let mut quota = Quota::new(opts);
+    let mut out = face_solutions(regions, ms, &mut quota);
+    if !(quota.full() || opts.first && !out.is_empty()) {
+        out.extend(cell_solutions(ms, &mut quota));
+    }
+    let sets = quota
+        .order
+        .iter()
+        .map(|m| MovingSet {
+            moving: m.iter().map(|&k| ms.parts()[k]).collect(),
+            counts: quota.tally[m],
+        })
+        .collect();
+    (out, quota.truncated, sets)
+}
 
-    // Face solutions, one per moving set and connected region where it is free; their
-    // deep directions are independent searches, run in parallel.
-    let free_regions = free_regions(ms, opts.first);
+/// How many solutions may still be listed, in all and per moving set and kind, and how
+/// many each moving set has.
+pub(crate) struct Quota {
+    first: bool,
+    max: Option<usize>,
+    per_set: Option<usize>,
+    listed: usize,
+    /// Solutions found per (local) moving set and kind, listed or not.
+    tally: HashMap<Vec<usize>, [usize; 3]>,
+    /// The moving sets in the order they were first found.
+    order: Vec<Vec<usize>>,
+    /// A solution was left out because of a limit.
+    truncated: bool,
+}
+
+/// What to do with one more solution.
+#[derive(PartialEq, Eq)]
+enum Admit {
+    /// List it.
+    Yes,
+    /// Its moving set has its quota of this kind: count it, do not list it.
+    SkipSet,
+    /// The list is full: stop.
+    Stop,
+}
+
+impl Quota {
+    pub(crate) fn new(opts: &Options) -> Quota {
+        Quota {
+            first: opts.first,
+            max: if opts.first {
+                Some(1)
+            } else {
+                opts.max_solutions
+            },
+            per_set: opts.max_per_set,
+            listed: 0,
+            tally: HashMap::default(),
+            order: Vec::new(),
+            truncated: false,
+        }
+    }
+
+    /// No limit at all.
+    pub(crate) fn unlimited() -> Quota {
+        Quota::new(&Options::default())
+    }
+
+    fn full(&self) -> bool {
+        self.max.is_some_and(|m| self.listed >= m)
+    }
+
+    /// Whether a solution of (local) moving set `m` and kind `cell` may be listed;
+    /// counts it unless the list is full.
+    fn admit(&mut self, m: &[usize], cell: CellKind) -> Admit {
+        if self.full() {
+            // (Asking for the first solution leaves nothing out.)
+            self.truncated |= !self.first;
+            return Admit::Stop;
+        }
+        let kind = match cell {
+            CellKind::Face => 0,
+            CellKind::Edge => 1,
+            CellKind::Vertex => 2,
+        };
+        let counts = match self.tally.get_mut(m) {
+            Some(c) => c,
+            None => {
+                self.order.push(m.to_vec());
+                self.tally.entry(m.to_vec()).or_insert([0; 3])
+            }
+        };
+        counts[kind] += 1;
+        if self.per_set.is_some_and(|k| counts[kind] > k) {
+            self.truncated = true;
+            return Admit::SkipSet;
+        }
+        self.listed += 1;
+        Admit::Yes
+    }
+}
+
+/// The face solutions (one per moving set and connected region where it is free) that
+/// `quota` admits, by decreasing clearance (the widest of each set first); their deep
+/// directions are independent searches, run in parallel.
+pub(crate) fn face_solutions(
+    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    quota: &mut Quota,
+) -> Vec<Solution> {
+    let free_regions = free_regions(ms, quota.first);
     let directions: Vec<(Vec3, f64)> = free_regions
         .par_iter()
         .map(|r| region_direction(regions, ms, r))
         .collect();
-    for (r, (direction, clearance)) in free_regions.into_iter().zip(directions) {
-        out.push(Solution {
-            cell: CellKind::Face,
-            unit: direction.unit_f64(),
-            direction,
-            moving: global(r.moving),
-            clearance_deg: clearance.to_degrees(),
-        });
-        if opts.first {
-            return out;
-        }
-    }
-    out.sort_by(|a, b| {
-        b.clearance_deg
-            .total_cmp(&a.clearance_deg)
-            .then_with(|| a.moving.cmp(&b.moving))
+    let mut found: Vec<(FreeRegion, Vec3, f64)> = free_regions
+        .into_iter()
+        .zip(directions)
+        .map(|(r, (d, c))| (r, d, c))
+        .collect();
+    found.sort_by(|a, b| {
+        b.2.total_cmp(&a.2)
+            .then_with(|| a.0.moving.cmp(&b.0.moving))
     });
-
-    for cell in ms.edge_cells() {
-        let e = cell[0] as usize;
-        let moving = sets(&st.edges[e]);
-        if moving.is_empty() {
-            continue;
-        }
-        let direction = arr.edge_arc(e as u32).interior_point().primitive();
-        for m in moving {
-            out.push(Solution {
-                cell: CellKind::Edge,
+    let mut out = Vec::new();
+    for (r, direction, clearance) in found {
+        match quota.admit(&r.moving, CellKind::Face) {
+            Admit::Yes => out.push(Solution {
+                cell: CellKind::Face,
                 unit: direction.unit_f64(),
-                direction: direction.clone(),
-                moving: global(m),
-                clearance_deg: 0.0,
-            });
-        }
-        if opts.first {
-            out.truncate(1);
-            return out;
+                direction,
+                moving: r.moving.iter().map(|&k| ms.parts()[k]).collect(),
+                clearance_deg: clearance.to_degrees(),
+            }),
+            Admit::SkipSet => {}
+            Admit::Stop => break,
         }
     }
-    for v in ms.real_vertices() {
-        let moving = sets(&st.vertices[v]);
-        if moving.is_empty() {
-            continue;
-        }
-        let direction = arr.vertices()[v].point.clone();
-        for m in moving {
-            out.push(Solution {
-                cell: CellKind::Vertex,
-                unit: direction.unit_f64(),
-                direction: direction.clone(),
-                moving: global(m),
-                clearance_deg: 0.0,
-            });
-        }
-        if opts.first {
-            out.truncate(1);
-            return out;
-        }
-    }
-    // Edges and vertices in a stable order: by kind, moving set, then direction.
-    let faces = out.iter().take_while(|s| s.cell == CellKind::Face).count();
-    out[faces..].sort_by(|a, b| {
-        a.cell
-            .cmp(&b.cell)
-            .then_with(|| a.moving.cmp(&b.moving))
-            .then_with(|| a.direction.to_strings().cmp(&b.direction.to_strings()))
-    });
     out
+}
+
+/// The edge and vertex solutions that `quota` admits: edges, then vertices, each by
+/// moving set, then direction.
+pub(crate) fn cell_solutions(ms: &MotionSpace, quota: &mut Quota) -> Vec<Solution> {
+    let arr = ms.arrangement();
+    let st = ms.statuses();
+    let global = |local: &[usize]| -> Vec<usize> { local.iter().map(|&k| ms.parts()[k]).collect() };
+    let mut out = Vec::new();
+    let cells = ms
+        .edge_cells()
+        .iter()
+        .map(|cell| {
+            (
+                CellKind::Edge,
+                &st.edges[cell[0] as usize],
+                Cell::Edge(cell[0]),
+            )
+        })
+        .chain(
+            ms.real_vertices()
+                .map(|v| (CellKind::Vertex, &st.vertices[v], Cell::Vertex(v))),
+        );
+    'cells: for (kind, status, cell) in cells {
+        let mut direction = None;
+        for m in ms.minimal_moving_sets(status) {
+            match quota.admit(&m, kind) {
+                Admit::Yes => {
+                    // (Made only for listed solutions: an exact interior point of an arc.)
+                    let d = direction
+                        .get_or_insert_with(|| match cell {
+                            Cell::Edge(e) => arr.edge_arc(e).interior_point().primitive(),
+                            Cell::Vertex(v) => arr.vertices()[v].point.clone(),
+                        })
+                        .clone();
+                    out.push(Solution {
+                        cell: kind,
+                        unit: d.unit_f64(),
+                        direction: d,
+                        moving: global(&m),
+                        clearance_deg: 0.0,
+                    })
+                }
+                Admit::SkipSet => {}
+                Admit::Stop => break 'cells,
+            }
+        }
+    }
+    out.sort_by_cached_key(|s| (s.cell, s.moving.clone(), s.direction.to_strings()));
+    out
+}
+
+/// An edge cell (by its first arrangement edge) or a vertex cell.
+#[derive(Clone, Copy)]
+enum Cell {
+    Edge(u32),
+    Vertex(usize),
 }
 
 /// The exact blocking graph at direction `d` for the parts of `ms`, from the pair
@@ -255,6 +400,49 @@ pub fn dbg_at(regions: &BlockingRegions, parts: &[usize], d: &Vec3) -> Dbg {
     Dbg::new(parts.len(), arcs)
 }
 
+/// Exactly: is the local set `moving` (sorted) a minimal moving set of `parts` along
+/// `d`? It is when no member hits a part outside it (it can move) and its own blocking
+/// graph is strongly connected (no smaller set inside it can): `|m| · |parts|` pair tests
+/// instead of the whole graph's `|parts|²`.
+fn is_minimal_moving_set(
+    regions: &BlockingRegions,
+    parts: &[usize],
+    moving: &[usize],
+    d: &Vec3,
+) -> bool {
+    if moving.is_empty() || moving.len() >= parts.len() {
+        return false;
+    }
+    let inside = |k: usize| moving.binary_search(&k).is_ok();
+    let free = moving.iter().all(|&a| {
+        (0..parts.len())
+            .filter(|&b| !inside(b))
+            .all(|b| !regions.blocks(parts[a], parts[b], d))
+    });
+    if !free {
+        return false;
+    }
+    if moving.len() == 1 {
+        return true;
+    }
+    let arcs = moving
+        .iter()
+        .enumerate()
+        .flat_map(|(x, &a)| {
+            moving
+                .iter()
+                .enumerate()
+                .filter(move |&(y, _)| y != x)
+                .filter(move |&(_, &b)| regions.blocks(parts[a], parts[b], d))
+                .map(move |(y, _)| (x, y))
+        })
+        .collect();
+    // Strongly connected exactly when no proper subset of it can move.
+    Dbg::new(moving.len(), arcs)
+        .minimal_moving_sets()
+        .is_empty()
+}
+
 /// A connected region of faces where one moving set is free: the set can translate
 /// along every direction of the region's closure.
 struct FreeRegion {
@@ -267,23 +455,39 @@ struct FreeRegion {
 }
 
 /// For every face and each of its minimal moving sets, the connected region of faces
-/// where that set is free, each region once (only the first with `first`). The free set
-/// of a moving set is closed (blocked sets are open), so faces are joined across every
-/// real edge with the set free on both sides, and the region's boundary is the edges
-/// with the set blocked on the other side.
+/// where that set is free, each region once (only the first with `first`). The free
+/// set of a moving set is closed (blocked sets are open), so faces are joined across
+/// every real edge with the set free on both sides, and the region's boundary is the
+/// edges with the set blocked on the other side. The faces already in a region of a set
+/// are one bit each per set.
 fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
     let arr = ms.arrangement();
-    let graphs = FaceGraphs::new(ms);
+    let st = ms.statuses();
+    let faces = arr.faces().len();
     let mut ids: HashMap<Vec<usize>, usize> = HashMap::default();
-    let mut seen: rustc_hash::FxHashSet<(u32, usize)> = Default::default();
+    let mut seen: Vec<Vec<u64>> = Vec::new();
+    let mark = |seen: &mut [Vec<u64>], id: usize, f: u32| -> bool {
+        let (w, b) = (f as usize / 64, 1u64 << (f % 64));
+        let new = seen[id][w] & b == 0;
+        seen[id][w] |= b;
+        new
+    };
+    let mut alone: Vec<Option<apart_sphere::BitSet>> = vec![None; faces];
     let mut out = Vec::new();
-    for f in 0..arr.faces().len() as u32 {
-        for m in graphs.sets(f) {
+    for f in 0..faces as u32 {
+        for m in ms.minimal_moving_sets(&st.faces[f as usize]) {
             let next = ids.len();
             let id = *ids.entry(m.clone()).or_insert(next);
-            if !seen.insert((f, id)) {
+            if id == seen.len() {
+                seen.push(vec![0; faces.div_ceil(64)]);
+            }
+            if seen[id][f as usize / 64] >> (f % 64) & 1 == 1 {
                 continue;
             }
+            if first && !out.is_empty() {
+                return out;
+            }
+            mark(&mut seen, id, f);
             let mut boundary = Vec::new();
             let mut todo = vec![f];
             while let Some(g) = todo.pop() {
@@ -293,8 +497,17 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
                             continue;
                         }
                         let other = arr.face_of(h ^ 1);
-                        if graphs.can_move(other, &m) {
-                            if seen.insert((other, id)) {
+                        let (w, b) = (other as usize / 64, 1u64 << (other % 64));
+                        let free = seen[id][w] & b != 0
+                            || match m[..] {
+                                // One part alone: the face's parts free alone, found once.
+                                [a] => alone[other as usize]
+                                    .get_or_insert_with(|| ms.free_alone(&st.faces[other as usize]))
+                                    .get(a),
+                                _ => ms.can_move(&st.faces[other as usize], &m),
+                            };
+                        if free {
+                            if mark(&mut seen, id, other) {
                                 todo.push(other);
                             }
                         } else {
@@ -308,68 +521,9 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
                 seed: f,
                 boundary,
             });
-            if first {
-                return out;
-            }
         }
     }
     out
-}
-
-/// The blocking graph of every face: rebuilt from the face's status as bit masks when
-/// there are at most 64 parts (cheaper than storing one per face of a large motion
-/// space), else built once per distinct status.
-enum FaceGraphs<'a> {
-    Masks(&'a MotionSpace),
-    Memo {
-        face_graph: Vec<usize>,
-        graphs: Vec<(Dbg, Vec<Vec<usize>>)>,
-    },
-}
-
-impl<'a> FaceGraphs<'a> {
-    fn new(ms: &'a MotionSpace) -> FaceGraphs<'a> {
-        if ms.parts().len() <= 64 {
-            return FaceGraphs::Masks(ms);
-        }
-        let mut index: HashMap<&BitSet, usize> = HashMap::default();
-        let mut graphs: Vec<(Dbg, Vec<Vec<usize>>)> = Vec::new();
-        let face_graph = ms
-            .statuses()
-            .faces
-            .iter()
-            .map(|s| {
-                *index.entry(s).or_insert_with(|| {
-                    let g = ms.dbg(s);
-                    let sets = g.minimal_moving_sets();
-                    graphs.push((g, sets));
-                    graphs.len() - 1
-                })
-            })
-            .collect();
-        FaceGraphs::Memo { face_graph, graphs }
-    }
-
-    fn masks(ms: &MotionSpace, f: u32) -> Masks {
-        ms.masks(&ms.statuses().faces[f as usize])
-            .expect("at most 64 parts")
-    }
-
-    /// The minimal moving sets of face `f` (local indices, sorted).
-    fn sets(&self, f: u32) -> Vec<Vec<usize>> {
-        match self {
-            FaceGraphs::Masks(ms) => Self::masks(ms, f).minimal_moving_set_lists(),
-            FaceGraphs::Memo { face_graph, graphs } => graphs[face_graph[f as usize]].1.clone(),
-        }
-    }
-
-    /// True when the local set `m` can move in face `f`.
-    fn can_move(&self, f: u32, m: &[usize]) -> bool {
-        match self {
-            FaceGraphs::Masks(ms) => Self::masks(ms, f).can_move(Masks::mask_of(m)),
-            FaceGraphs::Memo { face_graph, graphs } => graphs[face_graph[f as usize]].0.can_move(m),
-        }
-    }
 }
 
 /// Angular distance (radians) from unit `u`, a direction where the local set `moving` is
@@ -378,7 +532,7 @@ impl<'a> FaceGraphs<'a> {
 pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -> f64 {
     let arr = ms.arrangement();
     let st = ms.statuses();
-    let mut free: HashMap<&BitSet, bool> = HashMap::default();
+    let mut free: Vec<Option<bool>> = vec![None; arr.faces().len()];
     let mut c2 = 4.0f64;
     for (e, edge) in arr.edges().iter().enumerate() {
         if edge.structural {
@@ -386,11 +540,7 @@ pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -
         }
         let h = 2 * e as u32;
         let mut is_free = |f: u32| {
-            let s = &st.faces[f as usize];
-            *free.entry(s).or_insert_with(|| match ms.masks(s) {
-                Some(m) => m.can_move(Masks::mask_of(moving)),
-                None => ms.dbg(s).can_move(moving),
-            })
+            *free[f as usize].get_or_insert_with(|| ms.can_move(&st.faces[f as usize], moving))
         };
         if is_free(arr.face_of(h)) != is_free(arr.face_of(h ^ 1)) {
             let arc = arr.edge_arc(e as u32);
@@ -428,10 +578,7 @@ fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion)
     // may lie on an arc where only other parts' blocking changes (the diagonal for a
     // corner cube of a block): it is inside the set's free region all the same.
     let verify = |d: &Vec3| -> bool {
-        !d.is_zero()
-            && dbg_at(regions, ms.parts(), d)
-                .minimal_moving_sets()
-                .contains(&r.moving)
+        !d.is_zero() && is_minimal_moving_set(regions, ms.parts(), &r.moving, d)
     };
     if let Some(found) = deep_direction(&arcs, &[], &verify) {
         return found;

@@ -8,7 +8,7 @@
 
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::partition::free_clearance;
-use crate::partition::{dbg_at, partition_subset, Options, Solution};
+use crate::partition::{cell_solutions, dbg_at, face_solutions, Quota, Solution};
 use crate::regions::BlockingRegions;
 use apart_kernel::Vec3;
 use apart_minkowski::minkowski_difference;
@@ -132,29 +132,60 @@ pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
 }
 
 /// The preferred way to split `sub`, or `None` when it is interlocked.
+///
+/// Face solutions come first in every preference order except when a preference for
+/// single or connected moves puts an edge or vertex ahead: the edges and vertices are
+/// enumerated only when the best face (or axis) candidate misses such a preference.
 pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOptions) -> Option<Step> {
-    let (p, ms) = partition_subset(regions, sub, &Options::default());
-    let mut candidates: Vec<Solution> = p.solutions.clone();
+    let ms = MotionSpace::build(regions, sub);
+    let mut candidates = face_solutions(regions, &ms, &mut Quota::unlimited());
     if opts.prefer_axes {
         candidates.extend(axis_candidates(regions, &ms));
     }
+    let mut best = choose(regions, &ms, opts, &candidates);
+    if best.as_ref().is_none_or(|(missed, _)| *missed) {
+        candidates.extend(cell_solutions(&ms, &mut Quota::unlimited()));
+        best = choose(regions, &ms, opts, &candidates);
+    }
+    let (_, best) = best?;
+    Some(Step {
+        subassembly: ms.parts().to_vec(),
+        moving: best.moving,
+        unit: best.direction.unit_f64(),
+        direction: best.direction,
+        cell: best.cell,
+        clearance_deg: best.clearance_deg,
+        depth: 0,
+        tolerance: None,
+    })
+}
+
+/// The preferred candidate, and whether it misses a preference for single or connected
+/// moves (only then can an edge or vertex be preferred to a face).
+fn choose(
+    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    opts: &SequenceOptions,
+    candidates: &[Solution],
+) -> Option<(bool, Solution)> {
+    let mut candidates: Vec<Solution> = candidates.to_vec();
     // The complement of a moving set moves the opposite way: needed when the base part
     // is in the minimal set.
-    let comp: Vec<Solution> = candidates
-        .iter()
-        .map(|s| Solution {
-            moving: ms
-                .parts()
-                .iter()
-                .copied()
-                .filter(|k| !s.moving.contains(k))
-                .collect(),
-            direction: s.direction.neg(),
-            unit: s.unit.map(|x| -x),
-            ..s.clone()
-        })
-        .collect();
     if opts.base.is_some() {
+        let comp: Vec<Solution> = candidates
+            .iter()
+            .map(|s| Solution {
+                moving: ms
+                    .parts()
+                    .iter()
+                    .copied()
+                    .filter(|k| !s.moving.contains(k))
+                    .collect(),
+                direction: s.direction.neg(),
+                unit: s.unit.map(|x| -x),
+                ..s.clone()
+            })
+            .collect();
         candidates.extend(comp);
     }
     candidates.retain(|s| opts.base.is_none_or(|b| !s.moving.contains(&b)));
@@ -165,7 +196,9 @@ pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOption
             .copied()
             .filter(|k| !s.moving.contains(k))
             .collect();
-        let connected = connected(regions, &s.moving) && connected(regions, &rest);
+        // (Only computed when asked for: a contact search per candidate.)
+        let connected =
+            !opts.prefer_connected || (connected(regions, &s.moving) && connected(regions, &rest));
         let axis = is_axis(&s.direction);
         (
             opts.prefer_connected && !connected,
@@ -178,17 +211,11 @@ pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOption
             s.direction.to_strings(),
         )
     };
-    let best = candidates.into_iter().min_by_key(key)?;
-    Some(Step {
-        subassembly: ms.parts().to_vec(),
-        moving: best.moving,
-        unit: best.direction.unit_f64(),
-        direction: best.direction,
-        cell: best.cell,
-        clearance_deg: best.clearance_deg,
-        depth: 0,
-        tolerance: None,
-    })
+    candidates
+        .into_iter()
+        .map(|s| (key(&s), s))
+        .min_by(|a, b| a.0.cmp(&b.0))
+        .map(|(k, s)| (k.0 || k.1, s))
 }
 
 /// A float made totally ordered for sort keys (clearances are finite).

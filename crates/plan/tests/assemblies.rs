@@ -116,9 +116,23 @@ fn linked_rings_are_interlocked() {
 
 #[test]
 fn first_stops_early() {
-    let r = partition_pieces(&common::split_star(), &Options { first: true }).unwrap();
+    let r = partition_pieces(
+        &common::split_star(),
+        &Options {
+            first: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(r.solutions.len(), 1);
     assert!(!r.interlocked);
-    let r = partition_pieces(&common::linked_rings(), &Options { first: true }).unwrap();
+    let r = partition_pieces(
+        &common::linked_rings(),
+        &Options {
+            first: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert!(r.interlocked);
 }
