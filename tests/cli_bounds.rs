@@ -582,6 +582,28 @@ fn max_memory_ends_a_run_over_its_budget_naming_its_phase() {
 }
 
 #[test]
+fn max_memory_refuses_a_motion_space_estimated_over_budget_before_building_it() {
+    // 150 loose cubes: the pair regions fit in 45M, the motion space is estimated at
+    // about 50 MiB more: refused with the estimate, before the arrangement is built.
+    let dir = scratch("estimate");
+    loose_cubes(&dir, 150);
+    for command in ["partition", "sequence"] {
+        let out = run(&[command, dir.to_str().unwrap(), "--max-memory", "45M"]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains("out of memory budget (--max-memory 45M): the motion space of 150 parts"),
+            "{err}"
+        );
+        assert!(
+            err.contains("needs at least") && err.contains("MiB are left"),
+            "{err}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn files_outside_the_assembly_need_allow_outside() {
     // A manifest naming a mesh in a sibling folder: refused by default, naming the file
     // and the folder; read with --allow-outside; two files named on the command line

@@ -137,6 +137,9 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         max_depth: args.max_depth,
         tolerance: args.growth,
     };
+    // The first step's motion space, of every part, is the largest.
+    let all: Vec<usize> = (0..regions.names().len()).collect();
+    crate::limits::check_motion_space(&regions, &all, global)?;
     let plan = {
         let _phase = output::phase(global, "sequence steps");
         sequence(&regions, &opts)
