@@ -14,6 +14,9 @@ use apart_kernel::Vec3;
 use apart_minkowski::minkowski_difference;
 use std::time::Instant;
 
+mod rank;
+pub use rank::{Choice, Criterion, Keys, Rival};
+
 /// Choices a planner wants.
 #[derive(Clone, Debug, Default)]
 pub struct SequenceOptions {
@@ -52,6 +55,8 @@ pub struct Step {
     pub depth: usize,
     /// Largest uniform growth of every part that keeps this separation; when computed.
     pub tolerance: Option<Tolerance>,
+    /// Why this step was chosen (see [`best_step`]).
+    pub choice: Choice,
 }
 
 /// How much the parts may grow before a step becomes impossible.
@@ -133,21 +138,49 @@ pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
 
 /// The preferred way to split `sub`, or `None` when it is interlocked.
 ///
-/// Face solutions come first in every preference order except when a preference for
-/// single or connected moves puts an edge or vertex ahead: the edges and vertices are
-/// enumerated only when the best face (or axis) candidate misses such a preference.
+/// How steps are ranked: every candidate (a moving set and a direction along which it
+/// is free) is compared by these keys in order, the first difference deciding:
+/// 1. with `prefer_connected`, both sides stay connected through contacts;
+/// 2. with `prefer_single`, a single part moves;
+/// 3. with `prefer_axes`, the direction is ±x, ±y or ±z;
+/// 4. a face (an open region of free directions) before an edge (a sliding arc) before
+///    a vertex (an isolated direction);
+/// 5. the larger clearance (angular distance to the nearest blocked direction);
+/// 6. fewer moving parts;
+/// 7. the lowest part indices, then the direction (a fixed tie-break).
+///
+/// The candidates are the deepest direction of every free region of every minimal
+/// moving set (face solutions); with `prefer_axes`, also every minimal moving set of
+/// each of the six axis directions (tested exactly, whatever the cell kind there), and
+/// when the chosen set is free along an axis that direction replaces its own. Edges and
+/// vertices are enumerated only when the best face or axis candidate misses the
+/// preference for single or connected moves: otherwise none of them could rank first.
+/// With `base`, a set holding the base is replaced by its complement moving the
+/// opposite way. [`Step::choice`] records the keys, the number of candidates and the
+/// runner-up with the key it lost on.
 pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOptions) -> Option<Step> {
     let ms = MotionSpace::build(regions, sub);
     let mut candidates = face_solutions(regions, &ms, &mut Quota::unlimited());
     if opts.prefer_axes {
         candidates.extend(axis_candidates(regions, &ms));
     }
-    let mut best = choose(regions, &ms, opts, &candidates);
-    if best.as_ref().is_none_or(|(missed, _)| *missed) {
+    let mut best = rank::choose(regions, &ms, opts, &candidates);
+    if best.as_ref().is_none_or(|(missed, _, _)| *missed) {
         candidates.extend(cell_solutions(&ms, &mut Quota::unlimited()));
-        best = choose(regions, &ms, opts, &candidates);
+        best = rank::choose(regions, &ms, opts, &candidates);
     }
-    let (_, best) = best?;
+    // A set chosen along another direction may also be free along an axis, where it
+    // is not a minimal moving set (so not yet a candidate): it moves along the axis.
+    if let Some((_, chosen, _)) = best.as_ref().filter(|_| opts.prefer_axes) {
+        if !rank::is_axis(&chosen.direction) {
+            let along = set_along_axes(regions, &ms, &chosen.moving);
+            if !along.is_empty() {
+                candidates.extend(along);
+                best = rank::choose(regions, &ms, opts, &candidates);
+            }
+        }
+    }
+    let (_, best, choice) = best?;
     Some(Step {
         subassembly: ms.parts().to_vec(),
         moving: best.moving,
@@ -157,126 +190,70 @@ pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOption
         clearance_deg: best.clearance_deg,
         depth: 0,
         tolerance: None,
+        choice,
     })
 }
 
-/// The preferred candidate, and whether it misses a preference for single or connected
-/// moves (only then can an edge or vertex be preferred to a face).
-fn choose(
-    regions: &BlockingRegions,
-    ms: &MotionSpace,
-    opts: &SequenceOptions,
-    candidates: &[Solution],
-) -> Option<(bool, Solution)> {
-    let mut candidates: Vec<Solution> = candidates.to_vec();
-    // The complement of a moving set moves the opposite way: needed when the base part
-    // is in the minimal set.
-    if opts.base.is_some() {
-        let comp: Vec<Solution> = candidates
-            .iter()
-            .map(|s| Solution {
-                moving: ms
-                    .parts()
-                    .iter()
-                    .copied()
-                    .filter(|k| !s.moving.contains(k))
-                    .collect(),
-                direction: s.direction.neg(),
-                unit: s.unit.map(|x| -x),
-                ..s.clone()
-            })
-            .collect();
-        candidates.extend(comp);
-    }
-    candidates.retain(|s| opts.base.is_none_or(|b| !s.moving.contains(&b)));
-    let key = |s: &Solution| {
-        let rest: Vec<usize> = ms
-            .parts()
-            .iter()
-            .copied()
-            .filter(|k| !s.moving.contains(k))
-            .collect();
-        // (Only computed when asked for: a contact search per candidate.)
-        let connected =
-            !opts.prefer_connected || (connected(regions, &s.moving) && connected(regions, &rest));
-        let axis = is_axis(&s.direction);
-        (
-            opts.prefer_connected && !connected,
-            opts.prefer_single && s.moving.len() != 1,
-            s.cell,
-            opts.prefer_axes && !axis,
-            std::cmp::Reverse(ordered(s.clearance_deg)),
-            s.moving.len(),
-            s.moving.clone(),
-            s.direction.to_strings(),
-        )
+/// The six axis directions +x, +y, +z, -x, -y, -z.
+fn axes() -> impl Iterator<Item = Vec3> {
+    (0..6).map(|k| {
+        let mut c = [0i64; 3];
+        c[k % 3] = if k < 3 { 1 } else { -1 };
+        Vec3::from_i64(c)
+    })
+}
+
+/// A solution of the (global) set `moving` along `d`, where it is free: its cell kind
+/// and clearance in `ms`.
+fn solution_at(ms: &MotionSpace, moving: Vec<usize>, local: &[usize], d: Vec3) -> Solution {
+    let (cell, _) = ms.locate(&d);
+    let clearance = if cell == CellKind::Face {
+        free_clearance(ms, local, &d.unit_f64())
+    } else {
+        0.0
     };
-    candidates
-        .into_iter()
-        .map(|s| (key(&s), s))
-        .min_by(|a, b| a.0.cmp(&b.0))
-        .map(|(k, s)| (k.0 || k.1, s))
-}
-
-/// A float made totally ordered for sort keys (clearances are finite).
-fn ordered(x: f64) -> i64 {
-    (x * 1e9).round() as i64
-}
-
-fn is_axis(d: &Vec3) -> bool {
-    let p = d.primitive();
-    let c = p.to_strings();
-    c.iter().filter(|x| x.as_str() == "0").count() == 2
-}
-
-/// True when `set` is connected in the contact graph (empty and single sets are).
-fn connected(regions: &BlockingRegions, set: &[usize]) -> bool {
-    if set.len() <= 1 {
-        return true;
+    Solution {
+        cell,
+        unit: d.unit_f64(),
+        direction: d,
+        moving,
+        clearance_deg: clearance.to_degrees(),
     }
-    let mut seen = vec![false; set.len()];
-    let mut stack = vec![0];
-    seen[0] = true;
-    while let Some(a) = stack.pop() {
-        for b in 0..set.len() {
-            if !seen[b] && regions.touch(set[a], set[b]) {
-                seen[b] = true;
-                stack.push(b);
-            }
-        }
-    }
-    seen.into_iter().all(|x| x)
 }
 
 /// Solutions along the six axis directions, exactly evaluated.
 fn axis_candidates(regions: &BlockingRegions, ms: &MotionSpace) -> Vec<Solution> {
     let mut out = Vec::new();
-    for k in 0..6 {
-        let mut c = [0i64; 3];
-        c[k % 3] = if k < 3 { 1 } else { -1 };
-        let d = Vec3::from_i64(c);
+    for d in axes() {
         let g = dbg_at(regions, ms.parts(), &d);
-        let sets = g.minimal_moving_sets();
-        if sets.is_empty() {
-            continue;
-        }
-        let (cell, _) = ms.locate(&d);
-        for m in sets {
-            let clearance = if cell == CellKind::Face {
-                free_clearance(ms, &m, &d.unit_f64())
-            } else {
-                0.0
-            };
-            out.push(Solution {
-                cell,
-                direction: d.clone(),
-                unit: d.unit_f64(),
-                moving: m.into_iter().map(|k| ms.parts()[k]).collect(),
-                clearance_deg: clearance.to_degrees(),
-            });
+        for m in g.minimal_moving_sets() {
+            let moving = m.iter().map(|&k| ms.parts()[k]).collect();
+            out.push(solution_at(ms, moving, &m, d.clone()));
         }
     }
     out
+}
+
+/// The (global) set `moving` along every axis direction where it is free against the
+/// other parts of `ms` (the exact blocking test of every pair across).
+fn set_along_axes(regions: &BlockingRegions, ms: &MotionSpace, moving: &[usize]) -> Vec<Solution> {
+    let local: Vec<usize> = (0..ms.parts().len())
+        .filter(|&k| moving.contains(&ms.parts()[k]))
+        .collect();
+    let rest: Vec<usize> = ms
+        .parts()
+        .iter()
+        .copied()
+        .filter(|k| !moving.contains(k))
+        .collect();
+    axes()
+        .filter(|d| {
+            moving
+                .iter()
+                .all(|&i| rest.iter().all(|&j| !regions.blocks(i, j, d)))
+        })
+        .map(|d| solution_at(ms, moving.to_vec(), &local, d))
+        .collect()
 }
 
 /// The largest uniform growth `s` (grid units) of every part that keeps `step`'s
