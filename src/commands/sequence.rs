@@ -13,8 +13,9 @@ use apart::draw::{
     assembly_png, disassembly_glb, disassembly_html, step_motion_space_png, step_motion_space_svg,
     step_pngs, SphereSvgOptions, View,
 };
+use apart::plan::sequence::{Choice, Keys};
 use apart::plan::{
-    parts_of, sequence, BlockingRegions, Sequence, SequenceOptions, Step, Tolerance,
+    parts_of, sequence, BlockingRegions, CellKind, Sequence, SequenceOptions, Step, Tolerance,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -32,9 +33,26 @@ pub struct SequenceArgs {
     /// Prefer steps whose two sides each stay connected through contacts.
     #[arg(long)]
     pub prefer_connected: bool,
-    /// Prefer directions along the coordinate axes when they separate.
+    /// Prefer directions along the coordinate axes: a step moves along ±x, ±y or ±z
+    /// whenever one of them is free for its moving set (ahead of a face of larger
+    /// clearance; after --prefer-connected and --prefer-single).
     #[arg(long)]
     pub prefer_axes: bool,
+    /// Print, under each step, why it was chosen: its ranking keys, how many candidates
+    /// were ranked, and the runner-up with the key it lost on (in the JSON: `choice`).
+    ///
+    /// Candidates (a moving set and a direction along which it is free) are compared by
+    /// these keys in order, the first difference deciding: (1) with --prefer-connected,
+    /// both sides stay connected through contacts; (2) with --prefer-single, one part
+    /// moves; (3) with --prefer-axes, the direction is ±x, ±y or ±z; (4) a face (an
+    /// open region of free directions) before an edge (a sliding arc) before a vertex
+    /// (an isolated direction); (5) the larger clearance; (6) fewer moving parts; (7)
+    /// the lowest part indices, then the direction. The candidates are the deepest
+    /// direction of each free region of each minimal moving set, with --prefer-axes
+    /// also the six axis directions (tested exactly), and edges and vertices when no
+    /// face meets --prefer-single or --prefer-connected.
+    #[arg(long)]
+    pub explain: bool,
     /// A part that never moves (the other side moves instead).
     #[arg(long, value_name = "NAME")]
     pub base: Option<String>,
@@ -84,6 +102,42 @@ struct StepJson {
     /// Under a tolerance: the step also holds for the parts as given.
     #[serde(skip_serializing_if = "Option::is_none")]
     holds_without_tolerance: Option<bool>,
+    /// With --explain: why the step was chosen.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    choice: Option<ChoiceJson>,
+}
+
+/// A candidate's ranking keys.
+#[derive(Serialize)]
+struct KeysJson {
+    /// Both sides connected through contacts; null unless --prefer-connected.
+    connected: Option<bool>,
+    single: bool,
+    axis: bool,
+    cell: &'static str,
+    clearance_deg: f64,
+    parts: usize,
+}
+
+/// The best candidate the chosen one beat.
+#[derive(Serialize)]
+struct RivalJson {
+    moving: Vec<String>,
+    exact_direction: [String; 3],
+    #[serde(flatten)]
+    keys: KeysJson,
+    /// The first key it lost on: connected, single, axis, cell, clearance, fewer_parts,
+    /// order.
+    lost_on: &'static str,
+}
+
+/// Why a step was chosen.
+#[derive(Serialize)]
+struct ChoiceJson {
+    candidates: usize,
+    #[serde(flatten)]
+    keys: KeysJson,
+    runner_up: Option<RivalJson>,
 }
 
 #[derive(Serialize)]
@@ -166,9 +220,10 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     if global.json {
         let input = InputFacts::of(&loaded, global);
-        output::json(&to_json(&plan, step_unit, load, regions_s, input, &holds))?;
+        let times = (load, regions_s);
+        output::json(&to_json(&plan, args, step_unit, times, input, &holds))?;
     } else {
-        print_text(&plan, asm, global, step_unit, load, regions_s, &holds);
+        print_text(&plan, args, asm, global, step_unit, load, regions_s, &holds);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -189,9 +244,10 @@ fn pictures(
     if args.svg.is_some() || args.png.is_some() {
         let step = plan.steps.get(args.step.wrapping_sub(1)).ok_or_else(|| {
             anyhow::anyhow!(
-                "--step {}: the plan has {} step(s)",
+                "--step {}: the plan has {} step{}",
                 args.step,
-                plan.steps.len()
+                plan.steps.len(),
+                if plan.steps.len() == 1 { "" } else { "s" }
             )
         })?;
         let opts = SphereSvgOptions {
@@ -237,11 +293,44 @@ fn tolerance_units(t: &Option<Tolerance>, step_unit: f64) -> Option<Option<f64>>
     })
 }
 
+fn keys_json(k: &Keys) -> KeysJson {
+    KeysJson {
+        connected: k.connected,
+        single: k.single,
+        axis: k.axis,
+        cell: k.cell.name(),
+        clearance_deg: k.clearance_deg,
+        parts: k.parts,
+    }
+}
+
+fn choice_json(plan: &Sequence, c: &Choice) -> ChoiceJson {
+    use apart::plan::sequence::Criterion as C;
+    ChoiceJson {
+        candidates: c.candidates,
+        keys: keys_json(&c.keys),
+        runner_up: c.runner_up.as_ref().map(|r| RivalJson {
+            moving: names(plan, &r.moving),
+            exact_direction: r.direction.to_strings(),
+            keys: keys_json(&r.keys),
+            lost_on: match r.lost_on {
+                C::Connected => "connected",
+                C::Single => "single",
+                C::Axis => "axis",
+                C::Cell => "cell",
+                C::Clearance => "clearance",
+                C::FewerParts => "fewer_parts",
+                C::Order => "order",
+            },
+        }),
+    }
+}
+
 fn to_json(
     plan: &Sequence,
+    args: &SequenceArgs,
     step_unit: f64,
-    load: f64,
-    regions: f64,
+    (load, regions): (f64, f64),
     input: InputFacts,
     holds: &Option<Vec<bool>>,
 ) -> SequenceJson {
@@ -265,6 +354,7 @@ fn to_json(
                 clearance_deg: s.clearance_deg,
                 depth: s.depth,
                 growth: tolerance_units(&s.tolerance, step_unit),
+                choice: args.explain.then(|| choice_json(plan, &s.choice)),
             })
             .collect(),
         stuck: plan.stuck.iter().map(|s| names(plan, s)).collect(),
@@ -290,8 +380,9 @@ fn describe(plan: &Sequence, s: &Step, step_unit: f64) -> String {
         None => String::new(),
     };
     format!(
-        "{} move along ({}, {}, {}) ≈ {} ({kind}{tol})",
+        "{} {} along ({}, {}, {}) ≈ {} ({kind}{tol})",
         names(plan, &s.moving).join(", "),
+        if s.moving.len() == 1 { "moves" } else { "move" },
         d[0],
         d[1],
         d[2],
@@ -299,8 +390,67 @@ fn describe(plan: &Sequence, s: &Step, step_unit: f64) -> String {
     )
 }
 
+/// A candidate's keys in words: "single part, axis direction, face with clearance
+/// 45.00°".
+fn keys_text(k: &Keys) -> String {
+    let mut out = Vec::new();
+    if let Some(c) = k.connected {
+        out.push(
+            if c {
+                "both sides connected"
+            } else {
+                "a side not connected"
+            }
+            .to_string(),
+        );
+    }
+    out.push(match k.parts {
+        1 => "single part".to_string(),
+        n => format!("{n} parts"),
+    });
+    out.push(
+        if k.axis {
+            "axis direction"
+        } else {
+            "oblique direction"
+        }
+        .to_string(),
+    );
+    out.push(match k.cell {
+        CellKind::Face => format!("face with clearance {:.2}°", k.clearance_deg),
+        CellKind::Edge => "edge (sliding)".to_string(),
+        CellKind::Vertex => "vertex (isolated direction)".to_string(),
+    });
+    out.join(", ")
+}
+
+/// Why a step was chosen, in one sentence.
+fn explain(plan: &Sequence, c: &Choice) -> String {
+    let mut out = format!("why: {}", keys_text(&c.keys));
+    match &c.runner_up {
+        None => out.push_str("; the only candidate"),
+        Some(r) => {
+            let d = r.direction.to_strings();
+            let others = c.candidates - 1;
+            out.push_str(&format!(
+                "; preferred over {others} other candidate{}: the runner-up, {{{}}} along ({}, {}, {}) ({}), lost on {}",
+                if others == 1 { "" } else { "s" },
+                names(plan, &r.moving).join(", "),
+                d[0],
+                d[1],
+                d[2],
+                keys_text(&r.keys),
+                r.lost_on.describe()
+            ));
+        }
+    }
+    out
+}
+
+#[allow(clippy::too_many_arguments)]
 fn print_text(
     plan: &Sequence,
+    args: &SequenceArgs,
     asm: &apart::assembly::Assembly,
     global: &Global,
     step_unit: f64,
@@ -347,6 +497,9 @@ fn print_text(
             "{pad}   {}{only}",
             describe(plan, s, step_unit)
         ));
+        if args.explain {
+            output::line(format_args!("{pad}   {}", explain(plan, &s.choice)));
+        }
     }
     for s in &plan.stuck {
         output::line(format_args!(
