@@ -2,11 +2,17 @@
 //! shading, 2×2 supersampling, outlines where the visible part or face plane changes,
 //! and a caption drawn over it with resvg.
 //!
+//! With `View::labels`, every picture (PNG render, step render, SVG drawing) carries the
+//! same annotations: a legend naming the coloured parts, an axis triad (x red, y green,
+//! z blue, as the camera sees them) in the lower left corner, and a scale bar of a round
+//! length in model units beside it.
+//!
 //! Highlighted parts are opaque, in their colours; the others are grey and slightly
 //! transparent (the nearest grey surface is blended over what lies behind it), so a
 //! highlighted part inside the assembly still shows through.
 
 use crate::colors::{mix, part_colors, Rgb, BACKGROUND, GREY};
+use crate::painter::{painter_order, Polygon};
 use crate::shapes::{add, bounds_of, cross, dot, normalize, part_shapes, scale, sub, PartShape};
 use crate::svg_png::{escape, overlay, png_bytes, FONT_FAMILY};
 use apart_assembly::Assembly;
@@ -26,7 +32,8 @@ pub struct View {
     pub elevation_deg: f64,
     /// The input axis pointing up in the picture.
     pub up: [f64; 3],
-    /// Write part names (a legend) and, for steps, a caption and an arrow.
+    /// Write part names (a legend), the axis triad and the scale bar, and, for steps, a
+    /// caption and an arrow.
     pub labels: bool,
 }
 
@@ -79,10 +86,73 @@ pub fn shapes_png(
     let mut pixmap = render(shapes, &items, &camera, width, height);
     if view.labels {
         let lit: Vec<usize> = items.iter().filter(|i| !i.ghost).map(|i| i.part).collect();
-        let svg = legend_svg(names, &colors, &lit, width, height, legend_w);
+        let mut svg = svg_open(width, height);
+        legend_rows(
+            &mut svg,
+            names,
+            &colors,
+            &lit,
+            20.0,
+            height,
+            width as f64 - legend_w,
+        );
+        svg.push_str(&annotations(&camera, width, height));
+        svg.push_str("</svg>\n");
         overlay(&mut pixmap, &svg);
     }
     png_bytes(&pixmap)
+}
+
+/// The part seen at each pixel of [`shapes_png`]'s picture (same camera and framing,
+/// nothing highlighted), row by row: `Some(k)` for part `k`, `None` for background. It
+/// is the z-buffer's answer at one sample per pixel, for comparing other drawings of
+/// the same scene with it (the SVG's depth order is tested so).
+pub fn shapes_part_ids(
+    shapes: &[PartShape],
+    names: &[String],
+    view: &View,
+    width: u32,
+    height: u32,
+) -> Vec<Option<usize>> {
+    let colors = part_colors(names);
+    let items = lit_items(&colors, &[]);
+    let (camera, _) = framed(shapes, &items, view, width, height);
+    let (w, h) = (width.max(1) as usize, height.max(1) as usize);
+    let mut tris = Vec::new();
+    for it in &items {
+        for (t, tri) in shapes[it.part].triangles.iter().enumerate() {
+            if dot(shapes[it.part].normal(t), camera.eye) > 0.0 {
+                tris.push((
+                    tri.map(|p| camera.project(add(p, it.offset))),
+                    it.part as u32 + 1,
+                ));
+            }
+        }
+    }
+    let layer = zbuffer(&tris, w, h);
+    let mut out = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let f = layer.face[(y * SS + SS / 2) * w * SS + x * SS + SS / 2];
+            out.push(f.checked_sub(1).map(|k| k as usize));
+        }
+    }
+    out
+}
+
+/// A triangle in picture coordinates (x, y, depth) with its face id (at least 1).
+type PictureTriangle = ([(f64, f64, f64); 3], u32);
+
+/// A z-buffer at `SS` samples per pixel along each axis of triangles given in picture
+/// coordinates with their face ids.
+fn zbuffer(tris: &[PictureTriangle], width: usize, height: usize) -> Layer {
+    let (w, h) = (width * SS, height * SS);
+    let mut layer = Layer::new(w * h);
+    for (v, face) in tris {
+        let v = v.map(|(x, y, z)| (x * SS as f64, y * SS as f64, z));
+        fill_triangle(&mut layer, w, h, v, *face);
+    }
+    layer
 }
 
 /// Every part in place: those in `highlight` (all when it is empty) in their colours,
@@ -116,14 +186,17 @@ fn framed(
         0.0
     };
     let points = item_points(shapes, items);
-    let margins = [12.0, 12.0, 12.0, legend_w + 12.0];
+    let bottom = if view.labels { ANNOTATION_H } else { 12.0 };
+    let margins = [12.0, bottom, 12.0, legend_w + 12.0];
     (Camera::fit(view, &points, width, height, margins), legend_w)
 }
 
 /// A vector drawing of part surfaces as SVG text, for pictures that should scale: the
-/// same camera as [`shapes_png`], triangles facing the eye drawn far to near (painter's
-/// algorithm: exact for separate convex pieces seen from outside, approximate where
-/// surfaces interpenetrate), flat-shaded in the part colours, with a legend.
+/// same camera as [`shapes_png`], flat-shaded in the part colours, with a legend, the
+/// axis triad and the scale bar. Only triangles that the z-buffer shows somewhere are
+/// drawn, in an order that is right wherever they overlap ([`crate::painter`]: pairs
+/// compared over their common region, cycles split by a binary space partition), so
+/// the drawing shows the same part as the PNG at every pixel but along outlines.
 pub fn shapes_svg(
     shapes: &[PartShape],
     names: &[String],
@@ -135,39 +208,83 @@ pub fn shapes_svg(
     let items = lit_items(&colors, &[]);
     let (camera, legend_w) = framed(shapes, &items, view, width, height);
     let light = camera.light();
-    // (depth of the farthest corner, part, corners in the picture, shaded colour)
-    type Flat = (f64, usize, [(f64, f64); 3], Rgb);
-    let mut tris: Vec<Flat> = Vec::new();
+    // Triangles facing the eye, in picture coordinates, with their faces (one per
+    // plane of a part, shaded once like the PNG's).
+    let mut tris: Vec<PictureTriangle> = Vec::new();
+    let mut face_of: Vec<usize> = Vec::new();
+    let mut fill: Vec<Option<Rgb>> = Vec::new();
     for (k, shape) in shapes.iter().enumerate() {
+        let base = fill.len();
+        fill.resize(
+            base + shape.plane.iter().max().map_or(0, |&m| m as usize + 1),
+            None,
+        );
         for (t, tri) in shape.triangles.iter().enumerate() {
             let n = shape.normal(t);
             if dot(n, camera.eye) <= 0.0 {
                 continue; // facing away
             }
-            let p = tri.map(|v| camera.project(v));
-            let depth = p.iter().map(|q| q.2).fold(f64::NEG_INFINITY, f64::max);
-            tris.push((depth, k, p.map(|q| (q.0, q.1)), shade(colors[k], n, light)));
+            let face = base + shape.plane[t] as usize;
+            fill[face].get_or_insert_with(|| shade(colors[k], n, light));
+            tris.push((tri.map(|v| camera.project(v)), tris.len() as u32 + 1));
+            face_of.push(face);
         }
     }
-    // Far first; ties by part and order for a deterministic picture.
-    tris.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    // Only what the z-buffer shows somewhere: hidden faces (between convex pieces, or
+    // behind other parts) would only lengthen the file and the sort.
+    let (w, h) = (width.max(1) as usize, height.max(1) as usize);
+    let mut shown = vec![false; tris.len()];
+    for &f in &zbuffer(&tris, w, h).face {
+        if f > 0 {
+            shown[f as usize - 1] = true;
+        }
+    }
+    let polygons: Vec<Polygon> = tris
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| shown[*t])
+        .map(|(t, (v, _))| Polygon {
+            // Depth in pixels too, so that picture space is the scene scaled.
+            points: v
+                .iter()
+                .map(|&(x, y, z)| [x, y, z * camera.scale])
+                .collect(),
+            tag: t,
+            group: face_of[t],
+        })
+        .collect();
     let mut svg = svg_open(width, height);
     let _ = writeln!(
         svg,
         r#"<rect width="{width}" height="{height}" fill="{}"/>"#,
         BACKGROUND.hex()
     );
-    for (_, _, p, c) in &tris {
+    // Consecutive polygons of one face make one path: a path's pieces are covered
+    // together, so anti-aliasing leaves no seam between them.
+    let order = painter_order(polygons);
+    let mut k = 0;
+    while k < order.len() {
+        let face = order[k].group;
+        let mut d = String::new();
+        while k < order.len() && order[k].group == face {
+            for (j, q) in order[k].points.iter().enumerate() {
+                let _ = write!(
+                    d,
+                    "{}{:.2},{:.2} ",
+                    if j == 0 { "M" } else { "L" },
+                    q[0],
+                    q[1]
+                );
+            }
+            d.push('Z');
+            k += 1;
+        }
+        let c = fill[face].unwrap_or(GREY).hex();
+        // A thin stroke of the fill colour closes the hairline seams left between
+        // faces drawn apart.
         let _ = writeln!(
             svg,
-            r#"<polygon points="{:.2},{:.2} {:.2},{:.2} {:.2},{:.2}" fill="{c}" stroke="{c}" stroke-width="0.5" stroke-linejoin="round"/>"#,
-            p[0].0,
-            p[0].1,
-            p[1].0,
-            p[1].1,
-            p[2].0,
-            p[2].1,
-            c = c.hex()
+            r#"<path d="{d}" fill="{c}" stroke="{c}" stroke-width="1" stroke-linejoin="round"/>"#
         );
     }
     if view.labels {
@@ -177,9 +294,11 @@ pub fn shapes_svg(
             names,
             &colors,
             &all,
+            20.0,
             height,
             width as f64 - legend_w,
         );
+        svg.push_str(&annotations(&camera, width, height));
     }
     svg.push_str("</svg>\n");
     svg
@@ -205,6 +324,12 @@ pub fn step_pngs(
         .map(|s| step_items(&shapes, &colors, s))
         .collect();
     let top = if view.labels { 58.0 } else { 12.0 };
+    let bottom = if view.labels { ANNOTATION_H } else { 12.0 };
+    let legend_w = if view.labels {
+        legend_width(width)
+    } else {
+        0.0
+    };
     sequence
         .steps
         .iter()
@@ -222,11 +347,17 @@ pub fn step_pngs(
                 })
                 .collect();
             points.extend(item_points(&shapes, &ahead));
-            let camera = Camera::fit(view, &points, width, height, [top, 12.0, 12.0, 12.0]);
+            let camera = Camera::fit(
+                view,
+                &points,
+                width,
+                height,
+                [top, bottom, 12.0, 12.0 + legend_w],
+            );
             let mut pixmap = render(&shapes, items, &camera, width, height);
             if view.labels {
                 let svg = step_svg(
-                    &shapes, sequence, k, step, items, &colors, &camera, width, height,
+                    &shapes, sequence, k, step, items, &colors, &camera, width, height, legend_w,
                 );
                 overlay(&mut pixmap, &svg);
             }
@@ -549,41 +680,23 @@ fn legend_width(width: u32) -> f64 {
     (width as f64 * 0.24).clamp(90.0, 200.0)
 }
 
-/// A legend of the coloured parts in the right-hand column.
-fn legend_svg(
-    names: &[String],
-    colors: &[Rgb],
-    lit: &[usize],
-    width: u32,
-    height: u32,
-    legend_w: f64,
-) -> String {
-    let mut svg = svg_open(width, height);
-    legend_rows(
-        &mut svg,
-        names,
-        colors,
-        lit,
-        height,
-        width as f64 - legend_w,
-    );
-    svg.push_str("</svg>\n");
-    svg
-}
-
-/// The legend's rows (a colour swatch and a name per lit part) starting at `x`.
+/// The legend's rows (a colour swatch and a name per lit part) at `x`, the first
+/// baseline at `top`, as many as fit above the scale bar.
 fn legend_rows(
     svg: &mut String,
     names: &[String],
     colors: &[Rgb],
     lit: &[usize],
+    top: f64,
     height: u32,
     x: f64,
 ) {
     let line = 18.0;
-    let fit = ((height as f64 - 24.0) / line).floor().max(1.0) as usize;
+    let fit = ((height as f64 - top - ANNOTATION_H + 14.0) / line)
+        .floor()
+        .max(1.0) as usize;
     for (row, &k) in lit.iter().enumerate() {
-        let y = 20.0 + row as f64 * line;
+        let y = top + row as f64 * line;
         if row + 1 == fit && lit.len() > fit {
             let _ = writeln!(
                 svg,
@@ -607,6 +720,146 @@ fn svg_open(width: u32, height: u32) -> String {
     format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="{FONT_FAMILY}">"#
     ) + "\n"
+}
+
+/// Room kept below the scene, when labels are on, for the axis triad and the scale bar.
+const ANNOTATION_H: f64 = 78.0;
+
+/// Colours of the x, y and z axes: red, green, blue, pure enough that no part colour
+/// shaded by the light looks like them.
+pub const AXIS_COLORS: [Rgb; 3] = [Rgb(225, 0, 0), Rgb(0, 150, 0), Rgb(0, 70, 235)];
+
+/// The axis triad (lower left: the x, y and z axes as the camera sees them, far ones
+/// first, each an arrow with its letter; an axis seen end-on is a ⊙ or ⊗) and the scale
+/// bar beside it (a round length in model units: 1, 2 or 5 times a power of ten, and
+/// its label), as SVG elements in picture coordinates.
+fn annotations(camera: &Camera, width: u32, height: u32) -> String {
+    let mut svg = String::from(r#"<g id="axes" font-weight="bold" font-size="13">"#);
+    let (ox, oy) = (40.0, height as f64 - 38.0);
+    let len = 26.0;
+    let mut axes: Vec<(usize, f64, f64, f64)> = (0..3)
+        .map(|k| {
+            let mut a = [0.0; 3];
+            a[k] = 1.0;
+            // Picture direction (x right, y down) and depth (larger is farther).
+            (
+                k,
+                dot(a, camera.right),
+                -dot(a, camera.up),
+                -dot(a, camera.eye),
+            )
+        })
+        .collect();
+    axes.sort_by(|a, b| b.3.total_cmp(&a.3));
+    let _ = write!(
+        svg,
+        r##"<circle cx="{ox:.1}" cy="{oy:.1}" r="2.2" fill="#333"/>"##
+    );
+    for (k, dx, dy, depth) in axes {
+        let c = AXIS_COLORS[k].hex();
+        let name = ["x", "y", "z"][k];
+        let l = (dx * dx + dy * dy).sqrt();
+        if l < 0.2 {
+            // Along the line of sight: ⊙ towards the eye, ⊗ away from it.
+            let (cx, cy) = (ox + 14.0 + 12.0 * k as f64, oy + 18.0);
+            let _ = write!(
+                svg,
+                r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="5" fill="white" stroke="{c}" stroke-width="1.6"/>"##
+            );
+            if depth < 0.0 {
+                let _ = write!(
+                    svg,
+                    r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="1.6" fill="{c}"/>"##
+                );
+            } else {
+                let _ = write!(
+                    svg,
+                    r##"<path d="M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1}" stroke="{c}" stroke-width="1.4"/>"##,
+                    cx - 3.0,
+                    cy - 3.0,
+                    cx + 3.0,
+                    cy + 3.0,
+                    cx - 3.0,
+                    cy + 3.0,
+                    cx + 3.0,
+                    cy - 3.0
+                );
+            }
+            let _ = write!(
+                svg,
+                r##"<text x="{cx:.1}" y="{:.1}" fill="{c}" text-anchor="middle">{name}</text>"##,
+                cy + 18.0
+            );
+            continue;
+        }
+        let (ux, uy) = (dx / l, dy / l);
+        let (bx, by) = (ox + dx * len, oy + dy * len);
+        let head = 7.0;
+        let (lx, ly) = (
+            bx - ux * head - uy * head * 0.5,
+            by - uy * head + ux * head * 0.5,
+        );
+        let (rx, ry) = (
+            bx - ux * head + uy * head * 0.5,
+            by - uy * head - ux * head * 0.5,
+        );
+        let _ = write!(
+            svg,
+            r##"<line x1="{ox:.1}" y1="{oy:.1}" x2="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="2.2" stroke-linecap="round"/><path d="M{lx:.1},{ly:.1} L{bx:.1},{by:.1} L{rx:.1},{ry:.1} Z" fill="{c}"/><text x="{:.1}" y="{:.1}" fill="{c}" text-anchor="middle">{name}</text>"##,
+            bx - ux * head * 0.8,
+            by - uy * head * 0.8,
+            ox + dx * len + ux * 10.0,
+            oy + dy * len + uy * 10.0 + 4.5
+        );
+    }
+    svg.push_str("</g>\n");
+    // The scale bar: the largest round length at most 140 pixels long (less in a
+    // narrow picture).
+    let x0 = 92.0;
+    let room = (width as f64 - x0 - 16.0).min(140.0);
+    if room > 20.0 && camera.scale.is_finite() && camera.scale > 0.0 {
+        if let Some((length, label)) = round_length(room / camera.scale) {
+            let px = length * camera.scale;
+            let y = height as f64 - 20.0;
+            let _ = writeln!(
+                svg,
+                r##"<g id="scale" stroke="#222" stroke-width="1.6" fill="#222"><path d="M{x0:.1},{:.1} L{x0:.1},{y:.1} L{:.1},{y:.1} L{:.1},{:.1}" fill="none"/><text x="{:.1}" y="{:.1}" font-size="12" stroke="none" text-anchor="middle">{label} units</text></g>"##,
+                y - 5.0,
+                x0 + px,
+                x0 + px,
+                y - 5.0,
+                x0 + px / 2.0,
+                y - 8.0
+            );
+        }
+    }
+    svg
+}
+
+/// The largest of 1, 2 or 5 times a power of ten not above `max`, and its decimal text
+/// (`None` for a length that is not a positive finite number).
+pub(crate) fn round_length(max: f64) -> Option<(f64, String)> {
+    if !max.is_finite() || max <= 0.0 {
+        return None;
+    }
+    let mut e = max.log10().floor() as i32;
+    // log10 may round across a power of ten.
+    if 10f64.powi(e) > max {
+        e -= 1;
+    }
+    let m = [5u32, 2, 1]
+        .into_iter()
+        .find(|&m| m as f64 * 10f64.powi(e) <= max)
+        .unwrap_or(1);
+    let value = m as f64 * 10f64.powi(e);
+    let text = if (0..=15).contains(&e) {
+        format!("{}", m as u64 * 10u64.pow(e as u32))
+    } else if (-15..0).contains(&e) {
+        format!("{:.*}", (-e) as usize, value)
+    } else {
+        format!("{m}e{e}")
+    };
+    Some((value, text))
 }
 
 /// "(0.577, 0.577, 0.577)" with the exact integer direction when it is short.
@@ -647,6 +900,7 @@ fn step_svg(
     camera: &Camera,
     width: u32,
     height: u32,
+    legend_w: f64,
 ) -> String {
     let names = &sequence.names;
     let rest: Vec<usize> = step
@@ -784,6 +1038,17 @@ fn step_svg(
             }
         }
     }
+    // The moving parts by name, under the caption, and the axes and scale.
+    legend_rows(
+        &mut svg,
+        names,
+        colors,
+        &step.moving,
+        70.0,
+        height,
+        width as f64 - legend_w,
+    );
+    svg.push_str(&annotations(camera, width, height));
     svg.push_str("</svg>\n");
     svg
 }
@@ -875,6 +1140,19 @@ mod tests {
         assert_eq!(layer.face[0], 2);
         assert_eq!(layer.face[15], 3);
         assert_eq!(layer.face.iter().filter(|&&f| f == 1).count(), 0);
+    }
+
+    #[test]
+    fn scale_bars_have_round_lengths() {
+        let l = round_length;
+        assert_eq!(l(140.0), Some((100.0, "100".to_string())));
+        assert_eq!(l(3.7), Some((2.0, "2".to_string())));
+        assert_eq!(l(0.07), Some((0.05, "0.05".to_string())));
+        assert_eq!(l(1.0), Some((1.0, "1".to_string())));
+        assert_eq!(l(0.001), Some((0.001, "0.001".to_string())));
+        assert_eq!(l(6.0e20).map(|p| p.1), Some("5e20".to_string()));
+        assert_eq!(l(0.0), None);
+        assert_eq!(l(f64::NAN), None);
     }
 
     #[test]
