@@ -7,6 +7,7 @@ use apart::kernel::Grid;
 use apart::mesh::{Aabb, Problem};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// Prints one line on standard output; a closed pipe (`apart check x | head`) is not
@@ -35,9 +36,33 @@ pub fn unit(u: &[f64; 3]) -> String {
     format!("[{}, {}, {}]", f(u[0]), f(u[1]), f(u[2]))
 }
 
-/// Writes `bytes` to `path`, with the path in the error.
+/// Whether `--quiet` was given, for messages printed without a [`Global`] at hand
+/// ("wrote FILE"). Set by [`set_quiet`]; [`progress`] and [`phase`], which every
+/// command goes through before it writes anything, set it too.
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Records `--quiet` for [`write_file`] and [`wrote`].
+pub fn set_quiet(quiet: bool) {
+    QUIET.store(quiet, Ordering::Relaxed);
+}
+
+/// Writes `bytes` to `path`, with the path in the error, and announces it on standard
+/// error ("wrote hinge.html") unless `--quiet`. Every file a command writes for the
+/// user goes through here (or through [`wrote`]), so that none appears unannounced;
+/// standard output, which may carry the JSON answer, stays untouched.
 pub fn write_file(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
-    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))
+    std::fs::write(path, bytes)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
+    wrote(path);
+    Ok(())
+}
+
+/// Announces a written file or folder on standard error ("wrote out/pieces"), unless
+/// `--quiet`: for commands that write through their own writers (a folder of pieces).
+pub fn wrote(path: &std::path::Path) {
+    if !QUIET.load(Ordering::Relaxed) {
+        eline(format_args!("wrote {}", path.display()));
+    }
 }
 
 /// A coordinate in input units, as the shortest decimal of its `f64`.
@@ -133,6 +158,7 @@ fn shows_progress(global: &Global) -> bool {
 /// The loader's hook: records each loading stage as the run's phase (for the messages
 /// of `--timeout` and `--max-memory`) and, on a terminal, drives a progress bar.
 pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
+    set_quiet(global.quiet);
     crate::limits::set_phase("loading");
     let bar = shows_progress(global).then(|| {
         let bar = ProgressBar::new(0);
@@ -181,6 +207,7 @@ impl Drop for Phase {
 /// terminal, shows it with a spinner and the time spent (the planners report no counts
 /// of their own, so a long phase shows that it is still working and for how long).
 pub fn phase(global: &Global, label: &'static str) -> Phase {
+    set_quiet(global.quiet);
     crate::limits::set_phase(label);
     Phase(shows_progress(global).then(|| {
         let bar = ProgressBar::new_spinner();

@@ -379,6 +379,7 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         write_pictures(&args.pictures, |view, w, hgt, svg| {
             let (shapes, names) = apart::stack::render::scene_shapes(
                 &scene,
+                &fixed,
                 &[(part.name.clone(), placed.clone())],
                 h,
             );
