@@ -4,7 +4,10 @@
 //! orbit by dragging, zoom with the wheel, buttons to play the plan and to step forward
 //! and back, a time slider, the list of steps (moving parts, direction, cell kind,
 //! clearance; click one to go there), and the parts with their colours (click one to
-//! hide it). The geometry is embedded as JSON: per part its colour and triangles, with
+//! hide it), an axis triad (x red, y green, z blue, turning with the view) and a scale
+//! bar of a round length in model units; the triad, the scale and the part names are
+//! page elements (not pixels of the canvas), so a test can read them from the page. The
+//! geometry is embedded as JSON: per part its colour and triangles, with
 //! coordinates quantised to integers (2^20 steps across the bounding box).
 
 use crate::colors::part_colors;

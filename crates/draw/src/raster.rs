@@ -808,8 +808,8 @@ fn annotations(camera: &Camera, width: u32, height: u32) -> String {
             r##"<line x1="{ox:.1}" y1="{oy:.1}" x2="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="2.2" stroke-linecap="round"/><path d="M{lx:.1},{ly:.1} L{bx:.1},{by:.1} L{rx:.1},{ry:.1} Z" fill="{c}"/><text x="{:.1}" y="{:.1}" fill="{c}" text-anchor="middle">{name}</text>"##,
             bx - ux * head * 0.8,
             by - uy * head * 0.8,
-            ox + dx * len + ux * 10.0,
-            oy + dy * len + uy * 10.0 + 4.5
+            ox + dx * len + ux * 12.0,
+            oy + dy * len + uy * 12.0 + 4.5
         );
     }
     svg.push_str("</g>\n");
@@ -823,13 +823,14 @@ fn annotations(camera: &Camera, width: u32, height: u32) -> String {
             let y = height as f64 - 20.0;
             let _ = writeln!(
                 svg,
-                r##"<g id="scale" stroke="#222" stroke-width="1.6" fill="#222"><path d="M{x0:.1},{:.1} L{x0:.1},{y:.1} L{:.1},{y:.1} L{:.1},{:.1}" fill="none"/><text x="{:.1}" y="{:.1}" font-size="12" stroke="none" text-anchor="middle">{label} units</text></g>"##,
+                r##"<g id="scale" stroke="#222" stroke-width="1.6" fill="#222"><path d="M{x0:.1},{:.1} L{x0:.1},{y:.1} L{:.1},{y:.1} L{:.1},{:.1}" fill="none"/><text x="{:.1}" y="{:.1}" font-size="12" stroke="none" text-anchor="middle">{label} {}</text></g>"##,
                 y - 5.0,
                 x0 + px,
                 x0 + px,
                 y - 5.0,
                 x0 + px / 2.0,
-                y - 8.0
+                y - 8.0,
+                if label == "1" { "unit" } else { "units" }
             );
         }
     }

@@ -264,20 +264,34 @@ pub fn motion_space_svg(
             svg,
             r##"<circle cx="{cx:.2}" cy="{cy:.2}" r="{r:.2}" fill="none" stroke="#000" stroke-width="1.2"/>"##
         );
-        // Axis hints: +x to the right from above, to the left from below; +y up in both.
+        // Axis labels in the colours of the renders' axis triad: +x to the right from
+        // above, to the left from below; +y up in both; +z (above) or −z (below) at
+        // the centre, marked by a small cross.
         let sx = if k == 0 { 1.0 } else { -1.0 };
+        let [xc, yc, zc] = crate::raster::AXIS_COLORS.map(|c| c.hex());
         let _ = writeln!(
             svg,
-            r##"<text x="{:.1}" y="{:.1}" font-size="12" fill="#555" text-anchor="{}">+x</text>"##,
+            r##"<text x="{:.1}" y="{:.1}" font-size="12" font-weight="bold" fill="{xc}" text-anchor="{}">+x</text>"##,
             cx + sx * (r + 5.0),
             cy + 4.0,
             if k == 0 { "start" } else { "end" }
         );
         let _ = writeln!(
             svg,
-            r##"<text x="{:.1}" y="{:.1}" font-size="12" fill="#555" text-anchor="middle">+y</text>"##,
+            r##"<text x="{:.1}" y="{:.1}" font-size="12" font-weight="bold" fill="{yc}" text-anchor="middle">+y</text>"##,
             cx,
             cy - r - 10.0
+        );
+        let _ = writeln!(
+            svg,
+            r##"<path d="M{:.1},{cy:.1} L{:.1},{cy:.1} M{cx:.1},{:.1} L{cx:.1},{:.1}" stroke="{zc}" stroke-width="1.2"/><text x="{:.1}" y="{:.1}" font-size="12" font-weight="bold" fill="{zc}">{}</text>"##,
+            cx - 4.0,
+            cx + 4.0,
+            cy - 4.0,
+            cy + 4.0,
+            cx + 5.0,
+            cy + 15.0,
+            if k == 0 { "+z" } else { "−z" }
         );
     }
 

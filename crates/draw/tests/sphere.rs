@@ -99,3 +99,52 @@ fn the_png_shows_the_moving_parts_colours() {
     let png2 = motion_space_png(&regions, &all, &p.solutions, &SphereSvgOptions::default());
     assert!(Pixmap::decode_png(&png2).is_ok());
 }
+
+/// The position of the text element whose content is `label`, the `nth` one.
+fn text_at(svg: &str, label: &str, nth: usize) -> (f64, f64) {
+    let line = svg
+        .split("<text")
+        .filter(|t| t.contains(&format!(">{label}</text>")))
+        .nth(nth)
+        .unwrap_or_else(|| panic!("no label {label} #{nth}"));
+    let attr = |name: &str| -> f64 {
+        let at = line.find(&format!(r#" {name}=""#)).unwrap() + name.len() + 3;
+        line[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    (attr("x"), attr("y"))
+}
+
+#[test]
+fn both_hemispheres_name_their_axes_where_they_point() {
+    let a = common::example("split-star-3");
+    let (regions, plan) = common::plan(&a);
+    let r = 200.0;
+    let opts = SphereSvgOptions {
+        radius: r,
+        ..Default::default()
+    };
+    let svg = step_motion_space_svg(&regions, &plan.steps[0], &opts);
+    // The disks are centred at (60 + r, 100 + r) and one disk width and margin further.
+    let upper = (60.0 + r, 100.0 + r);
+    let lower = (upper.0 + 2.0 * r + 60.0, upper.1);
+    // Seen from above, +x points right; seen from below, left. +y is up in both.
+    let x_up = text_at(&svg, "+x", 0);
+    let x_down = text_at(&svg, "+x", 1);
+    assert!(
+        x_up.0 > upper.0 + r && (x_up.1 - upper.1).abs() < 10.0,
+        "{x_up:?}"
+    );
+    assert!(
+        x_down.0 < lower.0 - r && (x_down.1 - lower.1).abs() < 10.0,
+        "{x_down:?}"
+    );
+    for (k, centre) in [upper, lower].iter().enumerate() {
+        let y = text_at(&svg, "+y", k);
+        assert!((y.0 - centre.0).abs() < 1.0 && y.1 < centre.1 - r, "{y:?}");
+    }
+    // The poles: +z at the centre of the upper disk, −z at the centre of the lower one.
+    let z_up = text_at(&svg, "+z", 0);
+    let z_down = text_at(&svg, "−z", 0);
+    assert!((z_up.0 - upper.0).abs() < 20.0 && (z_up.1 - upper.1).abs() < 20.0);
+    assert!((z_down.0 - lower.0).abs() < 20.0 && (z_down.1 - lower.1).abs() < 20.0);
+}
