@@ -1,0 +1,156 @@
+//! The pictures and exports the commands write: every file is announced on standard
+//! error ("wrote FILE") unless `--quiet`, standard output keeps only the answer (valid
+//! JSON with `--json`), and the pictures name the parts by their names.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn example(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+/// A fresh temporary folder for one test.
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("apart-cli-pictures-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn apart(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_apart"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The lines "wrote …" on standard error.
+fn announced(o: &Output) -> Vec<String> {
+    stderr(o)
+        .lines()
+        .filter_map(|l| l.strip_prefix("wrote ").map(str::to_string))
+        .collect()
+}
+
+fn path(p: &Path) -> String {
+    p.display().to_string()
+}
+
+#[test]
+fn sequence_announces_every_file_it_writes_and_quiet_hides_it() {
+    let dir = scratch("sequence");
+    let (glb, html, svg, renders) = (
+        dir.join("hinge.glb"),
+        dir.join("hinge.html"),
+        dir.join("step1.svg"),
+        dir.join("steps"),
+    );
+    let args = [
+        "sequence",
+        &example("hinge"),
+        "--glb",
+        &path(&glb),
+        "--html",
+        &path(&html),
+        "--svg",
+        &path(&svg),
+        "--renders",
+        &path(&renders),
+        "--json",
+    ];
+    let out = apart(&args);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // Standard output is the JSON answer alone.
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
+    let steps = v["steps"].as_array().unwrap().len();
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
+    // Every file that exists now was announced, and nothing else.
+    let mut written = vec![path(&glb), path(&html), path(&svg)];
+    written.push(path(&renders.join("assembly.png")));
+    for k in 1..=steps {
+        written.push(path(&renders.join(format!("step-{k}.png"))));
+    }
+    let mut said = announced(&out);
+    said.sort();
+    written.sort();
+    assert_eq!(said, written);
+    for f in &written {
+        assert!(Path::new(f).is_file(), "{f}");
+    }
+    let quiet = apart(&[&args[..], &["--quiet"]].concat());
+    assert_eq!(quiet.status.code(), Some(0));
+    assert!(announced(&quiet).is_empty(), "{}", stderr(&quiet));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn stack_pictures_are_announced_and_carry_axes_scale_and_names() {
+    let dir = scratch("stack");
+    let (png, svg) = (dir.join("stack.png"), dir.join("stack.svg"));
+    let out = apart(&[
+        "stack",
+        &example("sheet-metal/cube.off"),
+        "--count",
+        "3",
+        "--png",
+        &path(&png),
+        "--svg",
+        &path(&svg),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let mut said = announced(&out);
+    said.sort();
+    assert_eq!(said, [path(&png), path(&svg)]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    for label in ["#1", "#2", "#3", "x", "y", "z"] {
+        assert!(text.contains(&format!(">{label}</text>")), "{label}");
+    }
+    assert!(text.contains(" units</text>") || text.contains(" unit</text>"));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn place_pictures_name_the_fixed_parts() {
+    let dir = scratch("place");
+    let svg = dir.join("place.svg");
+    // An assembly and one of its parts: the others are fixed, and keep their names.
+    let out = apart(&[
+        "place",
+        &example("hinge"),
+        "bolt",
+        "--translations",
+        "-20,-20,-20,20,20,20",
+        "--target",
+        "0,-10,0",
+        "--svg",
+        &path(&svg),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(announced(&out), [path(&svg)]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    for name in ["bracket", "tongue", "bolt"] {
+        assert!(text.contains(&format!(">{name}</text>")), "{name}");
+    }
+    assert!(
+        !text.contains("fixed 1"),
+        "scene parts are named, not numbered"
+    );
+    // Two files: the fixed one is named after its file.
+    let cube = example("sheet-metal/cube.off");
+    let out = apart(&["place", &cube, &cube, "--svg", &path(&svg), "--quiet"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(announced(&out).is_empty());
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains(">cube</text>") && text.contains(">cube_2</text>"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
