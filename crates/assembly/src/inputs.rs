@@ -4,6 +4,7 @@
 
 use crate::error::LoadError;
 use crate::manifest;
+use crate::model::Skipped;
 use apart_mesh::escape::path as escaped;
 use apart_mesh::formats::{read_file_with, Format, ReadOptions};
 use apart_mesh::transform::Affine;
@@ -44,6 +45,8 @@ pub(crate) struct Plan {
     pub parts: Vec<PartSpec>,
     pub problems: Vec<Problem>,
     pub preloaded: HashMap<PathBuf, Vec<RawObject>>,
+    /// Entries of an assembly folder that are not read, with the reason.
+    pub skipped: Vec<Skipped>,
 }
 
 fn stem(p: &Path) -> String {
@@ -238,6 +241,7 @@ fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
         parts,
         problems: Vec::new(),
         preloaded: HashMap::new(),
+        skipped: Vec::new(),
     })
 }
 
@@ -263,12 +267,56 @@ fn list(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
 /// The mesh files of a piece folder: every entry with a mesh extension that is not a
 /// folder. Entries that are not regular files (named pipes, sockets, devices) stay in
 /// the list, so that reading reports them by name rather than skipping them silently;
-/// nothing is opened here.
-fn mesh_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
-    Ok(list(dir)?
-        .into_iter()
-        .filter(|p| !p.is_dir() && Format::from_path(p).is_some())
-        .collect())
+/// nothing is opened here. The other entries are added to `skipped` with the reason.
+fn mesh_files(dir: &Path, skipped: &mut Vec<Skipped>) -> Result<Vec<PathBuf>, LoadError> {
+    let entries = list(dir)?;
+    let gltf = has_gltf(&entries);
+    let mut out = Vec::new();
+    for p in entries {
+        if p.is_dir() {
+            skipped.push(Skipped {
+                reason:
+                    "a folder inside a piece folder (piece folders are not searched further down)"
+                        .into(),
+                path: p,
+            });
+        } else if Format::from_path(&p).is_some() {
+            out.push(p);
+        } else if let Some(reason) = not_a_mesh(&p, gltf) {
+            skipped.push(Skipped { path: p, reason });
+        }
+    }
+    Ok(out)
+}
+
+/// True when a listing holds a glTF file (whose buffers and images sit beside it).
+fn has_gltf(entries: &[PathBuf]) -> bool {
+    entries
+        .iter()
+        .any(|p| Format::from_path(p) == Some(Format::Gltf))
+}
+
+/// Why a file without a mesh extension is not read; `None` for the files a glTF file
+/// beside it may name (buffers and images), which it reads itself.
+fn not_a_mesh(p: &Path, gltf: bool) -> Option<String> {
+    let ext = p
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let formats = ".off, .obj, .stl, .ply, .gltf or .glb";
+    Some(match ext.as_deref() {
+        Some("bin" | "png" | "jpg" | "jpeg" | "webp" | "ktx2") if gltf => return None,
+        None => format!("no extension (mesh files are read by their extension: {formats})"),
+        Some("json") => {
+            "a JSON file not named assembly.json (only assembly.json is read as a manifest)".into()
+        }
+        Some(
+            e @ ("step" | "stp" | "iges" | "igs" | "sat" | "x_t" | "x_b" | "3dm" | "sldprt"
+            | "sldasm" | "ipt" | "iam" | "f3d" | "catpart" | "prt" | "brep" | "fcstd"),
+        ) => {
+            format!("a CAD file (.{e}), not a mesh: export the part as {formats}")
+        }
+        Some(_) => format!("not a mesh file (apart reads {formats})"),
+    })
 }
 
 /// A folder: one part per mesh file, named by its stem. Only metadata is looked at
@@ -278,19 +326,43 @@ fn mesh_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
 fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
     let mut files: HashMap<String, Vec<PathBuf>> = HashMap::new();
     let mut folders: HashMap<String, PathBuf> = HashMap::new();
-    for p in list(dir)? {
+    let mut skipped = Vec::new();
+    let entries = list(dir)?;
+    let gltf = has_gltf(&entries);
+    for p in entries {
         if p.is_dir() {
             folders.insert(stem(&p), p);
         } else if Format::from_path(&p).is_some() {
             files.entry(stem(&p)).or_default().push(p);
+        } else if let Some(reason) = not_a_mesh(&p, gltf) {
+            skipped.push(Skipped { path: p, reason });
         }
     }
     let mut problems = Vec::new();
     let mut names: Vec<String> = files.keys().cloned().collect();
-    for (name, folder) in &folders {
-        if !files.contains_key(name) && !mesh_files(folder)?.is_empty() {
+    let mut piece_lists: HashMap<String, Vec<PathBuf>> = HashMap::new();
+    let mut folder_names: Vec<&String> = folders.keys().collect();
+    folder_names.sort();
+    for name in folder_names {
+        let folder = &folders[name];
+        let mut inside = Vec::new();
+        let pieces = mesh_files(folder, &mut inside)?;
+        if pieces.is_empty() && !files.contains_key(name) {
+            // Not a piece folder: skipped whole, its entries unnamed.
+            skipped.push(Skipped {
+                path: folder.clone(),
+                reason: "a folder without mesh files (a part's piece folder holds its convex pieces as mesh files)".into(),
+            });
+            continue;
+        }
+        skipped.extend(inside);
+        if pieces.is_empty() {
+            continue;
+        }
+        if !files.contains_key(name) {
             names.push(name.clone());
         }
+        piece_lists.insert(name.clone(), pieces);
     }
     names.sort();
     let mut parts = Vec::new();
@@ -308,10 +380,7 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
             }
             fs[0].clone()
         });
-        let pieces = match folders.get(&name) {
-            Some(f) => mesh_files(f)?,
-            None => Vec::new(),
-        };
+        let pieces = piece_lists.remove(&name).unwrap_or_default();
         let source = mesh
             .clone()
             .or_else(|| folders.get(&name).cloned())
@@ -327,6 +396,7 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
     if parts.is_empty() {
         return Err(LoadError::NoParts(dir.to_path_buf()));
     }
+    skipped.sort_by(|a, b| a.path.cmp(&b.path));
     let name = dir
         .canonicalize()
         .ok()
@@ -338,6 +408,7 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
         parts,
         problems,
         preloaded: HashMap::new(),
+        skipped,
     })
 }
 
@@ -380,6 +451,7 @@ fn from_file(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
         parts,
         problems: Vec::new(),
         preloaded,
+        skipped: Vec::new(),
     })
 }
 

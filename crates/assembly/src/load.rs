@@ -244,6 +244,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         assembly,
         problems,
         repairs,
+        skipped: plan.skipped,
     })
 }
 

@@ -110,6 +110,16 @@ pub struct Repairs {
     pub report: RepairReport,
 }
 
+/// A file or folder inside an assembly folder that was not read, and why (hidden
+/// entries, whose names start with a dot, are passed over without a word).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Skipped {
+    /// The file or folder.
+    pub path: PathBuf,
+    /// Why it was not read.
+    pub reason: String,
+}
+
 /// A loaded assembly and every problem found while loading it.
 #[derive(Clone, Debug)]
 pub struct Loaded {
@@ -120,6 +130,9 @@ pub struct Loaded {
     /// Every repair made on load, per mesh (empty with `--strict`, or when nothing
     /// needed repair).
     pub repairs: Vec<Repairs>,
+    /// Entries of the assembly folder (and of its piece folders) that were not read;
+    /// empty for a manifest or a single mesh file, which name what is read.
+    pub skipped: Vec<Skipped>,
 }
 
 impl Loaded {
