@@ -1,5 +1,5 @@
 //! What every answer states about its input: the length unit, the tolerance it holds
-//! under, and the repairs made on load. Parsing of `--units` and `--tolerance`.
+//! under, the repairs made on load and the files not read. Parsing of `--units` and `--tolerance`.
 
 use crate::Global;
 use apart::assembly::{Assembly, Loaded, Tolerance};
@@ -159,6 +159,15 @@ pub struct InputFacts {
     tolerance: Option<ToleranceJson>,
     /// Every repair made on load, per mesh file.
     repairs: Vec<RepairJson>,
+    /// Files and folders of the assembly folder that were not read, with the reason.
+    skipped_files: Vec<SkippedJson>,
+}
+
+/// A file not read, as JSON.
+#[derive(Serialize)]
+pub struct SkippedJson {
+    file: std::path::PathBuf,
+    reason: String,
 }
 
 /// The repairs of one mesh file, as JSON.
@@ -182,6 +191,14 @@ impl InputFacts {
                     file: r.file.clone(),
                     parts: r.parts.clone(),
                     counts: r.report.clone(),
+                })
+                .collect(),
+            skipped_files: loaded
+                .skipped
+                .iter()
+                .map(|s| SkippedJson {
+                    file: s.path.clone(),
+                    reason: s.reason.clone(),
                 })
                 .collect(),
             units: global.units.map(Units::symbol),

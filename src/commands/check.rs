@@ -192,6 +192,13 @@ fn print_text(l: &Loaded, global: &Global) {
     if let Some(t) = tolerance_statement(a, global) {
         output::line(t);
     }
+    if !l.skipped.is_empty() {
+        let k = l.skipped.len();
+        output::line(format_args!(
+            "not read: {k} entr{} of the folder (named in the warnings on standard error)",
+            if k == 1 { "y" } else { "ies" }
+        ));
+    }
     let verdict = if l.is_valid() { "valid" } else { "invalid" };
     output::line(format_args!(
         "{verdict}: {e} error(s), {w} warning(s), {n} note(s)"

@@ -3,8 +3,11 @@
 
 use crate::output;
 use crate::Global;
-use apart::assembly::{load, Decompose, LoadOptions, Loaded};
-use std::path::Path;
+use apart::assembly::{load, Assembly, Decompose, LoadOptions, Loaded};
+use apart::mesh::escape::{escape, path as escaped};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// Loads `path` with the global options, a progress bar on a terminal, and the given
 /// decomposition policy.
@@ -27,7 +30,20 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    Ok(loaded?)
+    let loaded = match named_files(path) {
+        Some(named) => named.rename(loaded.map_err(|e| anyhow::anyhow!("{e}"))?),
+        None => loaded?,
+    };
+    // Files the user may have expected to be parts (printed also with --quiet, which
+    // keeps warnings).
+    for s in &loaded.skipped {
+        output::eline(format_args!(
+            "warning: {}: not read: {}",
+            escaped(&s.path),
+            s.reason
+        ));
+    }
+    Ok(loaded)
 }
 
 /// Loads an assembly for planning (every non-convex part decomposed); when it has
@@ -56,12 +72,23 @@ pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyho
         for p in &errors {
             output::eline(p);
         }
-        anyhow::bail!(
-            "{} is not a valid assembly ({} error{}); run `apart check` for the details",
-            path.display(),
+        let count = format!(
+            "{} error{}",
             errors.len(),
             if errors.len() == 1 { "" } else { "s" }
         );
+        match named_files(path) {
+            // No single path to `apart check`: the errors above are all there is.
+            Some(named) => anyhow::bail!(
+                "{} do not make a valid assembly ({count} above)",
+                named.given.join(" and ")
+            ),
+            None => anyhow::bail!(
+                "{} is not a valid assembly ({count}); run `apart check {}` for the details",
+                escaped(path),
+                escaped(path)
+            ),
+        }
     }
     for p in loaded
         .problems
@@ -84,20 +111,89 @@ pub fn for_named_files(global: &Global) -> Global {
     }
 }
 
+/// The mesh files named on the command line behind a temporary manifest: what the user
+/// typed, by the absolute path the manifest holds.
+#[derive(Clone)]
+struct NamedFiles {
+    /// The files as given, in order.
+    given: Vec<String>,
+    /// Absolute path (as written in the manifest) to the path as given.
+    by_abs: HashMap<PathBuf, PathBuf>,
+}
+
+impl NamedFiles {
+    /// The path the user gave for `p`, when `p` is one of the manifest's files.
+    fn given_path(&self, p: &Path) -> Option<PathBuf> {
+        self.by_abs.get(p).cloned()
+    }
+
+    /// `loaded` with every path of the temporary manifest replaced by the one given on
+    /// the command line (problems, repairs, part sources), so that no temporary path
+    /// reaches the user.
+    fn rename(&self, mut loaded: Loaded) -> Loaded {
+        let swap = |p: &mut PathBuf| {
+            if let Some(g) = self.given_path(p) {
+                *p = g;
+            }
+        };
+        for p in &mut loaded.problems {
+            if let Some(f) = &mut p.file {
+                swap(f);
+            }
+        }
+        for r in &mut loaded.repairs {
+            swap(&mut r.file);
+        }
+        for part in &mut loaded.assembly.parts {
+            swap(&mut part.source);
+            part.piece_sources.iter_mut().for_each(swap);
+        }
+        loaded
+    }
+}
+
+/// The temporary manifests alive in this process, by their path.
+static NAMED: Mutex<Option<HashMap<PathBuf, NamedFiles>>> = Mutex::new(None);
+
+/// The files behind `path` when it is a temporary manifest of [`files_manifest`].
+fn named_files(path: &Path) -> Option<NamedFiles> {
+    let map = NAMED.lock().unwrap_or_else(|e| e.into_inner());
+    map.as_ref()?.get(path).cloned()
+}
+
 /// A temporary manifest naming mesh files as parts of one assembly (so that they are
 /// snapped to one grid), with the part names (file stems, made unique) and a guard that
-/// removes the manifest's folder when dropped. Load it with [`for_named_files`].
+/// removes the manifest's folder when dropped. Load it with [`for_named_files`]: the
+/// loading functions of this module report the files by the names given, never by the
+/// temporary manifest's paths.
 pub fn files_manifest(
     files: &[&String],
     tag: &str,
-) -> anyhow::Result<(std::path::PathBuf, Vec<String>, TempDir)> {
+) -> anyhow::Result<(PathBuf, Vec<String>, TempDir)> {
+    for f in files {
+        match std::fs::metadata(f.as_str()) {
+            Ok(m) if m.is_dir() => anyhow::bail!(
+                "{}: is a folder; give two mesh files, or an assembly and two part names",
+                escape(f)
+            ),
+            Ok(_) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                anyhow::bail!("{}: no such file", escape(f))
+            }
+            Err(e) => anyhow::bail!("cannot read {}: {e}", escape(f)),
+        }
+    }
     let dir = std::env::temp_dir().join(format!("apart-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
-    let guard = TempDir(dir.clone());
+    let file = dir.join("assembly.json");
+    let guard = TempDir(dir.clone(), file.clone());
     let mut names: Vec<String> = Vec::new();
     let mut parts = Vec::new();
+    let mut by_abs = HashMap::new();
     for (k, f) in files.iter().enumerate() {
-        let abs = std::fs::canonicalize(f).map_err(|e| anyhow::anyhow!("cannot read {f}: {e}"))?;
+        let abs = std::fs::canonicalize(f)
+            .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", escape(f)))?;
+        by_abs.insert(abs.clone(), PathBuf::from(f.as_str()));
         let mut name = Path::new(f.as_str())
             .file_stem()
             .map_or(format!("part{}", k + 1), |s| {
@@ -110,16 +206,148 @@ pub fn files_manifest(
         names.push(name);
     }
     let manifest = serde_json::json!({"name": names.join(" and "), "parts": parts});
-    let file = dir.join("assembly.json");
     std::fs::write(&file, serde_json::to_string(&manifest)?)?;
+    let named = NamedFiles {
+        given: files.iter().map(|f| escape(f)).collect(),
+        by_abs,
+    };
+    NAMED
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get_or_insert_with(HashMap::new)
+        .insert(file.clone(), named);
     Ok((file, names, guard))
 }
 
-/// A temporary folder, removed when dropped.
-pub struct TempDir(std::path::PathBuf);
+/// A temporary folder (and the manifest in it), removed and forgotten when dropped.
+pub struct TempDir(PathBuf, PathBuf);
 
 impl Drop for TempDir {
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.0);
+        if let Some(map) = NAMED.lock().unwrap_or_else(|e| e.into_inner()).as_mut() {
+            map.remove(&self.1);
+        }
+    }
+}
+
+/// The index of the part named `name`, or an error that names the closest part names
+/// (all of them when there are at most [`LIST_ALL`]). `what` says where the name was
+/// given ("--base"; empty for a positional argument).
+pub fn part_index(asm: &Assembly, name: &str, what: &str) -> anyhow::Result<usize> {
+    if let Some(k) = asm.parts.iter().position(|p| p.name == name) {
+        return Ok(k);
+    }
+    let names: Vec<&str> = asm.parts.iter().map(|p| p.name.as_str()).collect();
+    anyhow::bail!(
+        "{what}{}the assembly \"{}\" has no part named \"{}\"{}",
+        if what.is_empty() { "" } else { ": " },
+        escape(&asm.name),
+        escape(name),
+        closest_names(name, &names)
+    )
+}
+
+/// With at most this many parts, a wrong name lists them all.
+pub const LIST_ALL: usize = 12;
+
+/// "; did you mean \"tray\"? The parts are: ..." for a name not found among `names`:
+/// the names within a small edit distance as suggestions, then every name when there
+/// are few, or the closest few.
+pub fn closest_names(name: &str, names: &[&str]) -> String {
+    let mut by_distance: Vec<(usize, &str)> = names
+        .iter()
+        .map(|n| (edit_distance(&name.to_lowercase(), &n.to_lowercase()), *n))
+        .collect();
+    by_distance.sort();
+    // Close enough to be a typo: a third of the name's letters, at least one.
+    let near = (name.chars().count() / 3).max(1);
+    let quote = |n: &str| format!("\"{}\"", escape(n));
+    let suggestions: Vec<String> = by_distance
+        .iter()
+        .filter(|(d, _)| *d <= near)
+        .take(3)
+        .map(|(_, n)| quote(n))
+        .collect();
+    let mut out = String::new();
+    if !suggestions.is_empty() {
+        out.push_str(&format!("; did you mean {}?", suggestions.join(" or ")));
+    }
+    let lead = if suggestions.is_empty() {
+        "; its"
+    } else {
+        " Its"
+    };
+    if names.len() <= LIST_ALL {
+        let all: Vec<String> = names.iter().map(|n| quote(n)).collect();
+        out.push_str(&format!("{lead} parts: {}", all.join(", ")));
+    } else if suggestions.is_empty() {
+        let few: Vec<String> = by_distance.iter().take(5).map(|(_, n)| quote(n)).collect();
+        out.push_str(&format!(
+            "{lead} {} parts include {}",
+            names.len(),
+            few.join(", ")
+        ));
+    }
+    out
+}
+
+/// The edit distance between two strings, in characters: insertions, deletions,
+/// substitutions and transpositions of two neighbours ("trya" is one from "tray").
+fn edit_distance(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    // d[i][j]: distance between the first i characters of a and the first j of b.
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    d[0] = (0..=b.len()).collect();
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let mut best = (d[i - 1][j - 1] + usize::from(a[i - 1] != b[j - 1]))
+                .min(d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                best = best.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = best;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distances() {
+        assert_eq!(edit_distance("tray", "trya"), 1);
+        assert_eq!(edit_distance("slot", "slto"), 1);
+        assert_eq!(edit_distance("ab", "ba"), 1);
+        assert_eq!(edit_distance("abc", "ca"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("lid", "lid"), 0);
+    }
+
+    #[test]
+    fn wrong_names_list_the_closest() {
+        let few = ["slot", "tenon", "cap"];
+        assert_eq!(
+            closest_names("slto", &few),
+            "; did you mean \"slot\"? Its parts: \"slot\", \"tenon\", \"cap\""
+        );
+        assert_eq!(
+            closest_names("zzz", &few),
+            "; its parts: \"slot\", \"tenon\", \"cap\""
+        );
+        let many: Vec<String> = (0..20).map(|k| format!("cube_{k:02}")).collect();
+        let mut many: Vec<&str> = many.iter().map(String::as_str).collect();
+        many.push("tray");
+        assert_eq!(closest_names("trya", &many), "; did you mean \"tray\"?");
+        let far = closest_names("lid", &many);
+        assert!(far.starts_with("; its 21 parts include "), "{far}");
+        assert_eq!(far.matches('"').count(), 10, "{far}");
     }
 }

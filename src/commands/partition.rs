@@ -529,11 +529,11 @@ fn print_text(
     let s = &p.stats;
     if !global.quiet {
         output::line(format_args!(
-            "assembly \"{}\": {} parts, {} convex pieces, {} Minkowski sums",
+            "assembly \"{}\": {}, {}, {}",
             asm.name,
-            p.names.len(),
-            s.pieces,
-            s.sums
+            plural(p.names.len(), "part", "parts"),
+            plural(s.pieces, "convex piece", "convex pieces"),
+            plural(s.sums, "Minkowski sum", "Minkowski sums")
         ));
         output::line(format_args!(
             "motion space: {}, {}, {} ({})",

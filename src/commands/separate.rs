@@ -2,10 +2,14 @@
 //! spherical regions, sliding arcs and isolated directions, with the free area and the
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
-use crate::commands::load::{files_manifest, for_named_files, load_valid};
+use crate::commands::load::{
+    closest_names, files_manifest, for_named_files, load_valid, load_with, part_index,
+};
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
 use crate::output;
 use crate::Global;
+use apart::assembly::Decompose;
+use apart::mesh::escape::escape;
 use apart::plan::{parts_of, separate, BlockingRegions, Separation};
 use apart::sphere::Arc;
 use serde::Serialize;
@@ -17,7 +21,7 @@ use std::process::ExitCode;
 pub struct SeparateArgs {
     /// Either an assembly and two part names (`ASSEMBLY A B`: A moves, B stays), or two
     /// mesh files (`A.off B.stl`), each one part in the same coordinates.
-    #[arg(num_args = 2..=3, required = true, value_name = "INPUT")]
+    #[arg(num_args = 2..=3, required = true, value_names = ["ASSEMBLY|A_FILE", "A|B_FILE", "B"])]
     pub inputs: Vec<String>,
 }
 
@@ -73,6 +77,15 @@ fn arc_json(a: &Arc) -> ArcJson {
 pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let (path, a_name, b_name, tmp) = match args.inputs.as_slice() {
         [asm, a, b] => (PathBuf::from(asm), a.clone(), b.clone(), None),
+        [asm, a] if is_assembly(asm) => return Err(one_name_missing(asm, a, global)),
+        [a, b] if std::path::Path::new(a).is_file() && !std::path::Path::new(b).exists() => {
+            anyhow::bail!(
+                "{}: no such file; to separate two parts of the one file {}, name both (apart separate {} A B)",
+                escape(b),
+                escape(a),
+                escape(a)
+            )
+        }
         [a, b] => {
             let (file, names, tmp) = files_manifest(&[a, b], "separate")?;
             let [na, nb]: [String; 2] = names.try_into().expect("two names");
@@ -86,16 +99,10 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(
         asm.parts.len() >= 2,
         "separate needs two parts, and {} has only one (\"{}\"): nothing to separate",
-        path.display(),
+        args.inputs[0],
         asm.parts.first().map_or("", |p| p.name.as_str())
     );
-    let index = |n: &str| {
-        asm.parts
-            .iter()
-            .position(|p| p.name == n)
-            .ok_or_else(|| anyhow::anyhow!("the assembly has no part named \"{n}\""))
-    };
-    let (a, b) = (index(&a_name)?, index(&b_name)?);
+    let (a, b) = (part_index(asm, &a_name, "")?, part_index(asm, &b_name, "")?);
     anyhow::ensure!(a != b, "the two parts must differ");
     let regions = {
         let _phase = output::phase(global, "pair regions");
@@ -135,6 +142,49 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::from(2)
     })
+}
+
+/// True when `input` names an assembly rather than one mesh file: a folder or a
+/// manifest.
+fn is_assembly(input: &str) -> bool {
+    let p = std::path::Path::new(input);
+    p.is_dir()
+        || p.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
+/// The error for `apart separate ASSEMBLY A` (one part name forgotten): it says what is
+/// missing and, when the assembly loads, which parts the other name can be.
+fn one_name_missing(asm: &str, a: &str, global: &Global) -> anyhow::Error {
+    let mut msg = format!(
+        "one part name is missing: `apart separate ASSEMBLY A B` takes the part that moves (A) and the part that stays (B), and only \"{}\" follows {}",
+        escape(a),
+        escape(asm)
+    );
+    // Decomposition is skipped: only the names are wanted.
+    if let Ok(loaded) = load_with(std::path::Path::new(asm), global, Decompose::Never) {
+        let names: Vec<&str> = loaded
+            .assembly
+            .parts
+            .iter()
+            .map(|p| p.name.as_str())
+            .collect();
+        if names.contains(&a) {
+            let others: Vec<String> = names
+                .iter()
+                .filter(|n| **n != a)
+                .map(|n| format!("\"{}\"", escape(n)))
+                .collect();
+            msg.push_str(&format!(". The other part can be {}", others.join(" or ")));
+        } else {
+            msg.push_str(&format!(
+                ". \"{}\" is no part of it either{}",
+                escape(a),
+                closest_names(a, &names)
+            ));
+        }
+    }
+    anyhow::anyhow!(msg)
 }
 
 fn to_json(

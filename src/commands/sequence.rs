@@ -4,7 +4,7 @@
 //! separate, no step), 2 when a subassembly is interlocked (the partial plan is printed
 //! and names it), 1 on error.
 
-use crate::commands::load::load_valid;
+use crate::commands::load::{load_valid, part_index};
 use crate::commands::partition::Projection;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
 use crate::output;
@@ -170,19 +170,17 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let loaded = load_valid(&args.assembly, global)?;
     let load = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
+    // A wrong name is told before the long work.
+    let base = match &args.base {
+        Some(name) => Some(part_index(asm, name, "--base")?),
+        None => None,
+    };
     let t = Instant::now();
     let regions = {
         let _phase = output::phase(global, "pair regions");
         BlockingRegions::compute(&parts_of(asm)?)?
     };
     let regions_s = t.elapsed().as_secs_f64();
-    let base =
-        match &args.base {
-            Some(name) => Some(asm.parts.iter().position(|p| &p.name == name).ok_or_else(
-                || anyhow::anyhow!("--base: the assembly has no part named \"{name}\""),
-            )?),
-            None => None,
-        };
     let opts = SequenceOptions {
         prefer_single: args.prefer_single,
         prefer_connected: args.prefer_connected,
