@@ -102,7 +102,9 @@ enum Command {
     /// graph of one direction.
     Partition(commands::partition::PartitionArgs),
     /// Decompose every non-convex part without declared pieces into exact convex pieces
-    /// and write them (one OFF mesh per piece, plus assembly.json).
+    /// and write them (one OFF mesh per piece, plus assembly.json). The output loads
+    /// back as the same solids: a part whose pieces have vertices off the grid is
+    /// written as its mesh alone and decomposed again on load.
     Decompose(commands::decompose::DecomposeArgs),
     /// A complete disassembly plan by recursive two-handed partitioning (its reverse is
     /// an assembly plan), with pictures and animated exports; exit 2 when a subassembly

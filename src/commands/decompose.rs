@@ -2,6 +2,13 @@
 //! without declared pieces, written as one OFF mesh per piece plus an assembly.json
 //! manifest that declares them. Refuses to write where the input is, and gives parts
 //! whose safe file names collide unique ones.
+//!
+//! The output loads back as the same solids: every coordinate written is a grid point
+//! (an integer times the grid step, exact in a double), so it snaps back to itself. A
+//! piece with a vertex off the grid (an intersection of three face planes) cannot be
+//! written exactly in any mesh format the loader reads, so a part with such pieces is
+//! written as its mesh alone, and loading the output decomposes it again into the same
+//! exact pieces.
 
 use crate::commands::load::load_valid;
 use crate::output;
@@ -49,8 +56,11 @@ struct PartReport {
     pieces: usize,
     decomposed: bool,
     declared_pieces: bool,
-    /// Pieces with vertices off the grid (written to the nearest double).
+    /// Pieces with vertices off the grid.
     rational_pieces: usize,
+    /// The pieces are written and declared in the manifest (every vertex on the grid);
+    /// otherwise the part is written as its mesh alone and decomposed again on load.
+    pieces_written: bool,
 }
 
 #[derive(Serialize)]
@@ -98,17 +108,20 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
             }
             None => None,
         };
-        let piece_dir = args.output.join(dir);
-        std::fs::create_dir_all(&piece_dir)
-            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", piece_dir.display()))?;
+        let report_part = part_report(part, dir);
         let mut pieces = Vec::new();
-        for (k, p) in part.pieces.iter().enumerate() {
-            let file = format!("{dir}/piece_{k}.off");
-            let (vertices, faces) = piece_mesh(p, &asm.grid);
-            write_off(&args.output.join(&file), &vertices, &faces)?;
-            pieces.push(file);
+        if report_part.pieces_written {
+            let piece_dir = args.output.join(dir);
+            std::fs::create_dir_all(&piece_dir)
+                .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", piece_dir.display()))?;
+            for (k, p) in part.pieces.iter().enumerate() {
+                let file = format!("{dir}/piece_{k}.off");
+                let (vertices, faces) = piece_mesh(p, &asm.grid);
+                write_off(&args.output.join(&file), &vertices, &faces)?;
+                pieces.push(file);
+            }
         }
-        report.push(part_report(part, dir));
+        report.push(report_part);
         manifest.parts.push(PartOut {
             name: part.name.clone(),
             mesh,
@@ -138,6 +151,8 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
                     p.pieces.to_string(),
                     if p.declared_pieces {
                         "declared"
+                    } else if !p.pieces_written {
+                        "decomposed, off the grid: mesh only"
                     } else if p.decomposed {
                         "decomposed"
                     } else {
@@ -151,10 +166,14 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
             &["part", "convex", "reflex edges", "pieces", "pieces from"],
             &rows,
         );
-        let rational: usize = report.parts.iter().map(|p| p.rational_pieces).sum();
-        if rational > 0 {
+        for p in report.parts.iter().filter(|p| !p.pieces_written) {
             output::eline(format_args!(
-                "note: {rational} piece(s) have vertices off the grid (intersections of face planes); they are written to the nearest double and snap back to the grid when loaded"
+                "note: part \"{}\": {} of its {} pieces {} vertices off the grid (intersections of face planes), which no mesh file holds exactly; the part is written as its mesh alone ({}.off), and loading the output decomposes it again into the same exact pieces",
+                p.name,
+                p.rational_pieces,
+                p.pieces,
+                if p.rational_pieces == 1 { "has" } else { "have" },
+                p.file
             ));
         }
         output::line(format_args!(
@@ -167,6 +186,11 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
 }
 
 fn part_report(p: &Part, file: &str) -> PartReport {
+    let rational = p
+        .pieces
+        .iter()
+        .filter(|q| *q.den() != apart::kernel::Int::ONE)
+        .count();
     PartReport {
         name: p.name.clone(),
         file: file.to_string(),
@@ -175,11 +199,9 @@ fn part_report(p: &Part, file: &str) -> PartReport {
         pieces: p.pieces.len(),
         decomposed: p.decomposed,
         declared_pieces: p.declared_pieces,
-        rational_pieces: p
-            .pieces
-            .iter()
-            .filter(|q| *q.den() != apart::kernel::Int::ONE)
-            .count(),
+        rational_pieces: rational,
+        // A part without a mesh has declared pieces, read from files: on the grid.
+        pieces_written: rational == 0 || p.mesh.is_none(),
     }
 }
 
@@ -314,24 +336,16 @@ fn safe_name(name: &str) -> String {
     }
 }
 
-/// A piece's vertices in input units and its facets as polygons.
+/// A piece on the grid (denominator 1): its vertices in input units, exact (an
+/// integer times the step 2^e is a double), and its facets as polygons.
 fn piece_mesh(p: &Polytope, grid: &Grid) -> (Vec<[f64; 3]>, Polygons) {
-    let den = p.den();
+    debug_assert!(*p.den() == apart::kernel::Int::ONE);
     let vertices = p
         .vertices()
         .iter()
         .map(|v| {
             let c = v.to_ints();
-            [0, 1, 2].map(|k| {
-                let r = apart::kernel::Rational::new(c[k].clone(), den.clone());
-                // Grid integer (exact when den divides it) times the step 2^e.
-                let q = r.to_f64();
-                if *den == apart::kernel::Int::ONE {
-                    grid.to_units(int::to_i64(&c[k]).unwrap_or(0))
-                } else {
-                    q * grid.step()
-                }
-            })
+            [0, 1, 2].map(|k| grid.to_units(int::to_i64(&c[k]).unwrap_or(0)))
         })
         .collect();
     let faces = Polygons::from(
