@@ -46,11 +46,16 @@ pub fn set_quiet(quiet: bool) {
     QUIET.store(quiet, Ordering::Relaxed);
 }
 
-/// Writes `bytes` to `path`, with the path in the error, and announces it on standard
-/// error ("wrote hinge.html") unless `--quiet`. Every file a command writes for the
-/// user goes through here (or through [`wrote`]), so that none appears unannounced;
-/// standard output, which may carry the JSON answer, stays untouched.
+/// Writes `bytes` to `path`, creating its folder if needed (`--svg out/star.svg`), with
+/// the path in the error, and announces it on standard error ("wrote hinge.html") unless
+/// `--quiet`. Every file a command writes for the user goes through here (or through
+/// [`wrote`]), so that none appears unannounced; standard output, which may carry the
+/// JSON answer, stays untouched.
 pub fn write_file(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
+    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder)
+            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", folder.display()))?;
+    }
     std::fs::write(path, bytes)
         .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
     wrote(path);

@@ -1,5 +1,5 @@
 //! `apart place`: interference-free positions of a new part among fixed parts, cheapest
-//! first (paper 004): exact c-space obstacles of the interfering piece pairs only, free
+//! first (Ayyadevara et al. 2002, [`STACKING_PAPER`]): exact c-space obstacles of the interfering piece pairs only, free
 //! space as convex cells, the squared distance to a desired position minimized exactly in
 //! each cell, over discrete orientations about z. Exit code 0 when a position was found,
 //! 2 when the part fits nowhere in the region.
@@ -19,8 +19,17 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// The paper whose eq. (1) `place --weight` and `stack` minimize, cited in full in their
+/// `--help` (and in the README's references, as paper 004).
+pub const STACKING_PAPER: &str = "\
+Reference (eq. (1), partial c-space obstacles, extrapolation between orientations):
+  V. R. Ayyadevara, D. A. Bourne, K. Shimada and R. H. Sturges, Jr., \"Interference-free
+  polyhedral configurations for stacking\", IEEE Transactions on Robotics and Automation
+  18(2):147-165, 2002.";
+
 /// Arguments of `apart place`.
 #[derive(clap::Args, Debug)]
+#[command(after_help = STACKING_PAPER)]
 pub struct PlaceArgs {
     /// Either an assembly and the name of the part to place (`ASSEMBLY NAME`: every
     /// other part is fixed), or two mesh files (`FIXED.stl NEW.off`, in the same
@@ -37,8 +46,8 @@ pub struct PlaceArgs {
         value_parser = limits::three_numbers
     )]
     pub target: String,
-    /// Minimize paper 004 eq. (1) with this weight in [0, 1] instead of the distance to
-    /// --target: w times the spread of the part's vertices about the floor point in x
+    /// Minimize eq. (1) of Ayyadevara et al. 2002 (reference below) with this weight in
+    /// [0, 1] instead of the distance to --target: w times the spread of the part's vertices about the floor point in x
     /// and y, plus (1 − w) times the height of its centre of gravity above it.
     #[arg(long, value_name = "W", value_parser = limits::weight, allow_negative_numbers = true)]
     pub weight: Option<f64>,

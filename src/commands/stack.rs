@@ -1,4 +1,5 @@
-//! `apart stack <part>`: a stack of identical parts on a floor region (paper 004): each
+//! `apart stack <part>`: a stack of identical parts on a floor region (Ayyadevara et
+//! al. 2002, [`STACKING_PAPER`](crate::commands::place::STACKING_PAPER)): each
 //! part placed by the exact placement engine with the cost of eq. (1), accepted only if
 //! stable, grippable from above and lowerable along −z. Exit code 0 when every part was
 //! placed, 2 when the stack is incomplete.
@@ -18,6 +19,7 @@ use std::process::ExitCode;
 
 /// Arguments of `apart stack`.
 #[derive(clap::Args, Debug)]
+#[command(after_help = crate::commands::place::STACKING_PAPER)]
 pub struct StackArgs {
     /// The part: a mesh file, or an assembly with one part (or pick one with --part-name).
     pub part: PathBuf,
@@ -28,7 +30,8 @@ pub struct StackArgs {
     /// count: 400 cubes take 46 s, 1000 several minutes).
     #[arg(long, short = 'n', default_value_t = 10, value_parser = limits::stack_count, allow_negative_numbers = true)]
     pub count: usize,
-    /// Weight w of eq. (1) in [0, 1]: 0 keeps the stack low, 1 keeps its footprint small.
+    /// Weight w of eq. (1) of Ayyadevara et al. 2002 (reference below) in [0, 1]: 0 keeps
+    /// the stack low, 1 keeps its footprint small.
     #[arg(long, short = 'w', default_value_t = 0.5, value_parser = limits::weight, allow_negative_numbers = true)]
     pub weight: f64,
     /// Floor region "X0,Y0,X1,Y1" (input units); its centre is eq. (1)'s (x0, y0).
