@@ -127,8 +127,8 @@ impl Partitioning {
     }
 }
 
-/// Partitions an assembly loaded by `apart-assembly` (parts without declared pieces must
-/// be convex until automatic decomposition is available).
+/// Partitions an assembly loaded by `apart-assembly`, each part by its convex pieces
+/// (declared, or made by the loader's exact decomposition of a non-convex part).
 pub fn partition(
     assembly: &apart_assembly::Assembly,
     opts: &Options,
