@@ -8,8 +8,10 @@
 //! 1. every pair whose projections overlap (in more than a sliver) is compared over
 //!    their common region, where the difference of their depths is affine, so its sign
 //!    at the region's corners decides which one is in front there;
-//! 2. these "drawn before" constraints are sorted topologically (strongly connected
-//!    components in topological order);
+//! 2. these "drawn before" constraints are sorted topologically, first between groups
+//!    (the faces of the parts, so that a face is drawn in one go, with no anti-aliased
+//!    seams inside it), then, inside a cycle of groups, between polygons (strongly
+//!    connected components in topological order);
 //! 3. a component with more than one polygon (a cycle of overlaps, or two polygons
 //!    that pierce each other) is ordered by a binary space partition of its polygons,
 //!    which splits them along each other's planes until no cycle remains.
@@ -69,16 +71,70 @@ pub fn painter_order(polygons: Vec<Polygon>) -> Vec<Polygon> {
             }
         }
     }
-    let components = components_in_order(&after);
-    let components = grouped(components, &after, &polygons);
+    // Whole groups (faces) first: a face drawn in one go leaves no seams. The groups'
+    // "drawn before" graph is sorted the same way; a cycle of groups (faces that are
+    // each in front of the other somewhere) is ordered polygon by polygon.
+    let mut dense: std::collections::HashMap<usize, usize> = Default::default();
+    let group_of: Vec<usize> = polygons
+        .iter()
+        .map(|p| {
+            let next = dense.len();
+            *dense.entry(p.group).or_insert(next)
+        })
+        .collect();
+    let mut group_after: Vec<Vec<u32>> = vec![Vec::new(); dense.len()];
+    for (a, bs) in after.iter().enumerate() {
+        for &b in bs {
+            let (ga, gb) = (group_of[a], group_of[b as usize]);
+            if ga != gb {
+                group_after[ga].push(gb as u32);
+            }
+        }
+    }
+    for list in &mut group_after {
+        list.sort_unstable();
+        list.dedup();
+    }
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); dense.len()];
+    for (k, &g) in group_of.iter().enumerate() {
+        members[g].push(k);
+    }
     let mut slots: Vec<Option<Polygon>> = polygons.into_iter().map(Some).collect();
     let mut out = Vec::with_capacity(n);
-    for comp in components {
-        if comp.len() == 1 {
-            out.extend(slots[comp[0]].take());
-        } else {
-            let group: Vec<Polygon> = comp.iter().filter_map(|&k| slots[k].take()).collect();
-            out.extend(bsp_order(group, tol));
+    for groups in components_in_order(&group_after) {
+        let mut subset: Vec<usize> = groups
+            .iter()
+            .flat_map(|&g| members[g].iter().copied())
+            .collect();
+        if groups.len() == 1 {
+            out.extend(subset.iter().filter_map(|&k| slots[k].take()));
+            continue;
+        }
+        subset.sort_unstable();
+        // The polygons of the cycle of groups, with the constraints among them.
+        let local: std::collections::HashMap<usize, usize> =
+            subset.iter().enumerate().map(|(i, &k)| (k, i)).collect();
+        let sub_after: Vec<Vec<u32>> = subset
+            .iter()
+            .map(|&k| {
+                after[k]
+                    .iter()
+                    .filter_map(|b| local.get(&(*b as usize)).map(|&i| i as u32))
+                    .collect()
+            })
+            .collect();
+        let sub_groups: Vec<usize> = subset.iter().map(|&k| group_of[k]).collect();
+        let components = grouped(components_in_order(&sub_after), &sub_after, &sub_groups);
+        for comp in components {
+            if comp.len() == 1 {
+                out.extend(slots[subset[comp[0]]].take());
+            } else {
+                let cycle: Vec<Polygon> = comp
+                    .iter()
+                    .filter_map(|&i| slots[subset[i]].take())
+                    .collect();
+                out.extend(bsp_order(cycle, tol));
+            }
         }
     }
     out
@@ -231,11 +287,7 @@ fn components_in_order(after: &[Vec<u32>]) -> Vec<Vec<usize>> {
 /// The components (in topological order) reordered so that components of one polygon
 /// of the same group follow each other wherever the constraints allow (Kahn's
 /// algorithm, preferring a ready component of the last one's group, then the earliest).
-fn grouped(
-    components: Vec<Vec<usize>>,
-    after: &[Vec<u32>],
-    polygons: &[Polygon],
-) -> Vec<Vec<usize>> {
+fn grouped(components: Vec<Vec<usize>>, after: &[Vec<u32>], group_of: &[usize]) -> Vec<Vec<usize>> {
     let m = components.len();
     let mut comp_of = vec![0usize; after.len()];
     for (c, members) in components.iter().enumerate() {
@@ -244,7 +296,7 @@ fn grouped(
         }
     }
     let group = |c: usize| match components[c].as_slice() {
-        [v] => Some(polygons[*v].group),
+        [v] => Some(group_of[*v]),
         _ => None,
     };
     let mut succ: Vec<Vec<usize>> = vec![Vec::new(); m];

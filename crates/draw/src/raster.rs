@@ -143,6 +143,47 @@ pub fn shapes_part_ids(
 /// A triangle in picture coordinates (x, y, depth) with its face id (at least 1).
 type PictureTriangle = ([(f64, f64, f64); 3], u32);
 
+/// Which triangles (given in picture coordinates, face id `t + 1` for triangle `t`) are
+/// nearest at some sample of a z-buffer at `SS` samples per pixel along each axis,
+/// strictly: a sample where two triangles are at the same depth (up to rounding) shows
+/// neither. A face hidden inside a part (the top of a piece under another piece, flush
+/// with it) meets the visible faces only along an edge, where its depth ties with
+/// theirs; it is not shown.
+fn shown_triangles(tris: &[PictureTriangle], width: usize, height: usize) -> Vec<bool> {
+    let (w, h) = (width * SS, height * SS);
+    let mut depth = vec![f64::INFINITY; w * h];
+    let mut owner = vec![u32::MAX; w * h];
+    let mut tied = vec![false; w * h];
+    let scale = tris
+        .iter()
+        .flat_map(|(v, _)| v.iter().map(|p| p.2.abs()))
+        .fold(0.0f64, f64::max);
+    let eps = 1e-9 * scale.max(1.0);
+    for (t, (v, _)) in tris.iter().enumerate() {
+        let v = v.map(|(x, y, z)| (x * SS as f64, y * SS as f64, z));
+        raster_triangle(w, h, v, |p, z| {
+            if z < depth[p] - eps {
+                depth[p] = z;
+                owner[p] = t as u32;
+                tied[p] = false;
+            } else if z <= depth[p] + eps {
+                tied[p] = true;
+                if z < depth[p] {
+                    depth[p] = z;
+                    owner[p] = t as u32;
+                }
+            }
+        });
+    }
+    let mut shown = vec![false; tris.len()];
+    for p in 0..w * h {
+        if owner[p] != u32::MAX && !tied[p] {
+            shown[owner[p] as usize] = true;
+        }
+    }
+    shown
+}
+
 /// A z-buffer at `SS` samples per pixel along each axis of triangles given in picture
 /// coordinates with their face ids.
 fn zbuffer(tris: &[PictureTriangle], width: usize, height: usize) -> Layer {
@@ -231,14 +272,10 @@ pub fn shapes_svg(
         }
     }
     // Only what the z-buffer shows somewhere: hidden faces (between convex pieces, or
-    // behind other parts) would only lengthen the file and the sort.
+    // behind other parts) would only lengthen the file and the sort, and a face that is
+    // hidden but along an edge would draw a line there.
     let (w, h) = (width.max(1) as usize, height.max(1) as usize);
-    let mut shown = vec![false; tris.len()];
-    for &f in &zbuffer(&tris, w, h).face {
-        if f > 0 {
-            shown[f as usize - 1] = true;
-        }
-    }
+    let shown = shown_triangles(&tris, w, h);
     let polygons: Vec<Polygon> = tris
         .iter()
         .enumerate()
@@ -641,6 +678,24 @@ fn render(
 
 /// Z-buffered fill of one triangle (sample centres at half-integers).
 fn fill_triangle(layer: &mut Layer, w: usize, h: usize, v: [(f64, f64, f64); 3], face: u32) {
+    raster_triangle(w, h, v, |p, z| {
+        let z = z as f32;
+        if z < layer.depth[p] {
+            layer.depth[p] = z;
+            layer.face[p] = face;
+        }
+    });
+}
+
+/// Calls `sample(index, depth)` for every sample of a `w` × `h` grid (centres at
+/// half-integers) inside the triangle `v` (picture coordinates and depth), edges
+/// included, with the depth interpolated there.
+fn raster_triangle(
+    w: usize,
+    h: usize,
+    v: [(f64, f64, f64); 3],
+    mut sample: impl FnMut(usize, f64),
+) {
     let [(x0, y0, z0), (x1, y1, z1), (x2, y2, z2)] = v;
     let area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
     if area.abs() < 1e-12 || !area.is_finite() {
@@ -665,12 +720,7 @@ fn fill_triangle(layer: &mut Layer, w: usize, h: usize, v: [(f64, f64, f64); 3],
             if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
                 continue;
             }
-            let z = (w0 * z0 + w1 * z1 + w2 * z2) as f32;
-            let p = y * w + x;
-            if z < layer.depth[p] {
-                layer.depth[p] = z;
-                layer.face[p] = face;
-            }
+            sample(y * w + x, w0 * z0 + w1 * z1 + w2 * z2);
         }
     }
 }

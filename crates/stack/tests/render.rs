@@ -143,3 +143,11 @@ fn triangle_parts_and_cubes_in_svg_as_in_the_zbuffer() {
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
 }
+
+#[test]
+fn complex_parts_with_holes_and_flanges_in_svg_as_in_the_zbuffer() {
+    let part = apart_stack::parts::complex_part();
+    let mut opts = StackOptions::new(3, qfrac(1, 2), floor_around(&part, 2, 1), q(100000));
+    opts.dtheta_deg = 90.0;
+    svg_matches_zbuffer(&part, &opts, &no_labels());
+}
