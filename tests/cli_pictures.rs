@@ -111,7 +111,7 @@ fn stack_pictures_are_announced_and_carry_axes_scale_and_names() {
     assert_eq!(said, [path(&png), path(&svg)]);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
     let text = std::fs::read_to_string(&svg).unwrap();
-    for label in ["#1", "#2", "#3", "x", "y", "z"] {
+    for label in ["cube #1", "cube #2", "cube #3", "x", "y", "z"] {
         assert!(text.contains(&format!(">{label}</text>")), "{label}");
     }
     assert!(text.contains(" units</text>") || text.contains(" unit</text>"));

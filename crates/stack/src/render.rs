@@ -38,13 +38,15 @@ pub fn scene_shapes(
     (shapes, names)
 }
 
-/// The parts of a stacking plan in place, named `#1`, `#2`, … in placing order.
+/// The parts of a stacking plan in place, named after the part and numbered in placing
+/// order (`channel #1`, `channel #2`, …, as the text answer numbers them).
 pub fn plan_shapes(plan: &StackPlan, step: f64) -> (Vec<PartShape>, Vec<String>) {
     let shapes = (0..plan.placements.len())
         .map(|k| pieces_shape(&plan.pieces_of(k), step))
         .collect();
+    let name = &plan.moving.part.name;
     let names = (1..=plan.placements.len())
-        .map(|k| format!("#{k}"))
+        .map(|k| format!("{name} #{k}"))
         .collect();
     (shapes, names)
 }
@@ -87,7 +89,7 @@ mod tests {
         opts.dtheta_deg = 90.0;
         let plan = stack(&cube(1), &opts).unwrap();
         let (shapes, names) = plan_shapes(&plan, 1.0);
-        assert_eq!(names, ["#1", "#2", "#3"]);
+        assert_eq!(names, ["cube #1", "cube #2", "cube #3"]);
         // A cube: 6 square facets, 12 triangles, 6 planes.
         assert!(shapes.iter().all(|s| s.triangles.len() == 12));
         let svg = plan_svg(&plan, 1.0, &View::default(), 320, 240);
