@@ -13,11 +13,15 @@
 //!   subset, and the chosen direction ringed.
 //! - **Renders without a GPU** ([`raster`]): [`assembly_png`] draws the assembly with
 //!   some parts highlighted and the rest grey; [`step_pngs`] draws one picture per step
-//!   (the subassembly being split, its moving side pulled out, a caption and an arrow).
+//!   (the subassembly being split, its moving side pulled out, a caption and an arrow);
+//!   [`shapes_png`] and [`shapes_svg`] draw any set of part surfaces, the SVG in a depth
+//!   order that is right wherever faces overlap ([`painter`]). With labels, every render
+//!   names its coloured parts in a legend and carries an axis triad and a scale bar.
 //! - **An animated glTF 2.0 file** ([`disassembly_glb`]): one node and mesh per part, and
 //!   an animation moving each step's side out along its direction, in order.
 //! - **A self-contained HTML viewer** ([`disassembly_html`]): the assembly in 3-D with a
-//!   small canvas renderer, orbit and zoom, play and step buttons, and the list of steps.
+//!   small canvas renderer, orbit and zoom, play and step buttons, the list of steps,
+//!   the parts by name, an axis triad and a scale bar.
 //!
 //! ```no_run
 //! use apart_assembly::{load, LoadOptions};
