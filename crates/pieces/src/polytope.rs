@@ -259,6 +259,10 @@ impl Polytope {
     /// The axis-aligned box `[lo, hi]` (its eight corners' hull; an error when some
     /// `lo[k] >= hi[k]` leaves it flat).
     pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Result<Polytope, PolytopeError> {
+        if (0..3).any(|k| lo[k] >= hi[k]) {
+            return Err(PolytopeError::Flat);
+        }
+        // Corner i takes hi in axis k when bit k of i is set.
         let corners: Vec<Vec3> = (0..8)
             .map(|i| {
                 Vec3::new(
@@ -268,14 +272,29 @@ impl Polytope {
                 )
             })
             .collect();
-        Polytope::hull_of_points(&corners)
+        // The six faces, counter-clockwise around their outward normals.
+        let faces: [([i64; 3], [u32; 4]); 6] = [
+            ([-1, 0, 0], [0, 4, 6, 2]),
+            ([1, 0, 0], [1, 3, 7, 5]),
+            ([0, -1, 0], [0, 1, 5, 4]),
+            ([0, 1, 0], [2, 6, 7, 3]),
+            ([0, 0, -1], [0, 2, 3, 1]),
+            ([0, 0, 1], [4, 5, 7, 6]),
+        ];
+        Polytope::from_facets(
+            &corners,
+            faces
+                .iter()
+                .map(|(n, c)| (Vec3::from_i64(*n), c.to_vec()))
+                .collect(),
+        )
     }
 
     /// The convex hull of a small set of points (at most a few dozen: the method tries
     /// every triple, O(n^4)). Meant for tests and for small generated pieces.
     pub fn hull_of_points(points: &[Vec3]) -> Result<Polytope, PolytopeError> {
         let mut pts: Vec<Vec3> = points.to_vec();
-        pts.sort_by_key(|p| p.to_strings());
+        pts.sort_by_cached_key(|p| p.to_strings());
         pts.dedup();
         let n = pts.len();
         // Outward facet planes found so far, keyed by (normal, offset).
@@ -693,6 +712,22 @@ mod tests {
             }
         }
         Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn cuboid_is_the_hull_of_its_corners() {
+        for (lo, hi) in [([0, 0, 0], [2, 3, 4]), ([-5, 7, -1], [-2, 9, 30])] {
+            let (c, h) = (Polytope::cuboid(lo, hi).unwrap(), cube(lo, hi));
+            assert_eq!(c.volume6(), h.volume6());
+            assert_eq!(c.facets().len(), 6);
+            assert_eq!(c.edges().len(), 12);
+            let mut a: Vec<_> = c.facets().iter().map(|f| f.normal.clone()).collect();
+            let mut b: Vec<_> = h.facets().iter().map(|f| f.normal.clone()).collect();
+            a.sort_by_key(|v| v.to_strings());
+            b.sort_by_key(|v| v.to_strings());
+            assert_eq!(a, b);
+        }
+        assert!(Polytope::cuboid([0, 0, 0], [0, 1, 1]).is_err());
     }
 
     #[test]

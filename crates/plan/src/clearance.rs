@@ -52,6 +52,11 @@ impl FArc {
         FArc { a, b, n }
     }
 
+    /// The unit end points.
+    pub fn ends(&self) -> (V3, V3) {
+        (self.a, self.b)
+    }
+
     /// Squared chord distance from unit point `p` to the closed arc.
     pub fn distance2(&self, p: &V3) -> f64 {
         let s = dot(&self.n, p);

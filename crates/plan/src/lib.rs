@@ -42,6 +42,7 @@
 
 pub mod along;
 pub mod clearance;
+mod cull;
 pub mod dbg;
 pub mod motion_space;
 mod pairs;

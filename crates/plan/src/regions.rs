@@ -6,6 +6,7 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
+use crate::cull::{largest, uncovered_pairs, Cover, PieceTree};
 use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::PlanError;
 use apart_kernel::Vec3;
@@ -133,6 +134,10 @@ pub struct RegionStats {
     /// Piece pairs skipped: their projection lies in an open hemisphere already in the
     /// pair's union (a face contact's), so it changes nothing.
     pub skipped: usize,
+    /// Piece pairs not summed because a group of them (under two nodes of the parts'
+    /// piece trees) projects inside the union of the contact cones and of the largest
+    /// pieces' sums ([`crate::cull`]).
+    pub culled: usize,
     /// Arcs in the simplified pair regions.
     pub region_arcs: usize,
     /// Seconds spent on Minkowski sums.
@@ -146,6 +151,15 @@ pub struct RegionStats {
 /// A touching piece pair's contact cone, and whether the pieces touch.
 type Cone = (SphericalPolygon, bool);
 
+/// Piece pairs to sum in a part pair from which on groups of them are culled.
+const CULL_MIN: usize = 1 << 12;
+
+/// Piece pairs summed per culling round at most.
+const CULL_ROUND: usize = 1 << 10;
+
+/// The largest pieces of each part whose pairwise sums seed the culling union.
+const CULL_SEEDS_PER_PART: usize = 24;
+
 /// Full sums whose polygons are made before those inside another are dropped.
 const PRUNE_CHUNK: usize = 1 << 14;
 
@@ -158,6 +172,7 @@ impl RegionStats {
         self.sums += o.sums;
         self.contact_cones += o.contact_cones;
         self.skipped += o.skipped;
+        self.culled += o.culled;
         self.sums_seconds += o.sums_seconds * scale;
         self.projection_seconds += o.projection_seconds * scale;
         self.unions_seconds += o.unions_seconds * scale;
@@ -212,6 +227,10 @@ impl BlockingRegions {
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
+        let trees: Vec<Option<PieceTree>> = parts
+            .par_iter()
+            .map(|p| PieceTree::new(&p.pieces))
+            .collect();
         // Pairs of parts in batches of at most PAIR_BATCH piece pairs (a bigger pair
         // alone), each pair's piece pairs in parallel: only a batch's piece-pair data is
         // alive at once, and what is kept is each pair's pruned polygons and union.
@@ -236,7 +255,7 @@ impl BlockingRegions {
                 .par_iter()
                 .map(|&(i, j)| {
                     let mut s = RegionStats::default();
-                    pair_region(parts, &info, i, j, &mut s).map(|r| (r, s))
+                    pair_region(parts, &info, &trees, i, j, &mut s).map(|r| (r, s))
                 })
                 .collect::<Result<_, _>>()?;
             // Pairs ran side by side: their phase times are shares of the batch's.
@@ -356,6 +375,7 @@ impl BlockingRegions {
 fn pair_region(
     parts: &[PartPieces],
     info: &[Vec<PieceInfo>],
+    trees: &[Option<PieceTree>],
     i: usize,
     j: usize,
     stats: &mut RegionStats,
@@ -425,7 +445,6 @@ fn pair_region(
         .filter(|&k| cones[k].is_none() && !covered(k))
         .collect();
     drop(pair_axes);
-    stats.sums += todo.len();
     stats.skipped += jobs.len() - todo.len() - cone_count;
     let polygon_of = |k: usize| -> Result<Cone, PlanError> {
         let (a, b) = jobs[k];
@@ -470,7 +489,77 @@ fn pair_region(
             p
         })
         .collect();
+    // Many pairs: the largest pieces' sums first, then rounds of the groups of pairs
+    // whose bounding projection is not inside the union so far (crate::cull); a round's
+    // polygons inside that union are dropped, the rest extend it.
+    let mut united: Option<RegionMap> = None;
     let mut prune_seconds = 0.0;
+    let todo = match (&trees[i], &trees[j]) {
+        (Some(ti), Some(tj)) if todo.len() >= CULL_MIN => {
+            let mut need = vec![false; jobs.len()];
+            for &k in &todo {
+                need[k] = true;
+            }
+            let (li, lj) = (
+                largest(pi, CULL_SEEDS_PER_PART),
+                largest(pj, CULL_SEEDS_PER_PART),
+            );
+            let mut round: Vec<usize> = li
+                .iter()
+                .flat_map(|&a| lj.iter().map(move |&b| a * pj.len() + b))
+                .filter(|&k| need[k])
+                .collect();
+            let mut map = union_of_pruned(&polygons);
+            let mut summed = 0;
+            loop {
+                for &k in &round {
+                    need[k] = false;
+                }
+                summed += round.len();
+                let made: Vec<Cone> = round
+                    .par_iter()
+                    .map(|&k| polygon_of(k))
+                    .collect::<Result<_, _>>()?;
+                let t0 = Instant::now();
+                let cover = Cover::new(&polygons, &map);
+                let new: Vec<SphericalPolygon> = made
+                    .into_iter()
+                    .filter_map(|(p, touch)| {
+                        contact |= touch;
+                        (!cover.contains(&p)).then_some(p)
+                    })
+                    .collect();
+                if !new.is_empty() {
+                    // The round's own union, merged into the union so far.
+                    let new = pruned(new);
+                    map = merge_unions(&map, &polygons, &union_of_pruned(&new), &new);
+                    polygons.extend(new);
+                    polygons = pruned(std::mem::take(&mut polygons));
+                }
+                let cover = Cover::new(&polygons, &map);
+                let (rest, _) = uncovered_pairs(ti, tj, &cover, &|a, b| need[a * pj.len() + b]);
+                prune_seconds += t0.elapsed().as_secs_f64();
+                if rest.is_empty() {
+                    break;
+                }
+                // A round: every pair left when few are, else pairs spread evenly
+                // over the trees' order (spatially spread, so each round widens the
+                // union where it is thinnest).
+                let step = rest.len().div_ceil(CULL_ROUND);
+                round = rest
+                    .iter()
+                    .step_by(step)
+                    .map(|&(a, b)| a * pj.len() + b)
+                    .collect();
+            }
+            stats.culled += todo.len() - summed;
+            stats.sums += summed;
+            united = Some(map);
+            Vec::new()
+        }
+        _ => todo,
+    };
+    stats.sums += todo.len();
     for chunk in todo.chunks(PRUNE_CHUNK) {
         let made: Vec<Cone> = chunk
             .par_iter()
@@ -499,8 +588,14 @@ fn pair_region(
 
     let t = Instant::now();
     // Only the polygons that add to the union are kept (memory).
-    let polygons = pruned(polygons);
-    let region = union_of_pruned(&polygons);
+    let (polygons, region) = match united {
+        Some(map) => (polygons, map),
+        None => {
+            let polygons = pruned(polygons);
+            let region = union_of_pruned(&polygons);
+            (polygons, region)
+        }
+    };
     stats.unions_seconds += prune_seconds + t.elapsed().as_secs_f64();
     Ok(PairRegion {
         i,
@@ -526,14 +621,14 @@ fn contained_in(p: &SphericalPolygon, q: &SphericalPolygon) -> bool {
 /// mean `centre` of its corners, which lies inside it, and the cosine of the largest
 /// angle from the centre to a corner; the cap holds the whole polygon when that angle is
 /// below 90°. Only a filter: it rejects a containment that the exact test would reject.
-struct Cap {
-    centre: [f64; 3],
+pub(crate) struct Cap {
+    pub(crate) centre: [f64; 3],
     /// Cosine of the cap's radius widened by 1e-6 rad (far beyond float rounding);
     /// `None` when the cap is not convex (no bound).
-    cos_radius: Option<f64>,
+    pub(crate) cos_radius: Option<f64>,
 }
 
-fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
+pub(crate) fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
     if p.normals().len() < 3 {
         return None;
     }
@@ -622,12 +717,23 @@ fn union_of_pruned(polygons: &[SphericalPolygon]) -> RegionMap {
     }
     let (lo, hi) = polygons.split_at(polygons.len() / 2);
     let (a, b) = rayon::join(|| union_of_pruned(lo), || union_of_pruned(hi));
-    let (arcs, points) = region_inputs(&[&a, &b]);
+    merge_unions(&a, lo, &b, hi)
+}
+
+/// The simplified union of two simplified unions, `a` of the polygons `pa` and `b` of
+/// `pb`: their boundaries overlaid, each cell's status from the polygons.
+fn merge_unions(
+    a: &RegionMap,
+    pa: &[SphericalPolygon],
+    b: &RegionMap,
+    pb: &[SphericalPolygon],
+) -> RegionMap {
+    let (arcs, points) = region_inputs(&[a, b]);
     let (arr, _) = Arrangement::build(arcs, points);
     let st = cell_statuses(&arr, 2, |x, y| {
         let mut s = BitSet::new(2);
-        s.set(0, lo.iter().any(|p| p.contains_open_perturbed(x, y)));
-        s.set(1, hi.iter().any(|p| p.contains_open_perturbed(x, y)));
+        s.set(0, pa.iter().any(|p| p.contains_open_perturbed(x, y)));
+        s.set(1, pb.iter().any(|p| p.contains_open_perturbed(x, y)));
         s
     });
     simplify_union(&arr, &st)

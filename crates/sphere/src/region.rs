@@ -226,7 +226,7 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
             }
         }
     }
-    points.sort_by_key(|a| a.0.to_strings());
+    points.sort_by_cached_key(|a| a.0.to_strings());
     points.dedup_by(|a, b| a.0 == b.0);
     RegionMap { arcs, points }
 }

@@ -1,0 +1,492 @@
+//! Hierarchical culling of piece pairs: a group of piece pairs whose projections
+//! provably lie inside a union already found adds nothing to a pair region, so its
+//! Minkowski sums are never made.
+//!
+//! Each part's pieces form a tree of boxes (integer bounds, widened outward, so every
+//! box holds its pieces). For two nodes, `box(B) ⊕ −box(A)` is a box holding every sum
+//! `b ⊕ −a` of their pieces, so its open projection holds theirs. When that projection
+//! lies in the open union `U` of polygons already kept, every polygon of the group
+//! does, and the union, and every blocking answer, stay the same without them.
+//!
+//! The containment test is exact. No arc and no point of `U`'s simplified map may meet
+//! the open projection `P` (a floating-point cap around `P`, widened far beyond
+//! rounding, picks the arcs and points worth an exact test): then no boundary point of
+//! `U` lies in the connected `P`, so `P` is inside `U` or outside it, and one exact
+//! interior point of `P` tested against the polygons of `U` decides which. A polygon
+//! too wide for a cap is "not contained", and its group is split or summed: that costs
+//! time, never an answer.
+
+use crate::clearance::FArc;
+use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
+use apart_kernel::{Int, Sign, Vec3};
+use apart_minkowski::{project, Projection};
+use apart_pieces::Polytope;
+use apart_sphere::region::RegionMap;
+use apart_sphere::{Arc, SphericalPolygon};
+use std::cmp::Ordering;
+
+/// Pieces per leaf of a [`PieceTree`].
+const LEAF: usize = 4;
+
+/// A node of a [`PieceTree`]: a box holding pieces `order[start..start + len]`.
+#[derive(Clone, Debug)]
+struct Node {
+    lo: [i64; 3],
+    hi: [i64; 3],
+    start: usize,
+    len: usize,
+    /// Child nodes, or `None` for a leaf.
+    children: Option<(usize, usize)>,
+}
+
+/// A bounding-box tree over one part's pieces (median splits along the longest axis).
+#[derive(Clone, Debug)]
+pub(crate) struct PieceTree {
+    nodes: Vec<Node>,
+    /// Piece indices in tree order.
+    order: Vec<usize>,
+}
+
+/// Integer bounds holding a piece: its coordinates' floats, widened by 2 (a float of a
+/// coordinate below 2^62 is within 1 of it; the widening also gives every box volume).
+/// `None` when a coordinate does not fit.
+fn piece_box(p: &Polytope) -> Option<([i64; 3], [i64; 3])> {
+    let den = to_f64(p.den());
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for v in p.vertices() {
+        for k in 0..3 {
+            let x = to_f64(&v.get(k)) / den;
+            lo[k] = lo[k].min(x);
+            hi[k] = hi[k].max(x);
+        }
+    }
+    const LIMIT: f64 = (1u64 << 60) as f64;
+    if lo
+        .iter()
+        .chain(&hi)
+        .any(|x| !x.is_finite() || x.abs() > LIMIT)
+    {
+        return None;
+    }
+    Some((
+        lo.map(|x| x.floor() as i64 - 2),
+        hi.map(|x| x.ceil() as i64 + 2),
+    ))
+}
+
+/// The indices of the (at most) `k` pieces with the largest boxes.
+pub(crate) fn largest(pieces: &[Polytope], k: usize) -> Vec<usize> {
+    let size = |p: &Polytope| {
+        piece_box(p).map_or(0i128, |(lo, hi)| {
+            (0..3).map(|d| hi[d] as i128 - lo[d] as i128).sum()
+        })
+    };
+    let mut order: Vec<(i128, usize)> = pieces
+        .iter()
+        .enumerate()
+        .map(|(n, p)| (size(p), n))
+        .collect();
+    order.sort_unstable_by(|a, b| b.cmp(a));
+    order.into_iter().take(k).map(|(_, n)| n).collect()
+}
+
+impl PieceTree {
+    /// The tree of `pieces`, or `None` when some piece's coordinates are too large for
+    /// integer boxes (then nothing is culled).
+    pub(crate) fn new(pieces: &[Polytope]) -> Option<PieceTree> {
+        let boxes: Vec<([i64; 3], [i64; 3])> =
+            pieces.iter().map(piece_box).collect::<Option<_>>()?;
+        let mut tree = PieceTree {
+            nodes: Vec::new(),
+            order: (0..pieces.len()).collect(),
+        };
+        if !pieces.is_empty() {
+            tree.build(&boxes, 0, pieces.len());
+        }
+        Some(tree)
+    }
+
+    /// Builds the node of `order[start..start + len]`; returns its index.
+    fn build(&mut self, boxes: &[([i64; 3], [i64; 3])], start: usize, len: usize) -> usize {
+        let mut lo = [i64::MAX; 3];
+        let mut hi = [i64::MIN; 3];
+        for &p in &self.order[start..start + len] {
+            for k in 0..3 {
+                lo[k] = lo[k].min(boxes[p].0[k]);
+                hi[k] = hi[k].max(boxes[p].1[k]);
+            }
+        }
+        let id = self.nodes.len();
+        self.nodes.push(Node {
+            lo,
+            hi,
+            start,
+            len,
+            children: None,
+        });
+        if len > LEAF {
+            let axis = (0..3)
+                .max_by_key(|&k| hi[k] as i128 - lo[k] as i128)
+                .unwrap();
+            let centre = |p: usize| boxes[p].0[axis] as i128 + boxes[p].1[axis] as i128;
+            let half = len / 2;
+            self.order[start..start + len].select_nth_unstable_by_key(half, |&p| centre(p));
+            let a = self.build(boxes, start, half);
+            let b = self.build(boxes, start + half, len - half);
+            self.nodes[id].children = Some((a, b));
+        }
+        id
+    }
+
+    /// The pieces under node `n`.
+    fn pieces(&self, n: usize) -> &[usize] {
+        let node = &self.nodes[n];
+        &self.order[node.start..node.start + node.len]
+    }
+}
+
+/// The open union of some polygons, ready for containment tests.
+pub(crate) struct Cover<'a> {
+    polygons: &'a [SphericalPolygon],
+    arcs: Vec<FArc>,
+    /// Arcs of 180° or more: no cap test is trusted near them, so any such arc makes
+    /// every test fail.
+    long_arc: bool,
+    points: Vec<[f64; 3]>,
+    exact_arcs: Vec<Arc>,
+    exact_points: Vec<Vec3>,
+}
+
+impl<'a> Cover<'a> {
+    /// The union of `polygons`, whose simplified map is `map`.
+    pub(crate) fn new(polygons: &'a [SphericalPolygon], map: &RegionMap) -> Cover<'a> {
+        let mut long_arc = false;
+        let arcs = map
+            .arcs
+            .iter()
+            .map(|(a, _)| {
+                let (s, e, n) = (a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64());
+                let c = [
+                    s[1] * e[2] - s[2] * e[1],
+                    s[2] * e[0] - s[0] * e[2],
+                    s[0] * e[1] - s[1] * e[0],
+                ];
+                // Counter-clockwise from s to e around n: under 180° when s × e points
+                // along n, with room for rounding.
+                long_arc |= c[0] * n[0] + c[1] * n[1] + c[2] * n[2] <= 1e-9;
+                FArc::new(s, e, n)
+            })
+            .collect();
+        Cover {
+            polygons,
+            arcs,
+            long_arc,
+            points: map.points.iter().map(|(p, _)| p.unit_f64()).collect(),
+            exact_arcs: map.arcs.iter().map(|(a, _)| a.clone()).collect(),
+            exact_points: map.points.iter().map(|(p, _)| p.clone()).collect(),
+        }
+    }
+
+    /// Exactly: true only when the open polygon `p` lies inside the union (false may
+    /// also mean "not sure").
+    pub(crate) fn contains(&self, p: &SphericalPolygon) -> bool {
+        if self.polygons.is_empty() || self.long_arc {
+            return false;
+        }
+        let Some(cap) = crate::regions::cap_of(p) else {
+            return false;
+        };
+        let Some(cos_r) = cap.cos_radius else {
+            return false;
+        };
+        // Points within the cap's angle of its centre: chord² below 2 − 2 cos r, plus a
+        // margin far beyond the rounding of unit vectors. Only those can meet `p`, and
+        // they are tested exactly.
+        let reach2 = 2.0 - 2.0 * cos_r + 1e-9;
+        let c = &cap.centre;
+        let normals: Vec<[f64; 3]> = p.normals().iter().map(|m| m.unit_f64()).collect();
+        let near = |q: &[f64; 3]| {
+            let d = [q[0] - c[0], q[1] - c[1], q[2] - c[2]];
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= reach2
+        };
+        if self
+            .points
+            .iter()
+            .zip(&self.exact_points)
+            .any(|(q, x)| near(q) && p.contains_open(x))
+        {
+            return false;
+        }
+        if self
+            .arcs
+            .iter()
+            .zip(&self.exact_arcs)
+            .any(|(a, x)| a.distance2(c) <= reach2 && arc_meets_open(x, a, &normals, p))
+        {
+            return false;
+        }
+        // No boundary point of the union lies in `p`: one interior point decides. The
+        // sum of a pointed polygon's corners is interior to it.
+        let inner = p
+            .corners()
+            .fold(Vec3::new(0, 0, 0), |s, c| s.add(&c.primitive()));
+        p.contains_open(&inner) && self.polygons.iter().any(|q| q.contains_open(&inner))
+    }
+}
+
+/// Exactly: does the closed minor arc `arc` meet the open convex polygon `p`? The arc's
+/// directions are `(1 − t) s + t e` for `t` in `[0, 1]`; each inward normal `m` of `p`
+/// asks `m·s + t (m·e − m·s) > 0`, an open bound on `t`, and the bounds leave an
+/// interval exactly when the largest lower one is below the smallest upper one.
+///
+/// A floating-point filter decides first when it can: on unit vectors every product is
+/// within 1e-15 of its true value: a constraint below `−FILTER` at both ends excludes the
+/// arc, and when every bound on `t` has a slope above 1e-6 (so it is within 1e-8) an
+/// interval or a gap wider than 1e-7 is sure. Arcs on or near a side of `p` are decided
+/// exactly.
+fn arc_meets_open(arc: &Arc, f: &FArc, normals: &[[f64; 3]], p: &SphericalPolygon) -> bool {
+    const FILTER: f64 = 1e-9;
+    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (s, e) = f.ends();
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let mut sure = true;
+    for m in normals {
+        let (a, b) = (dot(m, &s), dot(m, &e));
+        if a < -FILTER && b < -FILTER {
+            return false;
+        }
+        // (A slope above 1e-6 keeps the rounding of t = −a / (b − a) below 1e-8.)
+        if a.abs() <= FILTER || b.abs() <= FILTER || (b - a).abs() <= 1e-6 {
+            sure = false;
+            continue;
+        }
+        let t = -a / (b - a);
+        if b > a {
+            lo = lo.max(t);
+        } else {
+            hi = hi.min(t);
+        }
+    }
+    if sure {
+        // Every bound is clear of the rounding: a gap wider than it is an interval.
+        if hi - lo > 1e-7 {
+            return true;
+        }
+        if lo - hi > 1e-7 {
+            return false;
+        }
+    }
+    exact_arc_meets_open(arc, p)
+}
+
+/// The exact test of [`arc_meets_open`].
+fn exact_arc_meets_open(arc: &Arc, p: &SphericalPolygon) -> bool {
+    let (zero, one) = (Int::ZERO, Int::ONE);
+    let (mut lo, mut lo_den) = (zero.clone(), one.clone());
+    let (mut hi, mut hi_den) = (one.clone(), one);
+    for m in p.normals() {
+        let a = m.dot(&arc.start);
+        let d = m.dot(&arc.end) - &a;
+        match sign_of(&d) {
+            Sign::Zero => {
+                if a <= zero {
+                    return false;
+                }
+            }
+            // t > −a / d.
+            Sign::Positive => {
+                let x = -a;
+                if cmp_fractions(&x, &d, &lo, &lo_den) == Ordering::Greater {
+                    (lo, lo_den) = (x, d);
+                }
+            }
+            // t < a / (−d).
+            Sign::Negative => {
+                let d = -d;
+                if cmp_fractions(&a, &d, &hi, &hi_den) == Ordering::Less {
+                    (hi, hi_den) = (a, d);
+                }
+            }
+        }
+    }
+    cmp_fractions(&lo, &lo_den, &hi, &hi_den) == Ordering::Less
+}
+
+/// The piece pairs `(a, b)` (a piece of the moving part `i`, b of the fixed part `j`)
+/// for which `need(a, b)` holds and whose group's bounding projection is not inside
+/// `cover`: the pairs whose sums must still be made. Traversal of the two trees from
+/// their roots, splitting the larger node.
+pub(crate) fn uncovered_pairs(
+    moving: &PieceTree,
+    fixed: &PieceTree,
+    cover: &Cover,
+    need: &dyn Fn(usize, usize) -> bool,
+) -> (Vec<(usize, usize)>, CullStats) {
+    let mut out = Vec::new();
+    let mut stats = CullStats::default();
+    if moving.nodes.is_empty() || fixed.nodes.is_empty() {
+        return (out, stats);
+    }
+    let mut stack = vec![(0usize, 0usize)];
+    while let Some((na, nb)) = stack.pop() {
+        let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
+        // The box of every b ⊕ −a: [lo_b − hi_a, hi_b − lo_a].
+        let lo: [i64; 3] = std::array::from_fn(|k| b.lo[k] - a.hi[k]);
+        let hi: [i64; 3] = std::array::from_fn(|k| b.hi[k] - a.lo[k]);
+        let holds_origin = (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]);
+        stats.tested += 1;
+        if !holds_origin && box_projection_covered(lo, hi, cover) {
+            stats.culled += a.len * b.len;
+            continue;
+        }
+        match (a.children, b.children) {
+            (None, None) => {
+                for &pa in moving.pieces(na) {
+                    for &pb in fixed.pieces(nb) {
+                        if need(pa, pb) {
+                            out.push((pa, pb));
+                        }
+                    }
+                }
+            }
+            (Some((a0, a1)), None) => {
+                stack.push((a0, nb));
+                stack.push((a1, nb));
+            }
+            (None, Some((b0, b1))) => {
+                stack.push((na, b0));
+                stack.push((na, b1));
+            }
+            (Some((a0, a1)), Some((b0, b1))) => {
+                if a.len >= b.len {
+                    stack.push((a0, nb));
+                    stack.push((a1, nb));
+                } else {
+                    stack.push((na, b0));
+                    stack.push((na, b1));
+                }
+            }
+        }
+    }
+    (out, stats)
+}
+
+/// Counts of a culling traversal.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CullStats {
+    /// Node pairs tested.
+    pub(crate) tested: usize,
+    /// Piece pairs under culled node pairs (including pairs that needed no sum).
+    pub(crate) culled: usize,
+}
+
+/// True when the open projection of the box `[lo, hi]` (not holding the origin) lies in
+/// the cover.
+fn box_projection_covered(lo: [i64; 3], hi: [i64; 3], cover: &Cover) -> bool {
+    let Ok(b) = Polytope::cuboid(lo, hi) else {
+        return false;
+    };
+    match project(&b) {
+        Ok(Projection::Polygon(p)) => cover.contains(&p),
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::regions::union_of;
+
+    fn box_polygon(lo: [i64; 3], hi: [i64; 3]) -> SphericalPolygon {
+        match project(&Polytope::cuboid(lo, hi).unwrap()).unwrap() {
+            Projection::Polygon(p) => p,
+            Projection::Everything => panic!("box holds the origin"),
+        }
+    }
+
+    #[test]
+    fn a_polygon_inside_the_union_is_contained_and_one_crossing_it_is_not() {
+        // Two overlapping boxes above: their union holds a small box in the overlap,
+        // not one reaching past them, not one across the gap between their outer
+        // edges.
+        let polys = vec![
+            box_polygon([-4, -4, 10], [1, 4, 12]),
+            box_polygon([-1, -4, 10], [4, 4, 12]),
+        ];
+        let map = union_of(&polys);
+        let cover = Cover::new(&polys, &map);
+        assert!(cover.contains(&box_polygon([-2, -1, 20], [2, 1, 22])));
+        assert!(cover.contains(&box_polygon([-3, -3, 11], [3, 3, 11 + 1])));
+        assert!(!cover.contains(&box_polygon([-6, -1, 11], [2, 1, 12])));
+        assert!(!cover.contains(&box_polygon([5, 5, 1], [6, 6, 2])));
+        // Nothing is contained in an empty union.
+        let none = Cover::new(&[], &RegionMap::default());
+        assert!(!none.contains(&box_polygon([-2, -1, 20], [2, 1, 22])));
+    }
+
+    #[test]
+    fn the_float_filter_agrees_with_the_exact_arc_test() {
+        // Arcs between small integer points (many on the polygons' sides, through their
+        // corners, or along their circles) against box projections.
+        let mut seed = 7u64;
+        let mut next = |n: i64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+            ((seed >> 33) % (2 * n as u64 + 1)) as i64 - n
+        };
+        let mut tested = [0usize; 2];
+        for _ in 0..300 {
+            let lo = [next(3), next(3), 4 + next(2)];
+            let hi = [
+                lo[0] + 1 + next(2).abs(),
+                lo[1] + 1 + next(2).abs(),
+                lo[2] + 2,
+            ];
+            let p = box_polygon(lo, hi);
+            let normals: Vec<[f64; 3]> = p.normals().iter().map(|m| m.unit_f64()).collect();
+            for _ in 0..20 {
+                let s = Vec3::new(next(6), next(6), next(8));
+                let e = Vec3::new(next(6), next(6), next(8));
+                let Some(arc) = Arc::between(&s, &e) else {
+                    continue;
+                };
+                let f = FArc::new(
+                    arc.start.unit_f64(),
+                    arc.end.unit_f64(),
+                    arc.normal.unit_f64(),
+                );
+                let exact = exact_arc_meets_open(&arc, &p);
+                tested[usize::from(exact)] += 1;
+                // Independent check: exact points along the arc found inside `p`.
+                let along = |k: i64| {
+                    let sk = Vec3::from_ints([0, 1, 2].map(|c| arc.start.get(c) * (64 - k)));
+                    let ek = Vec3::from_ints([0, 1, 2].map(|c| arc.end.get(c) * k));
+                    sk.add(&ek)
+                };
+                if (0..=64).any(|k| p.contains_open(&along(k))) {
+                    assert!(exact, "{arc:?} has a point inside");
+                }
+                assert_eq!(arc_meets_open(&arc, &f, &normals, &p), exact, "{arc:?}");
+            }
+        }
+        assert!(tested[0] > 100 && tested[1] > 100, "{tested:?}");
+    }
+
+    #[test]
+    fn a_union_with_a_hole_contains_no_polygon_over_the_hole() {
+        // Four boxes around a square hole above the origin: a polygon inside one of
+        // them is contained, one over the hole is not, although every corner of it may
+        // be.
+        let polys = vec![
+            box_polygon([-6, -6, 10], [-2, 6, 11]),
+            box_polygon([2, -6, 10], [6, 6, 11]),
+            box_polygon([-6, -6, 10], [6, -2, 11]),
+            box_polygon([-6, 2, 10], [6, 6, 11]),
+        ];
+        let map = union_of(&polys);
+        let cover = Cover::new(&polys, &map);
+        assert!(cover.contains(&box_polygon([3, -1, 10], [5, 1, 11])));
+        assert!(!cover.contains(&box_polygon([-1, -1, 10], [1, 1, 11])));
+        assert!(!cover.contains(&box_polygon([-5, -5, 10], [5, 5, 11])));
+    }
+}
