@@ -127,6 +127,8 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
+    // Before any command runs, so that no "wrote FILE" line escapes --quiet.
+    output::set_quiet(cli.global.quiet);
     limits::set_json(cli.global.json);
     // Every option is checked before any work: the numbers by their parsers, the
     // tolerance's unit against --units here.

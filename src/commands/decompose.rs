@@ -99,7 +99,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
         let mesh = match &part.mesh {
             Some(m) => {
                 let file = format!("{dir}.off");
-                write_off(
+                write_mesh(
                     &args.output.join(&file),
                     &m.to_raw(&asm.grid, None).vertices,
                     &Polygons::from_triangles(&m.triangles),
@@ -120,6 +120,9 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
                 write_off(&args.output.join(&file), &vertices, &faces)?;
                 pieces.push(file);
             }
+            // One line for the folder of pieces, not one per piece (hundreds for a
+            // finely tessellated part).
+            output::wrote(&piece_dir);
         }
         report.push(report_part);
         manifest.parts.push(PartOut {
@@ -176,11 +179,8 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
                 p.file
             ));
         }
-        output::line(format_args!(
-            "wrote {} (load and decompose {:.1} ms)",
-            args.output.join("assembly.json").display(),
-            seconds * 1e3
-        ));
+        // The files were announced on standard error as they were written.
+        output::line(format_args!("load and decompose {:.1} ms", seconds * 1e3));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -366,4 +366,11 @@ fn write_off(path: &Path, vertices: &[[f64; 3]], faces: &Polygons) -> anyhow::Re
     use std::io::Write;
     w.flush()
         .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))
+}
+
+/// [`write_off`] for a part's mesh, announced like every written file.
+fn write_mesh(path: &Path, vertices: &[[f64; 3]], faces: &Polygons) -> anyhow::Result<()> {
+    write_off(path, vertices, faces)?;
+    output::wrote(path);
+    Ok(())
 }

@@ -43,7 +43,42 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
             s.reason
         ));
     }
+    warn_many_pieces(&loaded);
     Ok(loaded)
+}
+
+/// From this many convex pieces, an automatic decomposition is worth a warning.
+pub const MANY_PIECES: usize = 200;
+
+/// Warns about every part whose automatic convex decomposition gave
+/// [`MANY_PIECES`] pieces or more: planning pairs every piece of a part with every
+/// piece of a part it may touch, so its time and memory grow with the product of the
+/// two piece counts, and such a run can take minutes to hours without being stuck.
+/// Printed also with `--quiet`, which keeps warnings.
+fn warn_many_pieces(loaded: &Loaded) {
+    let many: Vec<_> = loaded
+        .assembly
+        .parts
+        .iter()
+        .filter(|p| p.decomposed && p.pieces.len() >= MANY_PIECES)
+        .collect();
+    let Some(largest) = many.iter().map(|p| p.pieces.len()).max() else {
+        return;
+    };
+    for p in &many {
+        output::eline(format_args!(
+            "warning: part \"{}\": its automatic convex decomposition has {} pieces",
+            p.name,
+            p.pieces.len()
+        ));
+    }
+    let pairs = largest.saturating_mul(largest);
+    output::eline(format_args!(
+        "  planning time and memory grow with the product of two parts' piece counts \
+         (up to {largest} x {largest} = {pairs} piece pairs here), so a run may take \
+         minutes or more; a coarser mesh of the part, or convex pieces given with it \
+         (README, Input formats), makes it faster"
+    ));
 }
 
 /// Loads an assembly for planning (every non-convex part decomposed); when it has
