@@ -222,8 +222,9 @@ fn to_json(plan: &StackPlan, name: &str, count: usize, h: f64) -> StackJson {
 
 fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64) {
     output::line(format!(
-        "{name}: {} of {count} parts stacked, stack height {}",
+        "{name}: {} of {count} {} stacked, stack height {}",
         plan.placements.len(),
+        if count == 1 { "part" } else { "parts" },
         qunits(&plan.stack_height, h)
     ));
     output::line("   #  stage  translation                      turn (deg)   cost        rests on");

@@ -586,10 +586,11 @@ fn union_of_crossing(mesh: &Mesh, info: &MeshInfo) -> Option<(Vec<Polytope>, Str
     if lowest < 0 || d.pieces.is_empty() {
         return None;
     }
+    let (pairs, pieces) = (info.self_intersections, d.pieces.len());
     let note = format!(
-        "repaired: {} pairs of faces cross; the part is the solid they enclose (their union, {} exact convex pieces)",
-        info.self_intersections,
-        d.pieces.len()
+        "repaired: {pairs} {}; the part is the solid they enclose (their union, {pieces} exact convex {})",
+        if pairs == 1 { "pair of faces crosses" } else { "pairs of faces cross" },
+        if pieces == 1 { "piece" } else { "pieces" }
     );
     Some((d.pieces, note))
 }

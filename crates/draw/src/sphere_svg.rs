@@ -396,7 +396,12 @@ fn legend(
     y += 28.0;
     let _ = writeln!(
         svg,
-        r#"<text x="{x}" y="{y}" font-size="12">white: free of every pair; darkest: {max_count} pairs block</text>"#
+        r#"<text x="{x}" y="{y}" font-size="12">white: free of every pair; darkest: {max_count} {}</text>"#,
+        if max_count == 1 {
+            "pair blocks"
+        } else {
+            "pairs block"
+        }
     );
     y += 30.0;
     let _ = writeln!(

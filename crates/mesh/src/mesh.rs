@@ -63,8 +63,13 @@ impl Mesh {
         }
         capped.finish("vertices with bad coordinates", &mut problems);
         if let Some(&i) = raw.faces.all_indices().iter().find(|&&i| i as usize >= n) {
+            let only = if n == 1 {
+                "is only 1 vertex".to_string()
+            } else {
+                format!("are only {n} vertices")
+            };
             problems.push(Problem::error(format!(
-                "a face refers to vertex {i}, but there are only {n} vertices"
+                "a face refers to vertex {i}, but there {only}"
             )));
         }
         if !problems.is_empty() {

@@ -91,7 +91,10 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
         let (n, l) = lines.next().ok_or_else(|| {
             bad(
                 text.lines().count(),
-                format!("expected {nv} vertices, found {k}"),
+                format!(
+                    "expected {nv} {}, found {k}",
+                    if nv == 1 { "vertex" } else { "vertices" }
+                ),
             )
         })?;
         let mut c = [0f64; 3];

@@ -212,9 +212,14 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
             ));
         }
         if let Some(&bad) = f.list.iter().find(|&&i| i as usize >= n) {
+            let only = if n == 1 {
+                "is only 1 vertex".to_string()
+            } else {
+                format!("are only {n} vertices")
+            };
             return Err(ReadError::malformed(
                 Format::Ply,
-                format!("face {k} refers to vertex {bad}, but there are only {n} vertices"),
+                format!("face {k} refers to vertex {bad}, but there {only}"),
             ));
         }
         faces.push(&f.list);
