@@ -1,6 +1,6 @@
 //! Minor arcs of great circles.
 
-use apart_kernel::predicates::det3_sign;
+use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, ArcPosition};
 use apart_kernel::{Sign, Vec3};
 
@@ -51,6 +51,40 @@ impl Arc {
             }),
             Sign::Zero => None,
         }
+    }
+
+    /// The arc cut exactly at the quarter points `normal × start`, `−start`, … into
+    /// pieces of at most 90° each (the arc itself when it is no longer), in order. The
+    /// cut works for any counter-clockwise run from `start` to `end` on the circle, even
+    /// one of half a turn or more, so float filters and the minor-arc parametrisation
+    /// `(1 − t) start + t end` can rely on short pieces.
+    pub fn quarters(&self) -> Vec<Arc> {
+        let n = &self.normal;
+        let mut out = Vec::new();
+        let mut cur = self.start.clone();
+        for _ in 0..4 {
+            let q = n.cross(&cur).primitive();
+            // A point of the circle lies on the closed quarter from `cur` to `q` exactly
+            // when it is on the non-negative side of both.
+            if self.end != cur
+                && dot_sign(&cur, &self.end) != Sign::Negative
+                && dot_sign(&q, &self.end) != Sign::Negative
+            {
+                break;
+            }
+            out.push(Arc {
+                normal: n.clone(),
+                start: cur,
+                end: q.clone(),
+            });
+            cur = q;
+        }
+        out.push(Arc {
+            normal: n.clone(),
+            start: cur,
+            end: self.end.clone(),
+        });
+        out
     }
 
     /// The same set of points traversed the other way (normal negated).
@@ -116,6 +150,86 @@ pub fn point_bbox(p: &Vec3) -> [[f64; 2]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quarters_cut_any_run_into_pieces_of_at_most_90_degrees() {
+        // Runs counter-clockwise around a tilted normal from one point to points all
+        // around the circle (including exactly 90°, 180°, 270° and a full turn): the
+        // pieces chain from start to end, each is at most 90°, and their angles add up
+        // to the run's angle measured independently with atan2.
+        let n = Vec3::new(1, 2, 3);
+        let u = Vec3::new(3, 0, -1); // ⊥ n
+        let v = n.cross(&u); // u rotated by 90° counter-clockwise
+        let angle = |a: &Vec3, b: &Vec3| {
+            let (x, y) = (
+                a.unit_f64()
+                    .iter()
+                    .zip(b.unit_f64())
+                    .map(|(p, q)| p * q)
+                    .sum::<f64>(),
+                det3_like(&n, a, b),
+            );
+            let t = y.atan2(x);
+            if t < 0.0 {
+                t + std::f64::consts::TAU
+            } else {
+                t
+            }
+        };
+        fn det3_like(n: &Vec3, a: &Vec3, b: &Vec3) -> f64 {
+            let (n, a, b) = (n.unit_f64(), a.unit_f64(), b.unit_f64());
+            let c = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            n[0] * c[0] + n[1] * c[1] + n[2] * c[2]
+        }
+        let mut runs = 0;
+        for (i, j) in [
+            (1, 0),
+            (1, 1),
+            (0, 1),
+            (-1, 1),
+            (-1, 0),
+            (-3, -1),
+            (0, -1),
+            (2, -1),
+            (1, 0),
+        ] {
+            let end = Vec3::from_ints([0, 1, 2].map(|k| u.get(k) * i + v.get(k) * j)).primitive();
+            let run = Arc {
+                normal: n.clone(),
+                start: u.clone(),
+                end: end.clone(),
+            };
+            let want = if end == u {
+                std::f64::consts::TAU
+            } else {
+                angle(&u, &end)
+            };
+            let pieces = run.quarters();
+            assert_eq!(pieces.first().unwrap().start, u);
+            assert_eq!(pieces.last().unwrap().end, end);
+            for w in pieces.windows(2) {
+                assert_eq!(w[0].end, w[1].start);
+            }
+            let mut total = 0.0;
+            for p in &pieces {
+                assert_ne!(p.start, p.end);
+                assert_ne!(dot_sign(&p.start, &p.end), Sign::Negative, "{p:?}");
+                assert_eq!(
+                    det3_sign(&p.normal, &p.start, &p.end),
+                    Sign::Positive,
+                    "{p:?}"
+                );
+                total += angle(&p.start, &p.end);
+            }
+            assert!((total - want).abs() < 1e-9, "{total} vs {want}");
+            runs += 1;
+        }
+        assert_eq!(runs, 9);
+    }
 
     #[test]
     fn orientation_helpers() {
