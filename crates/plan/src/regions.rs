@@ -668,16 +668,91 @@ fn may_contain(cp: &Option<Cap>, cq: &Option<Cap>) -> bool {
     }
 }
 
+/// Floating-point data of a polygon for the containment filter of [`prune_contained`]:
+/// its bounding cap, unit corners and unit inward normals, and for a polygon whose
+/// corners all lie in the open hemisphere of its cap's centre `h`, the factors
+/// `1 / (h · c)` that map each corner `c` to the gnomonic plane at `h`.
+struct Approx {
+    cap: Option<Cap>,
+    corners: Vec<[f64; 3]>,
+    normals: Vec<[f64; 3]>,
+    gnomonic: Vec<f64>,
+}
+
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl Approx {
+    fn new(p: &SphericalPolygon) -> Approx {
+        let cap = cap_of(p);
+        let corners: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
+        let normals = p.normals().iter().map(|n| n.unit_f64()).collect();
+        let gnomonic = match &cap {
+            Some(c) if corners.iter().all(|u| dot3(u, &c.centre) > 1e-6) => {
+                corners.iter().map(|u| 1.0 / dot3(u, &c.centre)).collect()
+            }
+            _ => Vec::new(),
+        };
+        Approx {
+            cap,
+            corners,
+            normals,
+            gnomonic,
+        }
+    }
+
+    /// False when a corner of `self` lies clearly outside the closed `q` (a unit normal
+    /// of `q` with a unit corner below −1e-12, far beyond rounding): then `self` is not
+    /// in `q`. True says nothing. With the gnomonic factors the corner minimising each
+    /// normal is found by a walk: `n·c / (h·c)` is linear on the gnomonic image, a convex
+    /// polygon, so along the boundary it falls to its minimum and rises again, and the
+    /// minimiser turns with `q`'s normals; a walk stopped early only weakens the filter.
+    fn may_lie_in(&self, q: &Approx) -> bool {
+        const MARGIN: f64 = -1e-12;
+        let m = self.corners.len();
+        if m == 0 || self.gnomonic.len() != m {
+            return !q
+                .normals
+                .iter()
+                .any(|n| self.corners.iter().any(|c| dot3(n, c) < MARGIN));
+        }
+        let g = |n: &[f64; 3], k: usize| dot3(n, &self.corners[k]) * self.gnomonic[k];
+        let mut i = 0;
+        for n in &q.normals {
+            let mut gi = g(n, i);
+            for step in [1, m - 1] {
+                loop {
+                    let j = (i + step) % m;
+                    let gj = g(n, j);
+                    if gj < gi {
+                        (i, gi) = (j, gj);
+                    } else {
+                        break;
+                    }
+                }
+            }
+            if dot3(n, &self.corners[i]) < MARGIN {
+                return false;
+            }
+        }
+        true
+    }
+}
+
 /// The indices of the polygons not contained in another (one of several equal ones
-/// kept), in the order the union builds them.
+/// kept), in the order the union builds them. Float filters (caps, then a walk of the
+/// corners against the other's normals) reject most pairs before the exact test.
 fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<usize> {
-    let caps: Vec<Option<Cap>> = polygons.iter().map(cap_of).collect();
+    let approx: Vec<Approx> = polygons.par_iter().map(Approx::new).collect();
     let mut keep: Vec<usize> = Vec::with_capacity(polygons.len());
     // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
     let mut order: Vec<usize> = (0..polygons.len()).collect();
     order.sort_by_key(|&k| polygons[k].normals().len());
     let inside = |p: usize, q: usize| {
-        may_contain(&caps[p], &caps[q]) && contained_in(&polygons[p], &polygons[q])
+        may_contain(&approx[p].cap, &approx[q].cap)
+            && approx[p].may_lie_in(&approx[q])
+            && contained_in(&polygons[p], &polygons[q])
     };
     for k in order {
         if !keep.iter().any(|&q| inside(k, q)) {
@@ -953,5 +1028,63 @@ mod prune_tests {
             pruned += polygons.len() - fast.len();
         }
         assert!(pruned > 100, "the generator must produce containments");
+    }
+
+    #[test]
+    fn the_corner_walk_keeps_every_containment_of_many_sided_polygons() {
+        // Projections of prisms over integer n-gons (8 to 40 sides), with grown copies
+        // (nested projections), shifted copies, and bases far wider than their height
+        // above the origin (nearly hemispheres, the shape of pieces a small gap apart):
+        // the float walk must never reject a true containment.
+        let mut s = 99u64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        let prism = |c: [i64; 2], r: i64, n: usize, z: [i64; 2]| {
+            let mut pts = Vec::new();
+            for k in 0..n {
+                let t = k as f64 * std::f64::consts::TAU / n as f64;
+                let (x, y) = (
+                    (r as f64 * t.cos()).round() as i64,
+                    (r as f64 * t.sin()).round() as i64,
+                );
+                for h in z {
+                    pts.push(Vec3::new(c[0] + x, c[1] + y, h));
+                }
+            }
+            let hull = Polytope::hull_of_points(&pts).ok()?;
+            match project(&hull).ok()? {
+                Projection::Polygon(p) => Some(p),
+                Projection::Everything => None,
+            }
+        };
+        let mut pruned = 0;
+        let mut sides = 0;
+        for _ in 0..24 {
+            let mut polygons = Vec::new();
+            for _ in 0..6 {
+                let n = 8 + next(33) as usize;
+                let c = [next(41) - 20, next(41) - 20];
+                let r = 10 + next(200);
+                let near = next(2) == 0;
+                let z0 = 1 + next(if near { 3 } else { 60 });
+                let z = [z0, z0 + 1 + next(20)];
+                polygons.extend(prism(c, r, n, z));
+                polygons.extend(prism(c, r + next(3), n, [z[0], z[1] + next(3)]));
+                polygons.extend(prism([c[0] + next(3) - 1, c[1]], r, n, z));
+            }
+            sides += polygons.iter().map(|p| p.normals().len()).sum::<usize>();
+            let fast = prune_contained(&polygons);
+            assert_eq!(fast, brute(&polygons));
+            pruned += polygons.len() - fast.len();
+        }
+        assert!(
+            pruned > 24,
+            "the generator must produce containments ({pruned})"
+        );
+        assert!(sides > 24 * 18 * 8, "many-sided polygons ({sides})");
     }
 }
