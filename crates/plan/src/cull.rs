@@ -13,8 +13,10 @@
 //! rounding, picks the arcs and points worth an exact test): then no boundary point of
 //! `U` lies in the connected `P`, so `P` is inside `U` or outside it, and one exact
 //! interior point of `P` tested against the polygons of `U` decides which. A polygon
-//! too wide for a cap is "not contained", and its group is split or summed: that costs
-//! time, never an answer.
+//! too wide for a cap (nearly a hemisphere, as the sums of pieces a small gap apart
+//! are) has every arc and point of the map tested. The map's arcs are cut into pieces
+//! of at most 90° first, so the float filters and the exact arc test hold for arcs of
+//! any length.
 
 use crate::clearance::FArc;
 use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
@@ -149,10 +151,9 @@ impl PieceTree {
 /// The open union of some polygons, ready for containment tests.
 pub(crate) struct Cover<'a> {
     polygons: &'a [SphericalPolygon],
+    /// The map's arcs cut into pieces of at most 90° ([`Arc::quarters`]), so that their
+    /// float distances and the minor-arc parametrisation of the exact test hold.
     arcs: Vec<FArc>,
-    /// Arcs of 180° or more: no cap test is trusted near them, so any such arc makes
-    /// every test fail.
-    long_arc: bool,
     points: Vec<[f64; 3]>,
     exact_arcs: Vec<Arc>,
     exact_points: Vec<Vec3>,
@@ -161,29 +162,16 @@ pub(crate) struct Cover<'a> {
 impl<'a> Cover<'a> {
     /// The union of `polygons`, whose simplified map is `map`.
     pub(crate) fn new(polygons: &'a [SphericalPolygon], map: &RegionMap) -> Cover<'a> {
-        let mut long_arc = false;
-        let arcs = map
-            .arcs
+        let exact_arcs: Vec<Arc> = map.arcs.iter().flat_map(|(a, _)| a.quarters()).collect();
+        let arcs = exact_arcs
             .iter()
-            .map(|(a, _)| {
-                let (s, e, n) = (a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64());
-                let c = [
-                    s[1] * e[2] - s[2] * e[1],
-                    s[2] * e[0] - s[0] * e[2],
-                    s[0] * e[1] - s[1] * e[0],
-                ];
-                // Counter-clockwise from s to e around n: under 180° when s × e points
-                // along n, with room for rounding.
-                long_arc |= c[0] * n[0] + c[1] * n[1] + c[2] * n[2] <= 1e-9;
-                FArc::new(s, e, n)
-            })
+            .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()))
             .collect();
         Cover {
             polygons,
             arcs,
-            long_arc,
             points: map.points.iter().map(|(p, _)| p.unit_f64()).collect(),
-            exact_arcs: map.arcs.iter().map(|(a, _)| a.clone()).collect(),
+            exact_arcs,
             exact_points: map.points.iter().map(|(p, _)| p.clone()).collect(),
         }
     }
@@ -191,24 +179,30 @@ impl<'a> Cover<'a> {
     /// Exactly: true only when the open polygon `p` lies inside the union (false may
     /// also mean "not sure").
     pub(crate) fn contains(&self, p: &SphericalPolygon) -> bool {
-        if self.polygons.is_empty() || self.long_arc {
+        if self.polygons.is_empty() {
             return false;
         }
-        let Some(cap) = crate::regions::cap_of(p) else {
-            return false;
-        };
-        let Some(cos_r) = cap.cos_radius else {
-            return false;
-        };
+        if p.normals().len() < 3 {
+            return false; // a hemisphere or a lune: not pointed, no interior point below
+        }
+        let normals: Vec<[f64; 3]> = p.normals().iter().map(|m| m.unit_f64()).collect();
         // Points within the cap's angle of its centre: chord² below 2 − 2 cos r, plus a
         // margin far beyond the rounding of unit vectors. Only those can meet `p`, and
-        // they are tested exactly.
-        let reach2 = 2.0 - 2.0 * cos_r + 1e-9;
-        let c = &cap.centre;
-        let normals: Vec<[f64; 3]> = p.normals().iter().map(|m| m.unit_f64()).collect();
-        let near = |q: &[f64; 3]| {
-            let d = [q[0] - c[0], q[1] - c[1], q[2] - c[2]];
-            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= reach2
+        // they are tested exactly. A polygon too wide for a cap (nearly a hemisphere, as
+        // the sums of pieces a small gap apart are) has every arc and point tested, each
+        // behind the float filter of its own.
+        let cap = crate::regions::cap_of(p).and_then(|cap| {
+            cap.cos_radius
+                .map(|cos_r| (cap.centre, 2.0 - 2.0 * cos_r + 1e-9))
+        });
+        let near = |q: &[f64; 3]| match &cap {
+            Some((c, reach2)) => {
+                let d = [q[0] - c[0], q[1] - c[1], q[2] - c[2]];
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= *reach2
+            }
+            None => !normals
+                .iter()
+                .any(|m| m[0] * q[0] + m[1] * q[1] + m[2] * q[2] < -1e-9),
         };
         if self
             .points
@@ -218,11 +212,15 @@ impl<'a> Cover<'a> {
         {
             return false;
         }
+        let near_arc = |a: &FArc| match &cap {
+            Some((c, reach2)) => a.distance2(c) <= *reach2,
+            None => true,
+        };
         if self
             .arcs
             .iter()
             .zip(&self.exact_arcs)
-            .any(|(a, x)| a.distance2(c) <= reach2 && arc_meets_open(x, a, &normals, p))
+            .any(|(a, x)| near_arc(a) && arc_meets_open(x, a, &normals, p))
         {
             return false;
         }
@@ -423,6 +421,25 @@ mod tests {
         // Nothing is contained in an empty union.
         let none = Cover::new(&[], &RegionMap::default());
         assert!(!none.contains(&box_polygon([-2, -1, 20], [2, 1, 22])));
+    }
+
+    #[test]
+    fn nearly_hemispherical_polygons_are_tested_without_a_cap() {
+        // Wide flat boxes just above the origin project to polygons reaching within a few
+        // degrees of the horizon (too wide for a bounding cap), as sums of pieces a small
+        // gap apart do. One inside the union is contained; one reaching past it is not.
+        let polys = vec![
+            box_polygon([-100, -100, 1], [0, 100, 3]),
+            box_polygon([-1, -100, 1], [100, 100, 3]),
+        ];
+        let map = union_of(&polys);
+        let cover = Cover::new(&polys, &map);
+        let inside = box_polygon([-60, -60, 2], [60, 60, 3]);
+        assert!(crate::regions::cap_of(&inside).is_none_or(|c| c.cos_radius.is_none()));
+        assert!(cover.contains(&inside));
+        assert!(!cover.contains(&box_polygon([-60, -60, 1], [60, 60, 3]).antipodal()));
+        assert!(!cover.contains(&box_polygon([-150, -60, 1], [60, 60, 2])));
+        assert!(!cover.contains(&box_polygon([-60, -60, 1], [60, 150, 2])));
     }
 
     #[test]
