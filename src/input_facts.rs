@@ -273,8 +273,9 @@ pub fn holds_without_tolerance(
             Err(e) => return Err(e.into()),
         };
         for k in ks {
-            out[k] = match query.answer(motions[k].2) {
-                Ok(answer) => answer.dbg.can_move(&[0]),
+            // The moving side (part 0) moves along d unless it hits the rest (part 1).
+            out[k] = match query.hits(0, 1, motions[k].2) {
+                Ok(hit) => !hit,
                 Err(PlanError::Overlap { .. }) => false,
                 Err(e) => return Err(e.into()),
             };

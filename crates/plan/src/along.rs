@@ -16,7 +16,9 @@
 use crate::clearance::{to_angle, FArc};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
-use crate::pairs::{axes, classify, pair_polygon, Axis, PairPolygon, PieceInfo, Sep};
+use crate::pairs::{
+    axes, classify, pair_polygon, ray_meets_box, Axis, PairPolygon, PieceInfo, Sep,
+};
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
@@ -177,24 +179,36 @@ impl<'a> DirectionQuery<'a> {
         }
     }
 
-    /// The status of every piece pair of `{i, j}` at `x`, by exact boxes then axes.
+    /// The status of every piece pair of `{i, j}` at `x`: outside when the ray along `x`
+    /// misses the box of the pair's sum, else by exact boxes then axes.
     fn classify_all(&self, i: usize, j: usize, x: &Vec3) -> Vec<Sep> {
         let nb = self.parts[j].pieces.len();
         let m = self.parts[i].pieces.len() * nb;
         (0..m)
             .into_par_iter()
             .with_min_len(64)
-            .map(|k| classify(self.axes(i, j, k), x))
+            .map(|k| {
+                let (a, b) = (k / nb, k % nb);
+                let (pa, pb) = (&self.parts[i].pieces[a], &self.parts[j].pieces[b]);
+                if !ray_meets_box(&self.info[i][a], pa.den(), &self.info[j][b], pb.den(), x) {
+                    return Sep::Outside;
+                }
+                classify(self.axes(i, j, k), x)
+            })
             .collect()
     }
 
-    /// For the pair `{i, j}` (`i < j`) at `x` (part `i` moving along `x`): a polygon
-    /// containing `x` in its interior when blocked, else every polygon whose closure
-    /// contains `x`.
-    fn local(&self, i: usize, j: usize, x: &Vec3) -> Result<(bool, Vec<usize>), PlanError> {
-        let sep = self.classify_all(i, j, x);
-        // Candidate blockers: all touching pairs at once (cheap cones), then the others
-        // (full sums) in chunks, stopping at the first that blocks.
+    /// For the pair `{i, j}` (`i < j`) at `x` (part `i` moving along `x`): a piece pair
+    /// whose open polygon contains `x` (then `x` is blocked), or `None`. Touching pairs
+    /// first (cheap cones), then the others (full sums) in chunks, stopping at the first
+    /// that blocks.
+    fn blocker(
+        &self,
+        i: usize,
+        j: usize,
+        sep: &[Sep],
+        x: &Vec3,
+    ) -> Result<Option<usize>, PlanError> {
         let (touching, others): (Vec<usize>, Vec<usize>) = (0..sep.len())
             .filter(|&k| sep[k] == Sep::Unknown)
             .partition(|&k| self.axes(i, j, k).iter().any(|a| !a.strict));
@@ -206,8 +220,30 @@ impl<'a> DirectionQuery<'a> {
                 })
                 .collect::<Result<_, _>>()?;
             if let Some(k) = hit.into_iter().flatten().next() {
-                return Ok((true, vec![k]));
+                return Ok(Some(k));
             }
+        }
+        Ok(None)
+    }
+
+    /// Whether part `i`, moving along `d`, hits part `j` (an arc `i → j` of the blocking
+    /// graph at `d`), from the piece pairs alone: no cell kind, so no polygon is made
+    /// for a pair that `d` does not enter. What "can this set move along `d`" needs.
+    pub fn hits(&self, i: usize, j: usize, d: &Vec3) -> Result<bool, PlanError> {
+        let d = d.primitive();
+        // Part i along d meets j exactly when j along −d meets i: the pair is stored once.
+        let (i, j, x) = if i < j { (i, j, d) } else { (j, i, d.neg()) };
+        let sep = self.classify_all(i, j, &x);
+        Ok(self.blocker(i, j, &sep, &x)?.is_some())
+    }
+
+    /// For the pair `{i, j}` (`i < j`) at `x` (part `i` moving along `x`): a polygon
+    /// containing `x` in its interior when blocked, else every polygon whose closure
+    /// contains `x`.
+    fn local(&self, i: usize, j: usize, x: &Vec3) -> Result<(bool, Vec<usize>), PlanError> {
+        let sep = self.classify_all(i, j, x);
+        if let Some(k) = self.blocker(i, j, &sep, x)? {
+            return Ok((true, vec![k]));
         }
         // Not blocked: every polygon whose closure holds x, touching pairs first. A
         // polygon inside the open hemisphere of a face contact of the same parts changes

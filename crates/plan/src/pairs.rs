@@ -59,6 +59,50 @@ impl PieceInfo {
     }
 }
 
+/// Whether the ray `{t x : t > 0}` meets the closed box of every `b ⊕ −a` (`a` with
+/// bounds `ia` and denominator `da`, `b` likewise): when it does not, `x` lies outside
+/// the closed projection `P_ab`, whatever the pieces' shapes. Exact: the box is
+/// `[lo_b db⁻¹ − hi_a da⁻¹, hi_b db⁻¹ − lo_a da⁻¹]`, scaled by `da db`, and each
+/// coordinate bounds `t` by a fraction.
+pub(crate) fn ray_meets_box(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, x: &Vec3) -> bool {
+    // Bounds on t (scaled), as fractions with positive denominators: the largest lower
+    // and the smallest upper, starting from t > 0 (lower 0, exclusive) and no upper.
+    let mut lower: (Int, Int) = (Int::ZERO, Int::ONE);
+    let mut upper: Option<(Int, Int)> = None;
+    for k in 0..3 {
+        let lo = &ib.lo[k] * da - &ia.hi[k] * db;
+        let hi = &ib.hi[k] * da - &ia.lo[k] * db;
+        let xk = x.get(k);
+        let (l, u, den) = match xk.cmp(&Int::ZERO) {
+            Ordering::Equal => {
+                if lo > Int::ZERO || hi < Int::ZERO {
+                    return false;
+                }
+                continue;
+            }
+            Ordering::Greater => (lo, hi, xk),
+            Ordering::Less => (-hi, -lo, -xk),
+        };
+        if cmp_fractions(&l, &den, &lower.0, &lower.1) == Ordering::Greater {
+            lower = (l, den.clone());
+        }
+        if upper
+            .as_ref()
+            .is_none_or(|(n, d)| cmp_fractions(&u, &den, n, d) == Ordering::Less)
+        {
+            upper = Some((u, den));
+        }
+    }
+    match upper {
+        // Every coordinate of x is zero: not a direction.
+        None => true,
+        // t in [lower, upper] with t > 0: upper must be positive and not below lower.
+        Some((u, du)) => {
+            u > Int::ZERO && cmp_fractions(&lower.0, &lower.1, &u, &du) != Ordering::Greater
+        }
+    }
+}
+
 /// An axis along which `a` lies weakly below `b` (`max_a n·x <= min_b n·x`); `strict`
 /// when strictly.
 #[derive(Clone, Debug)]
@@ -530,6 +574,9 @@ mod tests {
                                 panic!("overlap")
                             };
                             for d in &dirs {
+                                if !ray_meets_box(&ia, a.den(), &ib, b.den(), d) {
+                                    assert!(!full.contains_closed(d));
+                                }
                                 match classify(&ax, d) {
                                     Sep::Outside => assert!(!full.contains_closed(d)),
                                     Sep::Free => assert!(!full.contains_open(d)),
@@ -554,5 +601,47 @@ mod tests {
             }
         }
         assert!(cones > 50, "{cones}");
+    }
+
+    /// For boxes the sum is the box of [`ray_meets_box`], so the test is exact: it holds
+    /// exactly when the closed projection holds the direction (random boxes with
+    /// denominators, touching and apart, and directions with zero components).
+    #[test]
+    fn the_ray_meets_the_box_exactly_when_the_projection_holds_the_direction() {
+        let mut s = 5u64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        let mut seen = [0usize; 2];
+        for _ in 0..400 {
+            let cuboid = |next: &mut dyn FnMut(i64) -> i64| {
+                let den = 1 + next(3);
+                let lo = [next(13) - 6, next(13) - 6, next(13) - 6];
+                let hi = [
+                    lo[0] + 1 + next(4),
+                    lo[1] + 1 + next(4),
+                    lo[2] + 1 + next(4),
+                ];
+                Polytope::cuboid(lo, hi).unwrap().with_den(Int::from(den))
+            };
+            let (a, b) = (cuboid(&mut next), cuboid(&mut next));
+            let (ia, ib) = (PieceInfo::new(&a), PieceInfo::new(&b));
+            let Ok(PairPolygon::Polygon(full, _)) = full_polygon(&a, &ia, &b, &ib) else {
+                continue; // interiors overlap: every direction is blocked
+            };
+            for _ in 0..12 {
+                let d = Vec3::new(next(5) - 2, next(5) - 2, next(5) - 2);
+                if d.is_zero() {
+                    continue;
+                }
+                let meets = ray_meets_box(&ia, a.den(), &ib, b.den(), &d);
+                assert_eq!(meets, full.contains_closed(&d), "{a:?} {b:?} {d:?}");
+                seen[usize::from(meets)] += 1;
+            }
+        }
+        assert!(seen[0] > 500 && seen[1] > 200, "{seen:?}");
     }
 }
