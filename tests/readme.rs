@@ -112,12 +112,21 @@ fn the_papers_are_cited_in_full() {
         .split("\n## ")
         .next()
         .unwrap();
-    // Authors, title, venue and year of each paper, as printed on its first page (the
-    // venue of [001] as [000] cites it; [000]'s copy names none).
+    // Authors, title, venue and year of each paper, as printed on its first page
+    // (the copies at hand): [000]'s copy names no venue and no date (a preprint),
+    // [001]'s no venue (given as [000] cites it), [004]'s no journal (its manuscript
+    // dates are printed).
     for (label, facts) in [
         (
             "[000]",
-            &["Sacks", "Milenkovic", "Wu", "Robust approximate assembly"][..],
+            &[
+                "Sacks",
+                "Milenkovic",
+                "Wu",
+                "Robust approximate assembly",
+                "Preprint",
+                "no venue and no date",
+            ][..],
         ),
         (
             "[001]",
@@ -125,7 +134,9 @@ fn the_papers_are_cited_in_full() {
                 "Fogel",
                 "Halperin",
                 "importance of being exact",
-                "Algorithmic Foundations of Robotics",
+                "[000] cites it as",
+                "Eighth International Workshop on the Algorithmic Foundations of Robotics",
+                "417–432",
                 "2009",
             ][..],
         ),
@@ -148,6 +159,8 @@ fn the_papers_are_cited_in_full() {
                 "Shimada",
                 "Sturges",
                 "Interference-free polyhedral configurations",
+                "manuscript received August 7, 2000",
+                "prints no journal",
                 "IEEE Transactions on Robotics and Automation",
                 "2002",
             ][..],
@@ -191,8 +204,10 @@ fn stack_and_place_help_cite_the_stacking_paper() {
             "Ayyadevara",
             "Sturges",
             "Interference-free polyhedral configurations for stacking",
+            "manuscript received August 7, 2000",
             "IEEE Transactions on Robotics and Automation",
             "2002",
+            "[004]",
         ] {
             assert!(flat.contains(fact), "{command} --help lacks {fact}");
         }

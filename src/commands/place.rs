@@ -24,8 +24,10 @@ use std::process::ExitCode;
 pub const STACKING_PAPER: &str = "\
 Reference (eq. (1), partial c-space obstacles, extrapolation between orientations):
   V. R. Ayyadevara, D. A. Bourne, K. Shimada and R. H. Sturges, Jr., \"Interference-free
-  polyhedral configurations for stacking\", IEEE Transactions on Robotics and Automation
-  18(2):147-165, 2002.";
+  polyhedral configurations for stacking\", journal paper, manuscript received
+  August 7, 2000, revised September 1, 2001; usually cited as IEEE Transactions on
+  Robotics and Automation 18(2):147-165, 2002 (the README's reference [004] says which
+  of these details the paper itself prints).";
 
 /// Arguments of `apart place`.
 #[derive(clap::Args, Debug)]
