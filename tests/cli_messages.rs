@@ -228,3 +228,112 @@ fn explain_gives_every_step_its_ranking_keys() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v["steps"][0].get("choice").is_none());
 }
+
+/// The OFF text of a comb of `teeth` teeth, the prism over the profile of a bar
+/// `[0, 2·teeth + 1] × [0, 1]` with the teeth `[2i + 1, 2i + 2] × [1, 2]` on it, from
+/// z = 0 to 1 and shifted by `at`. Every face is a unit square, so no edge meets a
+/// vertex mid-way; the two reflex edges at each tooth make the automatic decomposition
+/// give about one piece per tooth.
+fn comb(teeth: usize, at: [i64; 3]) -> String {
+    let w = 2 * teeth as i64 + 1;
+    // The profile, counterclockwise seen from +z: the bottom edge at every integer x,
+    // up the right end, then leftwards over the teeth.
+    let mut profile: Vec<[i64; 2]> = (0..=w).map(|x| [x, 0]).collect();
+    profile.push([w, 1]);
+    for i in (0..teeth as i64).rev() {
+        profile.extend([
+            [2 * i + 2, 1],
+            [2 * i + 2, 2],
+            [2 * i + 1, 2],
+            [2 * i + 1, 1],
+        ]);
+    }
+    profile.push([0, 1]);
+    let m = profile.len();
+    let index = |x: i64, y: i64| profile.iter().position(|p| *p == [x, y]).unwrap();
+    let mut faces: Vec<[usize; 4]> = Vec::new();
+    // Top (z = 1, vertices m..2m) and bottom (z = 0, reversed): unit squares of the
+    // bar, then the teeth.
+    let mut squares: Vec<[usize; 4]> = (0..w)
+        .map(|x| [index(x, 0), index(x + 1, 0), index(x + 1, 1), index(x, 1)])
+        .collect();
+    squares.extend((0..teeth as i64).map(|i| {
+        let x = 2 * i + 1;
+        [index(x, 1), index(x + 1, 1), index(x + 1, 2), index(x, 2)]
+    }));
+    for q in &squares {
+        faces.push(q.map(|v| v + m));
+        faces.push([q[3], q[2], q[1], q[0]]);
+    }
+    // The walls, one per profile edge, outward on the right of the walk.
+    for k in 0..m {
+        let (a, b) = (k, (k + 1) % m);
+        faces.push([a, b, b + m, a + m]);
+    }
+    let mut s = format!("OFF\n{} {} 0\n", 2 * m, faces.len());
+    for z in 0..2 {
+        for p in &profile {
+            s.push_str(&format!(
+                "{} {} {}\n",
+                p[0] + at[0],
+                p[1] + at[1],
+                z + at[2]
+            ));
+        }
+    }
+    for f in &faces {
+        s.push_str(&format!("4 {} {} {} {}\n", f[0], f[1], f[2], f[3]));
+    }
+    s
+}
+
+#[test]
+fn a_part_of_many_automatic_pieces_is_named_in_a_warning() {
+    let dir = folder("many-pieces");
+    // A comb of 210 teeth (about 210 pieces) and, above it, a comb of 2 teeth (a few
+    // pieces): only the first is named.
+    std::fs::write(dir.join("comb.off"), comb(210, [0, 0, 0])).unwrap();
+    std::fs::write(dir.join("small.off"), comb(2, [0, 0, 3])).unwrap();
+    let o = apart_in(&dir, &["check", ".", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    // The answer on standard output stays valid JSON; its piece counts are the ones
+    // the warning names.
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let pieces = |name: &str| {
+        let parts = v["parts"].as_array().unwrap();
+        let p = parts.iter().find(|p| p["name"] == name).unwrap();
+        assert_eq!(p["decomposed"], true, "{p}");
+        p["pieces"].as_u64().unwrap()
+    };
+    let (many, few) = (pieces("comb"), pieces("small"));
+    assert!(many >= 200, "the comb has only {many} pieces");
+    assert!(few < 10, "{few}");
+    let e = err(&o);
+    let warning =
+        format!("warning: part \"comb\": its automatic convex decomposition has {many} pieces");
+    assert_eq!(e.matches(&warning).count(), 1, "{e}");
+    assert!(
+        e.contains("grow with the product of two parts' piece counts"),
+        "{e}"
+    );
+    assert!(
+        e.contains(&format!("{many} x {many} = {}", many * many)),
+        "{e}"
+    );
+    assert!(!e.contains("\"small\""), "{e}");
+    assert_eq!(e.matches("automatic convex decomposition has").count(), 1);
+
+    // With a comb of 150 teeth (fewer than 200 pieces) nothing is named.
+    std::fs::write(dir.join("comb.off"), comb(150, [0, 0, 0])).unwrap();
+    let o = apart_in(&dir, &["check", ".", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert!(
+        !err(&o).contains("automatic convex decomposition"),
+        "{}",
+        err(&o)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let fewer = v["parts"][0]["pieces"].as_u64().unwrap();
+    assert!((100..200).contains(&fewer), "{fewer}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
