@@ -458,6 +458,54 @@ fn uri_path(uri: &str) -> Result<PathBuf, String> {
         .ok_or_else(|| "has percent escapes that do not make UTF-8 text".into())
 }
 
+/// The bytes of a `data:[<media type>];base64,<data>` URI (RFC 2397; glTF embeds
+/// buffers so). Decoded here rather than by the gltf crate, whose decoder comes with its
+/// `import` feature and that feature's image codecs, which apart never uses.
+fn data_uri_bytes(uri: &str) -> Result<Vec<u8>, String> {
+    let rest = uri.strip_prefix("data:").unwrap_or(uri);
+    let Some((_, payload)) = rest.split_once(";base64,") else {
+        return Err("a data: URI without \";base64,\" (only base64 data is read)".into());
+    };
+    base64_decode(payload)
+}
+
+/// Standard base64 (RFC 4648 §4: `A–Z a–z 0–9 + /`), the trailing `=` padding optional.
+fn base64_decode(text: &str) -> Result<Vec<u8>, String> {
+    let body = text.strip_suffix("==").or_else(|| text.strip_suffix('='));
+    let body = body.unwrap_or(text).as_bytes();
+    if body.len() % 4 == 1 {
+        return Err(format!(
+            "base64 data of {} characters, which no byte count gives",
+            text.len()
+        ));
+    }
+    let value = |(at, c): (usize, &u8)| -> Result<u32, String> {
+        Ok(match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' => 62,
+            b'/' => 63,
+            _ => {
+                return Err(format!(
+                    "base64 data has {} at character {at}",
+                    quoted(&String::from_utf8_lossy(&[*c]))
+                ))
+            }
+        } as u32)
+    };
+    let mut out = Vec::with_capacity(body.len() / 4 * 3 + 2);
+    for (k, chunk) in body.chunks(4).enumerate() {
+        let mut n = 0u32;
+        for (j, c) in chunk.iter().enumerate() {
+            n |= value((4 * k + j, c))? << (18 - 6 * j);
+        }
+        // 4 characters give 3 bytes, 3 give 2, 2 give 1.
+        out.extend_from_slice(&n.to_be_bytes()[1..chunk.len()]);
+    }
+    Ok(out)
+}
+
 /// Every buffer's bytes: the GLB binary chunk, a `data:` URI, or a regular file in
 /// `base_dir` (see [`resolve_inside`]); each at least its declared `byteLength`.
 fn load_buffers(
@@ -476,10 +524,7 @@ fn load_buffers(
                 ))
             })?,
             gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
-                // No folder given: the gltf crate decodes data URIs and opens nothing.
-                gltf::buffer::Data::from_source(b.source(), None)
-                    .map_err(|e| malformed(format!("buffer {i}: {e}")))?
-                    .0
+                data_uri_bytes(uri).map_err(|why| malformed(format!("buffer {i}: {why}")))?
             }
             gltf::buffer::Source::Uri(uri) => {
                 let what = format!("buffer {i} ({})", quoted(uri));
@@ -710,6 +755,26 @@ mod tests {
             }
         }
         b64
+    }
+
+    #[test]
+    fn base64_data_decodes_with_or_without_padding() {
+        for n in 0..40usize {
+            let bin: Vec<u8> = (0..n).map(|k| (k * 37 + 11) as u8).collect();
+            let text = base64(&bin);
+            assert_eq!(base64_decode(&text).unwrap(), bin, "{text}");
+            assert_eq!(base64_decode(text.trim_end_matches('=')).unwrap(), bin);
+            let uri = format!("data:application/octet-stream;base64,{text}");
+            assert_eq!(data_uri_bytes(&uri).unwrap(), bin);
+        }
+        assert_eq!(base64_decode("TWFu").unwrap(), b"Man");
+        assert_eq!(base64_decode("+/+/").unwrap(), [0xfb, 0xff, 0xbf]);
+        let e = base64_decode("TW-u").unwrap_err();
+        assert!(e.contains("\"-\" at character 2"), "{e}");
+        assert!(base64_decode("TWFuT").unwrap_err().contains("5 characters"));
+        assert!(data_uri_bytes("data:text/plain,hello")
+            .unwrap_err()
+            .contains(";base64,"));
     }
 
     const ACCESSORS: &str = r#"[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
