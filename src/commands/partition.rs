@@ -248,6 +248,7 @@ fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::R
             truncated: false,
             sets: Vec::new(),
             stats: Default::default(),
+            stopped: false,
         };
         let list = listing(&p, Some(DEFAULT_LIMIT));
         let mut json = to_json(&p, &list, load, InputFacts::of(loaded, global), &None);

@@ -537,6 +537,7 @@ pub fn partition_first(parts: &[PartPieces]) -> Result<Partitioning, PlanError> 
             }],
             solutions: vec![s],
             truncated: false,
+            stopped: false,
             stats: Stats {
                 pieces: parts.iter().map(|p| p.pieces.len()).sum(),
                 sums: st.sums + st.contact_cones,

@@ -7,6 +7,10 @@
 //! blocking graph ([`dbg::Dbg`]); [`partition::partition`] reads off every direction and
 //! minimal subset that separates the assembly.
 //!
+//! The long planners have `*_with` variants taking a [`progress::Progress`]: a callback
+//! receiving `(phase, done, total)` and a stop flag, checked between units of work, on
+//! which they return the partial answer found so far, marked as stopped.
+//!
 //! With an assembly loaded from files:
 //!
 //! ```no_run
@@ -47,6 +51,7 @@ pub mod dbg;
 pub mod motion_space;
 mod pairs;
 pub mod partition;
+pub mod progress;
 pub mod regions;
 pub mod separate;
 pub mod sequence;
@@ -55,13 +60,14 @@ pub use along::{dbg_along, partition_first, DirectionAnswer, DirectionQuery, Que
 pub use dbg::{BitGraph, Dbg};
 pub use motion_space::{CellKind, MotionSpace, OverlayEstimate};
 pub use partition::{
-    dbg_at, partition, partition_pieces, partition_subset, MovingSet, Options, Partitioning,
-    Solution, Stats,
+    dbg_at, partition, partition_pieces, partition_pieces_with, partition_subset,
+    partition_subset_with, MovingSet, Options, Partitioning, Solution, Stats,
 };
+pub use progress::{Progress, ProgressCallback};
 pub use regions::{decompose_part, parts_of, parts_of_with};
 pub use regions::{BlockingRegions, PartPieces};
 pub use separate::{separate, FreeFace, Separation};
-pub use sequence::{sequence, Sequence, SequenceOptions, Step, Tolerance};
+pub use sequence::{sequence, sequence_with, Sequence, SequenceOptions, Step, Tolerance};
 
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -94,6 +100,12 @@ pub enum PlanError {
     },
     /// An internal inconsistency (a bug): reported, never hidden.
     Internal(String),
+    /// The stop flag of a [`Progress`] was raised before the planner had a partial
+    /// answer to return (while it computed the pair regions).
+    Stopped {
+        /// The phase it was in ([`progress::phases`]).
+        phase: &'static str,
+    },
 }
 
 impl std::fmt::Display for PlanError {
@@ -112,6 +124,7 @@ impl std::fmt::Display for PlanError {
                 write!(f, "part \"{name}\" could not be decomposed into convex pieces: {message}")
             }
             PlanError::Internal(m) => write!(f, "internal error: {m}"),
+            PlanError::Stopped { phase } => write!(f, "stopped during {phase}"),
         }
     }
 }

@@ -4,6 +4,7 @@
 use crate::clearance::{deep_direction, FArc};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
+use crate::progress::{phases, Progress};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
 use apart_kernel::Vec3;
@@ -106,6 +107,11 @@ pub struct Partitioning {
     pub sets: Vec<MovingSet>,
     /// Sizes and timings.
     pub stats: Stats,
+    /// The stop flag of a [`Progress`] cut the run short: `solutions` and `sets` hold
+    /// what was found until then (each solution valid, but not all of them), and
+    /// `interlocked` is false (unknown). Never set by the functions without a
+    /// [`Progress`].
+    pub stopped: bool,
 }
 
 /// A moving set and how many solutions it has.
@@ -125,6 +131,23 @@ impl Partitioning {
             .map(|s| s.counts.iter().sum::<usize>())
             .sum()
     }
+
+    /// The answer of a run stopped before it found anything (while it computed the pair
+    /// regions): no solution, not interlocked, [`Partitioning::stopped`].
+    pub fn stopped_before_solutions(names: Vec<String>, pieces: usize) -> Partitioning {
+        Partitioning {
+            names,
+            interlocked: false,
+            solutions: Vec::new(),
+            truncated: false,
+            sets: Vec::new(),
+            stats: Stats {
+                pieces,
+                ..Default::default()
+            },
+            stopped: true,
+        }
+    }
 }
 
 /// Partitions an assembly loaded by `apart-assembly`, each part by its convex pieces
@@ -138,9 +161,30 @@ pub fn partition(
 
 /// Partitions an assembly given as convex pieces per part.
 pub fn partition_pieces(parts: &[PartPieces], opts: &Options) -> Result<Partitioning, PlanError> {
-    let regions = BlockingRegions::compute(parts)?;
+    partition_pieces_with(parts, opts, &Progress::new())
+}
+
+/// [`partition_pieces`] with progress reports and the stop flag of `progress` (see
+/// [`BlockingRegions::compute_with`] and [`partition_subset_with`]). Stopped while the
+/// pair regions are computed, the answer has no solution
+/// ([`Partitioning::stopped_before_solutions`]).
+pub fn partition_pieces_with(
+    parts: &[PartPieces],
+    opts: &Options,
+    progress: &Progress,
+) -> Result<Partitioning, PlanError> {
+    let regions = match BlockingRegions::compute_with(parts, progress) {
+        Ok(r) => r,
+        Err(PlanError::Stopped { .. }) => {
+            return Ok(Partitioning::stopped_before_solutions(
+                parts.iter().map(|p| p.name.clone()).collect(),
+                parts.iter().map(|p| p.pieces.len()).sum(),
+            ))
+        }
+        Err(e) => return Err(e),
+    };
     let all: Vec<usize> = (0..parts.len()).collect();
-    Ok(partition_subset(&regions, &all, opts).0)
+    Ok(partition_subset_with(&regions, &all, opts, progress).0)
 }
 
 /// Partitions the subassembly `subset` (global part indices) from precomputed regions;
@@ -150,11 +194,35 @@ pub fn partition_subset(
     subset: &[usize],
     opts: &Options,
 ) -> (Partitioning, MotionSpace) {
+    let (p, ms) = partition_subset_with(regions, subset, opts, &Progress::new());
+    (p, ms.expect("never stopped without a stop request"))
+}
+
+/// [`partition_subset`], reporting [`phases::MOTION_SPACE`] (the overlay, one
+/// indivisible build), then [`phases::FREE_REGIONS`] (faces scanned),
+/// [`phases::DIRECTIONS`] (free regions given a direction) and [`phases::CELLS`] (edges
+/// and vertices scanned), and watching the stop flag before and after the overlay, every
+/// 256 faces or cells, and before each region's direction. Stopped, the answer holds
+/// the solutions found so far, [`Partitioning::stopped`] is set, and the motion space
+/// is `None` when the flag was raised before it was built.
+pub fn partition_subset_with(
+    regions: &BlockingRegions,
+    subset: &[usize],
+    opts: &Options,
+    progress: &Progress,
+) -> (Partitioning, Option<MotionSpace>) {
+    let pieces = regions.stats.pieces;
+    if progress.stopped() {
+        let p = Partitioning::stopped_before_solutions(regions.names().to_vec(), pieces);
+        return (p, None);
+    }
     let t = Instant::now();
+    progress.report(phases::MOTION_SPACE, 0, 1);
     let ms = MotionSpace::build(regions, subset);
+    progress.report(phases::MOTION_SPACE, 1, 1);
     let overlay = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let (solutions, truncated, sets) = solutions(regions, &ms, opts);
+    let (solutions, truncated, sets, stopped) = solutions(regions, &ms, opts, progress);
     let graphs = t.elapsed().as_secs_f64();
     let arr = ms.arrangement();
     let rs = regions.stats;
@@ -175,26 +243,28 @@ pub fn partition_subset(
     };
     let p = Partitioning {
         names: regions.names().to_vec(),
-        interlocked: sets.is_empty(),
+        interlocked: !stopped && sets.is_empty(),
         solutions,
         truncated,
         sets,
         stats,
+        stopped,
     };
-    (p, ms)
+    (p, Some(ms))
 }
 
 /// Every (cell, minimal moving subset) of the motion space, or the first one, or as
-/// many as the limits of `opts` keep; whether a limit left one out; and the count of
-/// every moving set.
+/// many as the limits of `opts` keep; whether a limit left one out; the count of
+/// every moving set; and whether the stop flag cut the enumeration short.
 fn solutions(
     regions: &BlockingRegions,
     ms: &MotionSpace,
     opts: &Options,
-) -> (Vec<Solution>, bool, Vec<MovingSet>) {
-    let mut quota = Quota::new(opts);
+    progress: &Progress,
+) -> (Vec<Solution>, bool, Vec<MovingSet>, bool) {
+    let mut quota = Quota::new(opts).watching(progress.clone());
     let mut out = face_solutions(regions, ms, &mut quota);
-    if !(quota.full() || opts.first && !out.is_empty()) {
+    if !(quota.full() || opts.first && !out.is_empty() || quota.stopped) {
         out.extend(cell_solutions(ms, &mut quota));
     }
     let sets = quota
@@ -205,7 +275,7 @@ fn solutions(
             counts: quota.tally[m],
         })
         .collect();
-    (out, quota.truncated, sets)
+    (out, quota.truncated, sets, quota.stopped)
 }
 
 /// How many solutions may still be listed, in all and per moving set and kind, and how
@@ -221,6 +291,10 @@ pub(crate) struct Quota {
     order: Vec<Vec<usize>>,
     /// A solution was left out because of a limit.
     truncated: bool,
+    /// Reports progress; its stop flag cuts the enumeration short.
+    progress: Progress,
+    /// The stop flag cut the enumeration short.
+    pub(crate) stopped: bool,
 }
 
 /// What to do with one more solution.
@@ -248,7 +322,15 @@ impl Quota {
             tally: HashMap::default(),
             order: Vec::new(),
             truncated: false,
+            progress: Progress::new(),
+            stopped: false,
         }
+    }
+
+    /// The same quota, reporting to `progress` and watching its stop flag.
+    pub(crate) fn watching(mut self, progress: Progress) -> Quota {
+        self.progress = progress;
+        self
     }
 
     /// No limit at all.
@@ -298,15 +380,26 @@ pub(crate) fn face_solutions(
     ms: &MotionSpace,
     quota: &mut Quota,
 ) -> Vec<Solution> {
-    let free_regions = free_regions(ms, quota.first);
-    let directions: Vec<(Vec3, f64)> = free_regions
+    let progress = quota.progress.clone();
+    let (free_regions, cut) = free_regions(ms, quota.first, &progress);
+    let counter = progress.counter(phases::DIRECTIONS, free_regions.len());
+    let directions: Vec<Option<(Vec3, f64)>> = free_regions
         .par_iter()
-        .map(|r| region_direction(regions, ms, r))
+        .map(|r| {
+            if progress.stopped() {
+                return None;
+            }
+            let found = region_direction(regions, ms, r);
+            counter.add(1);
+            Some(found)
+        })
         .collect();
+    // Stopped: the regions given a direction are solutions all the same.
+    quota.stopped |= cut || directions.iter().any(Option::is_none);
     let mut found: Vec<(FreeRegion, Vec3, f64)> = free_regions
         .into_iter()
         .zip(directions)
-        .map(|(r, (d, c))| (r, d, c))
+        .filter_map(|(r, d)| d.map(|(d, c)| (r, d, c)))
         .collect();
     found.sort_by(|a, b| {
         b.2.total_cmp(&a.2)
@@ -336,6 +429,11 @@ pub(crate) fn cell_solutions(ms: &MotionSpace, quota: &mut Quota) -> Vec<Solutio
     let st = ms.statuses();
     let global = |local: &[usize]| -> Vec<usize> { local.iter().map(|&k| ms.parts()[k]).collect() };
     let mut out = Vec::new();
+    let progress = quota.progress.clone();
+    let counter = progress.counter(
+        phases::CELLS,
+        ms.edge_cells().len() + ms.real_vertices().count(),
+    );
     let cells = ms
         .edge_cells()
         .iter()
@@ -350,7 +448,14 @@ pub(crate) fn cell_solutions(ms: &MotionSpace, quota: &mut Quota) -> Vec<Solutio
             ms.real_vertices()
                 .map(|v| (CellKind::Vertex, &st.vertices[v], Cell::Vertex(v))),
         );
-    'cells: for (kind, status, cell) in cells {
+    'cells: for (k, (kind, status, cell)) in cells.enumerate() {
+        if k % STOP_EVERY == 0 {
+            if progress.stopped() {
+                quota.stopped = true;
+                break;
+            }
+            counter.add(if k == 0 { 0 } else { STOP_EVERY });
+        }
         let mut direction = None;
         for m in ms.minimal_moving_sets(status) {
             match quota.admit(&m, kind) {
@@ -375,9 +480,16 @@ pub(crate) fn cell_solutions(ms: &MotionSpace, quota: &mut Quota) -> Vec<Solutio
             }
         }
     }
+    if !quota.stopped {
+        // (The cells after the last multiple of STOP_EVERY, or those a full list left.)
+        counter.add(usize::MAX);
+    }
     out.sort_by_cached_key(|s| (s.cell, s.moving.clone(), s.direction.to_strings()));
     out
 }
+
+/// Faces or cells scanned between two looks at the stop flag (and progress reports).
+const STOP_EVERY: usize = 256;
 
 /// An edge cell (by its first arrangement edge) or a vertex cell.
 #[derive(Clone, Copy)]
@@ -459,8 +571,8 @@ struct FreeRegion {
 /// set of a moving set is closed (blocked sets are open), so faces are joined across
 /// every real edge with the set free on both sides, and the region's boundary is the
 /// edges with the set blocked on the other side. The faces already in a region of a set
-/// are one bit each per set.
-fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
+/// are one bit each per set. Also whether the stop flag cut the scan short.
+fn free_regions(ms: &MotionSpace, first: bool, progress: &Progress) -> (Vec<FreeRegion>, bool) {
     let arr = ms.arrangement();
     let st = ms.statuses();
     let faces = arr.faces().len();
@@ -474,7 +586,14 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
     };
     let mut alone: Vec<Option<apart_sphere::BitSet>> = vec![None; faces];
     let mut out = Vec::new();
+    let counter = progress.counter(phases::FREE_REGIONS, faces);
     for f in 0..faces as u32 {
+        if f as usize % STOP_EVERY == 0 {
+            if progress.stopped() {
+                return (out, true);
+            }
+            counter.add(if f == 0 { 0 } else { STOP_EVERY });
+        }
         for m in ms.minimal_moving_sets(&st.faces[f as usize]) {
             let next = ids.len();
             let id = *ids.entry(m.clone()).or_insert(next);
@@ -485,7 +604,8 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
                 continue;
             }
             if first && !out.is_empty() {
-                return out;
+                counter.add(faces);
+                return (out, false);
             }
             mark(&mut seen, id, f);
             let mut boundary = Vec::new();
@@ -523,7 +643,8 @@ fn free_regions(ms: &MotionSpace, first: bool) -> Vec<FreeRegion> {
             });
         }
     }
-    out
+    counter.add(faces);
+    (out, false)
 }
 
 /// Angular distance (radians) from unit `u`, a direction where the local set `moving` is

@@ -8,6 +8,7 @@
 
 use crate::cull::{largest, uncovered_pairs, Cover, PieceTree};
 use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
+use crate::progress::{phases, Progress};
 use crate::PlanError;
 use apart_kernel::Vec3;
 use apart_minkowski::{project, sum_prepared, Projection};
@@ -207,6 +208,18 @@ impl BlockingRegions {
     /// blocking answer (its open polygon lies in that hemisphere), so it is not summed.
     /// The remaining pairs are summed in full.
     pub fn compute(parts: &[PartPieces]) -> Result<BlockingRegions, PlanError> {
+        BlockingRegions::compute_with(parts, &Progress::new())
+    }
+
+    /// [`BlockingRegions::compute`], reporting the pairs of parts done of all pairs
+    /// ([`phases::PAIR_REGIONS`]) and watching the stop flag: between batches of pairs,
+    /// before each pair, and between the culling rounds and sum chunks of a pair with
+    /// many piece pairs. Stopped, it returns [`PlanError::Stopped`] (regions of only
+    /// some pairs would answer no question correctly).
+    pub fn compute_with(
+        parts: &[PartPieces],
+        progress: &Progress,
+    ) -> Result<BlockingRegions, PlanError> {
         let n = parts.len();
         for (k, p) in parts.iter().enumerate() {
             if p.pieces.is_empty() {
@@ -236,7 +249,14 @@ impl BlockingRegions {
         // alive at once, and what is kept is each pair's pruned polygons and union.
         let mut regions = Vec::with_capacity(pairs.len());
         let mut rest = &pairs[..];
+        let counter = progress.counter(phases::PAIR_REGIONS, pairs.len());
+        let stopped = || PlanError::Stopped {
+            phase: phases::PAIR_REGIONS,
+        };
         while !rest.is_empty() {
+            if progress.stopped() {
+                return Err(stopped());
+            }
             let mut take = 0;
             let mut load = 0;
             while take < rest.len() {
@@ -254,8 +274,13 @@ impl BlockingRegions {
             let done: Vec<(PairRegion, RegionStats)> = batch
                 .par_iter()
                 .map(|&(i, j)| {
+                    if progress.stopped() {
+                        return Err(stopped());
+                    }
                     let mut s = RegionStats::default();
-                    pair_region(parts, &info, &trees, i, j, &mut s).map(|r| (r, s))
+                    let r = pair_region(parts, &info, &trees, i, j, &mut s, progress);
+                    counter.add(1);
+                    r.map(|r| (r, s))
                 })
                 .collect::<Result<_, _>>()?;
             // Pairs ran side by side: their phase times are shares of the batch's.
@@ -371,7 +396,8 @@ impl BlockingRegions {
 
 /// The region of parts `i < j`: separating axes of every piece pair, contact cones of
 /// touching ones, full sums for the rest except those a face contact's hemisphere
-/// already covers, then the pruned polygons' union (timings added to `stats`).
+/// already covers, then the pruned polygons' union (timings added to `stats`). The stop
+/// flag is checked between culling rounds and between chunks of sums.
 fn pair_region(
     parts: &[PartPieces],
     info: &[Vec<PieceInfo>],
@@ -379,7 +405,11 @@ fn pair_region(
     i: usize,
     j: usize,
     stats: &mut RegionStats,
+    progress: &Progress,
 ) -> Result<PairRegion, PlanError> {
+    let stopped = || PlanError::Stopped {
+        phase: phases::PAIR_REGIONS,
+    };
     let (pi, pj) = (&parts[i].pieces, &parts[j].pieces);
     let jobs: Vec<(usize, usize)> = (0..pi.len())
         .flat_map(|a| (0..pj.len()).map(move |b| (a, b)))
@@ -512,6 +542,9 @@ fn pair_region(
             let mut map = union_of_pruned(&polygons);
             let mut summed = 0;
             loop {
+                if progress.stopped() {
+                    return Err(stopped());
+                }
                 for &k in &round {
                     need[k] = false;
                 }
@@ -561,6 +594,9 @@ fn pair_region(
     };
     stats.sums += todo.len();
     for chunk in todo.chunks(PRUNE_CHUNK) {
+        if progress.stopped() {
+            return Err(stopped());
+        }
         let made: Vec<Cone> = chunk
             .par_iter()
             .map(|&k| polygon_of(k))

@@ -9,6 +9,7 @@
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::partition::free_clearance;
 use crate::partition::{cell_solutions, dbg_at, face_solutions, Quota, Solution};
+use crate::progress::{phases, Progress, Stopped};
 use crate::regions::BlockingRegions;
 use apart_kernel::Vec3;
 use apart_minkowski::minkowski_difference;
@@ -80,6 +81,14 @@ pub struct Sequence {
     pub stuck: Vec<Vec<usize>>,
     /// Subassemblies left whole because of the depth limit.
     pub unsplit: Vec<Vec<usize>>,
+    /// Subassemblies not yet split when the stop flag of a [`Progress`] ended the run
+    /// (see [`Sequence::stopped`]), in the order they would have been split; empty
+    /// otherwise.
+    pub pending: Vec<Vec<usize>>,
+    /// The stop flag ended the run early: `steps` are the steps found until then (each a
+    /// valid step of the plan, in order) and `pending` the subassemblies still to split.
+    /// Never set by [`sequence`], which takes no [`Progress`].
+    pub stopped: bool,
     /// Seconds spent overlaying regions and analysing graphs for the steps (the shared
     /// pair regions are computed before, once).
     pub step_seconds: f64,
@@ -88,29 +97,81 @@ pub struct Sequence {
 impl Sequence {
     /// True when every part ends up separate.
     pub fn complete(&self) -> bool {
-        self.stuck.is_empty() && self.unsplit.is_empty()
+        self.stuck.is_empty() && self.unsplit.is_empty() && self.pending.is_empty()
+    }
+
+    /// The plan of a run stopped before its first step (while the pair regions were
+    /// computed): no step, the whole assembly pending.
+    pub fn stopped_before_steps(names: Vec<String>) -> Sequence {
+        let n = names.len();
+        Sequence {
+            names,
+            steps: Vec::new(),
+            stuck: Vec::new(),
+            unsplit: Vec::new(),
+            pending: if n >= 2 {
+                vec![(0..n).collect()]
+            } else {
+                Vec::new()
+            },
+            stopped: true,
+            step_seconds: 0.0,
+        }
     }
 }
 
 /// Plans a complete disassembly of all parts.
 pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
+    sequence_with(regions, opts, &Progress::new())
+}
+
+/// [`sequence`], reporting the splits made of the `parts - 1` a complete plan needs
+/// ([`phases::SEQUENCE`]; a subassembly found interlocked or left whole by the depth
+/// limit counts as its `size - 1`), and watching the stop flag before each step and
+/// while a step's motion space is searched. Stopped, it returns the steps found so far
+/// (a step being chosen when the flag rose is dropped, since its candidates may be
+/// incomplete) with the subassemblies still to split in [`Sequence::pending`].
+pub fn sequence_with(
+    regions: &BlockingRegions,
+    opts: &SequenceOptions,
+    progress: &Progress,
+) -> Sequence {
     let t = Instant::now();
-    let all: Vec<usize> = (0..regions.part_count()).collect();
+    let n = regions.part_count();
+    let all: Vec<usize> = (0..n).collect();
     let mut stack = vec![(all, 0usize)];
     let mut steps = Vec::new();
     let mut stuck = Vec::new();
     let mut unsplit = Vec::new();
+    let mut pending = Vec::new();
+    let total = n.saturating_sub(1);
+    let mut done = 0;
+    progress.report(phases::SEQUENCE, 0, total);
+    // The steps' own phases (overlay, free regions) would interleave with the count of
+    // steps: they only watch the flag.
+    let inner = progress.silent();
     while let Some((sub, depth)) = stack.pop() {
         if sub.len() < 2 {
             continue;
         }
+        if progress.stopped() {
+            pending.push(sub);
+            continue;
+        }
         if opts.max_depth.is_some_and(|m| depth >= m) {
+            done += sub.len() - 1;
+            progress.report(phases::SEQUENCE, done, total);
             unsplit.push(sub);
             continue;
         }
-        match best_step(regions, &sub, opts) {
-            None => stuck.push(sub),
-            Some(mut step) => {
+        match best_step_with(regions, &sub, opts, &inner) {
+            Err(Stopped) => pending.push(sub),
+            Ok(None) => {
+                done += sub.len() - 1;
+                progress.report(phases::SEQUENCE, done, total);
+                stuck.push(sub)
+            }
+            Ok(Some(mut step)) => {
                 step.depth = depth;
                 if opts.tolerance {
                     step.tolerance = Some(growth_tolerance(regions, &step));
@@ -122,6 +183,8 @@ pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
                     .collect();
                 let moving = step.moving.clone();
                 steps.push(step);
+                done += 1;
+                progress.report(phases::SEQUENCE, done, total);
                 stack.push((rest, depth + 1));
                 stack.push((moving, depth + 1));
             }
@@ -132,6 +195,8 @@ pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
         steps,
         stuck,
         unsplit,
+        stopped: !pending.is_empty(),
+        pending,
         step_seconds: t.elapsed().as_secs_f64(),
     }
 }
@@ -159,14 +224,29 @@ pub fn sequence(regions: &BlockingRegions, opts: &SequenceOptions) -> Sequence {
 /// opposite way. [`Step::choice`] records the keys, the number of candidates and the
 /// runner-up with the key it lost on.
 pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOptions) -> Option<Step> {
+    best_step_with(regions, sub, opts, &Progress::new()).expect("no stop was requested")
+}
+
+/// [`best_step`], giving up with [`Stopped`] when the stop flag rises before the step is
+/// chosen (checked after the overlay and after each enumeration of candidates).
+fn best_step_with(
+    regions: &BlockingRegions,
+    sub: &[usize],
+    opts: &SequenceOptions,
+    progress: &Progress,
+) -> Result<Option<Step>, Stopped> {
+    let quota = || Quota::unlimited().watching(progress.clone());
     let ms = MotionSpace::build(regions, sub);
-    let mut candidates = face_solutions(regions, &ms, &mut Quota::unlimited());
+    if progress.stopped() {
+        return Err(Stopped);
+    }
+    let mut candidates = face_solutions(regions, &ms, &mut quota());
     if opts.prefer_axes {
         candidates.extend(axis_candidates(regions, &ms));
     }
     let mut best = rank::choose(regions, &ms, opts, &candidates);
     if best.as_ref().is_none_or(|(missed, _, _)| *missed) {
-        candidates.extend(cell_solutions(&ms, &mut Quota::unlimited()));
+        candidates.extend(cell_solutions(&ms, &mut quota()));
         best = rank::choose(regions, &ms, opts, &candidates);
     }
     // A set chosen along another direction may also be free along an axis, where it
@@ -180,8 +260,14 @@ pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOption
             }
         }
     }
-    let (_, best, choice) = best?;
-    Some(Step {
+    // (Raised at any point, the flag may have cut an enumeration short.)
+    if progress.stopped() {
+        return Err(Stopped);
+    }
+    let Some((_, best, choice)) = best else {
+        return Ok(None);
+    };
+    Ok(Some(Step {
         subassembly: ms.parts().to_vec(),
         moving: best.moving,
         unit: best.direction.unit_f64(),
@@ -191,7 +277,7 @@ pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOption
         depth: 0,
         tolerance: None,
         choice,
-    })
+    }))
 }
 
 /// The six axis directions +x, +y, +z, -x, -y, -z.
