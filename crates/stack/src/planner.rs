@@ -16,6 +16,7 @@ use crate::partial::{
 use crate::scene::Scene;
 use crate::stability::{contacts, lowerable, placed_pieces, stable, top, up_face_area, Contact};
 use apart_pieces::Polytope;
+use apart_plan::progress::{phases, Progress};
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
 
@@ -123,6 +124,10 @@ pub struct StackPlan {
     pub stack_height: Q,
     /// Every part was placed.
     pub complete: bool,
+    /// The stop flag of a [`Progress`] ended the run before every part was placed or
+    /// given up: `placements` are the parts placed until then (each checked as usual),
+    /// and `complete` is false. Never set by [`stack`].
+    pub stopped: bool,
     /// The part in its orientations.
     pub moving: Moving,
     /// The stack as fixed parts.
@@ -165,6 +170,17 @@ fn add_stats(a: &mut PlaceStats, b: &PlaceStats) {
 
 /// Plans a stack of `opts.count` copies of `part`.
 pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackError> {
+    stack_with(part, opts, &Progress::new())
+}
+
+/// [`stack`], reporting the parts placed of `opts.count` ([`phases::STACKING`]) and
+/// watching the stop flag before each part and each candidate examined. Stopped, it
+/// returns the parts placed so far, with [`StackPlan::stopped`] set.
+pub fn stack_with(
+    part: &PartModel,
+    opts: &StackOptions,
+    progress: &Progress,
+) -> Result<StackPlan, StackError> {
     let start = Instant::now();
     let [x0, y0, x1, y1] = opts.floor.clone();
     if x0 >= x1 || y0 >= y1 || opts.max_height <= q(0) {
@@ -222,7 +238,13 @@ pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackEr
     };
     let mut placements: Vec<Placed> = Vec::new();
     let mut complete = true;
+    let mut stopped = false;
+    progress.report(phases::STACKING, 0, opts.count);
     for n in 0..opts.count {
+        if progress.stopped() {
+            stopped = true;
+            break;
+        }
         let mut accepted = None;
         let stages: &[u8] = if n == 0 { &[2] } else { &[1, 2] };
         for &stage in stages {
@@ -244,6 +266,10 @@ pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackEr
             let mut placer = Placer::new(&scene, &moving, &mut cache, &popts)?;
             let mut examined = 0;
             while examined < opts.max_candidates {
+                if progress.stopped() {
+                    stopped = true;
+                    break;
+                }
                 let Some(c) = placer.next_candidate()? else {
                     break;
                 };
@@ -270,7 +296,7 @@ pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackEr
                 break;
             }
             add_stats(&mut stats.place, &placer.stats);
-            if accepted.is_some() {
+            if accepted.is_some() || stopped {
                 break;
             }
         }
@@ -297,6 +323,7 @@ pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackEr
             contacts: cts,
             examined,
         });
+        progress.report(phases::STACKING, n + 1, opts.count);
     }
     let height = (0..scene.pieces().len())
         .filter_map(|k| top(&[scene.placed(k)]))
@@ -308,7 +335,8 @@ pub fn stack(part: &PartModel, opts: &StackOptions) -> Result<StackPlan, StackEr
     Ok(StackPlan {
         placements,
         stack_height: height,
-        complete,
+        complete: complete && !stopped,
+        stopped,
         moving,
         scene,
         stats,
