@@ -27,8 +27,10 @@ use apart_sphere::region::RegionMap;
 use apart_sphere::{Arc, SphericalPolygon};
 use std::cmp::Ordering;
 
-/// Pieces per leaf of a [`PieceTree`].
-const LEAF: usize = 4;
+/// Pieces per leaf of a [`PieceTree`]: one, so that every piece pair left after the
+/// groups gets the box test of its own sum before it is summed (on the 20k-triangle nut
+/// and washer that leaves 2,299 sums of 20,002).
+const LEAF: usize = 1;
 
 /// A node of a [`PieceTree`]: a box holding pieces `order[start..start + len]`.
 #[derive(Clone, Debug)]
