@@ -2,12 +2,22 @@
 //! `--timeout` watchdog, the `--max-memory` budget (a counting global allocator), and the
 //! parsers that check every numeric option, with its range, before any work starts.
 //!
-//! Both limits stop the whole process with exit code 1 and one line on standard error:
-//!
-//! - `--timeout S`: a watchdog thread sleeps until the deadline, then prints
-//!   "stopped after S s: PHASE" and calls `std::process::exit(1)`. The planners are not
-//!   interrupted cooperatively; the process simply ends (files being written may be
-//!   incomplete).
+//! - `--timeout S`: a watchdog thread sleeps until the deadline. If a planner that
+//!   returns partial answers has started (pair regions and the motion space of
+//!   `partition`, the steps of `sequence`, the placements of `stack`: each is handed an
+//!   `apart::plan::Progress` by `output::planner`), the watchdog raises the shared stop
+//!   flag ([`stop_flag`]). The planners check it between units of work (part pairs,
+//!   culling rounds, batches of faces and cells, steps, candidates) and return what
+//!   they have, marked as stopped; the command prints that partial answer with the
+//!   status line "stopped by --timeout after S s during PHASE: partial answer" (in the
+//!   JSON `"status": "timeout"`, `"complete": false` and a `"stopped"` object), writes no
+//!   picture or export, and exits with [`EXIT_PARTIAL`] (3). Hard fallback: when no
+//!   answer is being printed [`grace`] seconds after the flag (a tenth of the timeout,
+//!   at least 5 s: one indivisible step such as the overlay's build may run on), the
+//!   watchdog prints "stopped after S s: PHASE" and ends the process with exit code 1,
+//!   as it does at once while the run is still loading (no answer yet) or in a command
+//!   without a partial answer (`check`, `decompose`, `place`, `separate`, `partition
+//!   --first` and `--direction`). Files being written then may be incomplete.
 //! - `--max-memory SIZE`: [`Budget`] wraps the system allocator and counts the bytes of
 //!   live heap allocations (not stack, code or mapped files, so the resident size is a
 //!   few MB larger). An allocation that would pass the budget prints "out of memory
@@ -18,8 +28,8 @@
 //!   relaxed atomic load per call.
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicIsize, AtomicUsize, Ordering::Relaxed};
-use std::sync::{Mutex, OnceLock};
+use std::sync::atomic::{AtomicBool, AtomicIsize, AtomicUsize, Ordering, Ordering::Relaxed};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// What the run is doing now, for the messages that stop it.
 static PHASE: Mutex<&'static str> = Mutex::new("starting");
@@ -138,18 +148,91 @@ pub fn set_json(json: bool) {
 /// Largest `--timeout`, in seconds (one week).
 pub const MAX_TIMEOUT: f64 = 604_800.0;
 
+/// Exit code of a run stopped by `--timeout` that printed its partial answer.
+pub const EXIT_PARTIAL: u8 = 3;
+
+/// The stop flag every planner of the run watches (raised by the `--timeout` watchdog).
+pub fn stop_flag() -> Arc<AtomicBool> {
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    FLAG.get_or_init(Arc::default).clone()
+}
+
+/// Set once a planner that returns partial answers has started: from then on the
+/// deadline raises the stop flag instead of ending the process at once.
+static PLANNING: AtomicBool = AtomicBool::new(false);
+/// Set when the command starts printing an answer after the stop flag: the watchdog's
+/// hard fallback then stays silent.
+static ANSWERING: AtomicBool = AtomicBool::new(false);
+/// The timeout and the phase the run was in when the watchdog raised the stop flag.
+static TIMED_OUT: Mutex<Option<(f64, &'static str)>> = Mutex::new(None);
+
+/// Notes that a planner returning partial answers has started (see the module comment).
+pub fn begin_planning() {
+    PLANNING.store(true, Relaxed);
+}
+
+/// Why a planner stopped early: `--timeout` after `seconds`, during `phase`.
+#[derive(Clone, Copy, Debug)]
+pub struct TimedOut {
+    pub seconds: f64,
+    pub phase: &'static str,
+}
+
+impl std::fmt::Display for TimedOut {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "stopped by --timeout after {} s during {}: partial answer",
+            self.seconds, self.phase
+        )
+    }
+}
+
+/// Why a planner returned stopped (the `--timeout` watchdog raised its flag, and when),
+/// called by the command before it prints the partial answer: from then on the
+/// watchdog's hard fallback stays silent.
+pub fn partial_answer(global: &crate::Global) -> TimedOut {
+    ANSWERING.store(true, Relaxed);
+    // (Acquire: pairs with the watchdog's release of the flag, after it noted the phase.)
+    let _ = stop_flag().load(Ordering::Acquire);
+    let noted = *TIMED_OUT.lock().unwrap_or_else(|e| e.into_inner());
+    let (seconds, phase) = noted.unwrap_or((global.timeout.unwrap_or(0.0), phase()));
+    TimedOut { seconds, phase }
+}
+
+/// Seconds a planner has, after the stop flag, to return its partial answer before the
+/// process is ended anyway: a tenth of the timeout, at least 5 s.
+pub fn grace(seconds: f64) -> f64 {
+    (seconds / 10.0).max(5.0)
+}
+
 /// Starts the watchdog that ends the run after `seconds` (see the module comment).
 pub fn start_watchdog(seconds: f64) {
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs_f64(seconds);
+    let sleep_until = |t: std::time::Instant| loop {
+        let now = std::time::Instant::now();
+        if now >= t {
+            break;
+        }
+        std::thread::sleep(t - now);
+    };
     let spawned = std::thread::Builder::new()
         .name("apart-timeout".into())
         .spawn(move || {
-            loop {
-                let now = std::time::Instant::now();
-                if now >= deadline {
-                    break;
+            sleep_until(deadline);
+            if PLANNING.load(Relaxed) {
+                // Ask the planners for what they have.
+                *TIMED_OUT.lock().unwrap_or_else(|e| e.into_inner()) = Some((seconds, phase()));
+                stop_flag().store(true, Ordering::Release);
+                let grace = grace(seconds);
+                sleep_until(deadline + std::time::Duration::from_secs_f64(grace));
+                if !ANSWERING.load(Relaxed) && claim_stop() {
+                    stop(format_args!(
+                        "stopped after {seconds} s: {} (--timeout {seconds}; no partial answer within {grace} s more)",
+                        phase()
+                    ));
                 }
-                std::thread::sleep(deadline - now);
+                return;
             }
             if claim_stop() {
                 stop(format_args!(

@@ -19,8 +19,11 @@ Exit codes:
   0  the answer is yes (valid, comes apart, fits, every part stacked), or there is
      nothing to separate (an assembly of one part)
   1  usage error (unknown command or option, missing path, option value out of its
-     range), invalid input, a failure, or a run stopped by --timeout or --max-memory
-  2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete";
+     range), invalid input, a failure, or a run stopped by --max-memory, or by
+     --timeout before it had a partial answer
+  2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete
+  3  stopped by --timeout with a partial answer (partition, sequence, stack): what was
+     found until then, with status \"timeout\" in the JSON";
 
 /// Exact assembly partitioning of polyhedral parts.
 #[derive(Parser)]
@@ -80,9 +83,12 @@ pub struct Global {
     /// links included.
     #[arg(long, global = true)]
     pub allow_outside: bool,
-    /// Stop the run after this many seconds (more than 0, at most 604800), with
-    /// "stopped after S s: <phase>" and exit code 1. A watchdog ends the process; files
-    /// being written may be incomplete.
+    /// Stop the run after this many seconds (more than 0, at most 604800). partition,
+    /// sequence and stack then print the answer found so far, marked "stopped by
+    /// --timeout after S s during PHASE: partial answer" (JSON: "status": "timeout",
+    /// "complete": false), write no picture or export, and exit with 3. While loading,
+    /// in other commands, or when no partial answer comes within max(S/10, 5 s) more,
+    /// the run ends with "stopped after S s: PHASE" and exit code 1.
     #[arg(long, global = true, value_name = "SECONDS", value_parser = limits::timeout, allow_negative_numbers = true)]
     pub timeout: Option<f64>,
     /// Stop the run, with exit code 1, when its live heap memory would pass SIZE (4G,

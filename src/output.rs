@@ -1,6 +1,7 @@
 //! Output shared by the commands: numbers in input units, tables, problems, JSON, the
-//! progress bar, and the one-line failure message.
+//! progress bars, the status of a partial answer, and the one-line failure message.
 
+use crate::limits::TimedOut;
 use crate::Global;
 use apart::assembly::{Progress, ProgressFn};
 use apart::kernel::Grid;
@@ -209,8 +210,9 @@ impl Drop for Phase {
 }
 
 /// Enters a phase: names it to the `--timeout` and `--max-memory` messages and, on a
-/// terminal, shows it with a spinner and the time spent (the planners report no counts
-/// of their own, so a long phase shows that it is still working and for how long).
+/// terminal, shows it with a spinner and the time spent (for work that reports no
+/// counts of its own: a long phase shows that it is still working and for how long).
+/// Planners that report counts go through [`planner`].
 pub fn phase(global: &Global, label: &'static str) -> Phase {
     set_quiet(global.quiet);
     crate::limits::set_phase(label);
@@ -224,6 +226,83 @@ pub fn phase(global: &Global, label: &'static str) -> Phase {
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
         bar
     }))
+}
+
+/// Enters a planner's phase: like [`phase`], and hands out the
+/// [`Progress`](apart::plan::Progress) to give the planner. Its callback names each of
+/// the planner's own phases to the `--timeout` and `--max-memory` messages and, on a
+/// terminal, drives a bar with the counts ("pair regions [=====>    ] 5120/11175 3s");
+/// its stop flag is the run's ([`crate::limits::stop_flag`]), which `--timeout` raises:
+/// from here on a timeout asks for the partial answer instead of ending the process.
+pub fn planner(global: &Global, label: &'static str) -> (Phase, apart::plan::Progress) {
+    set_quiet(global.quiet);
+    crate::limits::set_phase(label);
+    crate::limits::begin_planning();
+    let bar = shows_progress(global).then(|| {
+        let bar = ProgressBar::new(0);
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} {elapsed}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar.set_message(label);
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        bar
+    });
+    let b = bar.clone();
+    let progress = apart::plan::Progress::with_callback(move |phase, done, total| {
+        crate::limits::set_phase(phase);
+        if let Some(b) = &b {
+            b.set_message(phase);
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    })
+    .with_stop_flag(crate::limits::stop_flag());
+    (Phase(bar), progress)
+}
+
+/// Where a partial answer stopped, in the JSON (`"stopped"`).
+#[derive(serde::Serialize)]
+pub struct StoppedJson {
+    /// What stopped it: "--timeout".
+    pub by: &'static str,
+    pub after_seconds: f64,
+    pub phase: &'static str,
+}
+
+/// The status of an answer in the JSON: "done", or "timeout" for a partial answer.
+pub fn status(stop: &Option<TimedOut>) -> &'static str {
+    if stop.is_some() {
+        "timeout"
+    } else {
+        "done"
+    }
+}
+
+/// The `"stopped"` object of a partial answer.
+pub fn stopped_json(stop: &Option<TimedOut>) -> Option<StoppedJson> {
+    stop.map(|t| StoppedJson {
+        by: "--timeout",
+        after_seconds: t.seconds,
+        phase: t.phase,
+    })
+}
+
+/// The status of a planner's answer: `None` when it ran to its end; for a partial
+/// answer (`stopped`), why, announced on standard error ("warning: stopped by --timeout
+/// after 2 s during sequence steps: partial answer", and that the pictures and exports
+/// asked for, when `files`, are not written).
+pub fn partial(global: &Global, stopped: bool, files: bool) -> Option<TimedOut> {
+    if !stopped {
+        return None;
+    }
+    let t = crate::limits::partial_answer(global);
+    eline(format_args!("warning: {t}"));
+    if files {
+        eline("warning: no picture or export written for a partial answer");
+    }
+    Some(t)
 }
 
 /// Reports a failure that stopped a command: one clear line on standard error (and a

@@ -1,12 +1,14 @@
 //! `apart partition <assembly>`: every direction and minimal subset that separates the
 //! assembly by one infinite translation; or, with `--direction`, the blocking graph of
 //! one direction. Exit code 0 when some subset can move (or the assembly has one part:
-//! nothing to separate), 2 when the assembly is interlocked, 1 on error. The listing is
+//! nothing to separate), 2 when the assembly is interlocked, 3 when `--timeout` stopped
+//! the run and the solutions found until then are printed, 1 on error. The listing is
 //! grouped by moving set and bounded (`--limit`, `--all`): assemblies of many loose
 //! parts have millions of solutions.
 
 use crate::commands::load::load_valid;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
+use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
 use anyhow::Context;
@@ -14,8 +16,8 @@ use apart::assembly::Loaded;
 use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSvgOptions};
 use apart::kernel::{Grid, Vec3};
 use apart::plan::{
-    dbg_along, partition_first, partition_subset, parts_of, BlockingRegions, CellKind, Options,
-    Partitioning,
+    dbg_along, partition_first, partition_subset_with, parts_of, BlockingRegions, CellKind,
+    Options, Partitioning, PlanError,
 };
 use serde::Serialize;
 use std::collections::HashMap;
@@ -134,6 +136,15 @@ struct GroupJson<'a> {
 struct PartitionJson<'a> {
     #[serde(flatten)]
     input: InputFacts,
+    /// "done", or "timeout": --timeout stopped the run and the solutions are those
+    /// found until then.
+    status: &'static str,
+    /// Every solution was searched for (false after --timeout).
+    complete: bool,
+    /// Where --timeout stopped the run; absent when it ran to its end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stopped: Option<output::StoppedJson>,
+    /// No subset can move (false when --timeout stopped the search: unknown).
     interlocked: bool,
     /// The assembly has one part: there is nothing to separate (exit code 0).
     nothing_to_separate: bool,
@@ -189,7 +200,7 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
             let _phase = output::phase(global, "first solution");
             partition_first(&parts)?
         };
-        report(&p, &loaded, args, global, load_seconds)?;
+        report(&p, &loaded, args, global, load_seconds, &None)?;
         return Ok(if p.interlocked {
             ExitCode::from(2)
         } else {
@@ -197,23 +208,34 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
         });
     }
     let regions = {
-        let _phase = output::phase(global, "pair regions");
-        BlockingRegions::compute(&parts)?
+        let (_phase, progress) = output::planner(global, "pair regions");
+        match BlockingRegions::compute_with(&parts, &progress) {
+            Ok(r) => Some(r),
+            Err(PlanError::Stopped { .. }) => None,
+            Err(e) => return Err(e.into()),
+        }
     };
     let all: Vec<usize> = (0..parts.len()).collect();
-    limits::check_motion_space(&regions, &all, global)?;
-    let (p, _) = {
-        let _phase = output::phase(global, "motion space and solutions");
-        partition_subset(
-            &regions,
-            &all,
-            &Options {
+    let (p, regions) = match regions {
+        // Stopped while the pair regions were computed: no solution yet.
+        None => {
+            let names = parts.iter().map(|p| p.name.clone()).collect();
+            let pieces = parts.iter().map(|p| p.pieces.len()).sum();
+            (Partitioning::stopped_before_solutions(names, pieces), None)
+        }
+        Some(regions) => {
+            limits::check_motion_space(&regions, &all, global)?;
+            let (_phase, progress) = output::planner(global, "motion space and solutions");
+            let opts = Options {
                 first: args.first,
                 ..Default::default()
-            },
-        )
+            };
+            let (p, _) = partition_subset_with(&regions, &all, &opts, &progress);
+            (p, Some(regions))
+        }
     };
-    if pictures {
+    let stop = output::partial(global, p.stopped, pictures);
+    if let Some(regions) = regions.filter(|_| pictures && stop.is_none()) {
         let _phase = output::phase(global, "pictures");
         let opts = SphereSvgOptions {
             title: format!("{}: motion space", asm.name),
@@ -227,8 +249,10 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
             output::write_file(path, motion_space_png(&regions, &all, &p.solutions, &opts))?;
         }
     }
-    report(&p, &loaded, args, global, load_seconds)?;
-    Ok(if p.interlocked {
+    report(&p, &loaded, args, global, load_seconds, &stop)?;
+    Ok(if stop.is_some() {
+        ExitCode::from(limits::EXIT_PARTIAL)
+    } else if p.interlocked {
         ExitCode::from(2)
     } else {
         ExitCode::SUCCESS
@@ -251,7 +275,14 @@ fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::R
             stopped: false,
         };
         let list = listing(&p, Some(DEFAULT_LIMIT));
-        let mut json = to_json(&p, &list, load, InputFacts::of(loaded, global), &None);
+        let mut json = to_json(
+            &p,
+            &list,
+            load,
+            InputFacts::of(loaded, global),
+            &None,
+            &None,
+        );
         json.nothing_to_separate = true;
         output::json(&json)?;
     } else {
@@ -362,6 +393,7 @@ fn report(
     args: &PartitionArgs,
     global: &Global,
     load: f64,
+    stop: &Option<TimedOut>,
 ) -> anyhow::Result<()> {
     let asm = &loaded.assembly;
     let limit = if args.all {
@@ -393,9 +425,10 @@ fn report(
             load,
             InputFacts::of(loaded, global),
             &holds,
+            stop,
         ))?;
     } else {
-        print_text(p, &list, asm, args, global, load, &holds);
+        print_text(p, &list, asm, args, global, load, &holds, stop);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -467,10 +500,14 @@ fn to_json<'a>(
     load: f64,
     input: InputFacts,
     holds: &'a Option<Vec<bool>>,
+    stop: &Option<TimedOut>,
 ) -> PartitionJson<'a> {
     let s = &p.stats;
     PartitionJson {
         input,
+        status: output::status(stop),
+        complete: stop.is_none(),
+        stopped: output::stopped_json(stop),
         interlocked: p.interlocked,
         nothing_to_separate: false,
         parts: &p.names,
@@ -518,6 +555,7 @@ fn plural(k: usize, one: &str, many: &str) -> String {
     format!("{k} {}", if k == 1 { one } else { many })
 }
 
+#[allow(clippy::too_many_arguments)]
 fn print_text(
     p: &Partitioning,
     list: &Listing,
@@ -526,6 +564,7 @@ fn print_text(
     global: &Global,
     load: f64,
     holds: &Option<Vec<bool>>,
+    stop: &Option<TimedOut>,
 ) {
     let s = &p.stats;
     if !global.quiet {
@@ -544,7 +583,14 @@ fn print_text(
             plural(s.arcs, "arc", "arcs")
         ));
     }
-    if p.interlocked {
+    if let Some(t) = stop {
+        output::line(t);
+        output::line(format_args!(
+            "found before the stop: {} in {}",
+            plural(p.solution_count(), "solution", "solutions"),
+            plural(list.groups.len(), "moving set", "moving sets"),
+        ));
+    } else if p.interlocked {
         output::line("interlocked: no subset of parts can translate away from the rest");
     } else {
         output::line(format_args!(

@@ -2,11 +2,13 @@
 //! partitioning (its reverse is an assembly plan), with pictures and animated exports.
 //! Exit code 0 when every part comes apart (an assembly of one part: nothing to
 //! separate, no step), 2 when a subassembly is interlocked (the partial plan is printed
-//! and names it), 1 on error.
+//! and names it), 3 when `--timeout` stopped the run (the steps found until then are
+//! printed, and the subassemblies not yet split), 1 on error.
 
 use crate::commands::load::{load_valid, part_index};
 use crate::commands::partition::Projection;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
+use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
 use apart::draw::{
@@ -15,7 +17,8 @@ use apart::draw::{
 };
 use apart::plan::sequence::{Choice, Keys};
 use apart::plan::{
-    parts_of, sequence, BlockingRegions, CellKind, Sequence, SequenceOptions, Step, Tolerance,
+    parts_of, sequence_with, BlockingRegions, CellKind, PlanError, Sequence, SequenceOptions, Step,
+    Tolerance,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -142,6 +145,12 @@ struct ChoiceJson {
 
 #[derive(Serialize)]
 struct SequenceJson {
+    /// "done", or "timeout": --timeout stopped the run; `steps` are the steps found
+    /// until then and `not_yet_split` the subassemblies still to split.
+    status: &'static str,
+    /// Where --timeout stopped the run; absent when it ran to its end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stopped: Option<output::StoppedJson>,
     interlocked: bool,
     complete: bool,
     /// The assembly has one part: there is nothing to separate (complete, no step).
@@ -152,6 +161,9 @@ struct SequenceJson {
     stuck: Vec<Vec<String>>,
     /// Subassemblies left whole by --max-depth.
     unsplit: Vec<Vec<String>>,
+    /// Subassemblies not yet split when --timeout stopped the run (empty otherwise), in
+    /// the order they would have been split.
+    not_yet_split: Vec<Vec<String>>,
     seconds: SecondsJson,
     #[serde(flatten)]
     input: InputFacts,
@@ -177,8 +189,12 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     let t = Instant::now();
     let regions = {
-        let _phase = output::phase(global, "pair regions");
-        BlockingRegions::compute(&parts_of(asm)?)?
+        let (_phase, progress) = output::planner(global, "pair regions");
+        match BlockingRegions::compute_with(&parts_of(asm)?, &progress) {
+            Ok(r) => Some(r),
+            Err(PlanError::Stopped { .. }) => None,
+            Err(e) => return Err(e.into()),
+        }
     };
     let regions_s = t.elapsed().as_secs_f64();
     let opts = SequenceOptions {
@@ -189,16 +205,26 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         max_depth: args.max_depth,
         tolerance: args.growth,
     };
-    // The first step's motion space, of every part, is the largest.
-    let all: Vec<usize> = (0..regions.names().len()).collect();
-    crate::limits::check_motion_space(&regions, &all, global)?;
-    let plan = {
-        let _phase = output::phase(global, "sequence steps");
-        sequence(&regions, &opts)
+    let plan = match &regions {
+        // Stopped while the pair regions were computed: no step yet.
+        None => Sequence::stopped_before_steps(asm.parts.iter().map(|p| p.name.clone()).collect()),
+        Some(regions) => {
+            // The first step's motion space, of every part, is the largest.
+            let all: Vec<usize> = (0..regions.names().len()).collect();
+            crate::limits::check_motion_space(regions, &all, global)?;
+            let (_phase, progress) = output::planner(global, "sequence steps");
+            sequence_with(regions, &opts, &progress)
+        }
     };
-    {
+    let files = args.svg.is_some()
+        || args.png.is_some()
+        || args.glb.is_some()
+        || args.html.is_some()
+        || args.renders.is_some();
+    let stop = output::partial(global, plan.stopped, files);
+    if let Some(regions) = regions.as_ref().filter(|_| stop.is_none()) {
         let _phase = output::phase(global, "pictures and exports");
-        pictures(args, asm, &regions, &plan)?;
+        pictures(args, asm, regions, &plan)?;
     }
     let step_unit = asm.grid.step();
     let motions: Vec<Motion> = plan
@@ -219,14 +245,19 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     if global.json {
         let input = InputFacts::of(&loaded, global);
         let times = (load, regions_s);
-        output::json(&to_json(&plan, args, step_unit, times, input, &holds))?;
+        output::json(&to_json(
+            &plan, args, step_unit, times, input, &holds, &stop,
+        ))?;
     } else {
-        print_text(&plan, args, asm, global, step_unit, load, regions_s, &holds);
+        let times = (load, regions_s);
+        print_text(&plan, args, asm, global, step_unit, times, &holds, &stop);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
     }
-    Ok(if plan.stuck.is_empty() {
+    Ok(if stop.is_some() {
+        ExitCode::from(limits::EXIT_PARTIAL)
+    } else if plan.stuck.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
@@ -331,9 +362,13 @@ fn to_json(
     (load, regions): (f64, f64),
     input: InputFacts,
     holds: &Option<Vec<bool>>,
+    stop: &Option<TimedOut>,
 ) -> SequenceJson {
     SequenceJson {
         input,
+        status: output::status(stop),
+        stopped: output::stopped_json(stop),
+        not_yet_split: plan.pending.iter().map(|s| names(plan, s)).collect(),
         interlocked: !plan.stuck.is_empty(),
         complete: plan.complete(),
         nothing_to_separate: plan.names.len() < 2,
@@ -452,11 +487,13 @@ fn print_text(
     asm: &apart::assembly::Assembly,
     global: &Global,
     step_unit: f64,
-    load: f64,
-    regions: f64,
+    (load, regions): (f64, f64),
     holds: &Option<Vec<bool>>,
+    stop: &Option<TimedOut>,
 ) {
-    let status = if plan.complete() {
+    let status = if let Some(t) = stop {
+        t.to_string()
+    } else if plan.complete() {
         "complete".to_string()
     } else if !plan.stuck.is_empty() {
         "incomplete: interlocked subassembly".to_string()
@@ -511,9 +548,19 @@ fn print_text(
             names(plan, s).join(", ")
         ));
     }
+    for s in &plan.pending {
+        output::line(format_args!(
+            "not yet split (stopped by --timeout): {{{}}}",
+            names(plan, s).join(", ")
+        ));
+    }
     if !plan.steps.is_empty() {
         output::line("");
-        output::line("assembly sequence (the reverse):");
+        output::line(if stop.is_some() {
+            "assembly sequence (the reverse; what is not yet split taken whole):"
+        } else {
+            "assembly sequence (the reverse):"
+        });
         for (k, s) in plan.steps.iter().rev().enumerate() {
             let rest: Vec<usize> = s
                 .subassembly

@@ -2,16 +2,18 @@
 //! al. 2002, [`STACKING_PAPER`](crate::commands::place::STACKING_PAPER)): each
 //! part placed by the exact placement engine with the cost of eq. (1), accepted only if
 //! stable, grippable from above and lowerable along −z. Exit code 0 when every part was
-//! placed, 2 when the stack is incomplete.
+//! placed, 2 when the stack is incomplete, 3 when `--timeout` stopped the run (the parts
+//! placed until then are printed).
 
 use crate::commands::load::load_valid;
 use crate::commands::place::{
     exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, qunits,
     stats_json, write_pictures, PictureArgs, StatsJson,
 };
+use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
-use apart::stack::planner::{stack, StackOptions, StackPlan};
+use apart::stack::planner::{stack_with, StackOptions, StackPlan};
 use apart::stack::stability::ContactWith;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -95,6 +97,12 @@ struct PlacementJson {
 
 #[derive(Serialize)]
 struct StackJson {
+    /// "done", or "timeout": --timeout stopped the run and `placements` are the parts
+    /// placed until then.
+    status: &'static str,
+    /// Where --timeout stopped the run; absent when it ran to its end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stopped: Option<output::StoppedJson>,
     part: String,
     count: usize,
     complete: bool,
@@ -159,30 +167,44 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     opts.max_candidates = args.max_candidates;
     opts.extrapolate = !args.no_extrapolation;
     let plan = {
-        let _phase = output::phase(global, "stacking");
-        stack(&part, &opts)?
+        let (_phase, progress) = output::planner(global, "stacking");
+        stack_with(&part, &opts, &progress)?
     };
-    write_pictures(&args.pictures, |view, w, hgt, svg| {
-        if svg {
-            apart::stack::render::plan_svg(&plan, h, view, w, hgt).into_bytes()
-        } else {
-            apart::stack::render::plan_png(&plan, h, view, w, hgt)
-        }
-    })?;
-    if global.json {
-        output::json(&to_json(&plan, &part.name, args.count, h))?;
-    } else {
-        print_text(&plan, &part.name, args.count, h);
+    let files = args.pictures.png.is_some() || args.pictures.svg.is_some();
+    let stop = output::partial(global, plan.stopped, files);
+    if stop.is_none() {
+        write_pictures(&args.pictures, |view, w, hgt, svg| {
+            if svg {
+                apart::stack::render::plan_svg(&plan, h, view, w, hgt).into_bytes()
+            } else {
+                apart::stack::render::plan_png(&plan, h, view, w, hgt)
+            }
+        })?;
     }
-    Ok(if plan.complete {
+    if global.json {
+        output::json(&to_json(&plan, &part.name, args.count, h, &stop))?;
+    } else {
+        print_text(&plan, &part.name, args.count, h, &stop);
+    }
+    Ok(if stop.is_some() {
+        ExitCode::from(limits::EXIT_PARTIAL)
+    } else if plan.complete {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
     })
 }
 
-fn to_json(plan: &StackPlan, name: &str, count: usize, h: f64) -> StackJson {
+fn to_json(
+    plan: &StackPlan,
+    name: &str,
+    count: usize,
+    h: f64,
+    stop: &Option<TimedOut>,
+) -> StackJson {
     StackJson {
+        status: output::status(stop),
+        stopped: output::stopped_json(stop),
         part: name.to_string(),
         count,
         complete: plan.complete,
@@ -220,7 +242,10 @@ fn to_json(plan: &StackPlan, name: &str, count: usize, h: f64) -> StackJson {
     }
 }
 
-fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64) {
+fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<TimedOut>) {
+    if let Some(t) = stop {
+        output::line(t);
+    }
     output::line(format!(
         "{name}: {} of {count} {} stacked, stack height {}",
         plan.placements.len(),
@@ -257,7 +282,7 @@ fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64) {
             rests.join(", ")
         ));
     }
-    if !plan.complete {
+    if !plan.complete && stop.is_none() {
         output::line(format!(
             "incomplete: part {} fits nowhere in the region (raise --max-height or widen --floor)",
             plan.placements.len() + 1
