@@ -18,7 +18,8 @@
 //! by a factor `(1 - γ_n)`; the bounds below include that slack.
 //!
 //! Bit bounds are given for inputs of `b` bits (`|x| < 2^b`); with grid coordinates of
-//! `B` bits see `ALGORITHMS.md` §2 for the bits of the derived quantities.
+//! `B` bits see the module docs of [`crate::spherical`] for the bits of the derived
+//! quantities.
 
 use crate::int::{self, Int};
 use crate::vec3::{Components, Vec3};

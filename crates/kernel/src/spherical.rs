@@ -7,9 +7,9 @@
 //! runs counter-clockwise around `n` and is shorter than a half circle, so
 //! `det(n, s, e) > 0`.
 //!
-//! Bit bounds below are for grid coordinates of `B` bits (`ALGORITHMS.md` §2): Minkowski
-//! vertices have `B + 1` bits, arc normals (cross of two vertices) `2B + 3`, intersections
-//! of two great circles (cross of two normals) `4B + 7`.
+//! Bit bounds below are for grid coordinates of `B` bits: Minkowski vertices have `B + 1`
+//! bits, arc normals (cross of two vertices) `2B + 3`, intersections of two great circles
+//! (cross of two normals) `4B + 7`.
 
 use crate::predicates::{det3_sign, dot_sign, parallel};
 use crate::{Sign, Vec3};

@@ -1,6 +1,6 @@
 //! The blocked polygon of two convex pieces against the brute-force definition.
 //!
-//! Oracle (ALGORITHMS.md §6): the open ray `{k d : k > 0}` meets the interior of
+//! Oracle (ARCHITECTURE.md, invariants): the open ray `{k d : k > 0}` meets the interior of
 //! `M = b ⊕ (−a)` iff some `k > 0` satisfies every facet inequality of `M` strictly, with
 //! `M` taken as the convex hull of all vertex differences (computed by the independent
 //! all-triples hull, not by the Minkowski code). Directions are small integer vectors,

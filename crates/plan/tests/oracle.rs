@@ -1,4 +1,4 @@
-//! Property tests of partitioning against the brute-force oracle (ALGORITHMS.md §6).
+//! Property tests of partitioning against the brute-force oracle (ARCHITECTURE.md, invariants).
 //!
 //! Oracle: part `i` moving along `d` hits part `j` iff for some piece pair the open ray
 //! `{k d : k > 0}` meets the interior of `M = b ⊕ (−a)`, i.e. some `k > 0` satisfies every

@@ -15,7 +15,8 @@
 //! lie on the other's boundary, crossing the other's interior away from its centroid,
 //! while the other solid likewise keeps its vertices and edges on the first one's
 //! boundary (e.g. a face cutting through a pocket exactly between boundary edges). The
-//! piece-based test has no such gap; automatic convex decomposition will close it.
+//! piece-based test has no such gap; it is used instead whenever both parts have convex
+//! pieces, declared or from the loader's automatic decomposition ([`crate::Decompose`]).
 
 use crate::witness::{below_both, into_both, to_qpoint};
 use apart_kernel::{Int, Rational, Sign};

@@ -1,4 +1,4 @@
-//! The brute-force oracle (ALGORITHMS.md §6): piece `a` of part `i` moving along `d`
+//! The brute-force oracle (ARCHITECTURE.md, invariants): piece `a` of part `i` moving along `d`
 //! hits piece `b` of part `j` iff for some `t > 0` the translate `a + t d` meets `b` in
 //! an interior point, i.e. the open ray `{t d : t > 0}` meets the interior of
 //! `b ⊕ (−a)`. Decided from the facet inequalities of the two pieces alone, without any
