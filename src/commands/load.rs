@@ -92,10 +92,11 @@ pub fn load_valid(path: &Path, global: &Global) -> anyhow::Result<Loaded> {
 pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyhow::Result<Loaded> {
     let loaded = load_with(path, global, Decompose::Always)?;
     let excused = |p: &apart::mesh::Problem| {
-        free.is_some_and(|n| {
-            let with = format!("overlaps part \"{n}\"");
-            p.message.starts_with(&with)
-                || (p.part.as_deref() == Some(n) && p.message.starts_with("overlaps part \""))
+        free.is_some_and(|n| match &p.kind {
+            apart::mesh::ProblemKind::Overlap { other } => {
+                other.as_str() == n || p.part.as_deref() == Some(n)
+            }
+            _ => false,
         })
     };
     let errors: Vec<_> = loaded

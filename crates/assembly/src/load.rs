@@ -15,7 +15,7 @@ use apart_mesh::escape::escape;
 use apart_mesh::formats::{read_file_with, ReadOptions};
 use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::{validate, MeshInfo};
-use apart_mesh::{Aabb, Mesh, Problem, RawObject};
+use apart_mesh::{Aabb, Mesh, Problem, ProblemKind, RawObject};
 use apart_pieces::Polytope;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -269,7 +269,10 @@ fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
             let mesh = p.mesh.as_ref().expect("filtered");
             let points = mesh.points();
             let r = apart_decompose::decompose(&points, &mesh.triangles, &Default::default())
-                .map_err(|e| Problem::error(format!("exact convex decomposition failed: {e}")))
+                .map_err(|e| {
+                    Problem::error(format!("exact convex decomposition failed: {e}"))
+                        .with_kind(ProblemKind::Decomposition)
+                })
                 .and_then(|d| {
                     if opts.verify {
                         apart_decompose::verify(&points, &mesh.triangles, &d.pieces).map_err(
@@ -277,6 +280,7 @@ fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
                                 Problem::error(format!(
                                     "the convex decomposition did not verify: {e}"
                                 ))
+                                .with_kind(ProblemKind::Decomposition)
                             },
                         )?;
                     }
@@ -314,15 +318,16 @@ fn resolve(
     objects: Result<&mut Vec<RawObject>, &String>,
     last: bool,
 ) -> Result<RawObject, Problem> {
-    let objects = objects.map_err(|e| Problem::error(e.clone()))?;
+    let objects =
+        objects.map_err(|e| Problem::error(e.clone()).with_kind(ProblemKind::Unreadable))?;
     let take = |o: &mut RawObject| if last { std::mem::take(o) } else { o.clone() };
     let mut o = match s.object {
-        Some(k) => take(
-            objects
-                .get_mut(k)
-                .ok_or_else(|| Problem::error(format!("the file has no object {k}")))?,
-        ),
-        None if objects.is_empty() => return Err(Problem::error("the file holds no mesh")),
+        Some(k) => take(objects.get_mut(k).ok_or_else(|| {
+            Problem::error(format!("the file has no object {k}")).with_kind(ProblemKind::Unreadable)
+        })?),
+        None if objects.is_empty() => {
+            return Err(Problem::error("the file holds no mesh").with_kind(ProblemKind::Unreadable))
+        }
         None if objects.len() == 1 => take(&mut objects[0]),
         None => RawObject::merged(objects, None),
     };
@@ -420,6 +425,7 @@ fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
         if !report.is_empty() {
             problems.push(
                 Problem::warning(format!("repaired: {report}"))
+                    .with_kind(ProblemKind::Repaired)
                     .in_file(&src.path)
                     .in_part(&spec.name),
             );
@@ -571,8 +577,7 @@ fn unique_name(names: &mut Names, part: &mut Part, problems: &mut Vec<Problem>) 
 
 /// True for validation's reports of faces that cross.
 fn is_crossing(p: &Problem) -> bool {
-    p.message.starts_with("self-intersection")
-        || p.message.ends_with("more intersecting face pairs")
+    p.kind == ProblemKind::SelfIntersection
 }
 
 /// The convex pieces of the solid a closed surface with crossing faces encloses (its
@@ -629,7 +634,7 @@ fn build_part(
             if let Some((pieces, note)) = union_of_crossing(&mesh, &info) {
                 // The crossings are resolved: the part is the solid they enclose.
                 probs.retain(|p| !(p.is_error() && is_crossing(p)));
-                probs.push(Problem::warning(note));
+                probs.push(Problem::warning(note).with_kind(ProblemKind::Repaired));
                 part.volume = pieces
                     .iter()
                     .fold(Rational::zero(), |s, p| &s + &p.volume());
@@ -703,7 +708,8 @@ fn build_part(
                         crate::fmt_volume(&sum, grid),
                         crate::fmt_volume(&part.volume, grid)
                     ))
-                    .in_part(name),
+                    .in_part(name)
+                    .with_kind(ProblemKind::Piece),
                 );
             }
             if r.mesh.is_none() {
@@ -760,7 +766,7 @@ fn has_area(raw: &RawObject) -> bool {
 fn explain_collapse(problems: &mut [Problem], raw: &RawObject, part: &str, ctx: &Ctx) {
     let Some(p) = problems
         .iter_mut()
-        .find(|p| p.is_error() && p.element.is_none() && p.message.starts_with("empty mesh"))
+        .find(|p| p.is_error() && p.element.is_none() && p.kind == ProblemKind::EmptyMesh)
     else {
         return;
     };

@@ -6,7 +6,7 @@ use crate::load::polytope_bbox;
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_kernel::Grid;
 use apart_mesh::validate::check_solid;
-use apart_mesh::{fmt_point, Problem, RawObject};
+use apart_mesh::{fmt_point, Problem, ProblemKind, RawObject};
 use apart_pieces::interference::interior_witness;
 use apart_pieces::{Polytope, PolytopeError};
 use std::path::PathBuf;
@@ -22,15 +22,18 @@ pub(crate) fn convex_piece(raw: &RawObject, grid: &Grid) -> Result<Polytope, Vec
     }
     if mesh.triangles.len() > QUADRATIC_LIMIT && !info.convex {
         let mut out = problems;
-        out.push(Problem::error(format!(
-            "declared piece is not convex: it has {} reflex edges{}",
-            info.reflex_edges,
-            if info.shells > 1 {
-                " and several shells"
-            } else {
-                ""
-            }
-        )));
+        out.push(
+            Problem::error(format!(
+                "declared piece is not convex: it has {} reflex edges{}",
+                info.reflex_edges,
+                if info.shells > 1 {
+                    " and several shells"
+                } else {
+                    ""
+                }
+            ))
+            .with_kind(ProblemKind::Piece),
+        );
         return Err(out);
     }
     match convex_polytope(&mesh) {
@@ -53,7 +56,8 @@ pub(crate) fn convex_piece(raw: &RawObject, grid: &Grid) -> Result<Polytope, Vec
                 ),
                 other => (None, other.to_string()),
             };
-            let mut p = Problem::error(format!("declared piece is not convex: {why}"));
+            let mut p = Problem::error(format!("declared piece is not convex: {why}"))
+                .with_kind(ProblemKind::Piece);
             p.element = element;
             let mut out = problems;
             out.push(p);
@@ -87,7 +91,8 @@ pub(crate) fn overlapping_pieces(
                         "pieces {} and {}",
                         sources[i].display(),
                         sources[j].display()
-                    )),
+                    ))
+                    .with_kind(ProblemKind::Piece),
                 );
             }
         }

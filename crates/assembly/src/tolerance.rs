@@ -19,7 +19,7 @@ use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::fmt_witness;
 use apart_kernel::{Grid, Int, Rational};
-use apart_mesh::{Aabb, Problem};
+use apart_mesh::{Aabb, Problem, ProblemKind};
 use apart_pieces::interference::overlap_with_depth;
 use apart_pieces::shrink::max_face_shift;
 use apart_pieces::Polytope;
@@ -208,18 +208,20 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
         Tolerance::None => unreachable!("apply is called with a tolerance"),
         Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => {
             asm.tolerance = None;
-            problems.push(Problem::error(format!(
-                "tolerance {e} is not a finite positive length"
-            )));
+            problems.push(
+                Problem::error(format!("tolerance {e} is not a finite positive length"))
+                    .with_kind(ProblemKind::Tolerance),
+            );
             return problems;
         }
         Tolerance::Fixed(e) => (e, false),
         Tolerance::Auto => {
             if before.is_empty() {
                 asm.tolerance = None;
-                problems.push(Problem::note(
-                    "tolerance auto: no part overlaps another, so none is needed",
-                ));
+                problems.push(
+                    Problem::note("tolerance auto: no part overlaps another, so none is needed")
+                        .with_kind(ProblemKind::Tolerance),
+                );
                 return problems;
             }
             (round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true)
@@ -229,7 +231,8 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
     if auto && eps > limit {
         problems.push(Problem::error(format!(
             "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
-        )));
+        ))
+        .with_kind(ProblemKind::Tolerance));
         eps = round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE);
     }
     for p in &mut asm.parts {
@@ -263,7 +266,10 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
                 "overlaps part \"{}\" by a depth of {depth:.3e}, deeper than the tolerance accepts (parts made {eps:.3e} smaller){witness}",
                 b.name
             ))
-            .in_part(a.name.clone()),
+            .in_part(a.name.clone())
+            .with_kind(ProblemKind::Overlap {
+                other: Box::new(b.name.clone()),
+            }),
         );
     }
     let accepted = before.len().saturating_sub(after.len());
@@ -271,13 +277,17 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
         problems.push(Problem::note(format!(
             "{accepted} overlapping pair{} of parts (deepest {deepest:.3e}) count as contact for parts made {eps:.3e} smaller",
             if accepted == 1 { "" } else { "s" }
-        )));
+        ))
+        .with_kind(ProblemKind::Tolerance));
     }
     if vanished > 0 {
-        problems.push(Problem::note(format!(
-            "{vanished} convex piece{} thinner than twice the tolerance vanished",
-            if vanished == 1 { "" } else { "s" }
-        )));
+        problems.push(
+            Problem::note(format!(
+                "{vanished} convex piece{} thinner than twice the tolerance vanished",
+                if vanished == 1 { "" } else { "s" }
+            ))
+            .with_kind(ProblemKind::Tolerance),
+        );
     }
     for p in &asm.parts {
         if p.pieces.is_empty() && !p.unshrunk_pieces.is_empty() {
@@ -285,7 +295,8 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
                 Problem::error(format!(
                     "nothing is left of the part once made {eps:.3e} smaller: it is thinner than twice the tolerance"
                 ))
-                .in_part(p.name.clone()),
+                .in_part(p.name.clone())
+                .with_kind(ProblemKind::Tolerance),
             );
         }
     }

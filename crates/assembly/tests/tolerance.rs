@@ -117,3 +117,35 @@ fn overlaps_beyond_the_auto_limit_stay_errors() {
         .any(|p| p.is_error() && p.message.contains("beyond the limit")));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An overlap between parts carries its kind naming the other part (the CLI excuses a
+/// part's overlaps by it), with or without a tolerance too small to accept it.
+#[test]
+fn overlaps_carry_their_kind_and_the_other_part() {
+    use apart_assembly::Problem;
+    use apart_mesh::ProblemKind;
+    let n = 64;
+    let phase = PI / n as f64;
+    let depth = pin_in_hole_depth(n, n, phase, PIN_RADIUS);
+    let dir = write(n, n, phase, "kind");
+    let overlap = |p: &Problem| match &p.kind {
+        ProblemKind::Overlap { other } => {
+            assert!(
+                p.message.starts_with(&format!("overlaps part \"{other}\"")),
+                "{p:?}"
+            );
+            true
+        }
+        _ => false,
+    };
+    for opts in [LoadOptions::default(), with(Tolerance::Fixed(depth / 4.0))] {
+        let l = load(&dir, &opts).unwrap();
+        let by_text = l
+            .problems
+            .iter()
+            .filter(|p| p.message.starts_with("overlaps part \""))
+            .count();
+        assert!(by_text > 0, "{:?}", l.problems);
+        assert_eq!(l.problems.iter().filter(|p| overlap(p)).count(), by_text);
+    }
+}

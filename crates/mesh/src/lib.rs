@@ -44,5 +44,5 @@ mod weld;
 
 pub use aabb::Aabb;
 pub use mesh::{fmt_point, Mesh};
-pub use problem::{Problem, Severity};
+pub use problem::{Problem, ProblemKind, Severity};
 pub use raw::{Polygons, RawObject};

@@ -1,7 +1,7 @@
 //! The snapped triangle mesh of one object, built from a [`RawObject`].
 
 use crate::aabb::Aabb;
-use crate::problem::{Capped, Problem};
+use crate::problem::{Capped, Problem, ProblemKind};
 use crate::raw::RawObject;
 use crate::triangulate::{triangulate, Outcome};
 use crate::weld::{snap_all, weld};
@@ -43,7 +43,7 @@ impl Mesh {
         let mut problems = Vec::new();
         let n = raw.vertices.len();
         if n > u32::MAX as usize {
-            problems.push(Problem::error("more than 2^32 vertices"));
+            problems.push(Problem::error("more than 2^32 vertices").with_kind(ProblemKind::Vertex));
             return (None, problems);
         }
         // Snap; coordinates must be finite and inside the grid.
@@ -59,6 +59,7 @@ impl Mesh {
                 };
                 Problem::error(format!("({}, {}, {}) {what}", v[0], v[1], v[2]))
                     .at(format!("vertex {i}"))
+                    .with_kind(ProblemKind::Vertex)
             });
         }
         capped.finish("vertices with bad coordinates", &mut problems);
@@ -68,9 +69,10 @@ impl Mesh {
             } else {
                 format!("are only {n} vertices")
             };
-            problems.push(Problem::error(format!(
-                "a face refers to vertex {i}, but there {only}"
-            )));
+            problems.push(
+                Problem::error(format!("a face refers to vertex {i}, but there {only}"))
+                    .with_kind(ProblemKind::Vertex),
+            );
         }
         if !problems.is_empty() {
             return (None, problems);
@@ -113,15 +115,17 @@ impl Mesh {
                 let at = format!("face {f}");
                 match o {
                     Outcome::ZeroArea => {
-                        zero.push(|| Problem::warning("zero area after snapping; dropped").at(at))
+                        zero.push(|| Problem::warning("zero area after snapping; dropped").at(at).with_kind(ProblemKind::Face))
                     }
                     Outcome::NonPlanar => nonplanar.push(|| {
                         Problem::warning("not planar after snapping; split into triangles")
                             .at(at)
+                            .with_kind(ProblemKind::Face)
                     }),
                     Outcome::NotSimple => nonsimple.push(|| {
                         Problem::warning("not a simple polygon; split into triangles (a fan, or a strip above 32 vertices), which may overlap")
                             .at(at)
+                            .with_kind(ProblemKind::Face)
                     }),
                     Outcome::Ok => {}
                 }

@@ -26,6 +26,54 @@ impl fmt::Display for Severity {
     }
 }
 
+/// What kind of problem it is, for code that acts on problems (the message is for
+/// people). Not part of the JSON output, which carries the message.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ProblemKind {
+    /// None of the kinds below.
+    #[default]
+    Other,
+    /// The file was not read: missing, not a regular file, outside the assembly folder,
+    /// not parsed, or without the object asked for.
+    Unreadable,
+    /// Vertices that cannot be used: not finite, off the grid, or too many.
+    Vertex,
+    /// A face dropped or split into triangles on snapping.
+    Face,
+    /// No face with a non-zero area is left.
+    EmptyMesh,
+    /// An edge that belongs to one face only.
+    OpenBoundary,
+    /// Two faces along one edge in the same direction.
+    InconsistentOrientation,
+    /// An edge shared by faces that do not alternate in direction.
+    NonManifold,
+    /// The solid touches itself along an edge or at a vertex (valid).
+    SelfTouching,
+    /// The solid or one of its shells has zero volume.
+    ZeroVolume,
+    /// The solid was inside out and flipped.
+    InsideOut,
+    /// Faces of the solid that cross or overlap.
+    SelfIntersection,
+    /// A shell nested, inside out or in the wrong region.
+    Shell,
+    /// A repair made on load.
+    Repaired,
+    /// A declared convex piece that is not usable or does not match its part.
+    Piece,
+    /// The exact convex decomposition of a part failed or did not verify.
+    Decomposition,
+    /// The part overlaps the part named `other`.
+    Overlap {
+        /// The name of the other part (behind one thin pointer, which keeps [`Problem`]
+        /// small enough to be returned as an error).
+        other: Box<String>,
+    },
+    /// What a stated tolerance did, or could not do.
+    Tolerance,
+}
+
 /// One problem, with as much context as is known: the file, the part and the element.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Problem {
@@ -39,6 +87,9 @@ pub struct Problem {
     pub element: Option<String>,
     /// What is wrong, in words.
     pub message: String,
+    /// What kind of problem it is ([`ProblemKind::Other`] unless set).
+    #[serde(skip)]
+    pub kind: ProblemKind,
 }
 
 impl Problem {
@@ -50,7 +101,14 @@ impl Problem {
             part: None,
             element: None,
             message: message.into(),
+            kind: ProblemKind::Other,
         }
+    }
+
+    /// The same problem, of kind `kind`.
+    pub fn with_kind(mut self, kind: ProblemKind) -> Problem {
+        self.kind = kind;
+        self
     }
 
     /// An error.
@@ -154,12 +212,16 @@ impl Capped {
     /// The kept problems, followed by one summary problem when some were left out.
     pub(crate) fn finish(self, what: &str, out: &mut Vec<Problem>) {
         let severity = self.kept.first().map(|p| p.severity);
+        let kind = self.kept.first().map(|p| p.kind.clone());
         out.extend(self.kept);
         if self.extra > 0 {
-            out.push(Problem::new(
-                severity.unwrap_or(Severity::Error),
-                format!("... and {} more {what}", self.extra),
-            ));
+            out.push(
+                Problem::new(
+                    severity.unwrap_or(Severity::Error),
+                    format!("... and {} more {what}", self.extra),
+                )
+                .with_kind(kind.unwrap_or_default()),
+            );
         }
     }
 }

@@ -351,3 +351,48 @@ fn volume_in_input_units() {
     let (_, info, _) = check_solid(&raw, &grid);
     assert_eq!(info.unwrap().volume_units(&grid).unwrap(), rat(3, 8));
 }
+
+/// Validation's problems carry their kind, which callers match on instead of the text.
+#[test]
+fn problems_carry_their_kind() {
+    use apart_mesh::ProblemKind;
+    let mut open = boxes(&[([0.0; 3], [0.5, 0.5, 0.5], true)]);
+    let faces: Vec<Vec<u32>> = open.faces.iter().skip(1).map(|f| f.to_vec()).collect();
+    open.faces = Polygons::from(faces);
+    let (_, p) = check(&open);
+    let e = errors(&p);
+    assert!(!e.is_empty());
+    assert!(
+        e.iter().all(|p| p.kind == ProblemKind::OpenBoundary),
+        "{e:?}"
+    );
+
+    let (_, p) = check(&boxes(&[
+        ([0.0; 3], [2.0; 3], true),
+        ([1.0; 3], [3.0; 3], true),
+    ]));
+    let crossing: Vec<_> = p
+        .iter()
+        .filter(|p| p.message.starts_with("self-intersection"))
+        .collect();
+    assert!(!crossing.is_empty());
+    assert!(crossing
+        .iter()
+        .all(|p| p.kind == ProblemKind::SelfIntersection));
+
+    let flat = RawObject {
+        name: None,
+        vertices: vec![[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]],
+        faces: Polygons::from(vec![vec![0, 1, 2]]),
+    };
+    let (_, p) = check(&flat);
+    let empty = errors(&p)
+        .into_iter()
+        .find(|p| p.message.starts_with("empty mesh"))
+        .expect("an empty-mesh error");
+    assert_eq!(empty.kind, ProblemKind::EmptyMesh);
+    assert!(p
+        .iter()
+        .filter(|p| p.message.starts_with("zero area"))
+        .all(|p| p.kind == ProblemKind::Face));
+}

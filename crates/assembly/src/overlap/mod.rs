@@ -16,7 +16,7 @@ use crate::witness::{fmt_witness, simplest, to_qpoint, verified_in_polytopes};
 use apart_kernel::Grid;
 use apart_kernel::Rational;
 use apart_mesh::locate::Locator;
-use apart_mesh::{Mesh, Problem};
+use apart_mesh::{Mesh, Problem, ProblemKind};
 use apart_pieces::interference::interior_witness;
 use apart_pieces::Polytope;
 use rayon::prelude::*;
@@ -150,6 +150,9 @@ pub(crate) fn check_parts(asm: &Assembly, opts: &LoadOptions) -> Vec<Problem> {
                     fmt_witness(&w, &asm.grid)
                 ))
                 .in_part(a.name.clone())
+                .with_kind(ProblemKind::Overlap {
+                    other: Box::new(b.name.clone()),
+                })
             })
         })
         .collect::<Vec<_>>()

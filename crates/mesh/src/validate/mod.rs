@@ -32,7 +32,7 @@ use crate::bvh::Bvh;
 use crate::intersect::Contact;
 use crate::locate::Locator;
 use crate::mesh::{fmt_point, Mesh, LIST};
-use crate::problem::{Capped, Problem};
+use crate::problem::{Capped, Problem, ProblemKind};
 use apart_kernel::{Grid, Int, Rational, Sign};
 use rayon::prelude::*;
 
@@ -133,7 +133,10 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
         bbox: mesh.bbox(),
     };
     if mesh.triangles.is_empty() {
-        problems.push(Problem::error("empty mesh: no face with a non-zero area"));
+        problems.push(
+            Problem::error("empty mesh: no face with a non-zero area")
+                .with_kind(ProblemKind::EmptyMesh),
+        );
         return (info, problems);
     }
 
@@ -154,6 +157,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
         c.push(|| {
             Problem::error("open boundary: the edge belongs to one face only")
                 .at(edge_at(mesh, grid, a, b))
+                .with_kind(ProblemKind::OpenBoundary)
         });
     }
     c.finish("boundary edges", &mut problems);
@@ -165,6 +169,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                 edge_at(mesh, grid, a, b)
             ))
             .at(faces_at(mesh, t, u))
+            .with_kind(ProblemKind::InconsistentOrientation)
         });
     }
     c.finish("inconsistently oriented face pairs", &mut problems);
@@ -175,6 +180,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                 "non-manifold edge: shared by {n} faces that do not alternate in direction"
             ))
             .at(edge_at(mesh, grid, a, b))
+            .with_kind(ProblemKind::NonManifold)
         });
     }
     c.finish("non-manifold edges", &mut problems);
@@ -185,6 +191,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                 "the solid touches itself along this edge ({n} faces, alternating): valid"
             ))
             .at(edge_at(mesh, grid, a, b))
+            .with_kind(ProblemKind::SelfTouching)
         });
     }
     c.finish("edges where the solid touches itself", &mut problems);
@@ -193,11 +200,13 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
     let mut c = Capped::new(LIST);
     for &v in &touching_vertices {
         c.push(|| {
-            Problem::note("the solid touches itself at this vertex: valid").at(format!(
-                "vertex {} at {}",
-                mesh.source_vertices[v as usize],
-                fmt_point(grid, &mesh.vertices[v as usize])
-            ))
+            Problem::note("the solid touches itself at this vertex: valid")
+                .at(format!(
+                    "vertex {} at {}",
+                    mesh.source_vertices[v as usize],
+                    fmt_point(grid, &mesh.vertices[v as usize])
+                ))
+                .with_kind(ProblemKind::SelfTouching)
         });
     }
     c.finish("vertices where the solid touches itself", &mut problems);
@@ -210,16 +219,19 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
     if info.closed {
         let mut v6 = mesh.volume6();
         if v6 == Int::ZERO {
-            problems.push(Problem::error("the solid has zero volume"));
+            problems.push(
+                Problem::error("the solid has zero volume").with_kind(ProblemKind::ZeroVolume),
+            );
         } else {
             if v6 < Int::ZERO {
                 mesh.flip();
                 v6 = -v6;
                 info.flipped = true;
                 info.reflex_edges = convex_edges;
-                problems.push(Problem::warning(
-                    "inside out (negative volume): every face was flipped",
-                ));
+                problems.push(
+                    Problem::warning("inside out (negative volume): every face was flipped")
+                        .with_kind(ProblemKind::InsideOut),
+                );
             }
             info.volume6 = Some(v6);
         }
@@ -239,13 +251,20 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             Contact::Intersect => "self-intersection: the faces meet beyond their shared vertices",
             Contact::Overlap => "self-intersection: the faces overlap (coplanar)",
         };
-        problems.push(Problem::error(what).at(faces_at(mesh, t, u)));
+        problems.push(
+            Problem::error(what)
+                .at(faces_at(mesh, t, u))
+                .with_kind(ProblemKind::SelfIntersection),
+        );
     }
     if count > pairs.len() {
-        problems.push(Problem::error(format!(
-            "... and {} more intersecting face pairs",
-            count - pairs.len()
-        )));
+        problems.push(
+            Problem::error(format!(
+                "... and {} more intersecting face pairs",
+                count - pairs.len()
+            ))
+            .with_kind(ProblemKind::SelfIntersection),
+        );
     }
 
     // Nesting of shells.
@@ -266,7 +285,11 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             );
             let sign = apart_kernel::int::sign_of(&volumes[s]);
             if sign == Sign::Zero {
-                c.push(|| Problem::error("this shell has zero volume").at(shell));
+                c.push(|| {
+                    Problem::error("this shell has zero volume")
+                        .at(shell)
+                        .with_kind(ProblemKind::ZeroVolume)
+                });
                 continue;
             }
             let expected = if sign == Sign::Positive { 0 } else { 1 };
@@ -280,7 +303,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                     } else {
                         format!("this cavity lies in a region of winding number {w}")
                     };
-                    Problem::error(why).at(shell)
+                    Problem::error(why).at(shell).with_kind(ProblemKind::Shell)
                 }),
                 None => {}
             }
