@@ -11,7 +11,7 @@ use apart_sphere::overlay::RegionArrangement;
 
 type V3 = [f64; 3];
 
-fn dot(a: &V3, b: &V3) -> f64 {
+pub(crate) fn dot(a: &V3, b: &V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -28,7 +28,7 @@ fn normalize(a: V3) -> V3 {
     [a[0] / n, a[1] / n, a[2] / n]
 }
 
-fn chord2(a: &V3, b: &V3) -> f64 {
+pub(crate) fn chord2(a: &V3, b: &V3) -> f64 {
     let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     dot(&d, &d)
 }

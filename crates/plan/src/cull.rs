@@ -18,7 +18,7 @@
 //! of at most 90° first, so the float filters and the exact arc test hold for arcs of
 //! any length.
 
-use crate::clearance::FArc;
+use crate::clearance::{chord2, dot, FArc};
 use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
 use apart_kernel::{Int, Sign, Vec3};
 use apart_minkowski::{project, Projection};
@@ -198,13 +198,8 @@ impl<'a> Cover<'a> {
                 .map(|cos_r| (cap.centre, 2.0 - 2.0 * cos_r + 1e-9))
         });
         let near = |q: &[f64; 3]| match &cap {
-            Some((c, reach2)) => {
-                let d = [q[0] - c[0], q[1] - c[1], q[2] - c[2]];
-                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= *reach2
-            }
-            None => !normals
-                .iter()
-                .any(|m| m[0] * q[0] + m[1] * q[1] + m[2] * q[2] < -1e-9),
+            Some((c, reach2)) => chord2(q, c) <= *reach2,
+            None => !normals.iter().any(|m| dot(m, q) < -1e-9),
         };
         if self
             .points
@@ -247,7 +242,6 @@ impl<'a> Cover<'a> {
 /// exactly.
 fn arc_meets_open(arc: &Arc, f: &FArc, normals: &[[f64; 3]], p: &SphericalPolygon) -> bool {
     const FILTER: f64 = 1e-9;
-    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let (s, e) = f.ends();
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut sure = true;

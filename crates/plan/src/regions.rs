@@ -6,6 +6,7 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
+use crate::clearance::dot;
 use crate::cull::{largest, uncovered_pairs, Cover, PieceTree};
 use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::progress::{phases, Progress};
@@ -718,18 +719,14 @@ struct Approx {
     gnomonic: Vec<f64>,
 }
 
-fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 impl Approx {
     fn new(p: &SphericalPolygon) -> Approx {
         let cap = cap_of(p);
         let corners: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
         let normals = p.normals().iter().map(|n| n.unit_f64()).collect();
         let gnomonic = match &cap {
-            Some(c) if corners.iter().all(|u| dot3(u, &c.centre) > 1e-6) => {
-                corners.iter().map(|u| 1.0 / dot3(u, &c.centre)).collect()
+            Some(c) if corners.iter().all(|u| dot(u, &c.centre) > 1e-6) => {
+                corners.iter().map(|u| 1.0 / dot(u, &c.centre)).collect()
             }
             _ => Vec::new(),
         };
@@ -754,9 +751,9 @@ impl Approx {
             return !q
                 .normals
                 .iter()
-                .any(|n| self.corners.iter().any(|c| dot3(n, c) < MARGIN));
+                .any(|n| self.corners.iter().any(|c| dot(n, c) < MARGIN));
         }
-        let g = |n: &[f64; 3], k: usize| dot3(n, &self.corners[k]) * self.gnomonic[k];
+        let g = |n: &[f64; 3], k: usize| dot(n, &self.corners[k]) * self.gnomonic[k];
         let mut i = 0;
         for n in &q.normals {
             let mut gi = g(n, i);
@@ -771,7 +768,7 @@ impl Approx {
                     }
                 }
             }
-            if dot3(n, &self.corners[i]) < MARGIN {
+            if dot(n, &self.corners[i]) < MARGIN {
                 return false;
             }
         }
