@@ -7,27 +7,8 @@
 mod common;
 
 use apart_plan::{partition_subset, BlockingRegions, CellKind, Options, PartPieces, Partitioning};
-use common::{cuboid, part};
+use common::lattice;
 use std::collections::HashMap;
-
-/// Unit cubes on an `n × n × n` lattice spaced `1 + gap` (gap 1: channels exactly one
-/// cube wide, so many sliding arcs and isolated directions).
-fn lattice(n: i64, gap: i64) -> Vec<PartPieces> {
-    let s = 1 + gap;
-    let mut parts = Vec::new();
-    for x in 0..n {
-        for y in 0..n {
-            for z in 0..n {
-                let o = [x * s, y * s, z * s];
-                parts.push(part(
-                    &format!("c{x}{y}{z}"),
-                    vec![cuboid(o, [o[0] + 1, o[1] + 1, o[2] + 1])],
-                ));
-            }
-        }
-    }
-    parts
-}
 
 fn kind(c: CellKind) -> usize {
     match c {

@@ -13,27 +13,9 @@ use apart_plan::{
     Solution,
 };
 use common::oracle::Oracle;
-use common::{check_plan, cuboid, part};
+use common::{check_plan, lattice};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-
-/// Unit cubes on an `n × n × n` lattice spaced `1 + gap` (0: a touching block).
-fn lattice(n: i64, gap: i64) -> Vec<PartPieces> {
-    let s = 1 + gap;
-    let mut parts = Vec::new();
-    for x in 0..n {
-        for y in 0..n {
-            for z in 0..n {
-                let o = [x * s, y * s, z * s];
-                parts.push(part(
-                    &format!("c{x}{y}{z}"),
-                    vec![cuboid(o, [o[0] + 1, o[1] + 1, o[2] + 1])],
-                ));
-            }
-        }
-    }
-    parts
-}
 
 type Log = Arc<Mutex<Vec<(&'static str, usize, usize)>>>;
 

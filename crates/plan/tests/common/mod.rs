@@ -8,6 +8,25 @@ use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use apart_plan::{PartPieces, Sequence};
 
+/// Unit cubes on an `n × n × n` lattice spaced `1 + gap` (0: a touching block; 1:
+/// channels exactly one cube wide, so many sliding arcs and isolated directions).
+pub fn lattice(n: i64, gap: i64) -> Vec<PartPieces> {
+    let s = 1 + gap;
+    let mut parts = Vec::new();
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                let o = [x * s, y * s, z * s];
+                parts.push(part(
+                    &format!("c{x}{y}{z}"),
+                    vec![cuboid(o, [o[0] + 1, o[1] + 1, o[2] + 1])],
+                ));
+            }
+        }
+    }
+    parts
+}
+
 /// A convex piece: the hull of integer points.
 pub fn hull(pts: &[[i64; 3]]) -> Polytope {
     let v: Vec<Vec3> = pts.iter().map(|&p| Vec3::from(p)).collect();
