@@ -8,8 +8,8 @@
 //! cycle, straight corners dropped, and handed to `Polytope::from_facets`.
 
 use apart_kernel::int::gcd_u128;
+use apart_kernel::orient::{collinear, normal};
 use apart_kernel::Vec3;
-use apart_mesh::exact::{collinear, normal};
 use apart_mesh::Mesh;
 use apart_pieces::{Polytope, PolytopeError};
 use std::collections::HashMap;

@@ -10,12 +10,13 @@ use crate::options::{Decompose, LoadOptions, Stage, Tracker};
 use crate::tolerance::{self, Tolerance};
 use crate::{overlap, pieces};
 use apart_kernel::grid::{GridError, MAX_BITS, MIN_BITS};
+use apart_kernel::Aabb;
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::escape::escape;
 use apart_mesh::formats::{read_file_with, ReadOptions};
 use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::{validate, MeshInfo};
-use apart_mesh::{Aabb, Mesh, Problem, ProblemKind, RawObject};
+use apart_mesh::{Mesh, Problem, ProblemKind, RawObject};
 use apart_pieces::Polytope;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -773,16 +774,11 @@ fn explain_collapse(problems: &mut [Problem], raw: &RawObject, part: &str, ctx: 
     if !has_area(raw) {
         return;
     }
-    let (lo, hi) = raw.vertices.iter().fold(
-        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-        |(lo, hi), v| {
-            (
-                [0, 1, 2].map(|k| lo[k].min(v[k])),
-                [0, 1, 2].map(|k| hi[k].max(v[k])),
-            )
-        },
-    );
-    let size = [0, 1, 2].map(|k| fmt_len(hi[k] - lo[k]));
+    let b = raw
+        .vertices
+        .iter()
+        .fold(Aabb::<f64>::EMPTY, |b, v| b.with(v));
+    let size = [0, 1, 2].map(|k| fmt_len(b.max[k] - b.min[k]));
     let grid = ctx.grid;
     let why = match ctx.largest {
         Some(l) if l.part == part => format!("its own coordinates reach {}", fmt_len(l.magnitude)),
@@ -858,14 +854,15 @@ mod snapping {
     use crate::model::Part;
     use crate::overlap;
     use apart_kernel::grid::MAX_BITS;
+    use apart_kernel::Aabb;
+    use apart_kernel::Bvh;
     use apart_kernel::Grid;
-    use apart_mesh::bvh::Bvh;
     use apart_mesh::escape::escape;
     use apart_mesh::intersect::triangles_meet;
-    use apart_mesh::{Aabb, Mesh, Problem};
+    use apart_mesh::{Mesh, Problem};
     use rayon::prelude::*;
 
-    type F3 = [f64; 3];
+    use apart_kernel::fvec::{add, cross, dot, lerp, norm, scale, sub, F3};
     type Tri = [F3; 3];
 
     /// Grid steps by which triangle boxes are grown when looking for pairs: snapping
@@ -877,31 +874,6 @@ mod snapping {
     /// coordinates it is computed from.
     const NOISE: f64 = 64.0 * f64::EPSILON;
 
-    fn sub(a: F3, b: F3) -> F3 {
-        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-    }
-    fn add(a: F3, b: F3) -> F3 {
-        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-    }
-    fn mul(a: F3, s: f64) -> F3 {
-        [a[0] * s, a[1] * s, a[2] * s]
-    }
-    fn dot(a: F3, b: F3) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    }
-    fn cross(a: F3, b: F3) -> F3 {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    }
-    fn len(a: F3) -> f64 {
-        dot(a, a).sqrt()
-    }
-    fn lerp(a: F3, b: F3, t: f64) -> F3 {
-        add(a, mul(sub(b, a), t))
-    }
     fn max_abs<'a>(points: impl IntoIterator<Item = &'a F3>) -> f64 {
         points
             .into_iter()
@@ -925,7 +897,7 @@ mod snapping {
         }
         let vc = d1 * d4 - d3 * d2;
         if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-            return add(a, mul(ab, d1 / (d1 - d3)));
+            return add(a, scale(ab, d1 / (d1 - d3)));
         }
         let cp = sub(p, c);
         let (d5, d6) = (dot(ab, cp), dot(ac, cp));
@@ -934,14 +906,14 @@ mod snapping {
         }
         let vb = d5 * d2 - d1 * d6;
         if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-            return add(a, mul(ac, d2 / (d2 - d6)));
+            return add(a, scale(ac, d2 / (d2 - d6)));
         }
         let va = d3 * d6 - d5 * d4;
         if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-            return add(b, mul(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+            return add(b, scale(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
         }
         let denom = 1.0 / (va + vb + vc);
-        add(a, add(mul(ab, vb * denom), mul(ac, vc * denom)))
+        add(a, add(scale(ab, vb * denom), scale(ac, vc * denom)))
     }
 
     /// The nearest points of segments `p1 q1` and `p2 q2` (Ericson 5.1.9).
@@ -977,7 +949,7 @@ mod snapping {
                 };
             }
         }
-        (add(p1, mul(d1, s)), add(p2, mul(d2, t)))
+        (add(p1, scale(d1, s)), add(p2, scale(d2, t)))
     }
 
     /// Where segment `p q` crosses triangle `t` (not in its plane), if it does.
@@ -1000,11 +972,11 @@ mod snapping {
         if segment_crosses(p, q, t).is_some() {
             return 0.0;
         }
-        let mut best = len(sub(p, closest_on_triangle(p, t)));
-        best = best.min(len(sub(q, closest_on_triangle(q, t))));
+        let mut best = norm(sub(p, closest_on_triangle(p, t)));
+        best = best.min(norm(sub(q, closest_on_triangle(q, t))));
         for i in 0..3 {
             let (x, y) = closest_on_segments(p, q, t[i], t[(i + 1) % 3]);
-            best = best.min(len(sub(x, y)));
+            best = best.min(norm(sub(x, y)));
         }
         best
     }
@@ -1021,7 +993,7 @@ mod snapping {
         }
         let mut best = (f64::INFINITY, a[0]);
         let mut consider = |x: F3, y: F3| {
-            let d = len(sub(x, y));
+            let d = norm(sub(x, y));
             if d < best.0 {
                 best = (d, lerp(x, y, 0.5));
             }
@@ -1080,11 +1052,11 @@ mod snapping {
         for i in 0..3 {
             let (a, b) = (f[i], f[(i + 1) % 3]);
             let w = cross(n, sub(b, a));
-            let lw = len(w);
+            let lw = norm(w);
             if !(lw > 0.0) {
                 return None;
             }
-            walls[i] = (a, mul(w, 1.0 / lw));
+            walls[i] = (a, scale(w, 1.0 / lw));
             poly = clip(&poly, a, walls[i].1);
             if poly.is_empty() {
                 return None;
@@ -1100,7 +1072,7 @@ mod snapping {
         if !(zmin < -noise) || -zmin > cap || -zmin <= floor {
             return None;
         }
-        let c = mul(
+        let c = scale(
             poly.iter().fold([0.0; 3], |s, &v| add(s, v)),
             1.0 / poly.len() as f64,
         );
@@ -1126,7 +1098,7 @@ mod snapping {
             }
             lerp(vmin, c, l)
         };
-        let foot = sub(x, mul(n, z(x)));
+        let foot = sub(x, scale(n, z(x)));
         let between = faces
             .iter()
             .enumerate()
@@ -1211,9 +1183,9 @@ mod snapping {
         for &t in near {
             let [a, b, c] = m.triangles[t as usize].map(|v| raw[v as usize]);
             let n = cross(sub(b, a), sub(c, a));
-            let l = len(n);
+            let l = norm(n);
             if l > 0.0 && l.is_finite() {
-                out[t as usize] = mul(n, 1.0 / l);
+                out[t as usize] = scale(n, 1.0 / l);
             }
         }
         out

@@ -1,10 +1,11 @@
 //! The assembly model: an ordered list of named parts on one integer grid.
 
 use crate::tolerance::AppliedTolerance;
+use apart_kernel::Aabb;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::repair::RepairReport;
 use apart_mesh::validate::{volume_in_units, MeshInfo};
-use apart_mesh::{Aabb, Mesh, Problem};
+use apart_mesh::{Mesh, Problem};
 use apart_pieces::Polytope;
 use std::path::PathBuf;
 

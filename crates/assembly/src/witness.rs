@@ -2,25 +2,15 @@
 //! moving a point of one solid's boundary (that is strictly inside the other) a little
 //! into the first, and always verified by exact point location before being reported.
 
-use apart_kernel::int::{bit_len, gcd};
+use apart_kernel::int::bit_len;
+use apart_kernel::orient::{normal, on_triangle};
+use apart_kernel::HPoint;
 use apart_kernel::{Grid, Int, Rational, Sign};
-use apart_mesh::exact::normal;
-use apart_mesh::locate::{Locator, QPoint};
+use apart_mesh::locate::Locator;
 use apart_pieces::Polytope;
 
 /// Step exponents tried when moving a point: 2^-k for k in this list.
 const STEPS: [u32; 16] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256];
-
-/// `[Rational; 3]` as a [`QPoint`] with a common denominator.
-pub(crate) fn to_qpoint(r: &[Rational; 3]) -> QPoint {
-    let mut den = Int::ONE;
-    for c in r {
-        let g = gcd(&den, c.denom());
-        den = &den / &g * c.denom();
-    }
-    let num = [0, 1, 2].map(|k| r[k].numer() * &(&den / r[k].denom()));
-    QPoint::new(num, den)
-}
 
 fn pow2(k: u32) -> Rational {
     Rational::new(Int::ONE, Int::ONE << k as usize)
@@ -38,12 +28,12 @@ fn sub(a: &[Rational; 3], b: &[Rational; 3]) -> [Rational; 3] {
 /// and strictly inside `b`: `c` is moved towards the centre of a face of `a` through it
 /// and then slightly below that face, with ever smaller steps, until exact point
 /// location confirms it is inside both.
-pub(crate) fn into_both(a: &Locator, b: &Locator, c: &QPoint) -> Option<QPoint> {
+pub(crate) fn into_both(a: &Locator, b: &Locator, c: &HPoint) -> Option<HPoint> {
     let mesh = a.mesh();
     let mut faces = Vec::new();
     a.bvh().query(&c.bbox(), |t| {
         let [p, q, r] = mesh.corners(t as usize);
-        if faces.len() < 8 && c.on_triangle(p, q, r) {
+        if faces.len() < 8 && on_triangle(c, p, q, r) {
             faces.push(t);
         }
     });
@@ -57,7 +47,7 @@ pub(crate) fn into_both(a: &Locator, b: &Locator, c: &QPoint) -> Option<QPoint> 
         for k in STEPS {
             let c1 = add(&cr, &sub(&g, &cr), &pow2(k));
             let c2 = add(&c1, &n, &(-&pow2(2 * k + nb)));
-            let w = to_qpoint(&c2);
+            let w = HPoint::from_rationals(&c2);
             if a.strictly_inside(&w) && b.strictly_inside(&w) {
                 return Some(w);
             }
@@ -73,12 +63,12 @@ pub(crate) fn below_both(
     b: &Locator,
     c: &[Rational; 3],
     n: [i128; 3],
-) -> Option<QPoint> {
+) -> Option<HPoint> {
     let n = n.map(Int::from);
     let nb = n.iter().map(bit_len).max().unwrap_or(0);
     let n = n.map(Rational::from_int);
     for k in STEPS {
-        let w = to_qpoint(&add(c, &n, &(-&pow2(k + nb))));
+        let w = HPoint::from_rationals(&add(c, &n, &(-&pow2(k + nb))));
         if a.strictly_inside(&w) && b.strictly_inside(&w) {
             return Some(w);
         }
@@ -129,10 +119,11 @@ pub(crate) fn simplest(
 /// True when `w` lies strictly inside both polytopes (every facet inequality strict:
 /// `n · (den w) < offset` with the polytope's denominator `den`).
 pub(crate) fn verified_in_polytopes(w: &[Rational; 3], a: &Polytope, b: &Polytope) -> bool {
-    let (num, den) = to_qpoint(w).homogeneous();
+    let w = HPoint::from_rationals(w);
+    let (num, den) = (w.num(), w.den());
     [a, b].iter().all(|p| {
         p.facets().iter().all(|f| {
-            let mut s = -(&f.offset * &den);
+            let mut s = -(&f.offset * den);
             for (k, x) in num.iter().enumerate() {
                 s += f.normal.get(k) * x * p.den();
             }

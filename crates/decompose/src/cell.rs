@@ -6,8 +6,8 @@
 //! (never from the edge's end points), so vertex sizes stay bounded however deep the
 //! partition goes.
 
-use crate::exact::{normals_det_sign, HPoint, Plane};
-use apart_kernel::{int, Int, Sign, Vec3};
+use apart_kernel::plane::{normals_det_sign, HPoint, Plane};
+use apart_kernel::{int, Aabb, Int, Sign, Vec3};
 use apart_pieces::hull2d::hull_in_plane;
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap;
@@ -241,14 +241,10 @@ impl Cell {
     }
 
     /// The floating-point bounding box of the vertices (for filters only).
-    pub fn bbox(&self) -> [[f64; 3]; 2] {
-        let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    pub fn bbox(&self) -> Aabb<f64> {
+        let mut b = Aabb::EMPTY;
         for v in &self.verts {
-            let f = v.p.approx();
-            for a in 0..3 {
-                b[0][a] = b[0][a].min(f[a]);
-                b[1][a] = b[1][a].max(f[a]);
-            }
+            b = b.with(&v.p.approx());
         }
         b
     }

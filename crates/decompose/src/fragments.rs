@@ -14,8 +14,8 @@
 //! is kept only when some vertex is strictly on that side, and a fragment lying in the
 //! cutting plane is on the boundary of both parts and is dropped.
 
-use crate::exact::{HPoint, Plane};
 use crate::solid::Solid;
+use apart_kernel::plane::{HPoint, Plane};
 use apart_kernel::Sign;
 use std::sync::Arc;
 

@@ -42,7 +42,6 @@
 //! ```
 
 mod cell;
-mod exact;
 mod fragments;
 mod merge;
 mod partition;
@@ -52,7 +51,9 @@ mod split;
 mod union;
 mod verify;
 
-pub use exact::MAX_COORD_BITS;
+/// Input coordinates must be below this power of two in magnitude (so that planes
+/// through three input points fit `i128`; see [`apart_kernel::plane`]).
+pub const MAX_COORD_BITS: u32 = 40;
 pub use reflex::reflex_edges;
 pub use verify::verify;
 

@@ -9,15 +9,15 @@
 //! plane of A or B supports the union: the test succeeds.
 
 use crate::cell::{spans, CVert, Cell};
-use crate::exact::{HPoint, Plane};
-use apart_kernel::Sign;
+use apart_kernel::plane::{HPoint, Plane};
+use apart_kernel::{Aabb, Sign};
 use rustc_hash::FxHashMap;
 
 /// Merges pieces pairwise while some pair has a convex union; returns the pieces and the
 /// number of merges.
 pub(crate) fn merge(cells: Vec<Cell>) -> (Vec<Cell>, usize) {
     let mut slot: Vec<Option<Cell>> = cells.into_iter().map(Some).collect();
-    let mut boxes: Vec<[[f64; 3]; 2]> = slot.iter().map(|c| c.as_ref().unwrap().bbox()).collect();
+    let mut boxes: Vec<Aabb<f64>> = slot.iter().map(|c| c.as_ref().unwrap().bbox()).collect();
     let mut counts: Vec<Vec<u32>> = slot
         .iter()
         .map(|c| facet_counts(c.as_ref().unwrap()))
@@ -68,10 +68,11 @@ pub(crate) fn merge(cells: Vec<Cell>) -> (Vec<Cell>, usize) {
 
 /// Float boxes overlap or touch, with a relative slack far above rounding errors (a
 /// filter: convex unions need a shared facet, hence touching boxes).
-fn touching(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
+fn touching(a: &Aabb<f64>, b: &Aabb<f64>) -> bool {
     (0..3).all(|k| {
-        let slack = 1e-9 * (a[1][k].abs() + b[1][k].abs() + a[0][k].abs() + b[0][k].abs() + 1.0);
-        a[0][k] <= b[1][k] + slack && b[0][k] <= a[1][k] + slack
+        let slack =
+            1e-9 * (a.max[k].abs() + b.max[k].abs() + a.min[k].abs() + b.min[k].abs() + 1.0);
+        a.min[k] <= b.max[k] + slack && b.min[k] <= a.max[k] + slack
     })
 }
 
@@ -79,14 +80,14 @@ fn touching(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
 /// ulps) lies clearly inside the plane's inner side: then every point does, and the
 /// exact tests can be skipped. The slack, 1e-9 of the terms' magnitude, is far above
 /// the rounding of the shadows and of this evaluation.
-fn box_inside(pl: &Plane, b: &[[f64; 3]; 2]) -> bool {
+fn box_inside(pl: &Plane, b: &Aabb<f64>) -> bool {
     let n = pl.n.map(|v| v as f64);
     let mut v = -(pl.c as f64);
     let mut mag = (pl.c as f64).abs();
-    for k in 0..3 {
-        let x = if n[k] > 0.0 { b[1][k] } else { b[0][k] };
-        v += n[k] * x;
-        mag += (n[k] * x).abs();
+    for (k, &nk) in n.iter().enumerate() {
+        let x = if nk > 0.0 { b.max[k] } else { b.min[k] };
+        v += nk * x;
+        mag += (nk * x).abs();
     }
     v.is_finite() && mag.is_finite() && v < -1e-9 * mag
 }
@@ -104,13 +105,7 @@ fn facet_counts(c: &Cell) -> Vec<u32> {
 
 /// The union of `a` and `b` (vertices per facet `counts`, float boxes `ba`, `bb`) when
 /// it is convex.
-fn union(
-    a: &Cell,
-    b: &Cell,
-    counts: [&[u32]; 2],
-    ba: &[[f64; 3]; 2],
-    bb: &[[f64; 3]; 2],
-) -> Option<Cell> {
+fn union(a: &Cell, b: &Cell, counts: [&[u32]; 2], ba: &Aabb<f64>, bb: &Aabb<f64>) -> Option<Cell> {
     let fa = a
         .facets
         .iter()
@@ -127,7 +122,7 @@ fn union(
     // when a large piece such as the disc of a lathe meets each of its many wedges).
     // A facet plane of both holds both. Small piece first: its facets against the large
     // one's vertices are the likely failures.
-    let inside = |p: &[Plane], skip: usize, other: &Cell, bx: &[[f64; 3]; 2]| {
+    let inside = |p: &[Plane], skip: usize, other: &Cell, bx: &Aabb<f64>| {
         let filter = other.verts.iter().all(|v| v.p.filterable());
         p.iter()
             .enumerate()

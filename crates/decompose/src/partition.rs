@@ -16,11 +16,11 @@
 //! then meets neither open part; parts only inherit elements and planes of their parent.
 
 use crate::cell::Cell;
-use crate::exact::Plane;
 use crate::fragments::{split_by, Frag};
 use crate::solid::Solid;
 use crate::split::{for_groups, for_live, live, Choice};
 use crate::DecomposeError;
+use apart_kernel::plane::Plane;
 use rustc_hash::FxHashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -66,8 +66,8 @@ impl<'a> Partition<'a> {
     /// The convex cells whose union is the solid.
     pub fn run(&self) -> Result<Vec<Cell>, DecomposeError> {
         let s = self.solid;
-        let lo = s.lo.map(|v| v - 1);
-        let hi = s.hi.map(|v| v + 1);
+        let lo = s.bbox.min.map(|v| v - 1);
+        let hi = s.bbox.max.map(|v| v + 1);
         let frags = (0..s.tris.len() as u32)
             .map(|t| Arc::new(Frag::whole(s, t)))
             .collect();

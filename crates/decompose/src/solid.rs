@@ -1,10 +1,11 @@
 //! The input solid, checked and indexed: triangle planes, undirected edges with the
 //! pairing of their triangles, reflex and non-manifold marks.
 
-use crate::exact::{Plane, MAX_COORD_BITS};
 use crate::reflex::pair_around_edge;
 use crate::DecomposeError;
-use apart_kernel::{Int, Sign, Vec3};
+use crate::MAX_COORD_BITS;
+use apart_kernel::plane::Plane;
+use apart_kernel::{Aabb, Int, Sign, Vec3};
 
 /// An undirected edge of the mesh.
 #[derive(Clone, Debug)]
@@ -37,8 +38,7 @@ pub(crate) struct Solid {
     /// Six times the enclosed volume.
     pub volume6: Int,
     /// Bounding box of the used points.
-    pub lo: [i64; 3],
-    pub hi: [i64; 3],
+    pub bbox: Aabb,
 }
 
 impl Solid {
@@ -148,14 +148,10 @@ impl Solid {
         if strict && volume6 <= Int::ZERO {
             return Err(DecomposeError::NotPositive);
         }
-        let mut lo = [i64::MAX; 3];
-        let mut hi = [i64::MIN; 3];
+        let mut bbox = Aabb::EMPTY;
         for tri in triangles {
             for &v in tri {
-                for a in 0..3 {
-                    lo[a] = lo[a].min(pts[v as usize][a]);
-                    hi[a] = hi[a].max(pts[v as usize][a]);
-                }
+                bbox = bbox.with(&pts[v as usize]);
             }
         }
         Ok(Solid {
@@ -168,8 +164,7 @@ impl Solid {
             nm_vertex,
             nm_vertex_tris,
             volume6,
-            lo,
-            hi,
+            bbox,
         })
     }
 

@@ -7,9 +7,9 @@
 //! triangle plane. Each also tells, for free, whether a part of the cell left without
 //! fragments is inside the solid (see [`Choice`]).
 
-use crate::exact::Plane;
 use crate::fragments::{Frag, Origin};
 use crate::solid::Solid;
+use apart_kernel::plane::Plane;
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
 use rustc_hash::FxHashMap;

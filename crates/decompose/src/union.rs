@@ -44,12 +44,12 @@
 //! on the triangle).
 
 use crate::cell::Cell;
-use crate::exact::{HPoint, Plane};
 use crate::fragments::{split_by, Frag};
 use crate::partition::Counters;
 use crate::solid::Solid;
 use crate::split::{for_live, live};
 use crate::DecomposeError;
+use apart_kernel::plane::{HPoint, Plane};
 use apart_kernel::{int, Int, Rational, Sign};
 use rustc_hash::FxHashMap;
 use std::sync::atomic::Ordering;
@@ -103,8 +103,8 @@ impl<'a> UnionPartition<'a> {
     /// number.
     pub fn run(&self) -> Result<Vec<Leaf>, DecomposeError> {
         let s = self.solid;
-        let lo = s.lo.map(|v| v - 1);
-        let hi = s.hi.map(|v| v + 1);
+        let lo = s.bbox.min.map(|v| v - 1);
+        let hi = s.bbox.max.map(|v| v + 1);
         let frags = (0..s.tris.len() as u32)
             .map(|t| Arc::new(Frag::whole(s, t)))
             .collect();
@@ -273,8 +273,9 @@ struct RayIndex {
 impl RayIndex {
     fn new(s: &Solid) -> RayIndex {
         let side = ((s.tris.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 64);
-        let lo = [s.lo[1] - 1, s.lo[2] - 1];
-        let span = [s.hi[1] - s.lo[1] + 3, s.hi[2] - s.lo[2] + 3];
+        let (slo, shi) = (s.bbox.min, s.bbox.max);
+        let lo = [slo[1] - 1, slo[2] - 1];
+        let span = [shi[1] - slo[1] + 3, shi[2] - slo[2] + 3];
         let step = span.map(|d| (d + side as i64 - 1) / side as i64);
         let n = [0, 1].map(|a| ((span[a] + step[a] - 1) / step[a]) as usize);
         let mut bins = vec![Vec::new(); n[0] * n[1]];

@@ -8,13 +8,15 @@
 //! of the pieces is the solid: the pieces are closed subsets of it, and a point of the
 //! solid missed by all would leave an open set of missing volume.
 
-use crate::exact::{meet_big, on_segment_big, BigPlane, HPoint};
 use crate::solid::Solid;
 use crate::VerifyError;
+use apart_kernel::bvh::sweep_pairs;
+use apart_kernel::plane::{meet_big, on_segment_big, BigPlane, HPoint};
 use apart_kernel::predicates::det3_sign;
-use apart_kernel::{int, Int, Rational, Sign, Vec3};
+use apart_kernel::{int, Aabb, Int, Rational, Sign, Vec3};
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::Polytope;
+use std::ops::ControlFlow;
 
 /// Checks exactly that `pieces` decompose the solid bounded by `triangles`: every piece
 /// convex and full-dimensional, interiors pairwise disjoint (bounding-box filter, then an
@@ -40,29 +42,27 @@ pub fn verify(
             found: total.to_string(),
         });
     }
-    let boxes: Vec<[[f64; 3]; 2]> = pieces.iter().map(piece_box).collect();
-    let mut order: Vec<usize> = (0..pieces.len()).collect();
-    order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
-    for (x, &i) in order.iter().enumerate() {
-        for &j in &order[x + 1..] {
-            if boxes[j][0][0] > boxes[i][1][0] {
-                break;
-            }
-            if overlap(&boxes[i], &boxes[j]) && !interiors_disjoint(&pieces[i], &pieces[j]) {
-                return Err(VerifyError::Overlap {
-                    a: i.min(j),
-                    b: i.max(j),
-                });
-            }
+    let boxes: Vec<Aabb<f64>> = pieces.iter().map(piece_box).collect();
+    let overlap = sweep_pairs(&boxes, |i, j| {
+        if interiors_disjoint(&pieces[i], &pieces[j]) {
+            ControlFlow::Continue(())
+        } else {
+            ControlFlow::Break(VerifyError::Overlap {
+                a: i.min(j),
+                b: i.max(j),
+            })
         }
+    });
+    if let ControlFlow::Break(e) = overlap {
+        return Err(e);
     }
-    let tri_boxes: Vec<[[f64; 3]; 2]> = solid
+    let tri_boxes: Vec<Aabb<f64>> = solid
         .tris
         .iter()
         .map(|t| {
-            let mut b = EMPTY_BOX;
+            let mut b = Aabb::EMPTY;
             for &v in t {
-                grow(&mut b, solid.pts[v as usize].map(|c| c as f64));
+                b = b.with(&solid.pts[v as usize].map(|c| c as f64));
             }
             b
         })
@@ -74,7 +74,7 @@ pub fn verify(
             .map(|f| BigPlane::new(f.normal.to_ints(), f.offset.clone()))
             .collect();
         for (t, tb) in tri_boxes.iter().enumerate() {
-            if overlap(&boxes[i], tb) && triangle_meets_interior(&solid, t, &facets, p.den()) {
+            if boxes[i].overlaps(tb) && triangle_meets_interior(&solid, t, &facets, p.den()) {
                 return Err(VerifyError::CrossesBoundary {
                     piece: i,
                     triangle: t,
@@ -125,33 +125,17 @@ fn check_convex(p: &Polytope) -> Result<(), String> {
 
 /// Floating-point bounding box in true coordinates, widened far beyond rounding errors
 /// (a filter only).
-fn piece_box(p: &Polytope) -> [[f64; 3]; 2] {
-    let mut b = EMPTY_BOX;
+fn piece_box(p: &Polytope) -> Aabb<f64> {
+    let mut b = Aabb::EMPTY;
     for v in p.vertices() {
-        grow(
-            &mut b,
-            [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()),
-        );
+        b = b.with(&[0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()));
     }
-    let [lo, hi] = b;
+    let Aabb { min: lo, max: hi } = b;
     let slack = |k: usize| 1e-9 * (lo[k].abs() + hi[k].abs() + 1.0);
-    [
-        [0, 1, 2].map(|k| lo[k] - slack(k)),
-        [0, 1, 2].map(|k| hi[k] + slack(k)),
-    ]
-}
-
-const EMPTY_BOX: [[f64; 3]; 2] = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-
-fn grow(b: &mut [[f64; 3]; 2], p: [f64; 3]) {
-    for (k, c) in p.into_iter().enumerate() {
-        b[0][k] = b[0][k].min(c);
-        b[1][k] = b[1][k].max(c);
+    Aabb {
+        min: [0, 1, 2].map(|k| lo[k] - slack(k)),
+        max: [0, 1, 2].map(|k| hi[k] + slack(k)),
     }
-}
-
-fn overlap(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
-    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
 }
 
 #[derive(Clone, Copy)]
@@ -237,11 +221,11 @@ fn triangle_meets_interior(s: &Solid, t: usize, facets: &[BigPlane], den: &Int) 
 
 /// A conservative floating-point slab test: false only when the ray from `q` along `d`
 /// misses the box by far more than any rounding error (a filter).
-fn ray_may_hit(q: &[f64], d: &[i64; 3], b: &[[f64; 3]; 2]) -> bool {
+fn ray_may_hit(q: &[f64], d: &[i64; 3], b: &Aabb<f64>) -> bool {
     let (mut t0, mut t1) = (0f64, f64::INFINITY);
     for k in 0..3 {
-        let slack = 1e-7 * (q[k].abs() + b[0][k].abs() + b[1][k].abs() + 1.0);
-        let (lo, hi) = (b[0][k] - slack - q[k], b[1][k] + slack - q[k]);
+        let slack = 1e-7 * (q[k].abs() + b.min[k].abs() + b.max[k].abs() + 1.0);
+        let (lo, hi) = (b.min[k] - slack - q[k], b.max[k] + slack - q[k]);
         if d[k] == 0 {
             if lo > 0.0 || hi < 0.0 {
                 return false;
@@ -262,7 +246,7 @@ fn ray_may_hit(q: &[f64], d: &[i64; 3], b: &[[f64; 3]; 2]) -> bool {
 
 /// Whether an interior point of `p` (its vertex average) is inside the solid, by the
 /// parity of exact ray crossings; `None` if every tried ray was degenerate.
-fn interior_point_inside(s: &Solid, boxes: &[[[f64; 3]; 2]], p: &Polytope) -> Option<bool> {
+fn interior_point_inside(s: &Solid, boxes: &[Aabb<f64>], p: &Polytope) -> Option<bool> {
     let mut x = [Int::ZERO, Int::ZERO, Int::ZERO];
     for v in p.vertices() {
         for (k, xk) in x.iter_mut().enumerate() {

@@ -3,7 +3,7 @@
 //! steps left them, so a part's offset is the sum of the displacements of the steps
 //! that moved it.
 
-use crate::shapes::{add, scale};
+use apart_kernel::fvec::{add, scale};
 use apart_plan::Sequence;
 
 /// How the disassembly is played in the animated exports.

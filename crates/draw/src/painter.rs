@@ -20,6 +20,10 @@
 //! from the eye in pixels too (the orthographic camera is a similarity, so planes and
 //! their sides are those of the scene). The eye looks along `+z`.
 
+use apart_kernel::bvh::sweep_pairs;
+use apart_kernel::{fvec, Aabb};
+use std::ops::ControlFlow;
+
 /// A convex planar polygon in picture space with the index of what it draws.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
@@ -47,30 +51,21 @@ pub fn painter_order(polygons: Vec<Polygon>) -> Vec<Polygon> {
     // Tolerance of depth comparisons and plane sides: far below a pixel, far above the
     // rounding of coordinates of this size.
     let tol = 1e-7 * size.max(1.0);
-    let boxes: Vec<[f64; 4]> = polygons.iter().map(|p| bbox2(&p.points)).collect();
+    let boxes: Vec<Aabb<f64>> = polygons.iter().map(|p| bbox2(&p.points)).collect();
     // after[a] lists the polygons that must be drawn after a (a is behind them).
     let mut after: Vec<Vec<u32>> = vec![Vec::new(); n];
-    let mut by_x: Vec<usize> = (0..n).collect();
-    by_x.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]));
-    for (i, &a) in by_x.iter().enumerate() {
-        for &b in &by_x[i + 1..] {
-            if boxes[b][0] > boxes[a][2] {
-                break;
-            }
-            if boxes[b][1] > boxes[a][3] || boxes[a][1] > boxes[b][3] {
-                continue;
-            }
-            match compare(&polygons[a], &polygons[b], tol) {
-                Order::Unrelated => {}
-                Order::Before => after[a].push(b as u32),
-                Order::After => after[b].push(a as u32),
-                Order::Pierce => {
-                    after[a].push(b as u32);
-                    after[b].push(a as u32);
-                }
+    let _ = sweep_pairs(&boxes, |a, b| {
+        match compare(&polygons[a], &polygons[b], tol) {
+            Order::Unrelated => {}
+            Order::Before => after[a].push(b as u32),
+            Order::After => after[b].push(a as u32),
+            Order::Pierce => {
+                after[a].push(b as u32);
+                after[b].push(a as u32);
             }
         }
-    }
+        ControlFlow::<()>::Continue(())
+    });
     // Whole groups (faces) first: a face drawn in one go leaves no seams. The groups'
     // "drawn before" graph is sorted the same way; a cycle of groups (faces that are
     // each in front of the other somewhere) is ordered polygon by polygon.
@@ -199,7 +194,7 @@ impl Plane {
                 c[i] += p[i] / points.len() as f64;
             }
         }
-        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let len = fvec::norm(n);
         if !len.is_finite() || len <= 0.0 {
             return None;
         }
@@ -212,13 +207,13 @@ impl Plane {
         }
         Some(Plane {
             n,
-            d: n[0] * c[0] + n[1] * c[1] + n[2] * c[2],
+            d: fvec::dot(n, c),
         })
     }
 
     /// Signed distance of `p` (positive on the eye's side).
     fn side(&self, p: &[f64; 3]) -> f64 {
-        self.n[0] * p[0] + self.n[1] * p[1] + self.n[2] * p[2] - self.d
+        fvec::dot(self.n, *p) - self.d
     }
 
     /// The depth of the plane above picture point `(x, y)`.
@@ -489,22 +484,14 @@ fn area3(p: &[[f64; 3]]) -> f64 {
         n[1] += u[2] * v[0] - u[0] * v[2];
         n[2] += u[0] * v[1] - u[1] * v[0];
     }
-    (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt() / 2.0
+    fvec::norm(n) / 2.0
 }
 
-/// `[min x, min y, max x, max y]` of the projection.
-fn bbox2(p: &[[f64; 3]]) -> [f64; 4] {
-    let mut b = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
+/// The box of the projection onto the picture (`z = 0`).
+fn bbox2(p: &[[f64; 3]]) -> Aabb<f64> {
+    let mut b = Aabb::EMPTY;
     for q in p {
-        b[0] = b[0].min(q[0]);
-        b[1] = b[1].min(q[1]);
-        b[2] = b[2].max(q[0]);
-        b[3] = b[3].max(q[1]);
+        b = b.with(&[q[0], q[1], 0.0]);
     }
     b
 }

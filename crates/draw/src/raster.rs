@@ -13,9 +13,10 @@
 
 use crate::colors::{mix, part_colors, Rgb, BACKGROUND, GREY};
 use crate::painter::{painter_order, Polygon};
-use crate::shapes::{add, bounds_of, cross, dot, normalize, part_shapes, scale, sub, PartShape};
+use crate::shapes::{bounds_of, part_shapes, PartShape};
 use crate::svg_png::{escape, overlay, png_bytes, FONT_FAMILY};
 use apart_assembly::Assembly;
+use apart_kernel::fvec::{add, cross, dot, normalize, scale, sub};
 use apart_plan::{Sequence, Step};
 use resvg::tiny_skia::{Pixmap, PremultipliedColorU8};
 use std::fmt::Write;

@@ -7,8 +7,9 @@
 //! of a part and not the triangulation.
 
 use apart_assembly::Assembly;
+use apart_kernel::fvec::{add, cross, normalize, sub};
 use apart_kernel::int::to_f64;
-use apart_kernel::{Rational, Vec3};
+use apart_kernel::{Aabb, Rational, Vec3};
 use std::collections::HashMap;
 
 /// One part's surface.
@@ -26,54 +27,6 @@ impl PartShape {
     pub fn normal(&self, t: usize) -> [f64; 3] {
         let [a, b, c] = self.triangles[t];
         normalize(cross(sub(b, a), sub(c, a)))
-    }
-}
-
-/// Axis-aligned bounds in input units.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Bounds {
-    /// Smallest coordinates.
-    pub min: [f64; 3],
-    /// Largest coordinates.
-    pub max: [f64; 3],
-}
-
-impl Bounds {
-    /// Empty bounds (min > max), grown by [`Bounds::add`].
-    pub fn empty() -> Bounds {
-        Bounds {
-            min: [f64::INFINITY; 3],
-            max: [f64::NEG_INFINITY; 3],
-        }
-    }
-
-    /// Grows the bounds to contain `p`.
-    pub fn add(&mut self, p: [f64; 3]) {
-        for (k, &c) in p.iter().enumerate() {
-            self.min[k] = self.min[k].min(c);
-            self.max[k] = self.max[k].max(c);
-        }
-    }
-
-    /// True when nothing was added.
-    pub fn is_empty(&self) -> bool {
-        self.min[0] > self.max[0]
-    }
-
-    /// The centre.
-    pub fn center(&self) -> [f64; 3] {
-        if self.is_empty() {
-            return [0.0; 3];
-        }
-        [0, 1, 2].map(|k| 0.5 * (self.min[k] + self.max[k]))
-    }
-
-    /// The length of the diagonal (0 when empty).
-    pub fn diagonal(&self) -> f64 {
-        if self.is_empty() {
-            return 0.0;
-        }
-        norm(sub(self.max, self.min))
     }
 }
 
@@ -142,13 +95,13 @@ pub fn pieces_shape(pieces: &[apart_pieces::Polytope], step: f64) -> PartShape {
 }
 
 /// The bounds of all shapes, each translated by `offsets[k]` when given.
-pub fn bounds_of(shapes: &[PartShape], offsets: Option<&[[f64; 3]]>) -> Bounds {
-    let mut b = Bounds::empty();
+pub fn bounds_of(shapes: &[PartShape], offsets: Option<&[[f64; 3]]>) -> Aabb<f64> {
+    let mut b = Aabb::EMPTY;
     for (k, s) in shapes.iter().enumerate() {
         let o = offsets.map_or([0.0; 3], |o| o[k]);
         for t in &s.triangles {
             for p in t {
-                b.add(add(*p, o));
+                b = b.with(&add(*p, o));
             }
         }
     }
@@ -163,51 +116,5 @@ impl Planes {
     fn index(&mut self, normal: Vec3, offset: Rational) -> u32 {
         let n = self.0.len() as u32;
         *self.0.entry((normal, offset)).or_insert(n)
-    }
-}
-
-// Small vector helpers shared by the renderers.
-
-/// `a - b`.
-pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `a + b`.
-pub fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-/// `a * s`.
-pub fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// Dot product.
-pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Cross product.
-pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// Euclidean length.
-pub fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// `a / |a|`, or zero.
-pub fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let n = norm(a);
-    if n > 0.0 {
-        scale(a, 1.0 / n)
-    } else {
-        [0.0; 3]
     }
 }

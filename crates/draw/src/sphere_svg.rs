@@ -6,6 +6,7 @@
 use crate::colors::part_colors;
 use crate::raster::{direction_label, names_list};
 use crate::svg_png::{escape, png_bytes, svg_to_pixmap, FONT_FAMILY};
+use apart_kernel::fvec;
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
 use apart_plan::{partition_subset, BlockingRegions, CellKind, MotionSpace, Solution, Step};
@@ -63,7 +64,7 @@ fn project(p: &V3, up: bool, projection: SphereProjection) -> (f64, f64) {
 }
 
 fn slerp_points(a: &V3, b: &V3, steps: usize) -> Vec<V3> {
-    let dot = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).clamp(-1.0, 1.0);
+    let dot = fvec::dot(*a, *b).clamp(-1.0, 1.0);
     let theta = dot.acos();
     (0..=steps)
         .map(|k| {
@@ -80,7 +81,7 @@ fn slerp_points(a: &V3, b: &V3, steps: usize) -> Vec<V3> {
                 sa * a[1] + sb * b[1],
                 sa * a[2] + sb * b[2],
             ];
-            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            let n = fvec::norm(v);
             [v[0] / n, v[1] / n, v[2] / n]
         })
         .collect()
@@ -88,7 +89,7 @@ fn slerp_points(a: &V3, b: &V3, steps: usize) -> Vec<V3> {
 
 fn arc_points(arc: &Arc) -> Vec<V3> {
     let (a, b) = (arc.start.unit_f64(), arc.end.unit_f64());
-    let dot = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).clamp(-1.0, 1.0);
+    let dot = fvec::dot(a, b).clamp(-1.0, 1.0);
     let steps = ((dot.acos().to_degrees() / 2.0).ceil() as usize).max(1);
     slerp_points(&a, &b, steps)
 }

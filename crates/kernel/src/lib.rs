@@ -9,7 +9,15 @@
 //! - [`predicates`]: filtered exact signs of dot products and 3x3 determinants.
 //! - [`spherical`]: the sphere-of-directions predicates built on them (side of a great
 //!   circle, intersection of two circles, position along an arc, order around a vertex).
+//! - [`orient`]: orientation of grid points (`[i64; 3]`) and of exact points against
+//!   grid triangles.
+//! - [`plane`]: exact planes and half-spaces ([`Plane`], [`BigPlane`]) and the
+//!   homogeneous points where they meet ([`HPoint`]), with their float filter.
 //! - [`Rational`]: exact fractions for volumes and reported points.
+//! - [`Aabb`] and [`bvh`]: axis-aligned boxes (exact on the grid, or floats for filters
+//!   and pictures) and the broad phase over them (a hierarchy, or sort and sweep).
+//! - [`fvec`]: float vectors, for pictures, measurements and the shadows of float
+//!   filters (no float decides anything).
 //!
 //! ```
 //! use apart_kernel::{Vec3, Sign, predicates::det3_sign, spherical::circle_intersection};
@@ -20,8 +28,13 @@
 //! assert_eq!(p.primitive(), p);
 //! ```
 
+pub mod aabb;
+pub mod bvh;
+pub mod fvec;
 pub mod grid;
 pub mod int;
+pub mod orient;
+pub mod plane;
 pub mod predicates;
 pub mod rational;
 mod sign;
@@ -29,8 +42,11 @@ pub mod spherical;
 mod vec3;
 mod wide;
 
+pub use aabb::Aabb;
+pub use bvh::Bvh;
 pub use grid::{Grid, GridError};
 pub use int::Int;
+pub use plane::{BigPlane, HPoint, Plane};
 pub use rational::Rational;
 pub use sign::Sign;
 pub use vec3::{Components, Vec3, SMALL_BITS};

@@ -4,7 +4,7 @@
 //! equal points have equal indices). [`triangle_pair`] reports an intersection only
 //! when the closed triangles meet beyond the convex hull of their shared vertices.
 
-use crate::exact::{
+use apart_kernel::orient::{
     cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, orient3d_many,
     project, segments_meet_2d, sub, P3,
 };
@@ -56,7 +56,7 @@ pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
     // coplanar pairs skip it.
     // (A degenerate t has every point in its "plane": then the test is still needed.)
     let coplanar = ou.iter().all(|s| *s == Sign::Zero);
-    if !coplanar || crate::exact::collinear(a, b, c) {
+    if !coplanar || apart_kernel::orient::collinear(a, b, c) {
         let ot = orient3d_many(d, e, f, t);
         if ot[0] != Sign::Zero && ot[0] == ot[1] && ot[1] == ot[2] {
             return None;
@@ -541,7 +541,7 @@ mod oracle {
         fn shared_vertex_matches_the_cone_oracle(b in pt(), c in pt(), e in pt(), f in pt()) {
             let o = [0i64, 0, 0];
             let v = vec![o, b, c, e, f];
-            if crate::exact::collinear(&o, &b, &c) || crate::exact::collinear(&o, &e, &f)
+            if apart_kernel::orient::collinear(&o, &b, &c) || apart_kernel::orient::collinear(&o, &e, &f)
                 || [b, c].contains(&e) || [b, c].contains(&f) {
                 return Ok(()); // not two triangles sharing exactly one vertex
             }

@@ -26,10 +26,7 @@
 
 #![warn(missing_docs)]
 
-pub mod aabb;
-pub mod bvh;
 pub mod escape;
-pub mod exact;
 pub mod formats;
 pub mod intersect;
 pub mod locate;
@@ -42,7 +39,9 @@ mod triangulate;
 pub mod validate;
 mod weld;
 
-pub use aabb::Aabb;
+/// Re-export of the kernel's box, kept for the CLI (`src/output.rs` names
+/// `apart::mesh::Aabb`), which is not yet moved to `apart_kernel::Aabb`.
+pub use apart_kernel::Aabb;
 pub use mesh::{fmt_point, Mesh};
 pub use problem::{Problem, ProblemKind, Severity};
 pub use raw::{Polygons, RawObject};

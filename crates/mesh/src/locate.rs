@@ -5,135 +5,11 @@
 //! of simplicity). The perturbed ray never passes through an edge or a vertex, so every
 //! crossing is a clean crossing of one triangle's interior, counted +1 when the triangle
 //! faces +x and -1 otherwise. Points on the surface are detected first, exactly. Points
-//! may be grid points or rational points (`num / den`), e.g. witnesses of overlaps.
+//! may be grid points or exact rational points ([`HPoint`]), e.g. witnesses of overlaps.
 
-use crate::aabb::Aabb;
-use crate::bvh::Bvh;
-use crate::exact::{dominant_axis, normal, orient2d, orient3d, project, P3};
 use crate::mesh::Mesh;
-use apart_kernel::int::sign_of;
-use apart_kernel::{Int, Rational, Sign};
-
-/// A point with rational coordinates `num / den`, `den > 0`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum QPoint {
-    /// A grid point.
-    Grid(P3),
-    /// `num / den` in grid units.
-    Rational {
-        /// Numerators.
-        num: [Int; 3],
-        /// The common positive denominator.
-        den: Int,
-    },
-}
-
-fn floor_div(n: &Int, d: &Int) -> Int {
-    let q = n / d;
-    if n < &Int::ZERO && &(&q * d) != n {
-        q - Int::ONE
-    } else {
-        q
-    }
-}
-
-fn clamp_i64(v: &Int) -> i64 {
-    i64::try_from(v).unwrap_or(if v < &Int::ZERO {
-        i64::MIN / 2
-    } else {
-        i64::MAX / 2
-    })
-}
-
-impl QPoint {
-    /// `num / den` (the sign of `den` is moved to the numerators).
-    pub fn new(num: [Int; 3], den: Int) -> QPoint {
-        assert!(den != Int::ZERO, "QPoint with zero denominator");
-        if den < Int::ZERO {
-            QPoint::Rational {
-                num: num.map(|v| -v),
-                den: -den,
-            }
-        } else {
-            QPoint::Rational { num, den }
-        }
-    }
-
-    /// The coordinates as exact rationals.
-    pub fn to_rationals(&self) -> [Rational; 3] {
-        match self {
-            QPoint::Grid(p) => p.map(Rational::from_int),
-            QPoint::Rational { num, den } => num.clone().map(|n| Rational::new(n, den.clone())),
-        }
-    }
-
-    /// The same point as `num / den`.
-    pub fn homogeneous(&self) -> ([Int; 3], Int) {
-        match self {
-            QPoint::Grid(p) => (p.map(Int::from), Int::ONE),
-            QPoint::Rational { num, den } => (num.clone(), den.clone()),
-        }
-    }
-
-    /// The smallest integer box containing the point.
-    pub fn bbox(&self) -> Aabb {
-        match self {
-            QPoint::Grid(p) => Aabb::point(p),
-            QPoint::Rational { num, den } => {
-                let lo = num.clone().map(|n| clamp_i64(&floor_div(&n, den)));
-                let hi = num.clone().map(|n| clamp_i64(&-floor_div(&-n, den)));
-                Aabb { min: lo, max: hi }
-            }
-        }
-    }
-
-    /// Sign of `n · (p - a)` for the plane of triangle `a b c` (`orient3d(a, b, c, p)`).
-    pub fn side(&self, a: &P3, b: &P3, c: &P3) -> Sign {
-        match self {
-            QPoint::Grid(p) => orient3d(a, b, c, p),
-            QPoint::Rational { num, den } => {
-                let n = normal(a, b, c);
-                let mut s = Int::ZERO;
-                for k in 0..3 {
-                    s += Int::from(n[k]) * (&num[k] - den * Int::from(a[k]));
-                }
-                sign_of(&s)
-            }
-        }
-    }
-
-    /// `orient2d(u, v, p)` in the projection dropping `axis`.
-    pub fn orient2d(&self, u: &P3, v: &P3, axis: usize) -> Sign {
-        let (u2, v2) = (project(u, axis), project(v, axis));
-        match self {
-            QPoint::Grid(p) => orient2d(&u2, &v2, &project(p, axis)),
-            QPoint::Rational { num, den } => {
-                let q = match axis {
-                    0 => [&num[1], &num[2]],
-                    1 => [&num[2], &num[0]],
-                    _ => [&num[0], &num[1]],
-                };
-                let e0 = Int::from(v2[0] as i128 - u2[0] as i128);
-                let e1 = Int::from(v2[1] as i128 - u2[1] as i128);
-                let d0 = q[0] - den * Int::from(u2[0]);
-                let d1 = q[1] - den * Int::from(u2[1]);
-                sign_of(&(e0 * d1 - e1 * d0))
-            }
-        }
-    }
-
-    /// True when the point lies on the closed triangle `a b c` (non-degenerate).
-    pub fn on_triangle(&self, a: &P3, b: &P3, c: &P3) -> bool {
-        if self.side(a, b, c) != Sign::Zero {
-            return false;
-        }
-        let k = dominant_axis(&normal(a, b, c));
-        let s = orient2d(&project(a, k), &project(b, k), &project(c, k));
-        [(a, b), (b, c), (c, a)]
-            .iter()
-            .all(|(u, v)| self.orient2d(u, v, k) != -s)
-    }
-}
+use apart_kernel::orient::{normal, on_triangle, orient2d_point, orient3d_point, P3};
+use apart_kernel::{Aabb, Bvh, HPoint, Sign};
 
 /// Point location in one mesh, with a hierarchy over its triangles.
 pub struct Locator<'m> {
@@ -171,7 +47,7 @@ impl<'m> Locator<'m> {
 
     /// The winding number of the triangles `t` with `keep(t)` around `p`, or `None`
     /// when `p` lies on one of them. For a valid solid it is 1 inside and 0 outside.
-    pub fn winding_filtered(&self, p: &QPoint, keep: impl Fn(u32) -> bool) -> Option<i64> {
+    pub fn winding_filtered(&self, p: &HPoint, keep: impl Fn(u32) -> bool) -> Option<i64> {
         let b = p.bbox();
         let ray = Aabb {
             min: b.min,
@@ -184,8 +60,8 @@ impl<'m> Locator<'m> {
                 return;
             }
             let [a, b, c] = self.mesh.corners(t as usize);
-            let s = p.side(a, b, c);
-            if s == Sign::Zero && p.on_triangle(a, b, c) {
+            let s = orient3d_point(a, b, c, p);
+            if s == Sign::Zero && on_triangle(p, a, b, c) {
                 on = true;
                 return;
             }
@@ -195,7 +71,7 @@ impl<'m> Locator<'m> {
                 return;
             }
             let sos = |u: &P3, v: &P3| {
-                let d = p.orient2d(u, v, 0);
+                let d = orient2d_point(u, v, p, 0);
                 if d != Sign::Zero {
                     d
                 } else if v[2] != u[2] {
@@ -224,12 +100,12 @@ impl<'m> Locator<'m> {
     }
 
     /// The winding number around `p`, `None` on the surface.
-    pub fn winding(&self, p: &QPoint) -> Option<i64> {
+    pub fn winding(&self, p: &HPoint) -> Option<i64> {
         self.winding_filtered(p, |_| true)
     }
 
     /// True when `p` lies strictly inside the solid.
-    pub fn strictly_inside(&self, p: &QPoint) -> bool {
+    pub fn strictly_inside(&self, p: &HPoint) -> bool {
         matches!(self.winding(p), Some(w) if w > 0)
     }
 }
@@ -238,7 +114,7 @@ impl<'m> Locator<'m> {
 mod tests {
     use super::*;
     use crate::raw::{Polygons, RawObject};
-    use apart_kernel::Grid;
+    use apart_kernel::{Grid, Int};
 
     pub(crate) fn cube(lo: i64, hi: i64) -> Mesh {
         let mut vertices = Vec::new();
@@ -269,31 +145,31 @@ mod tests {
     fn cube_location() {
         let m = cube(0, 4);
         let l = Locator::new(&m);
-        assert_eq!(l.winding(&QPoint::Grid([2, 2, 2])), Some(1));
-        assert_eq!(l.winding(&QPoint::Grid([5, 2, 2])), Some(0));
-        assert_eq!(l.winding(&QPoint::Grid([-1, 2, 2])), Some(0));
+        assert_eq!(l.winding(&HPoint::int([2, 2, 2])), Some(1));
+        assert_eq!(l.winding(&HPoint::int([5, 2, 2])), Some(0));
+        assert_eq!(l.winding(&HPoint::int([-1, 2, 2])), Some(0));
         // On faces, edges, vertices.
-        assert_eq!(l.winding(&QPoint::Grid([4, 2, 2])), None);
-        assert_eq!(l.winding(&QPoint::Grid([4, 4, 2])), None);
-        assert_eq!(l.winding(&QPoint::Grid([0, 0, 0])), None);
+        assert_eq!(l.winding(&HPoint::int([4, 2, 2])), None);
+        assert_eq!(l.winding(&HPoint::int([4, 4, 2])), None);
+        assert_eq!(l.winding(&HPoint::int([0, 0, 0])), None);
         // Rays through edges and vertices of the far side (degenerate for a plain ray).
-        assert_eq!(l.winding(&QPoint::Grid([-3, 0, 0])), Some(0));
-        assert_eq!(l.winding(&QPoint::Grid([-3, 4, 4])), Some(0));
-        assert_eq!(l.winding(&QPoint::Grid([1, 2, 0])), None);
-        assert_eq!(l.winding(&QPoint::Grid([1, 0, 2])), None);
-        assert_eq!(l.winding(&QPoint::Grid([-3, 2, 2])), Some(0));
+        assert_eq!(l.winding(&HPoint::int([-3, 0, 0])), Some(0));
+        assert_eq!(l.winding(&HPoint::int([-3, 4, 4])), Some(0));
+        assert_eq!(l.winding(&HPoint::int([1, 2, 0])), None);
+        assert_eq!(l.winding(&HPoint::int([1, 0, 2])), None);
+        assert_eq!(l.winding(&HPoint::int([-3, 2, 2])), Some(0));
         // Inside, on the diagonal planes of the face triangulation.
-        assert_eq!(l.winding(&QPoint::Grid([1, 1, 1])), Some(1));
-        assert_eq!(l.winding(&QPoint::Grid([1, 3, 3])), Some(1));
+        assert_eq!(l.winding(&HPoint::int([1, 1, 1])), Some(1));
+        assert_eq!(l.winding(&HPoint::int([1, 3, 3])), Some(1));
         // Rational points.
         let q = |x: i64, y: i64, z: i64, d: i64| {
-            QPoint::new([Int::from(x), Int::from(y), Int::from(z)], Int::from(d))
+            HPoint::from_big([Int::from(x), Int::from(y), Int::from(z)], Int::from(d))
         };
         assert_eq!(l.winding(&q(7, 1, 1, 2)), Some(1)); // (3.5, .5, .5)
         assert_eq!(l.winding(&q(9, 1, 1, 2)), Some(0)); // (4.5, ...)
         assert_eq!(l.winding(&q(8, 1, 1, 2)), None); // on x = 4
         assert_eq!(l.winding(&q(-1, -1, -1, -3)), Some(1)); // (1/3, 1/3, 1/3)
-        assert!(l.strictly_inside(&QPoint::Grid([3, 3, 3])));
+        assert!(l.strictly_inside(&HPoint::int([3, 3, 3])));
     }
 
     #[test]
@@ -305,7 +181,7 @@ mod tests {
                 for z in -3..=3 {
                     let inside = [x, y, z].iter().all(|c: &i64| c.abs() < 2);
                     let on = !inside && [x, y, z].iter().all(|c: &i64| c.abs() <= 2);
-                    let w = l.winding(&QPoint::Grid([x, y, z]));
+                    let w = l.winding(&HPoint::int([x, y, z]));
                     if on {
                         assert_eq!(w, None, "{x} {y} {z}");
                     } else {

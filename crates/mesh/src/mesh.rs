@@ -1,11 +1,11 @@
 //! The snapped triangle mesh of one object, built from a [`RawObject`].
 
-use crate::aabb::Aabb;
 use crate::problem::{Capped, Problem, ProblemKind};
 use crate::raw::RawObject;
 use crate::triangulate::{triangulate, Outcome};
 use crate::weld::{snap_all, weld};
 use apart_kernel::predicates::det3_i128;
+use apart_kernel::Aabb;
 use apart_kernel::{Grid, Int, Vec3};
 use rayon::prelude::*;
 

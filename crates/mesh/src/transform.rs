@@ -43,7 +43,7 @@ impl Affine {
     /// The rotation by `angle` radians about `axis` (right-hand rule); `None` for a
     /// zero or non-finite axis.
     pub fn rotation(axis: [f64; 3], angle: f64) -> Option<Affine> {
-        let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+        let n = apart_kernel::fvec::norm(axis);
         if !(n > 0.0 && n.is_finite() && angle.is_finite()) {
             return None;
         }

@@ -21,7 +21,7 @@
 
 mod sweep;
 
-use crate::exact::{
+use apart_kernel::orient::{
     collinear, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project,
 };
 use apart_kernel::Sign;

@@ -2,8 +2,8 @@
 //! apart-testkit are built to have (exact volumes, numbers of injected defects), never
 //! against the repair's own output; and fuzzed: garbage never panics and repair ends.
 
+use apart_kernel::orient::collinear;
 use apart_kernel::{Grid, Int};
-use apart_mesh::exact::collinear;
 use apart_mesh::formats::{read_bytes, Format};
 use apart_mesh::repair::{bodies, repair, RepairOptions, RepairReport};
 use apart_mesh::validate::validate;

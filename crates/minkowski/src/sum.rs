@@ -14,9 +14,11 @@
 //! depends on the summands' scale, so two pieces with different denominators are summed
 //! as they are and only the sum's vertices are brought to the common denominator.
 
+use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
+use apart_kernel::fvec;
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, ArcPosition};
-use apart_kernel::{Components, Int, Sign, Vec3};
+use apart_kernel::{Aabb, Components, Int, Sign, Vec3};
 use apart_pieces::hull2d::{hull_in_plane, plane_axes};
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap as HashMap;
@@ -40,7 +42,7 @@ pub struct Summand {
     polytope: Polytope,
     arcs: Vec<GaussArc>,
     /// Conservative boxes of the Gaussian arcs on the unit sphere, by edge.
-    boxes: Vec<[[f64; 2]; 3]>,
+    boxes: Vec<Aabb<f64>>,
     /// Edge indices by the low x of their boxes (stable).
     by_low_x: Vec<u32>,
     /// Each edge's direction `ends[0] -> ends[1]`, primitive.
@@ -61,19 +63,20 @@ impl Summand {
     /// Prepares `polytope` for [`sum_prepared`].
     pub fn new(polytope: Polytope) -> Summand {
         let arcs = gaussian_arcs(&polytope);
-        let boxes: Vec<[[f64; 2]; 3]> = arcs
+        let boxes: Vec<Aabb<f64>> = arcs
             .iter()
             .map(|a| {
-                apart_sphere::Arc {
-                    normal: a.c.clone(),
-                    start: a.m0.clone(),
-                    end: a.m1.clone(),
-                }
-                .bbox()
+                Aabb::from_axes(
+                    &apart_sphere::Arc {
+                        normal: a.c.clone(),
+                        start: a.m0.clone(),
+                        end: a.m1.clone(),
+                    }
+                    .bbox(),
+                )
             })
             .collect();
-        let mut by_low_x: Vec<u32> = (0..boxes.len() as u32).collect();
-        by_low_x.sort_by(|&i, &j| boxes[i as usize][0][0].total_cmp(&boxes[j as usize][0][0]));
+        let by_low_x = by_low_x(&boxes);
         let vs = polytope.vertices();
         let nv = vs.len() as u64;
         let key = |a: u32, b: u32| a.min(b) as u64 * nv + a.max(b) as u64;
@@ -211,7 +214,7 @@ fn extreme(sy: &Summand, n: &Vec3) -> Vec<u32> {
     let Some((s, u)) = filter else {
         return y.support(n).1;
     };
-    let dot = |p: &[f64; 3]| p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+    let dot = |p: &[f64; 3]| fvec::dot(*p, u);
     let max = s.points.iter().map(dot).fold(f64::NEG_INFINITY, f64::max);
     // Every exact value is within `error` of its float one: a vertex whose float value
     // is below `max - 2 error` is exactly below the vertex that attains `max`.
@@ -463,59 +466,10 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
     Ok(Polytope::from_facets(&points, facets)?.with_den(den))
 }
 
-/// Index pairs `(i, j)` whose boxes `a.boxes[i]` and `b.boxes[j]` overlap (sort and
-/// sweep on x: the two box lists come sorted by their low x, stably, and merge with
-/// ties to `a`, the order a stable sort of all of `a`'s then all of `b`'s would give).
+/// Index pairs `(i, j)` whose boxes `a.boxes[i]` and `b.boxes[j]` overlap, by the
+/// kernel's sort and sweep on x (in its order, which fixes the order of the sum's facets).
 fn overlapping(a: &Summand, b: &Summand) -> Vec<(usize, usize)> {
-    let (ab, bb) = (&a.boxes, &b.boxes);
-    let mut events: Vec<(f64, bool, usize)> = Vec::with_capacity(ab.len() + bb.len());
-    let (mut ia, mut ib) = (a.by_low_x.iter().peekable(), b.by_low_x.iter().peekable());
-    loop {
-        let from_b = match (ia.peek(), ib.peek()) {
-            (Some(&&i), Some(&&j)) => ab[i as usize][0][0]
-                .total_cmp(&bb[j as usize][0][0])
-                .is_gt(),
-            (Some(_), None) => false,
-            (None, Some(_)) => true,
-            (None, None) => break,
-        };
-        let (k, x) = if from_b {
-            let j = *ib.next().unwrap() as usize;
-            (j, bb[j][0][0])
-        } else {
-            let i = *ia.next().unwrap() as usize;
-            (i, ab[i][0][0])
-        };
-        events.push((x, from_b, k));
-    }
-    let (a, b) = (ab, bb);
-    let overlap = |x: &[[f64; 2]; 3], y: &[[f64; 2]; 3]| {
-        (0..3).all(|k| x[k][0] <= y[k][1] && y[k][0] <= x[k][1])
-    };
-    let (mut act_a, mut act_b): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
-    let mut out = Vec::new();
-    for (lo, from_b, i) in events {
-        act_a.retain(|&k| a[k][0][1] >= lo);
-        act_b.retain(|&k| b[k][0][1] >= lo);
-        if from_b {
-            out.extend(
-                act_a
-                    .iter()
-                    .filter(|&&k| overlap(&a[k], &b[i]))
-                    .map(|&k| (k, i)),
-            );
-            act_b.push(i);
-        } else {
-            out.extend(
-                act_b
-                    .iter()
-                    .filter(|&&k| overlap(&a[i], &b[k]))
-                    .map(|&k| (i, k)),
-            );
-            act_a.push(i);
-        }
-    }
-    out
+    sweep_pairs_between(&a.boxes, &a.by_low_x, &b.boxes, &b.by_low_x)
 }
 
 /// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal

@@ -2,7 +2,7 @@
 
 use crate::polytope::{Containment, Polytope, Shadow};
 use apart_kernel::int::{self, Int};
-use apart_kernel::{Rational, Sign, Vec3};
+use apart_kernel::{fvec, Rational, Sign, Vec3};
 
 /// True when some plane weakly separates `a` and `b` (their interiors are disjoint).
 ///
@@ -86,14 +86,6 @@ fn unit(n: &Vec3) -> Option<[f64; 3]> {
     (u != [0.0; 3] && u.iter().all(|c| c.is_finite())).then_some(u)
 }
 
-fn dot3(p: &[f64; 3], u: &[f64; 3]) -> f64 {
-    p[0] * u[0] + p[1] * u[1] + p[2] * u[2]
-}
-
-fn neg3(u: &[f64; 3]) -> [f64; 3] {
-    u.map(|c| -c)
-}
-
 /// The smallest and largest of `u · p` over the shadow's points.
 fn float_range(s: &Shadow, u: &[f64; 3]) -> (f64, f64) {
     range_of(&s.points, u)
@@ -104,7 +96,7 @@ fn range_of(points: &[[f64; 3]], u: &[f64; 3]) -> (f64, f64) {
     points
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            let t = dot3(p, u);
+            let t = fvec::dot(*p, *u);
             (lo.min(t), hi.max(t))
         })
 }
@@ -114,7 +106,7 @@ fn range_of(points: &[[f64; 3]], u: &[f64; 3]) -> (f64, f64) {
 fn support_among(p: &Polytope, s: &Shadow, n: &Vec3, u: &[f64; 3], floor: f64) -> Int {
     let mut best: Option<Int> = None;
     for (v, q) in p.vertices().iter().zip(&s.points) {
-        if dot3(q, u) < floor {
+        if fvec::dot(*q, *u) < floor {
             continue;
         }
         let d = n.dot(v);
@@ -155,7 +147,13 @@ impl<'p> FilteredPair<'p> {
     /// The exact `min_b n·y` as `-hb` (stored integers of `b`), given `blo`, the float
     /// minimum along `u`.
     fn min_b(&self, n: &Vec3, u: &[f64; 3], blo: f64) -> Int {
-        -support_among(self.b, self.sb, &n.neg(), &neg3(u), -blo - 2.0 * self.err)
+        -support_among(
+            self.b,
+            self.sb,
+            &n.neg(),
+            &fvec::neg(*u),
+            -blo - 2.0 * self.err,
+        )
     }
 
     /// Whether `a` lies weakly below `b` along `n` (`max_a n·x <= min_b n·y`), and
@@ -198,7 +196,7 @@ impl<'p> FilteredPair<'p> {
             self.a,
             self.sa,
             &f.normal.neg(),
-            &neg3(u),
+            &fvec::neg(*u),
             -alo - 2.0 * self.err,
         );
         compare(&f.offset, self.b.den(), &ma, self.a.den())
@@ -215,7 +213,7 @@ impl<'p> FilteredPair<'p> {
             let slack =
                 sp.magnitude.max(so.magnitude) * (so.points.len() as f64 + 64.0) * 2f64.powi(-44);
             for (i, (u, level)) in sp.facet_units.iter().zip(&sp.facet_levels).enumerate() {
-                let (u, score) = (*u, dot3(&so.mean, u) - level);
+                let (u, score) = (*u, fvec::dot(so.mean, *u) - level);
                 if score >= -slack {
                     out.push((score, of_b, i, u));
                 }
@@ -277,7 +275,7 @@ impl FilteredPair<'_> {
 fn clip(s: &[f64; 3], t: &[f64; 3], q: &Shadow) -> Option<(f64, f64)> {
     let (mut lo, mut hi) = (0f64, 1f64);
     for (u, l) in q.facet_units.iter().zip(&q.facet_levels) {
-        let (ds, dt) = (dot3(s, u) - l, dot3(t, u) - l);
+        let (ds, dt) = (fvec::dot(*s, *u) - l, fvec::dot(*t, *u) - l);
         if ds > 0.0 && dt > 0.0 {
             return None;
         }
@@ -399,7 +397,7 @@ fn filtered_relation(a: &Polytope, b: &Polytope) -> Option<Relation> {
             if fp.below_given(&n, &u, ahi, blo).is_some() {
                 return Some(Relation::Apart(n.primitive()));
             }
-            let (m, mu) = (n.neg(), neg3(&u));
+            let (m, mu) = (n.neg(), fvec::neg(u));
             if fp.below_given(&m, &mu, -alo, -bhi).is_some() {
                 return Some(Relation::Apart(m.primitive()));
             }
@@ -623,7 +621,7 @@ pub fn overlap_with_depth(a: &Polytope, b: &Polytope) -> (bool, f64) {
 fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
     let (mut wa, mut wb) = (Extremes::new(a), Extremes::new(b));
     let overlap_along = |n: [f64; 3], wa: &mut Extremes, wb: &mut Extremes| -> f64 {
-        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let len = fvec::norm(n);
         if len == 0.0 || !len.is_finite() {
             return f64::INFINITY;
         }
@@ -698,17 +696,17 @@ impl Extremes {
             return range_of(&self.points, u);
         }
         let hi = self.climb(0, u);
-        let lo = -self.climb(1, &neg3(u));
+        let lo = -self.climb(1, &fvec::neg(*u));
         (lo, hi)
     }
 
     fn climb(&mut self, slot: usize, u: &[f64; 3]) -> f64 {
         let mut v = self.hint[slot];
-        let mut best = dot3(&self.points[v], u);
+        let mut best = fvec::dot(self.points[v], *u);
         loop {
             let next = self.neighbours[v]
                 .iter()
-                .map(|&w| (w as usize, dot3(&self.points[w as usize], u)))
+                .map(|&w| (w as usize, fvec::dot(self.points[w as usize], *u)))
                 .max_by(|x, y| x.1.total_cmp(&y.1));
             match next {
                 Some((w, t)) if t > best => {
@@ -755,13 +753,13 @@ mod depth_tests {
         };
         for _ in 0..500 {
             let n = [next(), next(), next() * 0.1];
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let len = fvec::norm(n);
             let u = n.map(|c| c / len);
             let (lo, hi) = walk.range(&u);
             let scan = pts
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
-                    (l.min(dot3(q, &u)), h.max(dot3(q, &u)))
+                    (l.min(fvec::dot(*q, u)), h.max(fvec::dot(*q, u)))
                 });
             assert!(
                 (lo - scan.0).abs() <= 1e-6 && (hi - scan.1).abs() <= 1e-6,

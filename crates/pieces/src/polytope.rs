@@ -1,6 +1,7 @@
 //! Exact convex polytopes: vertices, facet planes with integer normals, adjacency.
 
 use crate::hull2d::hull_in_plane;
+use apart_kernel::fvec;
 use apart_kernel::int::{self, Int};
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
@@ -116,7 +117,7 @@ impl Shadow {
             .zip(&facet_units)
             .map(|(f, u)| {
                 let x = points[f.cycle[0] as usize];
-                x[0] * u[0] + x[1] * u[1] + x[2] * u[2]
+                fvec::dot(x, *u)
             })
             .collect();
         Some(Shadow {
@@ -559,11 +560,7 @@ impl Polytope {
             })
             .flatten();
         let dots: Vec<f64> = match &filter {
-            Some((s, u)) => s
-                .points
-                .iter()
-                .map(|p| p[0] * u[0] + p[1] * u[1] + p[2] * u[2])
-                .collect(),
+            Some((s, u)) => s.points.iter().map(|p| fvec::dot(*p, *u)).collect(),
             None => Vec::new(),
         };
         let floor = match &filter {

@@ -16,6 +16,7 @@
 
 use crate::hull2d::hull_in_plane;
 use crate::polytope::Polytope;
+use apart_kernel::fvec;
 use apart_kernel::int::{self, Int};
 use apart_kernel::{Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
@@ -182,11 +183,11 @@ pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
         .iter()
         .map(|f| {
             let n = f.normal.approx();
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let len = fvec::norm(n);
             let h = apart_kernel::Rational::new(f.offset.clone(), original.den().clone()).to_f64();
             let top = pts
                 .iter()
-                .map(|p| p[0] * n[0] + p[1] * n[1] + p[2] * n[2])
+                .map(|p| fvec::dot(*p, n))
                 .fold(f64::NEG_INFINITY, f64::max);
             (h - top) / len
         })
@@ -214,22 +215,18 @@ fn inner_point(p: &Polytope, l: &Int) -> Option<Vec3> {
         .iter()
         .map(|f| {
             let a = f.normal.approx();
-            let len = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            let len = fvec::norm(a);
             let u = a.map(|x| x / len);
             // u · x <= h for the points x of the facet's plane.
             let v = &verts[f.cycle[0] as usize];
-            (u, u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
+            (u, fvec::dot(u, *v))
         })
         .collect();
     // The analytic centre of the facet inequalities (damped Newton on the log barrier
     // from the vertex centroid, which lies inside): well away from every facet, also in
     // long thin pieces where the centroid may sit close to a side.
-    let slack = |c: &[f64; 3]| -> Vec<f64> {
-        units
-            .iter()
-            .map(|(u, h)| h - (u[0] * c[0] + u[1] * c[1] + u[2] * c[2]))
-            .collect()
-    };
+    let slack =
+        |c: &[f64; 3]| -> Vec<f64> { units.iter().map(|(u, h)| h - fvec::dot(*u, *c)).collect() };
     let mut best = c;
     if slack(&c).iter().all(|&x| x > 0.0) {
         for _ in 0..50 {

@@ -18,18 +18,18 @@
 //! piece-based test has no such gap; it is used instead whenever both parts have convex
 //! pieces, declared or from the loader's automatic decomposition ([`crate::Decompose`]).
 
-use crate::witness::{below_both, into_both, to_qpoint};
-use apart_kernel::{Int, Rational, Sign};
-use apart_mesh::exact::{
+use crate::witness::{below_both, into_both};
+use apart_kernel::orient::{
     dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, project, segments_meet_2d,
 };
+use apart_kernel::{Aabb, HPoint, Int, Rational, Sign};
 use apart_mesh::intersect::{coplanar_overlap_area, segment_triangle_params};
-use apart_mesh::locate::{Locator, QPoint};
-use apart_mesh::{Aabb, Mesh};
+use apart_mesh::locate::Locator;
+use apart_mesh::Mesh;
 use rayon::prelude::*;
 
 /// A point strictly inside both solids, if their interiors overlap (see the module).
-pub(crate) fn overlap(a: &Mesh, b: &Mesh) -> Option<QPoint> {
+pub(crate) fn overlap(a: &Mesh, b: &Mesh) -> Option<HPoint> {
     let la = Locator::new(a);
     let lb = Locator::new(b);
     one_way(&la, &lb)
@@ -42,7 +42,7 @@ fn rat(v: i64) -> Rational {
 }
 
 /// Points of A's boundary strictly inside B, moved into A.
-fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
+fn one_way(la: &Locator, lb: &Locator) -> Option<HPoint> {
     let a = la.mesh();
     let bbox_b = lb.mesh().bbox()?;
     // Winding number of B around each vertex of A (None: on B's boundary).
@@ -51,7 +51,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
         .par_iter()
         .map(|v| {
             if bbox_b.contains(v) {
-                lb.winding(&QPoint::Grid(*v))
+                lb.winding(&HPoint::int(*v))
             } else {
                 Some(0)
             }
@@ -59,7 +59,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
         .collect();
     let hit = (0..a.vertices.len()).into_par_iter().find_map_first(|v| {
         if status[v].is_some_and(|w| w > 0) {
-            into_both(la, lb, &QPoint::Grid(a.vertices[v]))
+            into_both(la, lb, &HPoint::int(a.vertices[v]))
         } else {
             None
         }
@@ -104,7 +104,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
         for w in ts.windows(2) {
             let tm = &(&w[0] + &w[1]) * &half;
             let m = [0, 1, 2].map(|k| &pr[k] + &(&d[k] * &tm));
-            let m = to_qpoint(&m);
+            let m = HPoint::from_rationals(&m);
             if lb.strictly_inside(&m) {
                 if let Some(x) = into_both(la, lb, &m) {
                     return Some(x);
@@ -124,7 +124,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
         }
         let [p, q, r] = a.corners(t);
         let num = [0, 1, 2].map(|k| Int::from(p[k]) + q[k] + r[k]);
-        let c = QPoint::new(num, Int::from(3));
+        let c = HPoint::from_big(num, Int::from(3));
         if lb.strictly_inside(&c) {
             into_both(la, lb, &c)
         } else {
@@ -135,7 +135,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<QPoint> {
 
 /// Coincident faces with the same outward normal sharing an area: both solids lie just
 /// below them.
-fn coincident(la: &Locator, lb: &Locator) -> Option<QPoint> {
+fn coincident(la: &Locator, lb: &Locator) -> Option<HPoint> {
     let (a, b) = (la.mesh(), lb.mesh());
     let bbox_b = b.bbox()?;
     (0..a.triangles.len()).into_par_iter().find_map_first(|t| {
@@ -231,15 +231,15 @@ mod tests {
         Polytope::cuboid(lo, hi).unwrap()
     }
 
-    fn check(a: &Polytope, b: &Polytope) -> Option<QPoint> {
+    fn check(a: &Polytope, b: &Polytope) -> Option<HPoint> {
         let (ma, mb) = (polytope_mesh(a), polytope_mesh(b));
         let w = overlap(&ma, &mb);
         if let Some(w) = &w {
             // The witness is strictly inside both, by an independent test.
-            let (num, den) = w.homogeneous();
+            let (num, den) = (w.num(), w.den());
             for p in [a, b] {
                 for f in p.facets() {
-                    let mut s = -(&f.offset * &den);
+                    let mut s = -(&f.offset * den);
                     for (k, x) in num.iter().enumerate() {
                         s += f.normal.get(k) * x;
                     }

@@ -12,9 +12,9 @@ pub(crate) mod boundary;
 use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
-use crate::witness::{fmt_witness, simplest, to_qpoint, verified_in_polytopes};
-use apart_kernel::Grid;
+use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_kernel::Rational;
+use apart_kernel::{Grid, HPoint};
 use apart_mesh::locate::Locator;
 use apart_mesh::{Mesh, Problem, ProblemKind};
 use apart_pieces::interference::interior_witness;
@@ -92,7 +92,7 @@ pub(crate) fn part_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational;
             if let Some(w) = boundary::overlap(ma, mb) {
                 let (la, lb) = (Locator::new(ma), Locator::new(mb));
                 return Some(simplest(w.to_rationals(), grid, |r| {
-                    let q = to_qpoint(r);
+                    let q = HPoint::from_rationals(r);
                     la.strictly_inside(&q) && lb.strictly_inside(&q)
                 }));
             }

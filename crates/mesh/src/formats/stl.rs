@@ -7,6 +7,7 @@
 use super::{Format, ReadError};
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
+use apart_kernel::fvec;
 use rayon::prelude::*;
 use std::io::Write;
 
@@ -166,7 +167,7 @@ pub fn write(
                 u[2] * v[0] - u[0] * v[2],
                 u[0] * v[1] - u[1] * v[0],
             ];
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let len = fvec::norm(n);
             let n = if len > 0.0 {
                 n.map(|x| x / len)
             } else {

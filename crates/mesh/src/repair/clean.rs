@@ -5,8 +5,8 @@
 
 use super::compact::retain_triangles;
 use super::RepairReport;
-use crate::exact::collinear;
 use crate::mesh::Mesh;
+use apart_kernel::orient::collinear;
 use rayon::prelude::*;
 
 /// The triangle's vertices rotated to start at the smallest, and whether the other

@@ -2,10 +2,11 @@
 //! (crate::locate) from a point of one shell against the triangles of another, so it
 //! does not depend on how either shell is oriented.
 
-use crate::aabb::Aabb;
-use crate::bvh::Bvh;
-use crate::locate::{Locator, QPoint};
+use crate::locate::Locator;
 use crate::mesh::Mesh;
+use apart_kernel::Aabb;
+use apart_kernel::Bvh;
+use apart_kernel::HPoint;
 use apart_kernel::Int;
 
 /// For every shell, the shells that contain it. Only shells with `closed[s]` take
@@ -68,7 +69,7 @@ fn inside(locator: &Locator, shell_of: &[u32], members: &[u32], t: u32) -> bool 
     for &m in members.iter().take(16) {
         let [a, b, c] = mesh.corners(m as usize);
         let num = [0, 1, 2].map(|k| Int::from(a[k]) + Int::from(b[k]) + Int::from(c[k]));
-        let p = QPoint::new(num, Int::from(3));
+        let p = HPoint::from_big(num, Int::from(3));
         if let Some(w) = locator.winding_filtered(&p, |u| shell_of[u as usize] == t) {
             return w % 2 != 0;
         }

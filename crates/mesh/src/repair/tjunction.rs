@@ -12,11 +12,11 @@
 
 use super::edges::{balance, runs, uses};
 use super::RepairReport;
-use crate::aabb::Aabb;
-use crate::bvh::Bvh;
-use crate::exact::{collinear, P3};
 use crate::mesh::Mesh;
 use crate::triangulate::triangulate;
+use apart_kernel::orient::{collinear, P3};
+use apart_kernel::Aabb;
+use apart_kernel::Bvh;
 use rayon::prelude::*;
 
 /// Passes after which splitting stops even if a pass still split something. Each pass

@@ -17,7 +17,7 @@
 //! triangles turning the same way, a simple polygon is covered exactly once. A polygon
 //! the sweep cannot split (not simple, touching itself) returns `false`.
 
-use crate::exact::orient2d;
+use apart_kernel::orient::orient2d;
 use apart_kernel::Sign;
 use std::cmp::Ordering;
 

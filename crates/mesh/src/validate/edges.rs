@@ -7,8 +7,8 @@
 //! bucket is sorted by end vertex, so both directions of an edge are found by binary
 //! search; vertices are processed in parallel.
 
-use crate::exact::orient3d;
 use crate::mesh::Mesh;
+use apart_kernel::orient::orient3d;
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::{Sign, Vec3};
 use rayon::prelude::*;

@@ -27,12 +27,12 @@ mod self_intersection;
 mod shells;
 mod vertices;
 
-use crate::aabb::Aabb;
-use crate::bvh::Bvh;
 use crate::intersect::Contact;
 use crate::locate::Locator;
 use crate::mesh::{fmt_point, Mesh, LIST};
 use crate::problem::{Capped, Problem, ProblemKind};
+use apart_kernel::Aabb;
+use apart_kernel::Bvh;
 use apart_kernel::{Grid, Int, Rational, Sign};
 use rayon::prelude::*;
 

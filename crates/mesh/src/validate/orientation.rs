@@ -5,9 +5,10 @@
 //! shell with positive volume must lie outside all other shells, and a shell with
 //! negative volume (a cavity) inside exactly one layer of material.
 
-use crate::locate::{Locator, QPoint};
+use crate::locate::Locator;
 use crate::mesh::Mesh;
 use apart_kernel::predicates::det3_i128;
+use apart_kernel::HPoint;
 use apart_kernel::{Int, Vec3};
 
 /// Six times the signed volume of each shell (`i128` while it fits, exact big
@@ -58,7 +59,7 @@ pub(crate) fn winding_of_others(
     for &t in members.iter().take(16) {
         let [a, b, c] = mesh.corners(t as usize);
         let num = [0, 1, 2].map(|k| Int::from(a[k]) + Int::from(b[k]) + Int::from(c[k]));
-        let p = QPoint::new(num, Int::from(3));
+        let p = HPoint::from_big(num, Int::from(3));
         if let Some(w) = locator.winding_filtered(&p, |u| shell_of[u as usize] != s) {
             return Some(w);
         }

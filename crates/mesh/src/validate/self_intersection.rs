@@ -17,10 +17,11 @@
 //!   fan) is skipped against another such node with the same vertex, so a fan's pairs
 //!   are not even enumerated there.
 
-use crate::aabb::Aabb;
-use crate::bvh::Bvh;
 use crate::intersect::{triangle_pair, Contact};
 use crate::mesh::Mesh;
+use apart_kernel::fvec;
+use apart_kernel::Aabb;
+use apart_kernel::Bvh;
 use rayon::prelude::*;
 
 /// Intersecting pairs found so far: the smallest `limit` of them, their number, and
@@ -244,17 +245,17 @@ fn direction_box(mesh: &Mesh, v: u32, t: u32) -> Aabb {
     let tri = mesh.triangles[t as usize];
     let others: Vec<u32> = tri.iter().copied().filter(|&x| x != v).collect();
     let (b, c) = (p(others[0]), p(others[1]));
-    if crate::exact::collinear(o, b, c) {
+    if apart_kernel::orient::collinear(o, b, c) {
         return all; // also when b or c coincides with v
     }
     let unit = |q: &[i64; 3]| {
         let d = [0, 1, 2].map(|k| (q[k] as i128 - o[k] as i128) as f64);
-        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let len = fvec::norm(d);
         d.map(|x| x / len)
     };
     let (ub, uc) = (unit(b), unit(c));
     let s = [0, 1, 2].map(|k| ub[k] + uc[k]);
-    let m = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt() / 2.0;
+    let m = fvec::norm(s) / 2.0;
     if m.is_nan() || m < MIN_HALF {
         return all;
     }

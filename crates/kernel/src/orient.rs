@@ -1,4 +1,5 @@
-//! Exact predicates on snapped grid points (`[i64; 3]` with fewer than 54 bits).
+//! Exact orientation predicates on snapped grid points (`[i64; 3]` with fewer than 54
+//! bits), and on exact points ([`HPoint`]) against grid triangles.
 //!
 //! Bit bounds, for coordinates below 2^B: differences below 2^(B+1); `orient3d` is a
 //! degree-3 polynomial below 6 · 2^(3B+3) (96 bits for the default B = 30), evaluated
@@ -7,8 +8,10 @@
 //! otherwise; `orient2d` and cross products are degree 2 (at most 110 bits
 //! for B = 53) and always fit `i128`.
 
-use apart_kernel::predicates::{det3_i128, det3_sign};
-use apart_kernel::{Sign, Vec3};
+use crate::int::{sign_of, Int};
+use crate::plane::HPoint;
+use crate::predicates::{det3_i128, det3_sign};
+use crate::{Sign, Vec3};
 
 /// A grid point.
 pub type P3 = [i64; 3];
@@ -143,6 +146,7 @@ pub fn orient2d(a: &[i64; 2], b: &[i64; 2], c: &[i64; 2]) -> Sign {
 
 /// True when `p` lies in the closed triangle `a, b, c` (any orientation; a degenerate
 /// triangle contains the points of its hull segment).
+#[inline]
 pub fn in_closed_triangle_2d(p: &[i64; 2], a: &[i64; 2], b: &[i64; 2], c: &[i64; 2]) -> bool {
     let s = orient2d(a, b, c);
     if s == Sign::Zero {
@@ -155,6 +159,7 @@ pub fn in_closed_triangle_2d(p: &[i64; 2], a: &[i64; 2], b: &[i64; 2], c: &[i64;
 }
 
 /// True when `p` lies on the closed segment `a b` (a point when `a = b`).
+#[inline]
 pub fn on_segment_2d(p: &[i64; 2], a: &[i64; 2], b: &[i64; 2]) -> bool {
     orient2d(a, b, p) == Sign::Zero
         && p[0] >= a[0].min(b[0])
@@ -164,6 +169,7 @@ pub fn on_segment_2d(p: &[i64; 2], a: &[i64; 2], b: &[i64; 2]) -> bool {
 }
 
 /// True when the closed segments `a b` and `c d` share a point.
+#[inline]
 pub fn segments_meet_2d(a: &[i64; 2], b: &[i64; 2], c: &[i64; 2], d: &[i64; 2]) -> bool {
     let d1 = orient2d(c, d, a);
     let d2 = orient2d(c, d, b);
@@ -180,6 +186,53 @@ pub fn segments_meet_2d(a: &[i64; 2], b: &[i64; 2], c: &[i64; 2], d: &[i64; 2]) 
         || on_segment_2d(b, c, d)
         || on_segment_2d(c, a, b)
         || on_segment_2d(d, a, b)
+}
+
+/// Sign of `n · (p - a)` for the normal `n = (b - a) × (c - a)` of triangle `a b c`:
+/// [`orient3d`]`(a, b, c, p)` for an exact point `p`.
+pub fn orient3d_point(a: &P3, b: &P3, c: &P3, p: &HPoint) -> Sign {
+    if let Some(q) = p.as_int() {
+        return orient3d(a, b, c, q);
+    }
+    let (num, den) = (p.num(), p.den());
+    let n = normal(a, b, c);
+    let mut s = Int::ZERO;
+    for k in 0..3 {
+        s += Int::from(n[k]) * (&num[k] - den * Int::from(a[k]));
+    }
+    sign_of(&s)
+}
+
+/// [`orient2d`]`(u, v, p)` in the projection dropping `axis` ([`project`]), for an
+/// exact point `p`.
+pub fn orient2d_point(u: &P3, v: &P3, p: &HPoint, axis: usize) -> Sign {
+    let (u2, v2) = (project(u, axis), project(v, axis));
+    if let Some(q) = p.as_int() {
+        return orient2d(&u2, &v2, &project(q, axis));
+    }
+    let (num, den) = (p.num(), p.den());
+    let q = match axis {
+        0 => [&num[1], &num[2]],
+        1 => [&num[2], &num[0]],
+        _ => [&num[0], &num[1]],
+    };
+    let e0 = Int::from(v2[0] as i128 - u2[0] as i128);
+    let e1 = Int::from(v2[1] as i128 - u2[1] as i128);
+    let d0 = q[0] - den * Int::from(u2[0]);
+    let d1 = q[1] - den * Int::from(u2[1]);
+    sign_of(&(e0 * d1 - e1 * d0))
+}
+
+/// True when the exact point `p` lies on the closed triangle `a b c` (non-degenerate).
+pub fn on_triangle(p: &HPoint, a: &P3, b: &P3, c: &P3) -> bool {
+    if orient3d_point(a, b, c, p) != Sign::Zero {
+        return false;
+    }
+    let k = dominant_axis(&normal(a, b, c));
+    let s = orient2d(&project(a, k), &project(b, k), &project(c, k));
+    [(a, b), (b, c), (c, a)]
+        .iter()
+        .all(|(u, v)| orient2d_point(u, v, p, k) != -s)
 }
 
 #[cfg(test)]
@@ -222,9 +275,9 @@ mod tests {
     }
 
     fn oracle(a: &P3, b: &P3, c: &P3, d: &P3) -> Sign {
-        let v = |p: &P3| apart_kernel::Vec3::from_i64(*p);
+        let v = |p: &P3| crate::Vec3::from_i64(*p);
         let (u, w, x) = (v(b).sub(&v(a)), v(c).sub(&v(a)), v(d).sub(&v(a)));
-        apart_kernel::int::sign_of(&u.dot(&w.cross(&x)))
+        crate::int::sign_of(&u.dot(&w.cross(&x)))
     }
 
     proptest::proptest! {
@@ -273,10 +326,10 @@ mod tests {
             ]),
         ) {
             let (u, v, w) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
-            let want = apart_kernel::predicates::det3_sign(
-                &apart_kernel::Vec3::from_i64(u),
-                &apart_kernel::Vec3::from_i64(v),
-                &apart_kernel::Vec3::from_i64(w),
+            let want = crate::predicates::det3_sign(
+                &crate::Vec3::from_i64(u),
+                &crate::Vec3::from_i64(v),
+                &crate::Vec3::from_i64(w),
             );
             proptest::prop_assert_eq!(det3(&u, &v, &w), want);
         }

@@ -1,20 +1,23 @@
-//! Exact planes and homogeneous points: the only numbers the decomposition computes.
+//! Exact planes (half-spaces) and the homogeneous points where they meet, with the
+//! float filter of their side test.
 //!
-//! Every plane is either a plane of the bounding box or the plane through three input
-//! points, so its primitive normal has at most `2B + 3` bits and its offset at most
-//! `3B + 5` for input coordinates below `2^B` (`B <= 40`: both fit `i128`). Every point is
-//! built from its definition, never by chaining constructions: an input point, the
-//! intersection of an input segment with a plane, or the intersection of three planes.
-//! Homogeneous coordinates `(X, W)`, `W > 0`, reduced by their gcd, so that equal points
-//! have equal representations. Bit bounds for three planes: `W = det(n1, n2, n3)` has at
-//! most `6B + 12` bits, `X` at most `7B + 15`; a side test `n·X - c·W` at most `9B + 20`.
+//! A [`Plane`] is `n · x = c` with a primitive `i128` normal, and as a half-space its
+//! inner side `n · x <= c`; a [`BigPlane`] is the same with arbitrary-precision
+//! coefficients. An [`HPoint`] has homogeneous integer coordinates `(X, W)`, `W > 0`,
+//! reduced by their gcd, so that equal points have equal representations; it carries a
+//! float shadow for the side filter.
+//!
+//! Bit bounds for planes through three points with coordinates below `2^B` (or planes of
+//! an axis-aligned box): the primitive normal has at most `2B + 3` bits and the offset
+//! at most `3B + 5` (`B <= 40`: both fit `i128`). A point built from its definition (a
+//! grid point, the intersection of a segment with a plane, or of three planes), never
+//! by chaining constructions, has for three planes `W = det(n1, n2, n3)` of at most
+//! `6B + 12` bits and `X` of at most `7B + 15`; a side test `n·X - c·W` at most `9B + 20`.
 
-use apart_kernel::int::{self, Int};
-use apart_kernel::Sign;
+use crate::aabb::Aabb;
+use crate::int::{self, Int};
+use crate::{Rational, Sign};
 use std::hash::{Hash, Hasher};
-
-/// Input coordinates must be below this power of two in magnitude.
-pub const MAX_COORD_BITS: u32 = 40;
 
 const U: f64 = f64::EPSILON / 2.0;
 /// Relative error bound of the side filter. Inputs: normal components and offset rounded
@@ -331,6 +334,60 @@ impl HPoint {
     pub fn den(&self) -> &Int {
         &self.w
     }
+
+    /// The coordinates when the point is a grid point (`W = 1`) that fits `i64`.
+    #[inline]
+    pub fn as_int(&self) -> Option<&[i64; 3]> {
+        self.int.as_ref()
+    }
+
+    /// The point of three exact rationals.
+    pub fn from_rationals(r: &[Rational; 3]) -> HPoint {
+        let mut den = Int::ONE;
+        for c in r {
+            let g = int::gcd(&den, c.denom());
+            den = &den / &g * c.denom();
+        }
+        let num = [0, 1, 2].map(|k| r[k].numer() * &(&den / r[k].denom()));
+        HPoint::from_big(num, den)
+    }
+
+    /// The coordinates as exact rationals.
+    pub fn to_rationals(&self) -> [Rational; 3] {
+        match &self.int {
+            Some(p) => p.map(Rational::from_int),
+            None => self.x.clone().map(|n| Rational::new(n, self.w.clone())),
+        }
+    }
+
+    /// The smallest grid box containing the point (coordinates beyond the `i64` range
+    /// clamped to `±2^62`).
+    pub fn bbox(&self) -> Aabb {
+        if let Some(p) = &self.int {
+            return Aabb::point(p);
+        }
+        let lo = self.x.clone().map(|n| clamp_i64(&floor_div(&n, &self.w)));
+        let hi = self.x.clone().map(|n| clamp_i64(&-floor_div(&-n, &self.w)));
+        Aabb { min: lo, max: hi }
+    }
+}
+
+/// `floor(n / d)` for `d > 0`.
+fn floor_div(n: &Int, d: &Int) -> Int {
+    let q = n / d;
+    if n < &Int::ZERO && &(&q * d) != n {
+        q - Int::ONE
+    } else {
+        q
+    }
+}
+
+fn clamp_i64(v: &Int) -> i64 {
+    i64::try_from(v).unwrap_or(if v < &Int::ZERO {
+        i64::MIN / 2
+    } else {
+        i64::MAX / 2
+    })
 }
 
 fn meet_wide(a: &Plane, b: &Plane, c: &Plane) -> Option<Option<HPoint>> {
@@ -408,7 +465,9 @@ pub fn on_segment_big(a: &[Int; 3], b: &[Int; 3], n: &[Int; 3], c: &Int) -> Opti
 /// An arbitrary-precision plane `n · x = c` with its floating-point shadow.
 #[derive(Clone, Debug)]
 pub struct BigPlane {
+    /// Normal (any non-zero integer vector).
     pub n: [Int; 3],
+    /// Offset.
     pub c: Int,
     nf: [f64; 3],
     cf: f64,

@@ -1,22 +1,28 @@
-//! A bounding-volume hierarchy over boxes, for the broad phase of every geometric
-//! search (self-intersection, point location, part against part).
+//! The broad phase of every geometric search (self-intersection, point location, part
+//! against part, piece against piece): which boxes meet.
 //!
-//! Boxes are ordered along a Morton (Z-order) curve of their centres, grouped into
-//! leaves of a few boxes, and a complete binary tree is built over the leaves in heap
-//! layout (node `i` has children `2i` and `2i + 1`). The build is a parallel sort plus
-//! a linear pass; a query walks the tree with an explicit stack.
+//! [`Bvh`] is a bounding-volume hierarchy. Boxes are ordered along a Morton (Z-order)
+//! curve of their centres, grouped into leaves of a few boxes, and a complete binary
+//! tree is built over the leaves in heap layout (node `i` has children `2i` and
+//! `2i + 1`). The build is a parallel sort plus a linear pass; a query walks the tree
+//! with an explicit stack.
+//!
+//! [`sweep_pairs`] and [`sweep_pairs_between`] do the same job by sort and sweep along
+//! x, for small sets whose pairs must come in the order along x (the order in which a
+//! caller builds its output).
 
-use crate::aabb::Aabb;
+use crate::aabb::{Aabb, Coord};
 use rayon::prelude::*;
+use std::ops::ControlFlow;
 
 const LEAF: usize = 4;
 
 /// A hierarchy over a list of boxes, answering "which boxes meet this box".
 #[derive(Clone, Debug)]
-pub struct Bvh {
-    boxes: Vec<Aabb>,
+pub struct Bvh<T: Coord = i64> {
+    boxes: Vec<Aabb<T>>,
     order: Vec<u32>,
-    nodes: Vec<Aabb>,
+    nodes: Vec<Aabb<T>>,
     leaves: usize,
 }
 
@@ -30,16 +36,16 @@ fn spread(v: u64) -> u64 {
     x
 }
 
-impl Bvh {
+impl<T: Coord> Bvh<T> {
     /// Builds the hierarchy over `boxes` (their indices are what queries report).
-    pub fn new(boxes: Vec<Aabb>) -> Bvh {
+    pub fn new(boxes: Vec<Aabb<T>>) -> Bvh<T> {
         let n = boxes.len();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         // Centres quantised to 10 bits per axis (in floating point: the order only
         // affects speed, never results).
-        let lo = all.min.map(|v| v as f64);
+        let lo = all.min.map(T::to_f64);
         let scale: [f64; 3] =
-            [0, 1, 2].map(|k| 1023.0 / (2.0 * ((all.max[k] as f64 - lo[k]).max(1.0))));
+            [0, 1, 2].map(|k| 1023.0 / (2.0 * ((all.max[k].to_f64() - lo[k]).max(1.0))));
         let mut keys: Vec<u64> = boxes
             .par_iter()
             .enumerate()
@@ -47,7 +53,7 @@ impl Bvh {
             .map(|(i, b)| {
                 let mut code = 0u64;
                 for k in 0..3 {
-                    let c = b.min[k] as f64 + b.max[k] as f64 - 2.0 * lo[k];
+                    let c = b.min[k].to_f64() + b.max[k].to_f64() - 2.0 * lo[k];
                     let q = (c * scale[k]).clamp(0.0, 1023.0) as u64;
                     code |= spread(q) << k;
                 }
@@ -80,7 +86,7 @@ impl Bvh {
     }
 
     /// The boxes, by index.
-    pub fn boxes(&self) -> &[Aabb] {
+    pub fn boxes(&self) -> &[Aabb<T>] {
         &self.boxes
     }
 
@@ -157,7 +163,7 @@ impl Bvh {
 
     /// Calls `f(i)` for every box `i` that meets the closed box `q`.
     #[inline]
-    pub fn query(&self, q: &Aabb, mut f: impl FnMut(u32)) {
+    pub fn query(&self, q: &Aabb<T>, mut f: impl FnMut(u32)) {
         if self.boxes.is_empty() {
             return;
         }
@@ -189,8 +195,8 @@ impl Bvh {
 /// Depth down to which the self-traversal forks into parallel tasks.
 const PARALLEL_DEPTH: u32 = 10;
 
-struct PairCtx<'a, A, I, V, M, P> {
-    bvh: &'a Bvh,
+struct PairCtx<'a, T: Coord, A, I, V, M, P> {
+    bvh: &'a Bvh<T>,
     _acc: std::marker::PhantomData<fn() -> A>,
     init: &'a I,
     visit: &'a V,
@@ -198,8 +204,9 @@ struct PairCtx<'a, A, I, V, M, P> {
     prune: &'a P,
 }
 
-impl<A, I, V, M, P> PairCtx<'_, A, I, V, M, P>
+impl<T, A, I, V, M, P> PairCtx<'_, T, A, I, V, M, P>
 where
+    T: Coord,
     A: Send,
     I: Fn() -> A + Sync,
     V: Fn(&mut A, u32, u32) + Sync,
@@ -326,6 +333,94 @@ where
     }
 }
 
+/// The indices of `boxes` ordered by their low x (a stable sort: ties keep index order).
+pub fn by_low_x<T: Coord>(boxes: &[Aabb<T>]) -> Vec<u32> {
+    let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
+    order.sort_by(|&i, &j| boxes[i as usize].min[0].total_cmp(&boxes[j as usize].min[0]));
+    order
+}
+
+/// Calls `f(i, j)` for every pair of distinct boxes that meet (closed), by sort and
+/// sweep along x: `i` runs over the boxes in the order of their low x (a stable sort),
+/// `j` over the boxes after `i` in that order whose low x is at most `i`'s high x.
+/// Stops at the first `f` that breaks, and returns its value.
+pub fn sweep_pairs<T: Coord, B>(
+    boxes: &[Aabb<T>],
+    mut f: impl FnMut(usize, usize) -> ControlFlow<B>,
+) -> ControlFlow<B> {
+    let order = by_low_x(boxes);
+    for (x, &i) in order.iter().enumerate() {
+        let bi = &boxes[i as usize];
+        for &j in &order[x + 1..] {
+            let bj = &boxes[j as usize];
+            if bj.min[0] > bi.max[0] {
+                break;
+            }
+            if bi.overlaps(bj) {
+                f(i as usize, j as usize)?;
+            }
+        }
+    }
+    ControlFlow::Continue(())
+}
+
+/// Index pairs `(i, j)` whose boxes `a[i]` and `b[j]` meet (closed), by sort and sweep
+/// along x; `a_by_low_x` and `b_by_low_x` are the lists' [`by_low_x`] orders. The two
+/// lists merge with ties to `a` (the order a stable sort of all of `a`'s boxes then all
+/// of `b`'s would give), and each pair comes when the later of its two boxes is swept,
+/// after the pairs of earlier boxes.
+pub fn sweep_pairs_between<T: Coord>(
+    a: &[Aabb<T>],
+    a_by_low_x: &[u32],
+    b: &[Aabb<T>],
+    b_by_low_x: &[u32],
+) -> Vec<(usize, usize)> {
+    let mut events: Vec<(T, bool, usize)> = Vec::with_capacity(a.len() + b.len());
+    let (mut ia, mut ib) = (a_by_low_x.iter().peekable(), b_by_low_x.iter().peekable());
+    loop {
+        let from_b = match (ia.peek(), ib.peek()) {
+            (Some(&&i), Some(&&j)) => a[i as usize].min[0]
+                .total_cmp(&b[j as usize].min[0])
+                .is_gt(),
+            (Some(_), None) => false,
+            (None, Some(_)) => true,
+            (None, None) => break,
+        };
+        let (k, x) = if from_b {
+            let j = *ib.next().unwrap() as usize;
+            (j, b[j].min[0])
+        } else {
+            let i = *ia.next().unwrap() as usize;
+            (i, a[i].min[0])
+        };
+        events.push((x, from_b, k));
+    }
+    let (mut act_a, mut act_b): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    let mut out = Vec::new();
+    for (lo, from_b, i) in events {
+        act_a.retain(|&k| a[k].max[0] >= lo);
+        act_b.retain(|&k| b[k].max[0] >= lo);
+        if from_b {
+            out.extend(
+                act_a
+                    .iter()
+                    .filter(|&&k| a[k].overlaps(&b[i]))
+                    .map(|&k| (k, i)),
+            );
+            act_b.push(i);
+        } else {
+            out.extend(
+                act_b
+                    .iter()
+                    .filter(|&&k| a[i].overlaps(&b[k]))
+                    .map(|&k| (i, k)),
+            );
+            act_a.push(i);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -375,5 +470,49 @@ mod tests {
             }
         }
         assert_eq!(got, want);
+    }
+
+    #[test]
+    fn sweeps_match_brute_force() {
+        let mut s = 99u64;
+        let mut rnd = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) as i64) % m
+        };
+        let mut boxes: Vec<Aabb<f64>> = Vec::new();
+        for _ in 0..300 {
+            let p = [rnd(100), rnd(100), rnd(100)].map(|v| v as f64);
+            let d = [rnd(10), rnd(10), rnd(10)].map(|v| v as f64);
+            boxes.push(Aabb::of([&p, &[p[0] + d[0], p[1] + d[1], p[2] + d[2]]]));
+        }
+        let brute = |a: &[Aabb<f64>], b: &[Aabb<f64>], distinct: bool| {
+            let mut want = Vec::new();
+            for (i, x) in a.iter().enumerate() {
+                for (j, y) in b.iter().enumerate() {
+                    if (!distinct || i < j) && x.overlaps(y) {
+                        want.push((i, j));
+                    }
+                }
+            }
+            want
+        };
+        let mut got = Vec::new();
+        let flow = sweep_pairs(&boxes, |i, j| {
+            got.push((i.min(j), i.max(j)));
+            ControlFlow::<()>::Continue(())
+        });
+        assert_eq!(flow, ControlFlow::Continue(()));
+        got.sort();
+        assert_eq!(got, brute(&boxes, &boxes, true));
+        let first = sweep_pairs(&boxes, |i, j| ControlFlow::Break((i, j)))
+            .break_value()
+            .unwrap();
+        assert!(first.0 != first.1 && boxes[first.0].overlaps(&boxes[first.1]));
+        let (a, b) = boxes.split_at(120);
+        let mut got = sweep_pairs_between(a, &by_low_x(a), b, &by_low_x(b));
+        got.sort();
+        assert_eq!(got, brute(a, b, false));
     }
 }
