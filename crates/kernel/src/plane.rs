@@ -504,7 +504,12 @@ impl BigPlane {
                 }
             }
         }
-        int::sign_of(&(dot_big(&self.n, &p.x) - &self.c * &p.w))
+        int::sign_of(&self.value(p))
+    }
+
+    /// The exact value `n · X - c · W` for the point `X / W` (its sign is [`BigPlane::side`]).
+    pub fn value(&self, p: &HPoint) -> Int {
+        dot_big(&self.n, &p.x) - &self.c * &p.w
     }
 }
 

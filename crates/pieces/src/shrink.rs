@@ -18,22 +18,16 @@ use crate::hull2d::hull_in_plane;
 use crate::polytope::Polytope;
 use apart_kernel::fvec;
 use apart_kernel::int::{self, Int};
-use apart_kernel::{Sign, Vec3};
+use apart_kernel::{BigPlane, HPoint, Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
 
-/// A half-space `normal · y <= offset` on the piece's stored integers `y` (true point
-/// `y / den`).
-struct Half {
-    normal: Vec3,
-    offset: Int,
-}
-
-/// A vertex `y / w` (`w > 0`, stored integers of the piece scaled by `1 / w`) and the
-/// sorted indices of the half-spaces whose plane passes through it.
+/// A vertex `y / w` (the kernel's reduced homogeneous point: `w > 0`, stored integers of
+/// the piece scaled by `1 / w`) and the sorted indices of the half-spaces whose plane
+/// passes through it. Half-spaces are the kernel's [`BigPlane`]s `n · y <= c` on the
+/// piece's stored integers `y` (true point `y / den`).
 #[derive(Clone)]
 struct Vertex {
-    y: [Int; 3],
-    w: Int,
+    p: HPoint,
     on: Vec<u32>,
 }
 
@@ -60,25 +54,10 @@ fn ceil_sqrt(v: &Int) -> Int {
     k
 }
 
-fn dot3(n: &[Int; 3], y: &[Int; 3]) -> Int {
-    &n[0] * &y[0] + &n[1] * &y[1] + &n[2] * &y[2]
-}
-
-/// Sign of `normal · (y / w) - offset` (as `w > 0`).
-fn side(h: &Half, n: &[Int; 3], v: &Vertex) -> (Sign, Int) {
-    let s = dot3(n, &v.y) - &h.offset * &v.w;
+/// Sign of `n · (y / w) - c` (as `w > 0`), and the value `n · y - c w`.
+fn side(h: &BigPlane, v: &Vertex) -> (Sign, Int) {
+    let s = h.value(&v.p);
     (int::sign_of(&s), s)
-}
-
-fn reduce(mut y: [Int; 3], mut w: Int) -> ([Int; 3], Int) {
-    let g = int::gcd(&int::gcd(&int::gcd(&y[0], &y[1]), &y[2]), &w);
-    if g > Int::ONE {
-        for c in &mut y {
-            *c /= &g;
-        }
-        w /= &g;
-    }
-    (y, w)
 }
 
 /// The edges of the current polytope: pairs of vertices sharing two planes.
@@ -106,9 +85,8 @@ fn edges(verts: &[Vertex]) -> Vec<(u32, u32)> {
 
 /// Clips `verts` by half-space number `hi`. `None` when nothing of positive volume is
 /// left on the inner side.
-fn clip(verts: Vec<Vertex>, h: &Half, hi: u32) -> Option<Vec<Vertex>> {
-    let n = h.normal.to_ints();
-    let sides: Vec<(Sign, Int)> = verts.iter().map(|v| side(h, &n, v)).collect();
+fn clip(verts: Vec<Vertex>, h: &BigPlane, hi: u32) -> Option<Vec<Vertex>> {
+    let sides: Vec<(Sign, Int)> = verts.iter().map(|v| side(h, v)).collect();
     if sides.iter().all(|(s, _)| *s != Sign::Positive) {
         // Nothing cut; vertices on the plane learn it.
         return Some(
@@ -138,9 +116,10 @@ fn clip(verts: Vec<Vertex>, h: &Half, hi: u32) -> Option<Vec<Vertex>> {
         };
         // vo * inner - vi * outer lies on the plane; its weight is positive because
         // vo > 0 > vi and both weights are positive.
-        let y = [0, 1, 2].map(|k| vo * &inner.y[k] - vi * &outer.y[k]);
-        let w = vo * &inner.w - vi * &outer.w;
-        let (y, w) = reduce(y, w);
+        let (iy, oy) = (inner.p.num(), outer.p.num());
+        let y = [0, 1, 2].map(|k| vo * &iy[k] - vi * &oy[k]);
+        let w = vo * inner.p.den() - vi * outer.p.den();
+        let p = HPoint::from_big(y, w);
         let mut on: Vec<u32> = inner
             .on
             .iter()
@@ -148,7 +127,7 @@ fn clip(verts: Vec<Vertex>, h: &Half, hi: u32) -> Option<Vec<Vertex>> {
             .copied()
             .collect();
         on.push(hi);
-        out.push(Vertex { y, w, on });
+        out.push(Vertex { p, on });
     }
     for (mut v, (s, _)) in verts.into_iter().zip(&sides) {
         match s {
@@ -409,12 +388,14 @@ impl Polytope {
         // 256 eps_den n · y <= 256 eps_den offset - eps_num den ⌈256 |n|⌉.
         let den = self.den();
         let scale = Int::from(256) * eps_den;
-        let mut halves: Vec<Half> = self
+        let mut halves: Vec<BigPlane> = self
             .facets()
             .iter()
-            .map(|f| Half {
-                normal: f.normal.scale(&scale),
-                offset: &f.offset * &scale - eps_num * den * length_bound_256(&f.normal),
+            .map(|f| {
+                BigPlane::new(
+                    f.normal.scale(&scale).to_ints(),
+                    &f.offset * &scale - eps_num * den * length_bound_256(&f.normal),
+                )
             })
             .collect();
         let nf = halves.len() as u32;
@@ -430,16 +411,12 @@ impl Polytope {
             .iter()
             .zip(on_of)
             .map(|(v, on)| Vertex {
-                y: v.to_ints(),
-                w: Int::ONE,
+                p: HPoint::from_big(v.to_ints(), Int::ONE),
                 on,
             })
             .collect();
         for f in self.facets() {
-            halves.push(Half {
-                normal: f.normal.clone(),
-                offset: f.offset.clone(),
-            });
+            halves.push(BigPlane::new(f.normal.to_ints(), f.offset.clone()));
         }
         for hi in 0..nf {
             verts = clip(verts, &halves[hi as usize], hi)?;
@@ -448,14 +425,14 @@ impl Polytope {
         // and the result's denominator is den W.
         let mut lcm = Int::ONE;
         for v in &verts {
-            let g = int::gcd(&lcm, &v.w);
-            lcm = &lcm / &g * &v.w;
+            let g = int::gcd(&lcm, v.p.den());
+            lcm = &lcm / &g * v.p.den();
         }
         let points: Vec<Vec3> = verts
             .iter()
             .map(|v| {
-                let k = &lcm / &v.w;
-                Vec3::from_ints([&v.y[0] * &k, &v.y[1] * &k, &v.y[2] * &k])
+                let (y, k) = (v.p.num(), &lcm / v.p.den());
+                Vec3::from_ints([&y[0] * &k, &y[1] * &k, &y[2] * &k])
             })
             .collect();
         let mut facets = Vec::new();
