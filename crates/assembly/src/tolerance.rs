@@ -19,7 +19,7 @@ use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::fmt_witness;
 use apart_kernel::Aabb;
-use apart_kernel::{Grid, Int, Rational};
+use apart_kernel::{Grid, Rational};
 use apart_mesh::{Problem, ProblemKind};
 use apart_pieces::interference::overlap_with_depth;
 use apart_pieces::shrink::max_face_shift;
@@ -124,22 +124,13 @@ fn overlaps(parts: &[Part]) -> Vec<Overlap> {
 
 /// `v` (input units, finite, positive) in grid units, exactly.
 fn to_grid_units(v: f64, grid: &Grid) -> Rational {
-    &dyadic(v) * &pow2(-grid.exp)
+    &dyadic(v) * &Rational::pow2(-grid.exp)
 }
 
 /// The exact value of a finite `f64` (zero for infinities and NaN, which [`apply`]
 /// rejects first).
 pub fn dyadic(v: f64) -> Rational {
     Rational::from_f64(v).unwrap_or_else(Rational::zero)
-}
-
-fn pow2(e: i32) -> Rational {
-    let p = Int::ONE << e.unsigned_abs() as usize;
-    if e >= 0 {
-        Rational::from_int(p)
-    } else {
-        Rational::new(Int::ONE, p)
-    }
 }
 
 /// `x` rounded up to 8 significant bits (a short, exact number to state).
@@ -316,6 +307,7 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
 #[cfg(test)]
 mod tests {
     use super::*;
+    use apart_kernel::Int;
 
     #[test]
     fn dyadic_is_exact() {

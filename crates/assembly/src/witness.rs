@@ -12,8 +12,9 @@ use apart_pieces::Polytope;
 /// Step exponents tried when moving a point: 2^-k for k in this list.
 const STEPS: [u32; 16] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256];
 
+/// `2^-k`.
 fn pow2(k: u32) -> Rational {
-    Rational::new(Int::ONE, Int::ONE << k as usize)
+    Rational::pow2(-(k as i32))
 }
 
 fn add(a: &[Rational; 3], b: &[Rational; 3], s: &Rational) -> [Rational; 3] {
@@ -88,11 +89,7 @@ pub(crate) fn simplest(
     for j in 0..=16i32 {
         // Multiples of 2^-j input units = 2^(-j - e) grid units.
         let k = -j - e;
-        let step = if k >= 0 {
-            Rational::from_int(Int::ONE << k as usize)
-        } else {
-            Rational::new(Int::ONE, Int::ONE << (-k) as usize)
-        };
+        let step = Rational::pow2(k);
         let inv = Rational::new(step.denom().clone(), step.numer().clone());
         let nearest = w.clone().map(|c| {
             let q = &c * &inv;
@@ -134,13 +131,7 @@ pub(crate) fn verified_in_polytopes(w: &[Rational; 3], a: &Polytope, b: &Polytop
 
 /// The point in input units, exactly.
 pub fn witness_units(w: &[Rational; 3], grid: &Grid) -> [Rational; 3] {
-    let e = grid.exp;
-    let p = Int::ONE << e.unsigned_abs() as usize;
-    let scale = if e >= 0 {
-        Rational::from_int(p)
-    } else {
-        Rational::new(Int::ONE, p)
-    };
+    let scale = Rational::pow2(grid.exp);
     w.clone().map(|c| &c * &scale)
 }
 

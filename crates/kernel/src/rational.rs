@@ -51,6 +51,16 @@ impl Rational {
         }
     }
 
+    /// `2^e` (any sign of `e`).
+    pub fn pow2(e: i32) -> Rational {
+        let p = Int::ONE << e.unsigned_abs() as usize;
+        if e >= 0 {
+            Rational::from_int(p)
+        } else {
+            Rational::new(Int::ONE, p)
+        }
+    }
+
     /// Numerator (carries the sign).
     pub fn numer(&self) -> &Int {
         &self.num
@@ -188,6 +198,9 @@ mod tests {
         assert_eq!((&a - &a).to_string(), "0");
         assert_eq!((&a * &b).to_string(), "8/3");
         assert!(a > b);
+        assert_eq!(Rational::pow2(3).to_string(), "8");
+        assert_eq!(Rational::pow2(-2).to_string(), "1/4");
+        assert_eq!(Rational::pow2(0).to_string(), "1");
         assert!((a.to_f64() - 16.0 / 3.0).abs() < 1e-15);
     }
 }
