@@ -8,7 +8,7 @@ use apart_kernel::orient::{
     cross, dominant_axis, in_closed_triangle_2d, normal, orient2d, orient3d, orient3d_many,
     project, segments_meet_2d, sub, P3,
 };
-use apart_kernel::{Int, Sign};
+use apart_kernel::{Int, Rational, Sign};
 
 /// How two triangles of a mesh meet beyond what they share.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -236,10 +236,10 @@ fn shared_vertex(v: &[P3], t: [u32; 3], u: [u32; 3], (i, j): (usize, usize)) -> 
 }
 
 /// Where the closed segment `p q` meets the closed triangle `a b c`, as parameters
-/// `t = num/den` in [0, 1] along the segment (both ends of the overlap when the segment
+/// `t` in [0, 1] along the segment (both ends of the overlap when the segment
 /// lies in the triangle's plane). Used to split edges of one solid at the faces of
 /// another.
-pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(Int, Int)> {
+pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<Rational> {
     let mut out = Vec::new();
     if !segment_meets_triangle(p, q, a, b, c) {
         return out;
@@ -255,7 +255,7 @@ pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(I
     if dp != dq {
         // t = dp / (dp - dq).
         let den = &dp - &dq;
-        out.push(normalize(dp, den));
+        out.push(Rational::new(dp, den));
         return out;
     }
     // In the plane: clip the segment against the three edge lines (parameters where it
@@ -263,10 +263,10 @@ pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(I
     let k = dominant_axis(&n);
     let [p2, q2, a2, b2, c2] = [p, q, a, b, c].map(|v| project(v, k));
     if in_closed_triangle_2d(&p2, &a2, &b2, &c2) {
-        out.push((Int::ZERO, Int::ONE));
+        out.push(Rational::zero());
     }
     if in_closed_triangle_2d(&q2, &a2, &b2, &c2) {
-        out.push((Int::ONE, Int::ONE));
+        out.push(Rational::from_int(1));
     }
     for (x, y) in [(&a2, &b2), (&b2, &c2), (&c2, &a2)] {
         if !segments_meet_2d(&p2, &q2, x, y) {
@@ -282,7 +282,7 @@ pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(I
         let (op, oq) = (o(&p2), o(&q2));
         if op != oq {
             let den = &op - &oq;
-            out.push(normalize(op, den));
+            out.push(Rational::new(op, den));
         } else {
             // Collinear with the edge: the edge's ends, as parameters along p q.
             let d = [q2[0] - p2[0], q2[1] - p2[1]];
@@ -292,26 +292,12 @@ pub fn segment_triangle_params(p: &P3, q: &P3, a: &P3, b: &P3, c: &P3) -> Vec<(I
                     (e[0] - p2[0]) as i128 * d[0] as i128 + (e[1] - p2[1]) as i128 * d[1] as i128,
                 );
                 if num >= Int::ZERO && num <= len && len > Int::ZERO {
-                    out.push(normalize(num, len.clone()));
+                    out.push(Rational::new(num, len.clone()));
                 }
             }
         }
     }
     out
-}
-
-fn normalize(num: Int, den: Int) -> (Int, Int) {
-    let (num, den) = if den < Int::ZERO {
-        (-num, -den)
-    } else {
-        (num, den)
-    };
-    let g = apart_kernel::int::gcd(&num, &den);
-    if g > Int::ONE {
-        (num / &g, den / &g)
-    } else {
-        (num, den)
-    }
 }
 
 #[cfg(test)]
@@ -410,16 +396,14 @@ mod tests {
     #[test]
     fn segment_params() {
         let (a, b, c) = ([0, 0, 0], [4, 0, 0], [0, 4, 0]);
+        let r = |n: i64, d: i64| Rational::new(Int::from(n), Int::from(d));
         let t = segment_triangle_params(&[1, 1, -1], &[1, 1, 3], &a, &b, &c);
-        assert_eq!(t, vec![(Int::from(1), Int::from(4))]);
+        assert_eq!(t, vec![r(1, 4)]);
         // In the plane, crossing the triangle: enters at x = 0, leaves at x + y = 4.
         let mut t = segment_triangle_params(&[-1, 1, 0], &[5, 1, 0], &a, &b, &c);
-        t.sort_by(|x, y| (&x.0 * &y.1).cmp(&(&y.0 * &x.1)));
-        t.dedup_by(|x, y| &x.0 * &y.1 == &y.0 * &x.1);
-        assert_eq!(
-            t,
-            vec![(Int::from(1), Int::from(6)), (Int::from(2), Int::from(3))]
-        );
+        t.sort();
+        t.dedup();
+        assert_eq!(t, vec![r(1, 6), r(2, 3)]);
         assert!(segment_triangle_params(&[9, 9, -1], &[9, 9, 1], &a, &b, &c).is_empty());
     }
 }

@@ -84,9 +84,7 @@ fn one_way(la: &Locator, lb: &Locator) -> Option<HPoint> {
         let mut ts: Vec<Rational> = Vec::new();
         lb.bvh().query(&ebox, |u| {
             let [x, y, z] = b.corners(u as usize);
-            for (n, d) in segment_triangle_params(p, q, x, y, z) {
-                ts.push(Rational::new(n, d));
-            }
+            ts.extend(segment_triangle_params(p, q, x, y, z));
         });
         let zero = Rational::zero();
         let one = rat(1);
