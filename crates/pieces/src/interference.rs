@@ -2,7 +2,7 @@
 
 use crate::polytope::{Containment, Polytope, Shadow};
 use apart_kernel::int::{self, Int};
-use apart_kernel::{fvec, Rational, Sign, Vec3};
+use apart_kernel::{fvec, HPoint, Rational, Sign, Vec3};
 
 /// True when some plane weakly separates `a` and `b` (their interiors are disjoint).
 ///
@@ -11,6 +11,54 @@ use apart_kernel::{fvec, Rational, Sign, Vec3};
 /// polytopes (shared faces, edges, points) are separated.
 pub fn interiors_disjoint(a: &Polytope, b: &Polytope) -> bool {
     separating_normal(a, b).is_some()
+}
+
+/// True when the interiors of `a + t` and `b` meet, for an exact translation `t`
+/// (touching is not interference), without building the translated polytope: the
+/// separating-axis test over the same candidate normals as [`interiors_disjoint`],
+/// with `n · t` added to `a`'s support values, all cross-multiplied by the
+/// denominators. For placement, where pieces are tested at many rational positions.
+pub fn interiors_meet_translated(a: &Polytope, t: &HPoint, b: &Polytope) -> bool {
+    let (da, db) = (a.den(), b.den());
+    let (x, w) = (t.num(), t.den());
+    // Separated along n when [la, ha]/da + n·t and [lb, hb]/db touch or are apart.
+    let separated = |n: &Vec3| -> bool {
+        let (ha, _) = a.support(n);
+        let (hb, _) = b.support(n);
+        let (na, _) = a.support(&n.neg());
+        let (nb, _) = b.support(&n.neg());
+        let (la, lb) = (-na, -nb);
+        let nd = n.to_ints();
+        let nd = &nd[0] * &x[0] + &nd[1] * &x[1] + &nd[2] * &x[2];
+        let dadb = da * db;
+        // a below b: ha/da + nd/w <= lb/db.
+        let below = &(&ha * db) * w - &(&lb * da) * w + &nd * &dadb;
+        if int::sign_of(&below) != Sign::Positive {
+            return true;
+        }
+        // b below a: hb/db <= la/da + nd/w.
+        let above = &(&hb * da) * w - &(&la * db) * w - &nd * &dadb;
+        int::sign_of(&above) != Sign::Positive
+    };
+    for f in a.facets() {
+        if separated(&f.normal) {
+            return false;
+        }
+    }
+    for f in b.facets() {
+        if separated(&f.normal) {
+            return false;
+        }
+    }
+    for ea in a.edge_directions() {
+        for eb in b.edge_directions() {
+            let n = ea.cross(eb);
+            if !n.is_zero() && separated(&n.primitive()) {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// A normal `n` with `max_a n·x <= min_b n·y`, if any (the plane separates with `a` below).

@@ -6,9 +6,11 @@
 //! exercise the big-number paths.
 
 use apart_kernel::int::Int;
+use apart_kernel::HPoint;
 use apart_kernel::Vec3;
 use apart_pieces::interference::{
-    below_along, contact_points, facet_axes, interiors_disjoint, separating_normal,
+    below_along, contact_points, facet_axes, interiors_disjoint, interiors_meet_translated,
+    separating_normal,
 };
 use apart_pieces::Polytope;
 use proptest::prelude::*;
@@ -130,5 +132,24 @@ proptest! {
         let (Some(a), Some(b)) = (hull(&pa, s), hull(&pb, s)) else { return Ok(()) };
         let big = Int::from(s) * Int::from(s) * Int::from(7);
         check(&a.rescaled(&big), &b)?;
+    }
+
+    #[test]
+    fn translated_pieces_agree_with_translated_polytopes(
+        pa in points(), pb in points(), da in 1i64..4, db in 1i64..4,
+        t in (-9i64..10, -9i64..10, -9i64..10), w in 1i64..4,
+    ) {
+        let (Some(a), Some(b)) = (hull(&pa, 1), hull(&pb, 1)) else { return Ok(()) };
+        let (a, b) = (a.with_den(Int::from(da)), b.with_den(Int::from(db)));
+        // a + t/w, built: stored integers scaled by w, shifted by t den, over den w.
+        let moved = a
+            .rescaled(&Int::from(w))
+            .with_den(Int::ONE)
+            .translated(&Vec3::new(t.0, t.1, t.2).scale(&Int::from(da)))
+            .with_den(Int::from(da * w));
+        let shift = HPoint::from_wide([t.0 as i128, t.1 as i128, t.2 as i128], w as i128);
+        let expect = oracle_overlap(&moved, &b);
+        prop_assert_eq!(interiors_meet_translated(&a, &shift, &b), expect);
+        prop_assert_eq!(interiors_disjoint(&moved, &b), !expect);
     }
 }
