@@ -18,6 +18,7 @@
 //!   and pictures) and the broad phase over them (a hierarchy, or sort and sweep).
 //! - [`fvec`]: float vectors, for pictures, measurements and the shadows of float
 //!   filters (no float decides anything).
+//! - [`progress`]: progress reports and a stop flag shared by the long planners.
 //!
 //! ```
 //! use apart_kernel::{Vec3, Sign, predicates::det3_sign, spherical::circle_intersection};
@@ -36,6 +37,7 @@ pub mod int;
 pub mod orient;
 pub mod plane;
 pub mod predicates;
+pub mod progress;
 pub mod rational;
 mod sign;
 pub mod spherical;

@@ -15,8 +15,8 @@ use crate::partial::{
 };
 use crate::scene::Scene;
 use crate::stability::{contacts, lowerable, placed_pieces, stable, top, up_face_area, Contact};
+use apart_kernel::progress::{phases, Progress};
 use apart_pieces::Polytope;
-use apart_plan::progress::{phases, Progress};
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
 

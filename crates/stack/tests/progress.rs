@@ -4,7 +4,7 @@
 
 mod common;
 
-use apart_plan::progress::{phases, Progress};
+use apart_kernel::progress::{phases, Progress};
 use apart_stack::exact::{q, qfrac};
 use apart_stack::parts::cube;
 use apart_stack::planner::{stack, stack_with, StackOptions};
