@@ -119,14 +119,9 @@ fn without_merging_or_parallelism() {
 #[test]
 fn random_terrain_block() {
     // Generic planes: rational vertices with large denominators.
-    let mut seed = 7u64;
+    let mut rng = apart_testkit::solids::Lcg(7);
     let h: Vec<i64> = (0..49)
-        .map(|_| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            200 + (seed >> 33) as i64 % 300
-        })
+        .map(|_| 200 + rng.next_bits() as i64 % 300)
         .collect();
     let shape = shapes::terrain(6, 100, &h);
     let d = run(&shape);

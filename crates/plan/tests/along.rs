@@ -60,13 +60,8 @@ fn directions(ms: &MotionSpace) -> Vec<Vec3> {
         .map(|i| Vec3::new(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1))
         .filter(|d| !d.is_zero())
         .collect();
-    let mut s = 99u64;
-    let mut next = |m: i64| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 33) % m as u64) as i64
-    };
+    let mut rng = apart_testkit::solids::Lcg(99);
+    let mut next = |m: i64| rng.below(m as u64) as i64;
     for _ in 0..20 {
         let d = Vec3::new(next(11) - 5, next(11) - 5, next(11) - 5);
         if !d.is_zero() {

@@ -9,21 +9,10 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_plan::{BlockingRegions, MotionSpace, PartPieces};
+// A small deterministic generator (the tests must not depend on a random seed's luck).
+use apart_testkit::solids::Lcg;
 use common::oracle::Oracle;
 use common::{cuboid, part};
-
-/// A small deterministic generator (the tests must not depend on a random seed's luck).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self, n: u64) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 33) % n
-    }
-}
 
 /// Two parts of `n` unit cubes each on the cells of a lattice of spacing 2 (cubes never
 /// touch), the cells of the two parts drawn at random from one box of cells, so the
@@ -35,7 +24,7 @@ fn interleaved(seed: u64, n: usize, cells: i64, shift: [i64; 3]) -> Vec<PartPiec
     for (k, name) in ["a", "b"].iter().enumerate() {
         let mut pieces = Vec::new();
         while pieces.len() < n {
-            let c = [0, 1, 2].map(|_| rng.next(cells as u64) as i64);
+            let c = [0, 1, 2].map(|_| rng.below(cells as u64) as i64);
             let c = if k == 1 {
                 [c[0] + shift[0], c[1] + shift[1], c[2] + shift[2]]
             } else {

@@ -3,9 +3,6 @@
 
 mod common;
 
-#[path = "../../decompose/tests/common/shapes.rs"]
-mod shapes;
-
 use apart_plan::{
     dbg_at, partition_pieces, BlockingRegions, CellKind, Options, PartPieces, Partitioning,
 };
@@ -31,10 +28,14 @@ fn both_ways(owners: &[usize], k: usize) -> Option<(Vec<PartPieces>, Vec<PartPie
             );
             cubes.push(common::cuboid([x, y, z], [x + 1, y + 1, z + 1]));
         }
-        let shape = shapes::voxels(DIMS, &on);
-        let d =
-            apart_decompose::decompose(&shape.points, &shape.tris, &Default::default()).unwrap();
-        apart_decompose::verify(&shape.points, &shape.tris, &d.pieces).unwrap();
+        let shape = apart_testkit::solids::voxels(DIMS, &on);
+        let points: Vec<apart_kernel::Vec3> = shape
+            .points
+            .iter()
+            .map(|&p| apart_kernel::Vec3::from_i64(p))
+            .collect();
+        let d = apart_decompose::decompose(&points, &shape.triangles, &Default::default()).unwrap();
+        apart_decompose::verify(&points, &shape.triangles, &d.pieces).unwrap();
         let name = format!("p{part}");
         boxes.push(common::part(&name, cubes));
         meshes.push(common::part(&name, d.pieces));

@@ -1,6 +1,7 @@
 //! Generators of test inputs for apart, modelled on what CAD exporters produce.
 //!
-//! Everything here is plain data ([`Soup`]: `f64` vertices and polygons) with no apart
+//! Everything here is plain data ([`Soup`]: `f64` vertices and polygons;
+//! [`solids::IntMesh`]: integer points and triangles) with no apart
 //! dependency, so that the tests and benchmarks of every crate can use it without a
 //! dependency cycle. Each generator documents the answer it is built to have, so tests
 //! compare apart's results with that known answer, never with apart's own output.
@@ -11,12 +12,15 @@
 //! - [`curved`]: tessellated curved parts (pins in holes with different segment counts,
 //!   plugs and sockets, a nut on a bolt), whose fits interpenetrate by a known depth.
 //! - [`joints`]: a five-part bolted joint whose parts are tessellated differently.
+//! - [`solids`]: integer meshes from grids (voxel unions, unions of grid cells) and
+//!   polygons (ear clipping), and the seeded generator [`solids::Lcg`].
 
 #![warn(missing_docs)]
 
 pub mod curved;
 pub mod defects;
 pub mod joints;
+pub mod solids;
 mod soup;
 
 pub use soup::Soup;

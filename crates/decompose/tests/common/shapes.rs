@@ -38,7 +38,8 @@ impl Welder {
 }
 
 /// The union of the filled cells of the rectilinear grid `xs × ys × zs` (strictly
-/// increasing coordinates): its boundary faces, two triangles per grid rectangle.
+/// increasing coordinates): its boundary faces, two triangles per grid rectangle (the
+/// mesh is apart-testkit's), with its volume and sample points.
 pub fn rectilinear(
     name: &'static str,
     g: [&[i64]; 3],
@@ -46,50 +47,7 @@ pub fn rectilinear(
     reflex: Option<usize>,
 ) -> Shape {
     let n = [g[0].len() - 1, g[1].len() - 1, g[2].len() - 1];
-    let full = |c: [i64; 3]| -> bool {
-        (0..3).all(|a| c[a] >= 0 && (c[a] as usize) < n[a])
-            && filled([c[0] as usize, c[1] as usize, c[2] as usize])
-    };
-    let mut w = Welder::default();
-    let mut tris = Vec::new();
-    let coord = |i: [usize; 3]| [g[0][i[0]], g[1][i[1]], g[2][i[2]]];
-    for a in 0..3 {
-        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
-        for p in 0..=n[a] {
-            for iu in 0..n[u] {
-                for iv in 0..n[v] {
-                    let mut lo = [0i64; 3];
-                    lo[a] = p as i64 - 1;
-                    lo[u] = iu as i64;
-                    lo[v] = iv as i64;
-                    let mut hi = lo;
-                    hi[a] += 1;
-                    let (fl, fh) = (full(lo), full(hi));
-                    if fl == fh {
-                        continue;
-                    }
-                    let mut base = [0usize; 3];
-                    base[a] = p;
-                    base[u] = iu;
-                    base[v] = iv;
-                    let mut c1 = base;
-                    c1[u] += 1;
-                    let mut c2 = c1;
-                    c2[v] += 1;
-                    let mut c3 = base;
-                    c3[v] += 1;
-                    let q = [base, c1, c2, c3].map(|c| w.id(coord(c)));
-                    if fl {
-                        tris.push([q[0], q[1], q[2]]);
-                        tris.push([q[0], q[2], q[3]]);
-                    } else {
-                        tris.push([q[0], q[2], q[1]]);
-                        tris.push([q[0], q[3], q[2]]);
-                    }
-                }
-            }
-        }
-    }
+    let mesh = apart_testkit::solids::rectilinear(g, &filled);
     let mut volume = Int::ZERO;
     let mut samples = Vec::new();
     for i in 0..n[0] {
@@ -119,8 +77,8 @@ pub fn rectilinear(
     }
     Shape {
         name,
-        points: w.points,
-        tris,
+        points: mesh.points.into_iter().map(Vec3::from_i64).collect(),
+        tris: mesh.triangles,
         volume: Rational::from_int(volume),
         reflex,
         samples,
@@ -553,39 +511,6 @@ pub fn split_star_red() -> Shape {
     }
 }
 
-/// Ear clipping of a simple counter-clockwise polygon (exact orientation tests).
-fn ear_clip(poly: &[[i64; 2]]) -> Vec<[usize; 3]> {
-    let orient = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| -> i128 {
-        (b[0] - a[0]) as i128 * (c[1] - a[1]) as i128
-            - (b[1] - a[1]) as i128 * (c[0] - a[0]) as i128
-    };
-    let mut idx: Vec<usize> = (0..poly.len()).collect();
-    let mut out = Vec::new();
-    while idx.len() > 3 {
-        let n = idx.len();
-        let ear = (0..n)
-            .find(|&k| {
-                let (i, j, l) = (idx[(k + n - 1) % n], idx[k], idx[(k + 1) % n]);
-                if orient(poly[i], poly[j], poly[l]) <= 0 {
-                    return false;
-                }
-                idx.iter().all(|&m| {
-                    m == i
-                        || m == j
-                        || m == l
-                        || orient(poly[i], poly[j], poly[m]) < 0
-                        || orient(poly[j], poly[l], poly[m]) < 0
-                        || orient(poly[l], poly[i], poly[m]) < 0
-                })
-            })
-            .expect("a simple polygon has an ear");
-        out.push([idx[(ear + n - 1) % n], idx[ear], idx[(ear + 1) % n]]);
-        idx.remove(ear);
-    }
-    out.push([idx[0], idx[1], idx[2]]);
-    out
-}
-
 /// A prism over a simple counter-clockwise polygon in the xy plane, `z` in `[0, h]`.
 pub fn extrusion(name: &'static str, poly: &[[i64; 2]], h: i64, reflex: Option<usize>) -> Shape {
     let n = poly.len() as u32;
@@ -595,7 +520,7 @@ pub fn extrusion(name: &'static str, poly: &[[i64; 2]], h: i64, reflex: Option<u
         .chain(poly.iter().map(|p| Vec3::new(p[0], p[1], h)))
         .collect();
     let mut tris = Vec::new();
-    for t in ear_clip(poly) {
+    for t in apart_testkit::solids::ear_clip(poly) {
         let t = t.map(|i| i as u32);
         tris.push([t[0], t[2], t[1]]);
         tris.push([t[0] + n, t[1] + n, t[2] + n]);
