@@ -10,13 +10,14 @@
 //! - Gripper: the turned part shows an upward horizontal face: facets with normal +z not
 //!   covered by another piece of the same part, the largest plane's exposed area.
 //! - Lowering: the part can come down along −z into place, i.e. it can leave along +z
-//!   without its interior meeting any stack part, decided by `apart-plan`'s exact
-//!   blocked regions.
+//!   without its interior meeting any stack part, decided exactly per piece pair by
+//!   the open blocked polygons of apart-minkowski (sliding contact stays free).
 
 use crate::exact::{q, Point, QBox, Q};
 use crate::interference::{touch, translated};
 use crate::scene::Scene;
 use apart_kernel::{Sign, Vec3};
+use apart_minkowski::{blocked_polygon, Blocking};
 use apart_pieces::Polytope;
 
 /// What the new part touches.
@@ -254,54 +255,51 @@ pub fn up_face_area(pieces: &[Polytope]) -> Q {
 }
 
 /// Exactly: can the pieces leave along +z without their interiors meeting the scene
-/// (equivalently: be lowered into place along −z)? Uses `apart-plan`'s blocked regions
-/// of the new part against the stack pieces that lie above some of its pieces'
-/// footprints.
+/// (equivalently: be lowered into place along −z)?
+///
+/// Piece `a` moving along `d` meets the interior of piece `b` exactly when `d` lies in
+/// the open central projection of `b ⊕ (−a)` ([`apart_minkowski::blocked_polygon`]), so
+/// +z is blocked exactly when it lies inside one piece pair's open polygon: sliding
+/// contact (+z on a polygon's boundary) stays free, as in apart-plan's blocked regions,
+/// which are the unions of the same open polygons. Only pairs whose open footprints
+/// meet and whose stack piece reaches above the new piece's bottom are summed: for any
+/// other pair no translation along +z brings `a` into `b`'s interior. A pair whose
+/// interiors already overlap is an error (the placement engine never proposes one).
 pub fn lowerable(placed: &[Polytope], scene: &Scene) -> Result<bool, crate::part::StackError> {
     let boxes: Vec<QBox> = placed
         .iter()
         .map(|p| QBox::of_points(p.vertices(), p.den()))
         .collect();
-    // Stack pieces whose open footprint meets a new piece's and that reach above its
-    // bottom: the only ones a +z sweep can hit.
-    let mut stack = Vec::new();
-    let mut moving = vec![false; placed.len()];
+    let up = Vec3::new(0, 0, 1);
     for (k, sp) in scene.pieces().iter().enumerate() {
-        let mut hit = false;
+        let mut fixed = None;
         for (i, b) in boxes.iter().enumerate() {
             let meets = (0..2).all(|a| sp.bbox.lo[a] < b.hi[a] && b.lo[a] < sp.bbox.hi[a])
                 && sp.bbox.hi[2] > b.lo[2];
-            if meets {
-                moving[i] = true;
-                hit = true;
+            if !meets {
+                continue;
+            }
+            let fixed = fixed.get_or_insert_with(|| scene.placed(k));
+            match blocked_polygon(&placed[i], fixed) {
+                Ok(Blocking::Polygon(q)) => {
+                    if q.contains_open(&up) {
+                        return Ok(false);
+                    }
+                }
+                Ok(Blocking::Overlap) => {
+                    return Err(crate::part::StackError::Internal(format!(
+                        "lowering check: new piece {i} overlaps stack piece {k}"
+                    )))
+                }
+                Err(e) => {
+                    return Err(crate::part::StackError::Internal(format!(
+                        "lowering check: {e}"
+                    )))
+                }
             }
         }
-        if hit {
-            stack.push(scene.placed(k));
-        }
     }
-    if stack.is_empty() {
-        return Ok(true);
-    }
-    let new: Vec<Polytope> = placed
-        .iter()
-        .zip(&moving)
-        .filter(|(_, &m)| m)
-        .map(|(p, _)| p.clone())
-        .collect();
-    let parts = [
-        apart_plan::PartPieces {
-            name: "new".into(),
-            pieces: new,
-        },
-        apart_plan::PartPieces {
-            name: "stack".into(),
-            pieces: stack,
-        },
-    ];
-    let regions = apart_plan::BlockingRegions::compute(&parts)
-        .map_err(|e| crate::part::StackError::Internal(format!("blocked regions: {e:?}")))?;
-    Ok(!regions.blocks(0, 1, &Vec3::new(0, 0, 1)))
+    Ok(true)
 }
 
 /// The pieces of a part turned and translated into place.
@@ -373,5 +371,147 @@ mod tests {
         assert!(!lowerable(&under, &scene).unwrap());
         let beside = [boxp([6, 1, 0], [7, 2, 1])];
         assert!(lowerable(&beside, &scene).unwrap());
+    }
+
+    /// The oracle's verdict on one piece pair: its interiors overlap, or `a` moving
+    /// along +z meets `b`'s interior.
+    #[derive(Debug, PartialEq)]
+    enum Pair {
+        Overlap,
+        Blocked,
+        Free,
+    }
+
+    /// Independent of apart-minkowski: `M = b ⊕ (−a)` as the hull of the vertex
+    /// differences, then the open ray `{k·z : k > 0}` against `M`'s open facet
+    /// inequalities `n·x < offset` (`k·n_z < offset` for every facet: facets with
+    /// `n_z = 0` need a positive offset, the others bound `k` above or below).
+    fn oracle(a: &Polytope, b: &Polytope) -> Pair {
+        let (da, db) = (a.den(), b.den());
+        let mut diffs = Vec::new();
+        for vb in b.vertices() {
+            for va in a.vertices() {
+                diffs.push(vb.scale(da).sub(&va.scale(db)));
+            }
+        }
+        let m = Polytope::hull_of_points(&diffs).expect("full-dimensional pieces");
+        let zero = apart_kernel::Int::ZERO;
+        if m.facets().iter().all(|f| f.offset > zero) {
+            return Pair::Overlap;
+        }
+        let mut lower = q(0);
+        let mut upper: Option<Q> = None;
+        for f in m.facets() {
+            let nz = f.normal.get(2);
+            if nz == zero {
+                if f.offset <= zero {
+                    return Pair::Free;
+                }
+                continue;
+            }
+            let bound = Q::new(f.offset.clone(), nz.clone());
+            if nz > zero {
+                upper = Some(match upper {
+                    Some(u) if u <= bound => u,
+                    _ => bound,
+                });
+            } else if bound > lower {
+                lower = bound;
+            }
+        }
+        match upper {
+            Some(u) if lower < u => Pair::Blocked,
+            _ => Pair::Free,
+        }
+    }
+
+    /// A random convex piece with small integer coordinates near `origin`: a box (many
+    /// touching and coplanar faces) or the hull of a few points (slanted faces), or
+    /// `None` when the points are flat.
+    fn random_piece(rng: &mut apart_testkit::solids::Lcg, origin: [i64; 3]) -> Option<Polytope> {
+        if rng.below(2) == 0 {
+            let lo = origin.map(|o| o + rng.range(0, 3));
+            let hi = [0, 1, 2].map(|i| lo[i] + rng.range(1, 3));
+            return Some(boxp(lo, hi));
+        }
+        let pts: Vec<Vec3> = (0..rng.range(4, 7))
+            .map(|_| {
+                Vec3::new(
+                    origin[0] + rng.range(0, 4),
+                    origin[1] + rng.range(0, 4),
+                    origin[2] + rng.range(0, 4),
+                )
+            })
+            .collect();
+        Polytope::hull_of_points(&pts).ok()
+    }
+
+    #[test]
+    fn lowering_matches_a_brute_force_oracle() {
+        // Random scenes of boxes and hulls on a small grid (so that faces touch, slide
+        // along each other and share edges and vertices), the new part placed above,
+        // beside or among them; +z is blocked exactly when some piece pair blocks it,
+        // and sliding contact stays free.
+        let mut rng = apart_testkit::solids::Lcg(20240917);
+        let (mut blocked, mut free, mut overlapping) = (0, 0, 0);
+        for _ in 0..400 {
+            let mut scene = Scene::new();
+            let mut stack = Vec::new();
+            for _ in 0..rng.range(1, 3) {
+                let pieces: Vec<Polytope> = (0..rng.range(1, 3))
+                    .filter_map(|_| {
+                        let origin = [0, 0, rng.range(0, 3)];
+                        random_piece(&mut rng, origin)
+                    })
+                    .collect();
+                if !pieces.is_empty() {
+                    scene.add_fixed_part(&pieces);
+                    stack.extend(pieces);
+                }
+            }
+            let new: Vec<Polytope> = (0..rng.range(1, 3))
+                .filter_map(|_| {
+                    let origin = [rng.range(-1, 2), rng.range(-1, 2), 0];
+                    random_piece(&mut rng, origin)
+                })
+                .collect();
+            if new.is_empty() {
+                continue;
+            }
+            let verdicts: Vec<Pair> = new
+                .iter()
+                .flat_map(|a| stack.iter().map(move |b| oracle(a, b)))
+                .collect();
+            let got = lowerable(&new, &scene);
+            if verdicts.contains(&Pair::Overlap) {
+                // The old blocked regions reported an overlap as an error; the pair
+                // blocks every direction, so an early "blocked" is just as right.
+                assert!(!matches!(got, Ok(true)), "{new:?} in {stack:?}");
+                overlapping += 1;
+                continue;
+            }
+            let want = !verdicts.contains(&Pair::Blocked);
+            assert_eq!(got.unwrap(), want, "{new:?} in {stack:?}");
+            if want {
+                free += 1;
+            } else {
+                blocked += 1;
+            }
+        }
+        assert!(blocked > 30 && free > 30, "{blocked} blocked, {free} free");
+        assert!(overlapping > 0);
+    }
+
+    #[test]
+    fn sliding_contact_stays_free() {
+        // A box resting against a wall's side, under nothing: it slides up along the
+        // wall. Under an overhang it is blocked, beside it free.
+        let mut scene = Scene::new();
+        scene.add_fixed_part(&[boxp([0, 0, 0], [1, 3, 4]), boxp([1, 0, 3], [3, 3, 4])]);
+        assert!(lowerable(&[boxp([3, 0, 0], [4, 3, 1])], &scene).unwrap());
+        assert!(!lowerable(&[boxp([1, 0, 0], [2, 3, 1])], &scene).unwrap());
+        assert!(lowerable(&[boxp([1, 3, 0], [2, 4, 1])], &scene).unwrap());
+        // Partly under the overhang, partly beside it: blocked.
+        assert!(!lowerable(&[boxp([2, 0, 0], [4, 3, 1])], &scene).unwrap());
     }
 }
