@@ -388,7 +388,7 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             &best.translation,
         );
         write_pictures(&args.pictures, |view, w, hgt, svg| {
-            let (shapes, names) = apart::stack::render::scene_shapes(
+            let (shapes, names) = apart::draw::stack_render::scene_shapes(
                 &scene,
                 &fixed,
                 &[(part.name.clone(), placed.clone())],

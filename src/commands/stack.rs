@@ -175,9 +175,9 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     if stop.is_none() {
         write_pictures(&args.pictures, |view, w, hgt, svg| {
             if svg {
-                apart::stack::render::plan_svg(&plan, h, view, w, hgt).into_bytes()
+                apart::draw::stack_render::plan_svg(&plan, h, view, w, hgt).into_bytes()
             } else {
-                apart::stack::render::plan_png(&plan, h, view, w, hgt)
+                apart::draw::stack_render::plan_png(&plan, h, view, w, hgt)
             }
         })?;
     }

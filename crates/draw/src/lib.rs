@@ -22,6 +22,8 @@
 //! - **A self-contained HTML viewer** ([`disassembly_html`]): the assembly in 3-D with a
 //!   small canvas renderer, orbit and zoom, play and step buttons, the list of steps,
 //!   the parts by name, an axis triad and a scale bar.
+//! - **Placements and stacks** of apart-stack ([`stack_render`]): a scene with a placed
+//!   part, or a stacking plan, every part by its name.
 //!
 //! ```no_run
 //! use apart_assembly::{load, LoadOptions};
@@ -52,6 +54,7 @@ pub mod painter;
 pub mod raster;
 pub mod shapes;
 pub mod sphere_svg;
+pub mod stack_render;
 pub mod svg_png;
 
 pub use gltf_export::{disassembly_glb, disassembly_glb_with};

@@ -3,14 +3,17 @@
 //! pairs evaluated by partial c-space, and whole stacking runs. Prints tables;
 //! `cargo bench -p apart-stack --bench stack` (add `-- --quick` to skip the longest run).
 
+#[path = "../tests/common/parts.rs"]
+mod parts;
+
 use apart_stack::exact::{q, qfrac, Point};
 use apart_stack::extrapolate::Template;
 use apart_stack::interference::overlaps;
 use apart_stack::obstacle::ObstacleShape;
 use apart_stack::orientation::{Orientation, ZRotation};
 use apart_stack::part::PartModel;
-use apart_stack::parts::{channel, complex_part, cube, triangle_part};
 use apart_stack::planner::{stack, StackOptions};
+use parts::{channel, complex_part, cube, triangle_part};
 use std::time::Instant;
 
 /// Mean seconds per call of `f` over enough calls to take about 0.2 s.

@@ -1,8 +1,11 @@
-//! Writes the parametric test parts of the stacking planner as OFF meshes under
-//! `examples/sheet-metal/` (run from the repository root):
-//! `cargo run -p apart-stack --example generate_parts`.
+//! Writes the parametric test parts of the stacking planner (apart-testkit's
+//! `sheet_metal`) as OFF meshes under `examples/sheet-metal/` (run from the repository
+//! root): `cargo run -p apart-stack --example generate_parts`.
 
-use apart_stack::parts::{channel, complex_part, cube, triangle_part, write_off};
+#[path = "../tests/common/parts.rs"]
+mod parts;
+
+use apart_testkit::sheet_metal::{channel, complex_part, cube, triangle_part};
 use std::path::Path;
 
 fn main() -> std::io::Result<()> {
@@ -10,11 +13,12 @@ fn main() -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     for part in [cube(10), channel(), triangle_part(), complex_part()] {
         let file = dir.join(format!("{}.off", part.name));
-        write_off(&part, &file)?;
+        std::fs::write(&file, part.mesh.off_text())?;
+        let model = parts::model(part);
         println!(
             "{}: {} convex pieces -> {}",
-            part.name,
-            part.pieces.len(),
+            model.name,
+            model.pieces.len(),
             file.display()
         );
     }

@@ -12,8 +12,8 @@
 //! inside constant-topology intervals ([`extrapolate`]). The stacking planner
 //! ([`planner`]) adds identical parts one by one with the cost of paper 004 eq. (1),
 //! accepting a candidate only if it is stable, grippable from above and can be lowered
-//! into place ([`stability`]). Test parts ([`parts`]) and pictures ([`render`]) come
-//! with it.
+//! into place ([`stability`]). Pictures of placements and stacks are apart-draw's
+//! (`apart_draw::stack_render`); the test parts are apart-testkit's (`sheet_metal`).
 //!
 //! Exactness: inputs are integers (grid points); orientations about z are exact rational
 //! rotations from Pythagorean triples ([`orientation`]); positions, costs, obstacles and
@@ -24,10 +24,11 @@
 //! use apart_stack::exact::{q, QBox};
 //! use apart_stack::orientation::{orientations, Base};
 //! use apart_stack::partial::{place, Cost, Moving, PlaceOptions, Region};
-//! use apart_stack::parts::cube;
+//! use apart_stack::part::PartModel;
 //! use apart_stack::scene::Scene;
 //! // A unit cube on the floor at the origin; place another as close to it as possible.
-//! let part = cube(1);
+//! let cube = apart_pieces::Polytope::cuboid([0, 0, 0], [1, 1, 1]).unwrap();
+//! let part = PartModel::from_pieces("cube", vec![cube]).unwrap();
 //! let mut scene = Scene::new();
 //! scene.add_fixed_part(&part.pieces);
 //! let moving = Moving::new(part, &orientations(90.0, &[Base::IDENTITY], 0.05), true);
@@ -53,10 +54,8 @@ pub mod obstacle;
 pub mod orientation;
 pub mod part;
 pub mod partial;
-pub mod parts;
 pub mod planner;
 pub mod qp;
 pub mod rational;
-pub mod render;
 pub mod scene;
 pub mod stability;

@@ -3,8 +3,8 @@
 mod common;
 
 use apart_stack::exact::{q, qfrac, Q};
-use apart_stack::parts::cube;
 use apart_stack::planner::{stack, StackOptions, StackPlan};
+use common::parts::cube;
 use common::{assert_no_interference, assert_stable, height};
 
 fn cubes(w: Q) -> StackPlan {

@@ -7,8 +7,8 @@ mod common;
 
 use apart_stack::exact::{q, qfrac};
 use apart_stack::part::PartModel;
-use apart_stack::parts::{channel, triangle_part};
 use apart_stack::planner::{stack, StackOptions};
+use common::parts::{channel, triangle_part};
 use common::{assert_no_interference, assert_stable, floor_around, height};
 
 /// Stacks fifteen copies and returns stack height / (15 × part height).

@@ -6,8 +6,8 @@ mod common;
 
 use apart_kernel::progress::{phases, Progress};
 use apart_stack::exact::{q, qfrac};
-use apart_stack::parts::cube;
 use apart_stack::planner::{stack, stack_with, StackOptions};
+use common::parts::cube;
 use common::{assert_no_interference, assert_stable};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};

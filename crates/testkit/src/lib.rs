@@ -14,12 +14,15 @@
 //! - [`joints`]: a five-part bolted joint whose parts are tessellated differently.
 //! - [`solids`]: integer meshes from grids (voxel unions, unions of grid cells) and
 //!   polygons (ear clipping), and the seeded generator [`solids::Lcg`].
+//! - [`sheet_metal`]: the parametric parts of the stacking paper (cube, channel,
+//!   triangle, complex part) as integer meshes.
 
 #![warn(missing_docs)]
 
 pub mod curved;
 pub mod defects;
 pub mod joints;
+pub mod sheet_metal;
 pub mod solids;
 mod soup;
 

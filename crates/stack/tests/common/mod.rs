@@ -2,6 +2,8 @@
 //! contacts and centres of gravity computed here without the crate's own code.
 #![allow(dead_code)]
 
+pub mod parts;
+
 use apart_kernel::{Int, Rational, Sign, Vec3};
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::Polytope;

@@ -4,20 +4,25 @@
 //! pixel, away from edges (within two pixels of a change of part in the z-buffer or of
 //! an outline in the PNG, where anti-aliasing mixes colours and the two pictures may
 //! differ by a pixel). A painter's sort by one depth per triangle fails this on long
-//! faces; the SVG's order must be right wherever faces overlap.
+//! faces; the SVG's order must be right wherever faces overlap. Every part is named in
+//! the legend, in placing order.
 
-mod common;
+// apart-stack's test helpers: the sheet-metal test parts as placement models, and the
+// floor region around a part.
+#[path = "../../stack/tests/common/mod.rs"]
+mod stack_common;
 
 use apart_draw::colors::{part_colors, Rgb};
+use apart_draw::stack_render::{plan_png, plan_shapes, plan_svg, scene_shapes};
 use apart_draw::svg_png::svg_to_pixmap;
 use apart_draw::{shapes_part_ids, shapes_png, shapes_svg, View};
 use apart_stack::exact::{q, qfrac};
 use apart_stack::part::PartModel;
-use apart_stack::parts::{channel, cube, triangle_part};
 use apart_stack::planner::{stack, StackOptions};
-use apart_stack::render::plan_shapes;
-use common::floor_around;
+use apart_stack::scene::Scene;
 use resvg::tiny_skia::Pixmap;
+use stack_common::floor_around;
+use stack_common::parts::{channel, complex_part, cube, triangle_part};
 
 const W: u32 = 480;
 const H: u32 = 360;
@@ -146,8 +151,56 @@ fn triangle_parts_and_cubes_in_svg_as_in_the_zbuffer() {
 
 #[test]
 fn complex_parts_with_holes_and_flanges_in_svg_as_in_the_zbuffer() {
-    let part = apart_stack::parts::complex_part();
+    let part = complex_part();
     let mut opts = StackOptions::new(3, qfrac(1, 2), floor_around(&part, 2, 1), q(100000));
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
+}
+
+#[test]
+fn scene_parts_keep_their_names() {
+    let mut scene = Scene::new();
+    scene.add_fixed_part(&cube(1).pieces);
+    scene.add_fixed_part(&cube(1).pieces);
+    let names = ["base".to_string()];
+    let (shapes, all) = scene_shapes(&scene, &names, &[("lid".into(), cube(1).pieces)], 1.0);
+    assert_eq!(shapes.len(), 3);
+    assert_eq!(all, ["base", "fixed 2", "lid"]);
+}
+
+#[test]
+fn pictures_show_every_part() {
+    let mut opts = StackOptions::new(3, q(1), [q(-2), q(-2), q(2), q(2)], q(10));
+    opts.dtheta_deg = 90.0;
+    let plan = stack(&cube(1), &opts).unwrap();
+    let (shapes, names) = plan_shapes(&plan, 1.0);
+    assert_eq!(names, ["cube #1", "cube #2", "cube #3"]);
+    // A cube: 6 square facets, 12 triangles, 6 planes.
+    assert!(shapes.iter().all(|s| s.triangles.len() == 12));
+    let svg = plan_svg(&plan, 1.0, &View::default(), 320, 240);
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    // Each cube shows at most three faces to the default view, one path each, and
+    // the legend names every part.
+    let drawing = svg.split("<g id=\"axes\"").next().unwrap();
+    let faces = drawing.matches("<path d=\"M").count();
+    assert!((3..=9).contains(&faces), "{faces} faces drawn");
+    for name in &names {
+        assert!(svg.contains(&format!(">{name}</text>")), "{name}");
+    }
+    for axis in ["x", "y", "z"] {
+        assert!(svg.contains(&format!(">{axis}</text>")), "axis {axis}");
+    }
+    assert!(
+        svg.contains(" units</text>") || svg.contains(" unit</text>"),
+        "scale bar"
+    );
+    let png = plan_png(&plan, 1.0, &View::default(), 320, 240);
+    let img = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
+    assert_eq!((img.width(), img.height()), (320, 240));
+    let coloured = img
+        .pixels()
+        .iter()
+        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
+        .count();
+    assert!(coloured > 1000, "{coloured} coloured pixels");
 }

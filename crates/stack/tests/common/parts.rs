@@ -1,0 +1,50 @@
+//! The sheet-metal parts of `apart_testkit::sheet_metal` as placement models: the cube
+//! as one convex piece (the hull of its corners), the others decomposed exactly. Shared
+//! by the stacking tests, the benchmark and the part generator of apart-stack, and by
+//! apart-draw's pictures of stacks (included by path: the models need apart-stack,
+//! which apart-testkit must not depend on).
+#![allow(dead_code)]
+
+use apart_kernel::Vec3;
+use apart_pieces::Polytope;
+use apart_stack::part::PartModel;
+use apart_testkit::sheet_metal::{self, SheetPart};
+
+/// A placement model of a test part, its mesh kept.
+pub fn model(part: SheetPart) -> PartModel {
+    let points: Vec<Vec3> = part
+        .mesh
+        .points
+        .iter()
+        .map(|&p| Vec3::from_i64(p))
+        .collect();
+    let triangles = part.mesh.triangles;
+    if part.convex {
+        let hull = Polytope::hull_of_points(&points).expect("a convex solid");
+        let mut model = PartModel::from_pieces(part.name, vec![hull]).expect("one piece");
+        model.mesh = Some((points, triangles));
+        model
+    } else {
+        PartModel::from_mesh(part.name, points, triangles).expect("the part decomposes")
+    }
+}
+
+/// A unit-aligned cube `[0, size]³`.
+pub fn cube(size: i64) -> PartModel {
+    model(sheet_metal::cube(size))
+}
+
+/// The channel part with default dimensions.
+pub fn channel() -> PartModel {
+    model(sheet_metal::channel())
+}
+
+/// The triangle part with default dimensions.
+pub fn triangle_part() -> PartModel {
+    model(sheet_metal::triangle_part())
+}
+
+/// The complex part (plate, holes, flanges; 82 convex pieces).
+pub fn complex_part() -> PartModel {
+    model(sheet_metal::complex_part())
+}
