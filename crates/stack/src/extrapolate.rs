@@ -87,16 +87,6 @@ impl Template {
         })
     }
 
-    /// The reference orientation.
-    pub fn theta0(&self) -> ZRotation {
-        self.theta0
-    }
-
-    /// Number of event functions checked per query.
-    pub fn event_count(&self) -> usize {
-        self.events.len()
-    }
-
     /// Exactly: is the obstacle's structure the same at `theta` as at the reference
     /// (no event between them, the turn shorter than half a turn)?
     pub fn valid_at(&self, theta: ZRotation) -> bool {
@@ -167,7 +157,7 @@ impl Template {
 
     /// The critical angles (degrees in `[0, 360)`, sorted) where some event happens: the
     /// ends of the constant-topology intervals (floating point, for reports).
-    pub fn critical_angles_deg(&self) -> Vec<f64> {
+    pub(crate) fn critical_angles_deg(&self) -> Vec<f64> {
         let t0 = self.theta0.angle_deg();
         let mut out = Vec::new();
         for (m, v) in &self.events {

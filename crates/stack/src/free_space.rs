@@ -18,16 +18,16 @@ use apart_kernel::{Int, Sign};
 
 /// A closed convex cell `{p : every constraint}`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Cell {
+pub(crate) struct Cell {
     /// Its half-spaces.
-    pub constraints: Vec<HalfSpace>,
+    pub(crate) constraints: Vec<HalfSpace>,
     /// A box containing the cell (Ω's box tightened by axis-aligned constraints).
-    pub bbox: QBox,
+    pub(crate) bbox: QBox,
 }
 
 /// The result of subtracting an obstacle from a cell.
 #[derive(Clone, Debug)]
-pub enum Split {
+pub(crate) enum Split {
     /// The obstacle's interior does not meet the cell: keep it.
     Unchanged,
     /// The cell minus the open obstacle, as closed convex pieces (possibly none), each
@@ -38,65 +38,29 @@ pub enum Split {
 
 /// Counters of the exact work done by subtractions.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct SplitStats {
+pub(crate) struct SplitStats {
     /// Subtractions decided by the obstacle's vertices alone.
-    pub quick_rejects: usize,
+    pub(crate) quick_rejects: usize,
     /// Linear programs solved.
-    pub linear_programs: usize,
+    pub(crate) linear_programs: usize,
     /// Subtractions that went past the quick rejections.
-    pub full: usize,
+    pub(crate) full: usize,
     /// Pieces produced.
-    pub pieces: usize,
+    pub(crate) pieces: usize,
 }
 
 impl Cell {
     /// The cell of a box.
-    pub fn of_box(b: &QBox) -> Cell {
+    pub(crate) fn of_box(b: &QBox) -> Cell {
         Cell {
             constraints: b.halfspaces(),
             bbox: b.clone(),
         }
     }
 
-    /// `self` with one more half-space.
-    pub fn with(&self, h: HalfSpace) -> Cell {
-        let mut c = self.clone();
-        c.add(h);
-        c
-    }
-
-    /// Tightens the box to the cell's exact extent (six linear programs; `bounds` a box
-    /// containing the cell). Returns false when the cell is empty.
-    pub fn tighten_box(&mut self, bounds: &QBox, stats: &mut SplitStats) -> bool {
-        if self
-            .constraints
-            .iter()
-            .all(|h| h.n.iter().filter(|c| **c != Int::ZERO).count() == 1)
-        {
-            return true; // axis-aligned: the box is already exact
-        }
-        for i in 0..3 {
-            for s in [1i64, -1] {
-                let mut n = [Int::ZERO, Int::ZERO, Int::ZERO];
-                n[i] = Int::from(s);
-                let lower = &bounds.min_dot(&n) - &q(1);
-                stats.linear_programs += 1;
-                let Some((v, _)) = min_linear(&self.constraints, &n, &lower) else {
-                    return false;
-                };
-                if s == 1 {
-                    self.bbox.lo[i] = v;
-                } else {
-                    self.bbox.hi[i] = -&v;
-                }
-            }
-        }
-        true
-    }
-
     /// Adds a half-space (see [`add_constraint`]), tightening the box when it is
     /// axis-aligned.
-    pub fn add(&mut self, h: HalfSpace) {
+    pub(crate) fn add(&mut self, h: HalfSpace) {
         let axis = (0..3).filter(|&i| h.n[i] != Int::ZERO).collect::<Vec<_>>();
         if let [i] = axis[..] {
             let v = crate::exact::qdiv(&crate::exact::qz(&h.off), &crate::exact::qz(&h.n[i]));
@@ -115,7 +79,7 @@ impl Cell {
 /// Adds `h` to a list of half-spaces, keeping only the tightest of parallel ones with
 /// the same orientation (stacked identical parts give many such planes; without this a
 /// cell's list would grow with every obstacle subtracted from it).
-pub fn add_constraint(list: &mut Vec<HalfSpace>, h: HalfSpace) {
+pub(crate) fn add_constraint(list: &mut Vec<HalfSpace>, h: HalfSpace) {
     for g in list.iter_mut() {
         if let Some(cmp) = parallel_offsets(g, &h) {
             if cmp == std::cmp::Ordering::Greater {
@@ -157,7 +121,7 @@ fn parallel_offsets(a: &HalfSpace, b: &HalfSpace) -> Option<std::cmp::Ordering> 
 /// region Ω's box): it gives the linear programs a strict lower bound. `known` are
 /// points of the cell (e.g. its optimum): signs at known points settle many of the
 /// minimum and maximum questions without a linear program.
-pub fn subtract(
+pub(crate) fn subtract(
     cell: &Cell,
     obstacle: &Obstacle,
     bounds: &QBox,

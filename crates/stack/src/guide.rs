@@ -5,17 +5,17 @@
 //! input) the exact algorithm runs instead, so floating point never decides anything.
 
 /// A constraint `a · p <= b` in doubles, scaled to a unit normal.
-pub type FHalf = ([f64; 3], f64);
+pub(crate) type FHalf = ([f64; 3], f64);
 
 /// A quadratic `pᵀHp + g·p` and tie-breaker anchor, in doubles.
 #[derive(Clone, Debug)]
-pub struct FObjective {
+pub(crate) struct FObjective {
     /// The matrix.
-    pub h: [[f64; 3]; 3],
+    pub(crate) h: [[f64; 3]; 3],
     /// The linear part.
-    pub g: [f64; 3],
+    pub(crate) g: [f64; 3],
     /// The anchor of `‖p − anchor‖²`.
-    pub anchor: [f64; 3],
+    pub(crate) anchor: [f64; 3],
 }
 
 const EPS: f64 = 1e-9;
@@ -183,7 +183,7 @@ fn seidel<'a>(
 
 /// The (approximate) lexicographic minimizer over the constraints, in the given order,
 /// with the indices of the constraints holding with equality there.
-pub fn lexmin(
+pub(crate) fn lexmin(
     constraints: &[FHalf],
     order: &[usize],
     obj: &FObjective,

@@ -67,17 +67,17 @@ pub fn translated(p: &Polytope, t: &Point) -> Polytope {
 
 /// How two closed convex pieces with disjoint interiors touch.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Touch {
+pub(crate) struct Touch {
     /// The vertices (and more) of the contact set `a ∩ b`.
-    pub points: Vec<[Q; 3]>,
+    pub(crate) points: Vec<[Q; 3]>,
     /// Some plane separating them has `a` on its upper side (`b` supports `a`).
-    pub supports: bool,
+    pub(crate) supports: bool,
 }
 
 /// The contact of `a` and `b` (closed sets, interiors disjoint): `None` when they do not
 /// touch. The points are a superset of the vertices of `a ∩ b`: vertices of one in the
 /// other, and crossings of the edges of one with the facets of the other.
-pub fn touch(a: &Polytope, b: &Polytope) -> Option<Touch> {
+pub(crate) fn touch(a: &Polytope, b: &Polytope) -> Option<Touch> {
     let (a, b) = Polytope::common(a, b);
     let den = a.den().clone();
     let pts = apart_pieces::interference::contact_points(&a, &b);

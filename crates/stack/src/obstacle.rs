@@ -23,7 +23,7 @@ pub struct ObstacleShape {
     /// Facets as half-spaces of true coordinates, in the order of `cycles`.
     pub halfspaces: Vec<HalfSpace>,
     /// Each facet's vertex cycle (indices into `vertices`), counter-clockwise outside.
-    pub cycles: Vec<Vec<u32>>,
+    pub(crate) cycles: Vec<Vec<u32>>,
 }
 
 impl ObstacleShape {
@@ -34,7 +34,7 @@ impl ObstacleShape {
     }
 
     /// Wraps an obstacle polytope.
-    pub fn from_polytope(polytope: Polytope) -> ObstacleShape {
+    pub(crate) fn from_polytope(polytope: Polytope) -> ObstacleShape {
         let halfspaces = polytope
             .facets()
             .iter()
@@ -48,17 +48,9 @@ impl ObstacleShape {
         }
     }
 
-    /// The vertices as points.
-    pub fn points(&self) -> Vec<Point> {
-        self.vertices
-            .iter()
-            .map(|v| Point::stored(v, &self.den))
-            .collect()
-    }
-
     /// The obstacle moved by `t` (the fixed piece placed at `t`), grown by a horizontal
     /// clearance when given.
-    pub fn placed(&self, t: &Point, clearance: Option<&Q>) -> Obstacle {
+    pub(crate) fn placed(&self, t: &Point, clearance: Option<&Q>) -> Obstacle {
         let halfspaces: Vec<HalfSpace> = self
             .halfspaces
             .iter()
@@ -88,19 +80,12 @@ impl ObstacleShape {
             bbox,
         }
     }
-
-    /// True when the (unplaced) obstacle's interior contains `p`.
-    pub fn contains_open(&self, p: &Point) -> bool {
-        self.halfspaces
-            .iter()
-            .all(|h| h.side(p) == apart_kernel::Sign::Negative)
-    }
 }
 
 /// `n · p <= off + clearance · r` with `r >= ‖(n_x, n_y)‖` (a rational upper bound
 /// within 2^-20): the paper's shift of each inequality's right-hand side (§VI-A.2),
 /// horizontal only so that a part can still rest on the one below.
-pub fn grow_horizontally(h: &HalfSpace, clearance: &Q) -> HalfSpace {
+pub(crate) fn grow_horizontally(h: &HalfSpace, clearance: &Q) -> HalfSpace {
     let s = &h.n[0] * &h.n[0] + &h.n[1] * &h.n[1];
     let r = sqrt_upper(&s);
     let shift = clearance * &r;
@@ -111,18 +96,18 @@ pub fn grow_horizontally(h: &HalfSpace, clearance: &Q) -> HalfSpace {
 /// A placed (and possibly grown) obstacle: the moving piece at `p` overlaps the fixed
 /// one (or comes closer than the clearance) exactly when `p` is in its interior.
 #[derive(Clone, Debug)]
-pub struct Obstacle {
+pub(crate) struct Obstacle {
     /// Half-spaces whose intersection is the closed obstacle.
-    pub halfspaces: Vec<HalfSpace>,
+    pub(crate) halfspaces: Vec<HalfSpace>,
     /// Its vertices when known (not for grown obstacles).
-    pub vertices: Option<Vec<Point>>,
+    pub(crate) vertices: Option<Vec<Point>>,
     /// Its bounding box when known (not for grown obstacles).
-    pub bbox: Option<QBox>,
+    pub(crate) bbox: Option<QBox>,
 }
 
 impl Obstacle {
     /// True when `p` lies in the open obstacle.
-    pub fn contains_open(&self, p: &Point) -> bool {
+    pub(crate) fn contains_open(&self, p: &Point) -> bool {
         self.halfspaces
             .iter()
             .all(|h| h.side(p) == apart_kernel::Sign::Negative)
@@ -131,7 +116,7 @@ impl Obstacle {
 
 /// For each vertex of `sum = fixed ⊕ (−moving)`, the pair `(i, j)` with
 /// `sum_vertex = fixed_j − moving_i` (unique for a vertex of a Minkowski sum).
-pub fn provenance(
+pub(crate) fn provenance(
     sum: &ObstacleShape,
     fixed: &Polytope,
     moving: &Polytope,

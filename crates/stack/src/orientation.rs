@@ -73,7 +73,7 @@ impl ZRotation {
     }
 
     /// The rotation by `2 atan(n/m)`.
-    pub fn from_half_tangent(n: i64, m: i64) -> ZRotation {
+    pub(crate) fn from_half_tangent(n: i64, m: i64) -> ZRotation {
         let (a, b, c) = (m * m - n * n, 2 * m * n, m * m + n * n);
         ZRotation::reduced(a, b, c)
     }
@@ -92,7 +92,7 @@ impl ZRotation {
     }
 
     /// `self` followed by `k` quarter turns (counter-clockwise).
-    pub fn quarter_turns(self, k: i64) -> ZRotation {
+    pub(crate) fn quarter_turns(self, k: i64) -> ZRotation {
         let mut r = self;
         for _ in 0..k.rem_euclid(4) {
             r = ZRotation {
@@ -105,7 +105,7 @@ impl ZRotation {
     }
 
     /// The rotation by the sum of both angles.
-    pub fn then(self, o: ZRotation) -> ZRotation {
+    pub(crate) fn then(self, o: ZRotation) -> ZRotation {
         ZRotation::reduced(
             self.a * o.a - self.b * o.b,
             self.a * o.b + self.b * o.a,
@@ -114,7 +114,7 @@ impl ZRotation {
     }
 
     /// The inverse rotation.
-    pub fn inverse(self) -> ZRotation {
+    pub(crate) fn inverse(self) -> ZRotation {
         ZRotation {
             a: self.a,
             b: -self.b,
@@ -131,15 +131,10 @@ impl ZRotation {
     }
 
     /// `c` times the rotated integer vector: `(a x − b y, b x + a y, c z)`.
-    pub fn apply_scaled(&self, v: &Vec3) -> Vec3 {
+    pub(crate) fn apply_scaled(&self, v: &Vec3) -> Vec3 {
         let [x, y, z] = v.to_ints();
         let (a, b, c) = (Int::from(self.a), Int::from(self.b), Int::from(self.c));
         Vec3::from_ints([&a * &x - &b * &y, &b * &x + &a * &y, &c * &z])
-    }
-
-    /// The rotated direction (any positive multiple): same as [`Self::apply_scaled`].
-    pub fn apply_direction(&self, v: &Vec3) -> Vec3 {
-        self.apply_scaled(v)
     }
 }
 
@@ -157,7 +152,7 @@ impl Base {
     pub const IDENTITY: Base = Base { phi: 0, psi: 0 };
 
     /// Applies the base rotation to an integer vector (exact, no scaling).
-    pub fn apply(&self, v: &Vec3) -> Vec3 {
+    pub(crate) fn apply(&self, v: &Vec3) -> Vec3 {
         let [mut x, mut y, mut z] = v.to_ints();
         for _ in 0..self.phi % 4 {
             // About x: (x, y, z) -> (x, −z, y).
@@ -210,18 +205,18 @@ impl Orientation {
     }
 
     /// `c` times the rotated integer vector.
-    pub fn apply_scaled(&self, v: &Vec3) -> Vec3 {
+    pub(crate) fn apply_scaled(&self, v: &Vec3) -> Vec3 {
         self.theta.apply_scaled(&self.base.apply(v))
     }
 
     /// The polytope rotated: stored integers times `c`, denominator times `c`.
-    pub fn rotate(&self, p: &Polytope) -> Polytope {
+    pub(crate) fn rotate(&self, p: &Polytope) -> Polytope {
         rotate_polytope(p, |v| self.apply_scaled(v), self.theta.c)
     }
 }
 
 /// Applies a rotation given as `v -> c R v` (integers) to a polytope.
-pub fn rotate_polytope(p: &Polytope, f: impl Fn(&Vec3) -> Vec3, c: i64) -> Polytope {
+pub(crate) fn rotate_polytope(p: &Polytope, f: impl Fn(&Vec3) -> Vec3, c: i64) -> Polytope {
     let points: Vec<Vec3> = p.vertices().iter().map(&f).collect();
     let facets: Vec<(Vec3, Vec<u32>)> = p
         .facets()

@@ -7,6 +7,8 @@ use apart_kernel::{Int, Vec3};
 use apart_pieces::Polytope;
 use rustc_hash::FxHashMap as HashMap;
 
+pub use crate::qp::ObjectiveError;
+
 /// Why a part or a request cannot be used.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum StackError {
@@ -18,7 +20,7 @@ pub enum StackError {
     Decompose(String),
     /// The objective is not a convex quadratic bounded below.
     #[error("objective: {0}")]
-    Objective(#[from] crate::qp::ObjectiveError),
+    Objective(#[from] ObjectiveError),
     /// An internal inconsistency (a bug), reported rather than hidden.
     #[error("internal error: {0}")]
     Internal(String),
@@ -102,7 +104,7 @@ impl PartModel {
     }
 
     /// The pieces turned by a base orientation only (no turn about z).
-    pub fn base_pieces(&self, base: Base) -> Vec<Polytope> {
+    pub(crate) fn base_pieces(&self, base: Base) -> Vec<Polytope> {
         let o = Orientation {
             base,
             ..Orientation::IDENTITY
@@ -119,7 +121,7 @@ pub struct OrientedPart {
     /// Rotated pieces.
     pub pieces: Vec<Polytope>,
     /// Exact bounding box of each piece.
-    pub boxes: Vec<QBox>,
+    pub(crate) boxes: Vec<QBox>,
     /// Exact bounding box of the part.
     pub extent: QBox,
     /// Rotated centre of gravity.
@@ -128,7 +130,7 @@ pub struct OrientedPart {
 
 impl OrientedPart {
     /// A key equal for orientations that give the same shape up to translation.
-    pub fn shape_key(&self) -> Vec<Vec<Point>> {
+    pub(crate) fn shape_key(&self) -> Vec<Vec<Point>> {
         let lo = Point::from_q(&self.extent.lo);
         let mut key: Vec<Vec<Point>> = self
             .pieces
@@ -153,7 +155,7 @@ impl OrientedPart {
 }
 
 /// Exact centroid and volume of a union of convex pieces with disjoint interiors.
-pub fn centroid_of(pieces: &[Polytope]) -> ([Q; 3], Q) {
+pub(crate) fn centroid_of(pieces: &[Polytope]) -> ([Q; 3], Q) {
     let mut vol = q(0);
     let mut moment = [q(0), q(0), q(0)];
     for p in pieces {
@@ -198,7 +200,10 @@ pub fn centroid_of(pieces: &[Polytope]) -> ([Q; 3], Q) {
 
 /// The orientations of a part with duplicates (the same shape up to translation, e.g.
 /// a cube turned by 90°) removed, keeping the first of each.
-pub fn distinct_orientations(part: &PartModel, orientations: &[Orientation]) -> Vec<Orientation> {
+pub(crate) fn distinct_orientations(
+    part: &PartModel,
+    orientations: &[Orientation],
+) -> Vec<Orientation> {
     let mut seen: HashMap<Vec<Vec<Point>>, ()> = HashMap::default();
     orientations
         .iter()

@@ -22,7 +22,8 @@ use crate::interference::overlaps;
 use crate::obstacle::{Obstacle, ObstacleShape};
 use crate::orientation::{Base, Orientation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
-use crate::qp::{lexmin, Objective};
+use crate::qp::lexmin;
+pub use crate::qp::Objective;
 use crate::scene::Scene;
 
 /// A newly found interfering pair: its placed obstacle and (fixed piece, moving piece).
@@ -48,7 +49,7 @@ pub enum Region {
 impl Region {
     /// Ω for the part in one orientation: the allowed translations (empty when the
     /// part does not fit).
-    pub fn omega(&self, part: &OrientedPart) -> QBox {
+    pub(crate) fn omega(&self, part: &OrientedPart) -> QBox {
         match self {
             Region::Translations(b) => b.clone(),
             Region::Container(s) => QBox {
@@ -79,7 +80,7 @@ pub enum Cost {
 
 impl Cost {
     /// The objective in the translation `p` of the part turned as `part`.
-    pub fn objective(&self, part: &OrientedPart) -> Objective {
+    pub(crate) fn objective(&self, part: &OrientedPart) -> Objective {
         match self {
             Cost::Distance(t) => Objective::distance(t),
             Cost::Quadratic(o) => (**o).clone(),
@@ -112,7 +113,7 @@ impl Cost {
     }
 
     /// Checks the cost's parameters.
-    pub fn validate(&self) -> Result<(), StackError> {
+    pub(crate) fn validate(&self) -> Result<(), StackError> {
         match self {
             Cost::Stacking { w, .. } => {
                 if *w < q(0) || *w > q(1) {
@@ -237,21 +238,21 @@ pub struct ObstacleStats {
 /// Obstacles of (fixed shape, orientation, moving piece), with the extrapolation
 /// templates; shared by every placement in a plan.
 #[derive(Clone, Debug, Default)]
-pub struct ObstacleCache {
+pub(crate) struct ObstacleCache {
     exact: HashMap<(usize, usize, usize), Arc<ObstacleShape>>,
     templates: HashMap<(usize, Base, usize), Template>,
     /// Counters.
-    pub stats: ObstacleStats,
+    pub(crate) stats: ObstacleStats,
 }
 
 impl ObstacleCache {
     /// An empty cache.
-    pub fn new() -> ObstacleCache {
+    pub(crate) fn new() -> ObstacleCache {
         ObstacleCache::default()
     }
 
     /// The obstacle of fixed shape `s` for moving piece `a` in orientation `o`.
-    pub fn get(
+    pub(crate) fn get(
         &mut self,
         scene: &Scene,
         moving: &Moving,
@@ -347,7 +348,7 @@ impl Ord for Entry {
 
 /// The placement engine for one part among fixed parts: yields interference-free
 /// candidates in increasing cost.
-pub struct Placer<'a> {
+pub(crate) struct Placer<'a> {
     scene: &'a Scene,
     moving: &'a Moving,
     cache: &'a mut ObstacleCache,
@@ -357,12 +358,12 @@ pub struct Placer<'a> {
     yielded: HashSet<(usize, Point)>,
     split_stats: SplitStats,
     /// Counters of this placer.
-    pub stats: PlaceStats,
+    pub(crate) stats: PlaceStats,
 }
 
 impl<'a> Placer<'a> {
     /// Prepares every orientation: Ω(θ), the objective, the first candidate.
-    pub fn new(
+    pub(crate) fn new(
         scene: &'a Scene,
         moving: &'a Moving,
         cache: &'a mut ObstacleCache,
@@ -437,7 +438,7 @@ impl<'a> Placer<'a> {
 
     /// The next interference-free candidate (cheapest first), or `None` when no free
     /// space is left in any orientation.
-    pub fn next_candidate(&mut self) -> Result<Option<Candidate>, StackError> {
+    pub(crate) fn next_candidate(&mut self) -> Result<Option<Candidate>, StackError> {
         while let Some(e) = self.heap.pop() {
             let mut st = self.states[e.o]
                 .take()

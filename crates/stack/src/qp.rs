@@ -49,12 +49,12 @@ pub enum ObjectiveError {
 
 impl Objective {
     /// `‖p − target‖²`.
-    pub fn distance(target: &[Q; 3]) -> Objective {
+    pub(crate) fn distance(target: &[Q; 3]) -> Objective {
         Objective::diagonal(&[q(1), q(1), q(1)], target, &q(0))
     }
 
     /// `Σ weight_i (p_i − target_i)² + constant` (weights `>= 0`), ties to `target`.
-    pub fn diagonal(weight: &[Q; 3], target: &[Q; 3], constant: &Q) -> Objective {
+    pub(crate) fn diagonal(weight: &[Q; 3], target: &[Q; 3], constant: &Q) -> Objective {
         let z = || q(0);
         let mut h = [[z(), z(), z()], [z(), z(), z()], [z(), z(), z()]];
         let mut g = [z(), z(), z()];
@@ -74,7 +74,7 @@ impl Objective {
 
     /// `(n · p − lower)²` for integer `n`: minimizing it over a set where `n · p >= lower`
     /// minimizes `n · p`.
-    pub fn linear(n: &[apart_kernel::Int; 3], lower: &Q) -> Objective {
+    pub(crate) fn linear(n: &[apart_kernel::Int; 3], lower: &Q) -> Objective {
         let nq = n.clone().map(Q::from_int);
         let h = [0, 1, 2].map(|i| [0, 1, 2].map(|j| &nq[i] * &nq[j]));
         let g = [0, 1, 2].map(|i| &(&q(-2) * lower) * &nq[i]);
@@ -87,7 +87,7 @@ impl Objective {
     }
 
     /// Checks that the objective is a convex quadratic bounded below.
-    pub fn validate(&self) -> Result<(), ObjectiveError> {
+    pub(crate) fn validate(&self) -> Result<(), ObjectiveError> {
         for i in 0..3 {
             for j in 0..3 {
                 if self.h[i][j] != self.h[j][i] {
@@ -122,13 +122,13 @@ impl Objective {
     }
 
     /// `F(p)`.
-    pub fn value(&self, p: &[Q; 3]) -> Q {
+    pub(crate) fn value(&self, p: &[Q; 3]) -> Q {
         let hp = mat_vec(&self.h, p);
         &(&qdot(p, &hp) + &qdot(&self.g, p)) + &self.c
     }
 
     /// The tie-breaker `‖p − anchor‖²`.
-    pub fn tie(&self, p: &[Q; 3]) -> Q {
+    pub(crate) fn tie(&self, p: &[Q; 3]) -> Q {
         let d = crate::exact::qsub3(p, &self.anchor);
         qdot(&d, &d)
     }
@@ -150,7 +150,7 @@ fn mat_vec(h: &[[Q; 3]; 3], p: &[Q; 3]) -> [Q; 3] {
 /// basis of the null space of `a`; `None` when inconsistent. Exact Gauss–Jordan.
 // Row reduction reads and writes two rows at once by index.
 #[allow(clippy::needless_range_loop)]
-pub fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q>, Vec<Vec<Q>>)> {
+pub(crate) fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q>, Vec<Vec<Q>>)> {
     let mut rows: Vec<Vec<Q>> = a
         .iter()
         .zip(b)
@@ -318,7 +318,7 @@ fn shuffled(n: usize) -> Vec<usize> {
 /// the answer is certified exactly (the point on those planes is feasible and its
 /// Lagrange multipliers are non-negative: the KKT conditions, sufficient for a convex
 /// program); otherwise, or when the certificate fails, exact Seidel decides.
-pub fn lexmin(constraints: &[HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
+pub(crate) fn lexmin(constraints: &[HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
     let order = shuffled(constraints.len());
     if obj.definite() {
         if let Some(p) = guided(constraints, &order, obj, &obj.gradient_at_neg()) {
@@ -368,7 +368,7 @@ fn to_float(h: &HalfSpace) -> Option<crate::guide::FHalf> {
 impl Objective {
     /// True when `H` is positive definite (then the minimizer is unique without the
     /// tie-breaker).
-    pub fn definite(&self) -> bool {
+    pub(crate) fn definite(&self) -> bool {
         let h = &self.h;
         let m2 = &(&h[0][0] * &h[1][1]) - &(&h[0][1] * &h[1][0]);
         h[0][0].sign() == Sign::Positive
@@ -397,7 +397,7 @@ impl Objective {
 /// bound `lower` of `n · p` on the cell (e.g. from a box containing it); `None` when
 /// the cell is empty. A float guide proposes the optimal face; an exact dual certificate
 /// (`n = −Σ λ_i n_i`, `λ >= 0` over its planes) confirms it, else exact Seidel decides.
-pub fn min_linear(
+pub(crate) fn min_linear(
     constraints: &[HalfSpace],
     n: &[apart_kernel::Int; 3],
     lower: &Q,

@@ -9,13 +9,13 @@ use apart_pieces::Polytope;
 #[derive(Clone, Debug)]
 pub struct ScenePiece {
     /// Index of its shape.
-    pub shape: usize,
+    pub(crate) shape: usize,
     /// Index of its part.
     pub part: usize,
     /// Its translation.
-    pub translation: Point,
+    pub(crate) translation: Point,
     /// Its exact bounding box.
-    pub bbox: QBox,
+    pub(crate) bbox: QBox,
 }
 
 /// Fixed parts made of shared convex shapes (identical stacked parts share them, so
@@ -36,7 +36,7 @@ impl Scene {
     }
 
     /// Registers a shape; returns its index.
-    pub fn add_shape(&mut self, p: Polytope) -> usize {
+    pub(crate) fn add_shape(&mut self, p: Polytope) -> usize {
         self.shape_boxes
             .push(QBox::of_points(p.vertices(), p.den()));
         self.shapes.push(p);
@@ -44,7 +44,7 @@ impl Scene {
     }
 
     /// Adds a part made of the given shapes, all moved by `t`; returns its index.
-    pub fn add_part(&mut self, shapes: &[usize], t: &[Q; 3]) -> usize {
+    pub(crate) fn add_part(&mut self, shapes: &[usize], t: &[Q; 3]) -> usize {
         let part = self.parts;
         self.parts += 1;
         let tp = Point::from_q(t);
@@ -73,7 +73,7 @@ impl Scene {
     }
 
     /// The shapes.
-    pub fn shapes(&self) -> &[Polytope] {
+    pub(crate) fn shapes(&self) -> &[Polytope] {
         &self.shapes
     }
 
@@ -88,7 +88,7 @@ impl Scene {
     }
 
     /// Pieces whose boxes may overlap `b` (closed), by index.
-    pub fn near(&self, b: &FBox, out: &mut Vec<usize>) {
+    pub(crate) fn near(&self, b: &FBox, out: &mut Vec<usize>) {
         self.bvh.query(b, out);
     }
 
@@ -99,7 +99,7 @@ impl Scene {
     }
 
     /// The exact bounding box of every piece (`None` for an empty scene).
-    pub fn bbox(&self) -> Option<QBox> {
+    pub(crate) fn bbox(&self) -> Option<QBox> {
         let mut it = self.pieces.iter();
         let first = it.next()?.bbox.clone();
         Some(it.fold(first, |a, p| a.union(&p.bbox)))

@@ -41,7 +41,7 @@ pub struct Contact {
 }
 
 /// The contacts of the placed pieces with the floor (`z = floor_z`) and the scene.
-pub fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<Contact> {
+pub(crate) fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<Contact> {
     let mut out: Vec<Contact> = Vec::new();
     let mut floor = Vec::new();
     for p in placed {
@@ -100,7 +100,7 @@ fn cross2(o: &[Q; 2], a: &[Q; 2], b: &[Q; 2]) -> Q {
 }
 
 /// The strictly convex hull of 2-D points, counter-clockwise (monotone chain, exact).
-pub fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
+pub(crate) fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
     let mut pts = points.to_vec();
     pts.sort();
     pts.dedup();
@@ -133,7 +133,7 @@ pub fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
 
 /// True when the centre of gravity projects strictly inside the support polygon of the
 /// supporting contacts.
-pub fn stable(cg: &[Q; 3], contacts: &[Contact]) -> bool {
+pub(crate) fn stable(cg: &[Q; 3], contacts: &[Contact]) -> bool {
     let pts: Vec<[Q; 2]> = contacts
         .iter()
         .filter(|c| c.supports)
@@ -191,7 +191,7 @@ fn clip(subject: &[[Q; 2]], clip: &[[Q; 2]]) -> Vec<[Q; 2]> {
 /// The largest exposed area of an upward horizontal face of the part (facets with
 /// normal +z minus the parts covered by other pieces' downward facets on the same
 /// plane), exactly.
-pub fn up_face_area(pieces: &[Polytope]) -> Q {
+pub(crate) fn up_face_area(pieces: &[Polytope]) -> Q {
     let up = Vec3::new(0, 0, 1);
     let down = Vec3::new(0, 0, -1);
     // (height, polygon counter-clockwise seen from above, is_up)
@@ -265,7 +265,10 @@ pub fn up_face_area(pieces: &[Polytope]) -> Q {
 /// meet and whose stack piece reaches above the new piece's bottom are summed: for any
 /// other pair no translation along +z brings `a` into `b`'s interior. A pair whose
 /// interiors already overlap is an error (the placement engine never proposes one).
-pub fn lowerable(placed: &[Polytope], scene: &Scene) -> Result<bool, crate::part::StackError> {
+pub(crate) fn lowerable(
+    placed: &[Polytope],
+    scene: &Scene,
+) -> Result<bool, crate::part::StackError> {
     let boxes: Vec<QBox> = placed
         .iter()
         .map(|p| QBox::of_points(p.vertices(), p.den()))
@@ -309,7 +312,7 @@ pub fn placed_pieces(rotated: &[Polytope], t: &[Q; 3]) -> Vec<Polytope> {
 }
 
 /// The exact height of the highest vertex of the pieces.
-pub fn top(pieces: &[Polytope]) -> Option<Q> {
+pub(crate) fn top(pieces: &[Polytope]) -> Option<Q> {
     pieces
         .iter()
         .flat_map(|p| {
