@@ -5,6 +5,7 @@ pub mod decompose;
 pub mod load;
 pub mod partition;
 pub mod place;
+pub mod placement_args;
 pub mod separate;
 pub mod sequence;
 pub mod stack;

@@ -5,29 +5,21 @@
 //! 2 when the part fits nowhere in the region.
 
 use crate::commands::load::{files_manifest, for_named_files, load_valid_but};
-use crate::commands::stack::percent;
+use crate::commands::placement_args::{
+    exact_rotation, exact_units, grid_value, model_of, parse_bases, parse_numbers, percent, qunits,
+    stats_json, write_pictures, PictureArgs, StatsJson, STACKING_PAPER,
+};
 use crate::output;
 use crate::{limits, Global};
 use apart::assembly::Assembly;
-use apart::draw::View;
-use apart::stack::exact::{q_from_f64, QBox, Q};
-use apart::stack::orientation::{orientations, Base, Orientation};
+use apart::stack::exact::{q_from_f64, QBox};
+use apart::stack::orientation::{orientations, Base};
 use apart::stack::part::PartModel;
-use apart::stack::partial::{place, Cost, Moving, ObstacleStats, PlaceOptions, PlaceStats, Region};
+use apart::stack::partial::{place, Cost, Moving, PlaceOptions, PlaceStats, Region};
 use apart::stack::scene::Scene;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-/// The paper whose eq. (1) `place --weight` and `stack` minimize, cited in full in their
-/// `--help` (and in the README's references, as paper 004).
-pub const STACKING_PAPER: &str = "\
-Reference (eq. (1), partial c-space obstacles, extrapolation between orientations):
-  V. R. Ayyadevara, D. A. Bourne, K. Shimada and R. H. Sturges, Jr., \"Interference-free
-  polyhedral configurations for stacking\", journal paper, manuscript received
-  August 7, 2000, revised September 1, 2001; usually cited as IEEE Transactions on
-  Robotics and Automation 18(2):147-165, 2002 (the README's reference [004] says which
-  of these details the paper itself prints).";
 
 /// Arguments of `apart place`.
 #[derive(clap::Args, Debug)]
@@ -94,174 +86,6 @@ pub struct PlaceArgs {
     pub candidates: usize,
     #[command(flatten)]
     pub pictures: PictureArgs,
-}
-
-/// Picture flags shared by `place` and `stack`.
-#[derive(clap::Args, Debug)]
-pub struct PictureArgs {
-    /// Write a PNG render (drawn without a GPU).
-    #[arg(long, value_name = "FILE")]
-    pub png: Option<PathBuf>,
-    /// Write an SVG drawing.
-    #[arg(long, value_name = "FILE")]
-    pub svg: Option<PathBuf>,
-}
-
-/// Writes the requested pictures; `draw(view, width, height, svg)` makes the bytes.
-pub fn write_pictures(
-    args: &PictureArgs,
-    draw: impl Fn(&View, u32, u32, bool) -> Vec<u8>,
-) -> anyhow::Result<()> {
-    let view = View::default();
-    if let Some(p) = &args.png {
-        output::write_file(p, draw(&view, 1000, 750, false))?;
-    }
-    if let Some(p) = &args.svg {
-        output::write_file(p, draw(&view, 1000, 750, true))?;
-    }
-    Ok(())
-}
-
-/// Counters shared by the JSON of `place` and `stack`.
-#[derive(Serialize)]
-pub struct StatsJson {
-    orientations_considered: usize,
-    pairs_total: u64,
-    pairs_evaluated: u64,
-    interference_tests: u64,
-    cells: u64,
-    qps: u64,
-    obstacles_fresh: u64,
-    obstacles_extrapolated: u64,
-    seconds: StatsSeconds,
-}
-
-#[derive(Serialize)]
-struct StatsSeconds {
-    total: f64,
-    detect: f64,
-    cells: f64,
-    obstacles: f64,
-    extrapolation: f64,
-}
-
-/// The counters as JSON.
-pub fn stats_json(p: &PlaceStats, o: &ObstacleStats, seconds: f64) -> StatsJson {
-    StatsJson {
-        orientations_considered: p.orientations_considered,
-        pairs_total: p.pairs_total,
-        pairs_evaluated: p.pairs_evaluated,
-        interference_tests: p.interference_tests,
-        cells: p.cells,
-        qps: p.qps,
-        obstacles_fresh: o.fresh,
-        obstacles_extrapolated: o.extrapolated,
-        seconds: StatsSeconds {
-            total: seconds,
-            detect: p.detect_seconds,
-            cells: p.cells_seconds,
-            obstacles: o.fresh_seconds,
-            extrapolation: o.extrapolate_seconds,
-        },
-    }
-}
-
-/// Parses `n` comma-separated finite numbers.
-pub fn parse_numbers(text: &str, n: usize, flag: &str) -> anyhow::Result<Vec<f64>> {
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| anyhow::anyhow!("{flag} \"{text}\" is not {n} comma-separated numbers"))?;
-    anyhow::ensure!(
-        v.len() == n,
-        "{flag} \"{text}\" needs {n} comma-separated numbers"
-    );
-    anyhow::ensure!(
-        v.iter().all(|x| x.is_finite()),
-        "{flag} \"{text}\" has a non-finite number"
-    );
-    Ok(v)
-}
-
-/// Parses base orientations "PHI,PSI" in degrees (multiples of 90).
-pub fn parse_bases(texts: &[String]) -> anyhow::Result<Vec<Base>> {
-    texts
-        .iter()
-        .map(|t| {
-            let v = parse_numbers(t, 2, "--base")?;
-            let quarter = |d: f64| -> anyhow::Result<u8> {
-                anyhow::ensure!(
-                    d.rem_euclid(90.0) == 0.0,
-                    "--base \"{t}\": angles must be multiples of 90 degrees"
-                );
-                Ok((d / 90.0).rem_euclid(4.0) as u8)
-            };
-            Ok(Base {
-                phi: quarter(v[0])?,
-                psi: quarter(v[1])?,
-            })
-        })
-        .collect()
-}
-
-/// A value given in input units, exactly in grid units (`h` is a power of two).
-pub fn grid_value(v: f64, h: f64, flag: &str) -> anyhow::Result<Q> {
-    q_from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag} {v} is not a finite number"))
-}
-
-/// The exact turn about z as its rational cosine and sine, `["a/c", "b/c"]`.
-pub fn exact_rotation(o: &Orientation) -> [String; 2] {
-    let t = o.theta;
-    [format!("{}/{}", t.a, t.c), format!("{}/{}", t.b, t.c)]
-}
-
-/// A grid-unit rational in input units, as `f64`.
-pub fn qunits(v: &Q, h: f64) -> f64 {
-    v.to_f64() * h
-}
-
-/// A grid-unit rational in input units, exactly (`h` is a power of two).
-pub fn exact_units(v: &Q, h: f64) -> String {
-    let step = q_from_f64(h).expect("the grid step is a finite power of two");
-    (v * &step).to_string()
-}
-
-/// The part named `name` (or the only part) of a loaded assembly, as a placement model.
-pub fn load_part(asm: &Assembly, name: Option<&str>, path: &Path) -> anyhow::Result<PartModel> {
-    let k = match name {
-        Some(n) => asm
-            .parts
-            .iter()
-            .position(|p| p.name == n)
-            .ok_or_else(|| anyhow::anyhow!("{} has no part named \"{n}\"", path.display()))?,
-        None => {
-            anyhow::ensure!(
-                asm.parts.len() == 1,
-                "{} holds {} parts; name the one to use with --part-name",
-                path.display(),
-                asm.parts.len()
-            );
-            0
-        }
-    };
-    model_of(asm, k)
-}
-
-fn model_of(asm: &Assembly, k: usize) -> anyhow::Result<PartModel> {
-    let part = &asm.parts[k];
-    let mut model = PartModel::from_pieces(&part.name, part.pieces.clone())
-        .map_err(|e| anyhow::anyhow!("part \"{}\": {e}", part.name))?;
-    model.mesh = part.mesh.as_ref().map(|m| {
-        (
-            m.vertices
-                .iter()
-                .map(|&v| apart::kernel::Vec3::from(v))
-                .collect(),
-            m.triangles.clone(),
-        )
-    });
-    Ok(model)
 }
 
 #[derive(Serialize)]

@@ -1,14 +1,14 @@
 //! `apart stack <part>`: a stack of identical parts on a floor region (Ayyadevara et
-//! al. 2002, [`STACKING_PAPER`](crate::commands::place::STACKING_PAPER)): each
+//! al. 2002, [`STACKING_PAPER`](crate::commands::placement_args::STACKING_PAPER)): each
 //! part placed by the exact placement engine with the cost of eq. (1), accepted only if
 //! stable, grippable from above and lowerable along −z. Exit code 0 when every part was
 //! placed, 2 when the stack is incomplete, 3 when `--timeout` stopped the run (the parts
 //! placed until then are printed).
 
 use crate::commands::load::load_valid;
-use crate::commands::place::{
-    exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, qunits,
-    stats_json, write_pictures, PictureArgs, StatsJson,
+use crate::commands::placement_args::{
+    exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, percent,
+    qunits, stats_json, write_pictures, PictureArgs, StatsJson,
 };
 use crate::limits::TimedOut;
 use crate::output;
@@ -21,7 +21,7 @@ use std::process::ExitCode;
 
 /// Arguments of `apart stack`.
 #[derive(clap::Args, Debug)]
-#[command(after_help = crate::commands::place::STACKING_PAPER)]
+#[command(after_help = crate::commands::placement_args::STACKING_PAPER)]
 pub struct StackArgs {
     /// The part: a mesh file, or an assembly with one part (or pick one with --part-name).
     pub part: PathBuf,
@@ -299,13 +299,4 @@ fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<
         s.not_lowerable,
         s.seconds
     ));
-}
-
-/// `100 a / b`, 0 for an empty total.
-pub fn percent(a: u64, b: u64) -> f64 {
-    if b == 0 {
-        0.0
-    } else {
-        100.0 * a as f64 / b as f64
-    }
 }
