@@ -20,6 +20,7 @@
 //! ```
 
 pub mod hull2d;
+pub mod hull3d;
 pub mod interference;
 pub mod polytope;
 pub mod shrink;

@@ -371,7 +371,7 @@ impl Polytope {
         Polytope::assemble(points, facets)
     }
 
-    fn assemble(
+    pub(crate) fn assemble(
         points: &[Vec3],
         facets: Vec<(Vec3, Int, Vec<u32>)>,
     ) -> Result<Polytope, PolytopeError> {

@@ -1,18 +1,21 @@
 //! Shrinking a convex piece by a stated tolerance: every facet plane moved inward by at
-//! least `eps`, exactly.
+//! least `eps`, exactly, and the result put back on the grid.
 //!
-//! A facet `n · x <= c` (primitive integer `n`) moves to `n · x <= c - eps · r` where
-//! `r = ⌈256 |n|⌉ / 256 >= |n|` is a rational upper bound of the normal's length, so each
-//! plane moves by at least `eps` and by at most `eps (1 + 1 / (256 |n|))`. The result is
-//! contained in the erosion of the piece by a ball of radius `eps`, which is what makes a
-//! tolerance conservative: two pieces whose interiors overlap by a depth below `2 eps`
-//! no longer overlap once both are shrunk.
+//! The exact cut ([`Polytope::shrunk_exact`]): a facet `n · x <= c` (primitive integer
+//! `n`) moves to `n · x <= c - eps · r` where `r = ⌈256 |n|⌉ / 256 >= |n|` is a rational
+//! upper bound of the normal's length, so each plane moves by at least `eps` and by at
+//! most `eps (1 + 1 / (256 |n|))`. The result is contained in the erosion of the piece by
+//! a ball of radius `eps`, which is what makes a tolerance conservative: two pieces whose
+//! interiors overlap by a depth below `2 eps` no longer overlap once both are shrunk.
+//! It is the intersection of the moved half-spaces, computed by clipping the original
+//! piece by one moved plane after the other. Vertices are homogeneous integer points
+//! (`y / w`) carrying the complete list of planes through them; a vertex created on an
+//! edge is the exact combination of the edge's end points that lies on the clipping
+//! plane. Nothing is rounded there.
 //!
-//! The new polytope is the intersection of the moved half-spaces, computed by clipping
-//! the original piece by one moved plane after the other. Vertices are homogeneous
-//! integer points (`y / w`) carrying the complete list of planes through them; a vertex
-//! created on an edge is the exact combination of the edge's end points that lies on the
-//! clipping plane. Nothing is rounded.
+//! What the planners get ([`Polytope::shrunk`]) is that cut made one grid step deeper,
+//! with each vertex rounded to the nearest grid point and the convex hull taken: still
+//! at least `eps` inside every face, with integers as short as the input's.
 
 use crate::hull2d::hull_in_plane;
 use crate::polytope::Polytope;
@@ -173,11 +176,10 @@ pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// A point strictly inside `p` near the centre of its largest inscribed ball, as the
-/// integer vector `gamma` with `gamma / (den l)` the point (true coordinates): found by a
-/// damped Newton method on the log barrier of the facets in floating point, rounded,
-/// and checked exactly; the vertex centroid (rounded) when that fails.
-fn inner_point(p: &Polytope, l: &Int) -> Option<Vec3> {
+/// A point near the centre of the largest inscribed ball of `p` (true coordinates, in
+/// floating point, never trusted): a damped Newton method on the log barrier of the
+/// facets, started at the vertex centroid.
+fn inner_centre(p: &Polytope) -> [f64; 3] {
     let to_f = |v: &Vec3| {
         [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), p.den().clone()).to_f64())
     };
@@ -238,6 +240,12 @@ fn inner_point(p: &Polytope, l: &Int) -> Option<Vec3> {
         }
         best = c;
     }
+    best
+}
+
+/// `centre` on the grid of spacing `1 / (den l)` as the integer vector `gamma`, checked
+/// strictly inside exactly; the rounded vertex centroid when that fails.
+fn inner_point(p: &Polytope, centre: &[f64; 3], l: &Int) -> Option<Vec3> {
     let scale = int::to_f64(p.den()) * int::to_f64(l);
     let inside = |g: &Vec3| {
         p.facets()
@@ -252,7 +260,7 @@ fn inner_point(p: &Polytope, l: &Int) -> Option<Vec3> {
             None
         }
     };
-    if let Some(g) = round(&best).filter(inside) {
+    if let Some(g) = round(centre).filter(inside) {
         return Some(g);
     }
     // The exact vertex centroid, scaled to den l: (l / V) sum y, rounded down.
@@ -293,27 +301,54 @@ fn length_bound_256(n: &Vec3) -> Int {
 impl Polytope {
     /// The piece made `eps` smaller: every facet plane moved inward by at least `eps`
     /// (true coordinates; `eps > 0` given as the fraction `eps_num / eps_den` of the grid
-    /// step). `None` when nothing of positive volume is left.
+    /// step), with its vertices on the grid again. `None` when nothing of positive volume
+    /// is left.
     ///
-    /// The exact intersection of the moved half-spaces ([`Polytope::shrunk_exact`]) is
-    /// used when its vertices keep a small common denominator (at most 64 bits more than
-    /// the piece's), as for axis-aligned or few-faced pieces. Otherwise (tessellated
-    /// curved pieces, whose moved planes meet at rationals with pairwise different
-    /// denominators, so that a common one runs to thousands of bits) the piece is scaled
-    /// about an inner point instead ([`Polytope::shrunk_by_scaling`]): every plane still
-    /// moves inward by at least `eps`, some by more.
+    /// The piece is cut by `eps` plus one grid step: exactly ([`Polytope::shrunk_exact`])
+    /// when it has at most 32 facets, else by scaling about an inner point
+    /// ([`Polytope::shrunk_by_scaling`], which moves some faces more). Each vertex of the
+    /// cut is then rounded to the nearest grid point, and the result is the convex hull
+    /// of those points ([`Polytope::hull`]). A rounded point lies less than one step from
+    /// the cut, so every face still lies at least `eps` inside the piece's, and the
+    /// shrunk pieces keep integers as short as the input's: the cut alone has rationals
+    /// of hundreds of bits on tessellated curved pieces, which every later sum,
+    /// projection and arrangement paid for.
     pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
-        if self.facets().len() <= 32 {
-            // Few vertices keep even a wide common denominator cheap to work with.
-            let extra = if self.vertices().len() <= 12 { 512 } else { 64 };
-            let budget = int::bit_len(self.den()) + extra;
-            match self.shrunk_exact(eps_num, eps_den) {
-                Some(p) if int::bit_len(p.den()) <= budget => return Some(p),
-                None => return None,
-                Some(_) => {}
-            }
+        let margin = eps_num + eps_den; // eps + 1 step
+        let cut = if self.facets().len() <= 32 {
+            self.shrunk_exact(&margin, eps_den)?
+        } else {
+            self.shrunk_by_scaling(&margin, eps_den)?
+        };
+        if *cut.den() == Int::ONE {
+            return Some(cut);
         }
-        self.shrunk_by_scaling(eps_num, eps_den)
+        cut.rounded_to_grid()
+    }
+
+    /// The convex hull of this polytope's vertices, each rounded to the nearest point of
+    /// the grid itself (denominator 1). `None` when the hull is flat.
+    fn rounded_to_grid(&self) -> Option<Polytope> {
+        let from = self.den();
+        let two = Int::from(2);
+        let round = |y: Int| -> Int {
+            // round(y / from) = floor((2 y + from) / (2 from)), exactly.
+            let n = &two * y + from;
+            let d = &two * from;
+            let q = &n / &d;
+            if &q * &d > n {
+                q - Int::ONE
+            } else {
+                q
+            }
+        };
+        let points: Vec<Vec3> = self
+            .vertices()
+            .iter()
+            .map(|v| Vec3::from_ints(v.to_ints().map(&round)))
+            .collect();
+        let hull = Polytope::hull(&points).ok()?;
+        (hull.volume6() > Int::ZERO).then_some(hull)
     }
 
     /// The piece scaled about an inner point `c` by the largest dyadic factor `1 - t`
@@ -321,35 +356,39 @@ impl Polytope {
     /// `t` times its distance from `c`, so `t >= eps r_f / (o_f - n_f · c)` for every
     /// `f`, with `r_f = ⌈256 |n_f|⌉ / 256`. `c` is a dyadic point near the centre of the
     /// largest inscribed ball (found in floating point; only its membership is used, and
-    /// that is checked exactly), and `t` is rounded up to 20 significant bits, so the
-    /// vertices keep the denominator `den · 2^(16 + j)`. Facets, normals and the
+    /// that is checked exactly; on the piece's own grid unless that costs more than 1/64
+    /// of the shrink, else 16 bits finer), and `t` is rounded up to 8 significant bits,
+    /// so the vertices keep the short denominator `den · 2^j` (or `den · 2^(16 + j)`). Facets, normals and the
     /// combinatorics are those of the piece. `None` when `t >= 1` (nothing is left).
     pub fn shrunk_by_scaling(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
-        const L_BITS: usize = 16;
-        let l = Int::ONE << L_BITS;
+        // The centre on the piece's own grid (l = 1) keeps the vertices' numbers short,
+        // which makes every later sum, projection and arrangement cheaper; it is used
+        // unless rounding to that grid costs more than 1/64 of the shrink factor (thin
+        // pieces), in which case the centre gets 16 more bits.
         let den = self.den();
-        let gamma = inner_point(self, &l)?; // c = gamma / (den L)
-                                            // t = max_f eps_num den k_f L / (256 eps_den (L o_f - n_f · gamma)).
-        let mut t_num = Int::ZERO;
-        let mut t_den = Int::ONE;
-        for f in self.facets() {
-            let room = &l * &f.offset - f.normal.dot(&gamma);
-            if room <= Int::ZERO {
-                return None;
+        let centre = inner_centre(self);
+        let fine = Int::ONE << 16usize;
+        let coarse = Int::ONE;
+        let at = |l: &Int| -> Option<(Vec3, Int, Int)> {
+            let gamma = inner_point(self, &centre, l)?;
+            let (t_num, t_den) = self.scaling_factor(&gamma, l, eps_num, eps_den)?;
+            Some((gamma, t_num, t_den))
+        };
+        let pick = match (at(&coarse), at(&fine)) {
+            (Some(c), Some(f)) if &c.1 * &f.2 * Int::from(64) <= &f.1 * &c.2 * Int::from(65) => {
+                Some((c, coarse))
             }
-            let num = eps_num * den * length_bound_256(&f.normal) * &l;
-            let dn = Int::from(256) * eps_den * room;
-            if &num * &t_den > &t_num * &dn {
-                t_num = num;
-                t_den = dn;
-            }
-        }
+            (_, Some(f)) => Some((f, fine)),
+            (Some(c), None) => Some((c, coarse)),
+            (None, None) => None,
+        };
+        let ((gamma, t_num, t_den), l) = pick?;
         if t_num >= t_den {
             return None;
         }
-        // t' = m / 2^j >= t with about 20 significant bits.
-        let shift =
-            (int::bit_len(&t_den) as i64 - int::bit_len(&t_num) as i64 + 20).max(1) as usize;
+        // t' = m / 2^j >= t with about 8 significant bits: t' exceeds t by at most 1/128
+        // of t, and the vertices' denominator stays short.
+        let shift = (int::bit_len(&t_den) as i64 - int::bit_len(&t_num) as i64 + 8).max(1) as usize;
         let scaled = &t_num << shift;
         let mut m = &scaled / &t_den;
         if &m * &t_den < scaled {
@@ -374,6 +413,35 @@ impl Polytope {
             .collect();
         let p = Polytope::from_facets(&points, facets).ok()?;
         Some(p.with_den(den * &l * &two_j))
+    }
+
+    /// The smallest `t = t_num / t_den` that moves every facet plane inward by at least
+    /// `eps` when the piece is scaled by `1 - t` about `gamma / (den l)`:
+    /// `t = max_f eps den r_f l / (l o_f - n_f · gamma)`. `None` when `gamma` is not
+    /// strictly inside.
+    fn scaling_factor(
+        &self,
+        gamma: &Vec3,
+        l: &Int,
+        eps_num: &Int,
+        eps_den: &Int,
+    ) -> Option<(Int, Int)> {
+        let den = self.den();
+        let mut t_num = Int::ZERO;
+        let mut t_den = Int::ONE;
+        for f in self.facets() {
+            let room = l * &f.offset - f.normal.dot(gamma);
+            if room <= Int::ZERO {
+                return None;
+            }
+            let num = eps_num * den * length_bound_256(&f.normal) * l;
+            let dn = Int::from(256) * eps_den * room;
+            if &num * &t_den > &t_num * &dn {
+                t_num = num;
+                t_den = dn;
+            }
+        }
+        Some((t_num, t_den))
     }
 
     /// The exact intersection of the facet half-spaces moved inward by
@@ -486,21 +554,22 @@ mod tests {
     fn axis_cube_shrinks_by_exactly_eps() {
         // Axis normals have |n| = 1 exactly, so the bound is tight.
         let c = cube(0, 10);
-        let s = c.shrunk(&Int::from(1), &Int::from(2)).unwrap();
+        let s = c.shrunk_exact(&Int::from(1), &Int::from(2)).unwrap();
         assert_eq!(s.facets().len(), 6);
         assert_eq!(s.vertices().len(), 8);
         // Side 9: volume 729.
         assert_eq!(s.volume(), Rational::from_int(Int::from(729)));
         // Too thin: nothing left.
+        assert!(c.shrunk_exact(&Int::from(5), &Int::ONE).is_none());
+        assert!(c.shrunk_exact(&Int::from(6), &Int::ONE).is_none());
         assert!(c.shrunk(&Int::from(5), &Int::ONE).is_none());
-        assert!(c.shrunk(&Int::from(6), &Int::ONE).is_none());
     }
 
     #[test]
     fn shrunk_tetrahedron_lies_eps_inside_and_loses_at_most_the_bound() {
         let pts = [[0, 0, 0], [12, 0, 0], [0, 12, 0], [0, 0, 12]].map(Vec3::from_i64);
         let t = Polytope::hull_of_points(&pts).unwrap();
-        let s = t.shrunk(&Int::ONE, &Int::ONE).unwrap();
+        let s = t.shrunk_exact(&Int::ONE, &Int::ONE).unwrap();
         assert_eq!(s.vertices().len(), 4);
         // Every vertex of the shrunk piece is at distance >= 1 from every original
         // facet plane: (c - n·x)^2 >= |n|^2, exactly, with x = y / den.
@@ -545,7 +614,7 @@ mod tests {
         }
         let p = Polytope::hull_of_points(&pts).unwrap();
         assert_eq!(p.facets().len(), 7);
-        let s = p.shrunk(&Int::from(2), &Int::ONE).unwrap();
+        let s = p.shrunk_exact(&Int::from(2), &Int::ONE).unwrap();
         // The bevel x + y <= 19 moves to x + y <= 19 - 2·⌈256√2⌉/256 ≈ 16.17, while the
         // box planes go to 8: x + y <= 16 holds at the corner (8, 8): the bevel is gone.
         assert_eq!(s.facets().len(), 6);
@@ -595,9 +664,47 @@ mod tests {
     fn rational_pieces_shrink_too() {
         // A piece with denominator 3: the cube [0, 10/3]^3 stored as [0, 10]^3 / 3.
         let c = cube(0, 10).with_den(Int::from(3));
-        let s = c.shrunk(&Int::ONE, &Int::from(3)).unwrap(); // eps = 1/3
-                                                             // Side 10/3 - 2/3 = 8/3.
+        let s = c.shrunk_exact(&Int::ONE, &Int::from(3)).unwrap(); // eps = 1/3
+                                                                   // Side 10/3 - 2/3 = 8/3.
         let side = Rational::new(Int::from(8), Int::from(3));
         assert_eq!(s.volume(), &(&side * &side) * &side);
+        // Back on the grid: cut by 1/3 + 1 to [4/3, 2], rounded to [1, 2].
+        let g = c.shrunk(&Int::ONE, &Int::from(3)).unwrap();
+        assert_eq!(g.den(), &Int::ONE);
+        assert_eq!(g.volume(), Rational::from_int(Int::ONE));
+    }
+
+    #[test]
+    fn shrunk_pieces_are_back_on_the_grid() {
+        // The cube [0, 10]^3 and eps = 1/2: cut by 3/2 to [3/2, 17/2], rounded to the
+        // nearest grid points [2, 9] (halves round up): every face moved by at least
+        // eps (2 and 1) and by at most eps + 3/2.
+        let c = cube(0, 10);
+        let s = c.shrunk(&Int::ONE, &Int::from(2)).unwrap();
+        assert_eq!(s.den(), &Int::ONE);
+        assert_eq!(s.volume(), Rational::from_int(Int::from(7 * 7 * 7)));
+        // A tessellated wedge (slanted faces, whose exact cut has long rationals): the
+        // result has integer vertices and lies at least eps inside every face.
+        let pts: Vec<Vec3> = [
+            [0, 0, 0],
+            [4000, 37, 0],
+            [3990, 311, 0],
+            [0, 0, 900],
+            [4000, 37, 900],
+            [3990, 311, 900],
+        ]
+        .map(Vec3::from_i64)
+        .to_vec();
+        let w = Polytope::hull_of_points(&pts).unwrap();
+        let (num, den) = (Int::from(7), Int::from(3));
+        let s = w.shrunk(&num, &den).unwrap();
+        assert_eq!(s.den(), &Int::ONE);
+        assert!(int::bit_len(w.shrunk_exact(&num, &den).unwrap().den()) > 16);
+        for f in w.facets() {
+            let gap = &f.offset - s.support(&f.normal).0;
+            // gap / |n| >= eps: gap^2 den^2 >= num^2 |n|^2.
+            assert!(gap > Int::ZERO);
+            assert!(&gap * &gap * &den * &den >= f.normal.dot(&f.normal) * &num * &num);
+        }
     }
 }

@@ -88,9 +88,9 @@ proptest! {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
-    /// Whatever way `shrunk` takes (exact or scaled), every vertex of the result lies at
-    /// least eps inside every facet plane of the piece: the piece made at least eps
-    /// smaller, the guarantee a tolerance states.
+    /// Whatever way `shrunk` takes (an exact or a scaled cut, then back on the grid),
+    /// every vertex of the result lies at least eps inside every facet plane of the
+    /// piece: the piece made at least eps smaller, the guarantee a tolerance states.
     #[test]
     fn shrunk_keeps_every_vertex_eps_inside(
         pts in prop::collection::vec((-400i64..400, -400i64..400, -4000i64..4000), 5..40),
