@@ -21,7 +21,7 @@
 //!   (same active facet normals; the cone's corner rays are the same primitive vectors).
 
 use crate::PlanError;
-use apart_kernel::int::cmp_fractions;
+use apart_kernel::int::{self, cmp_fractions};
 use apart_kernel::{Int, Vec3};
 use apart_minkowski::{project, sum_prepared, Projection, Summand};
 use apart_pieces::interference::{below_along, facet_axes};
@@ -34,6 +34,9 @@ use std::sync::OnceLock;
 pub(crate) struct PieceInfo {
     lo: [Int; 3],
     hi: [Int; 3],
+    /// `lo` and `hi` as machine integers when the piece is on the grid itself
+    /// (denominator 1) and every bound is below 2^61: the ray–box test's fast path.
+    small: Option<([i64; 3], [i64; 3])>,
     fixed: OnceLock<Summand>,
     reflected: OnceLock<Summand>,
 }
@@ -42,9 +45,20 @@ impl PieceInfo {
     pub(crate) fn new(p: &Polytope) -> PieceInfo {
         let lo = [0, 1, 2].map(|k| p.vertices().iter().map(|v| v.get(k)).min().unwrap());
         let hi = [0, 1, 2].map(|k| p.vertices().iter().map(|v| v.get(k)).max().unwrap());
+        let fits = |c: &[Int; 3]| {
+            c.clone()
+                .map(|v| int::to_i64(&v).filter(|v| v.unsigned_abs() < 1 << 61))
+        };
+        let small = match (*p.den() == Int::ONE, fits(&lo), fits(&hi)) {
+            (true, [Some(a), Some(b), Some(c)], [Some(d), Some(e), Some(f)]) => {
+                Some(([a, b, c], [d, e, f]))
+            }
+            _ => None,
+        };
         PieceInfo {
             lo,
             hi,
+            small,
             fixed: OnceLock::new(),
             reflected: OnceLock::new(),
         }
@@ -65,6 +79,48 @@ impl PieceInfo {
 /// `[lo_b db⁻¹ − hi_a da⁻¹, hi_b db⁻¹ − lo_a da⁻¹]`, scaled by `da db`, and each
 /// coordinate bounds `t` by a fraction.
 pub(crate) fn ray_meets_box(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, x: &Vec3) -> bool {
+    if let (Some(a), Some(b), Some(x)) = (&ia.small, &ib.small, x.as_small()) {
+        return ray_meets_small_box(a, b, x);
+    }
+    ray_meets_box_exact(ia, da, ib, db, x)
+}
+
+/// [`ray_meets_box`] for pieces on the grid (denominator 1) with bounds below 2^61 and a
+/// direction below 2^62: box bounds below 2^62, products of fractions below 2^124, all
+/// exact in `i128`.
+fn ray_meets_small_box(a: &([i64; 3], [i64; 3]), b: &([i64; 3], [i64; 3]), x: &[i64; 3]) -> bool {
+    let mut lower: (i128, i128) = (0, 1);
+    let mut upper: Option<(i128, i128)> = None;
+    for (k, &xk) in x.iter().enumerate() {
+        let lo = b.0[k] as i128 - a.1[k] as i128;
+        let hi = b.1[k] as i128 - a.0[k] as i128;
+        let xk = xk as i128;
+        let (l, u, den) = match xk.cmp(&0) {
+            Ordering::Equal => {
+                if lo > 0 || hi < 0 {
+                    return false;
+                }
+                continue;
+            }
+            Ordering::Greater => (lo, hi, xk),
+            Ordering::Less => (-hi, -lo, -xk),
+        };
+        // l / den > lower.0 / lower.1, denominators positive.
+        if l * lower.1 > lower.0 * den {
+            lower = (l, den);
+        }
+        if upper.is_none_or(|(n, d)| u * d < n * den) {
+            upper = Some((u, den));
+        }
+    }
+    match upper {
+        None => true,
+        Some((u, du)) => u > 0 && lower.0 * du <= u * lower.1,
+    }
+}
+
+/// [`ray_meets_box`] in arbitrary precision.
+fn ray_meets_box_exact(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, x: &Vec3) -> bool {
     // Bounds on t (scaled), as fractions with positive denominators: the largest lower
     // and the smallest upper, starting from t > 0 (lower 0, exclusive) and no upper.
     let mut lower: (Int, Int) = (Int::ZERO, Int::ONE);
@@ -535,6 +591,47 @@ mod tests {
         v.sort();
         v.dedup();
         v
+    }
+
+    /// The `i128` ray–box test agrees with the arbitrary-precision one: random boxes with
+    /// touching, overlapping and far-apart bounds (degenerate: shared faces, zero
+    /// direction components), up to the fast path's 2^61 bounds and 2^62 directions.
+    #[test]
+    fn small_ray_box_test_agrees_with_the_exact_one() {
+        let mut rng = apart_testkit::solids::Lcg(7);
+        let scales = [3i64, 1000, 1 << 40, (1 << 61) - 1];
+        let mut met = [0usize; 2];
+        for round in 0..20_000 {
+            let s = scales[round % scales.len()];
+            let coord = |r: &mut apart_testkit::solids::Lcg| -> i64 {
+                // Few distinct values in each scale: shared faces and touching boxes.
+                let k = r.range(-3, 4);
+                (k * (s / 3)).clamp(-s, s)
+            };
+            let mut boxes = Vec::new();
+            for _ in 0..2 {
+                let (mut lo, mut hi) = ([0i64; 3], [0i64; 3]);
+                for k in 0..3 {
+                    let (u, v) = (coord(&mut rng), coord(&mut rng));
+                    lo[k] = u.min(v);
+                    hi[k] = u.max(v).max(lo[k] + 1).min(s);
+                    lo[k] = lo[k].min(hi[k] - 1);
+                }
+                boxes.push(Polytope::cuboid(lo, hi).unwrap());
+            }
+            let xs = 1i64 << rng.below(62);
+            let x = Vec3::from_i64([0, 1, 2].map(|_| rng.range(-2, 3) * (xs / 2).max(1)));
+            if x.is_zero() {
+                continue;
+            }
+            let (ia, ib) = (PieceInfo::new(&boxes[0]), PieceInfo::new(&boxes[1]));
+            assert!(ia.small.is_some() && ib.small.is_some() && x.as_small().is_some());
+            let fast = ray_meets_box(&ia, &Int::ONE, &ib, &Int::ONE, &x);
+            let exact = ray_meets_box_exact(&ia, &Int::ONE, &ib, &Int::ONE, &x);
+            assert_eq!(fast, exact, "{:?} {:?} {x:?}", ia.lo, ib.hi);
+            met[fast as usize] += 1;
+        }
+        assert!(met[0] > 1000 && met[1] > 1000, "{met:?}");
     }
 
     /// Every contact cone equals the full sum's projection (same inward normals), and the
