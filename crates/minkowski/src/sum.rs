@@ -66,14 +66,12 @@ impl Summand {
         let boxes: Vec<Aabb<f64>> = arcs
             .iter()
             .map(|a| {
-                Aabb::from_axes(
-                    &apart_sphere::Arc {
-                        normal: a.c.clone(),
-                        start: a.m0.clone(),
-                        end: a.m1.clone(),
-                    }
-                    .bbox(),
-                )
+                apart_sphere::Arc {
+                    normal: a.c.clone(),
+                    start: a.m0.clone(),
+                    end: a.m1.clone(),
+                }
+                .bbox()
             })
             .collect();
         let by_low_x = by_low_x(&boxes);

@@ -2,7 +2,7 @@
 
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, ArcPosition};
-use apart_kernel::{Sign, Vec3};
+use apart_kernel::{Aabb, Sign, Vec3};
 
 /// A minor arc (shorter than a half circle) of the great circle with normal `normal`,
 /// running counter-clockwise around `normal` from `start` to `end`
@@ -119,32 +119,30 @@ impl Arc {
         self.start.add(&self.end)
     }
 
-    /// Conservative floating-point bounding box of the arc on the unit sphere:
-    /// `[min, max]` per coordinate, padded for rounding.
-    pub fn bbox(&self) -> [[f64; 2]; 3] {
+    /// Conservative floating-point bounding box of the arc on the unit sphere, padded
+    /// for rounding.
+    pub fn bbox(&self) -> Aabb<f64> {
         let s = self.start.unit_f64();
         let e = self.end.unit_f64();
         // The arc lies within distance (1 - cos(θ/2)) <= |s - e|^2 / 2 (+ rounding) of its
         // chord, where θ is its angle; pad every side by that sagitta.
         let d2 = (s[0] - e[0]).powi(2) + (s[1] - e[1]).powi(2) + (s[2] - e[2]).powi(2);
         let pad = d2 * 0.5 + 1e-9;
-        let mut b = [[0.0; 2]; 3];
-        for k in 0..3 {
-            b[k] = [s[k].min(e[k]) - pad, s[k].max(e[k]) + pad];
+        Aabb {
+            min: [0, 1, 2].map(|k| s[k].min(e[k]) - pad),
+            max: [0, 1, 2].map(|k| s[k].max(e[k]) + pad),
         }
-        b
     }
 }
 
 /// Conservative floating-point box of a single sphere point.
-pub fn point_bbox(p: &Vec3) -> [[f64; 2]; 3] {
+pub fn point_bbox(p: &Vec3) -> Aabb<f64> {
     let u = p.unit_f64();
     let pad = 1e-9;
-    [
-        [u[0] - pad, u[0] + pad],
-        [u[1] - pad, u[1] + pad],
-        [u[2] - pad, u[2] + pad],
-    ]
+    Aabb {
+        min: u.map(|c| c - pad),
+        max: u.map(|c| c + pad),
+    }
 }
 
 #[cfg(test)]
@@ -258,7 +256,7 @@ mod tests {
         let a = Arc::between(&Vec3::new(1, 0, 0), &Vec3::new(-1, 1, 0)).unwrap();
         let b = a.bbox();
         // The arc passes through (0, 1, 0), outside the chord's box in y.
-        assert!(b[1][1] >= 1.0);
+        assert!(b.max[1] >= 1.0);
     }
 }
 

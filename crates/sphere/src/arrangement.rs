@@ -18,10 +18,12 @@
 //! that exists only because of structural arcs is marked as such.
 
 use crate::arc::{point_bbox, Arc};
+use apart_kernel::bvh::{by_low_x, sweep_pairs, sweep_pairs_between};
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::circle_intersection;
-use apart_kernel::{Sign, Vec3};
+use apart_kernel::{Aabb, Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
+use std::ops::ControlFlow;
 
 /// Data attached to an input arc and merged onto the edges it covers.
 pub trait ArcLabel: Clone {
@@ -391,7 +393,7 @@ fn build_once<L: ArcLabel, P: Clone>(
     //    a crossing point counts when an arc of each circle covers it.
     // Boxes of the covered runs of each circle (overlapping arcs collapse into one run).
     let mut run_circle: Vec<u32> = Vec::new();
-    let mut run_boxes: Vec<[[f64; 2]; 3]> = Vec::new();
+    let mut run_boxes: Vec<Aabb<f64>> = Vec::new();
     let mut run_ends: Vec<Option<[u32; 2]>> = Vec::new();
     for (c, ring) in rings.iter().enumerate() {
         ring.runs(&circles[c], &table.vertices, |b, ends| {
@@ -443,11 +445,17 @@ fn build_once<L: ArcLabel, P: Clone>(
         .filter(|&id| id as usize >= endpoint_count)
         .collect();
     if !lone.is_empty() {
-        let pboxes: Vec<[[f64; 2]; 3]> = lone
+        let pboxes: Vec<Aabb<f64>> = lone
             .iter()
             .map(|&id| point_bbox(&table.vertices[id as usize].point))
             .collect();
-        for (i, k) in candidate_pairs_between(&run_boxes, &pboxes) {
+        let pairs = sweep_pairs_between(
+            &run_boxes,
+            &by_low_x(&run_boxes),
+            &pboxes,
+            &by_low_x(&pboxes),
+        );
+        for (i, k) in pairs {
             let c = run_circle[i] as usize;
             let id = lone[k];
             let p = table.vertices[id as usize].point.clone();
@@ -660,7 +668,7 @@ impl Ring {
         &self,
         n: &Vec3,
         vertices: &[Vertex<P>],
-        mut f: impl FnMut([[f64; 2]; 3], Option<[u32; 2]>),
+        mut f: impl FnMut(Aabb<f64>, Option<[u32; 2]>),
     ) {
         let len = self.order.len();
         let gap_box = |k: usize| {
@@ -675,17 +683,10 @@ impl Ring {
             }
             .bbox()
         };
-        let join = |x: &mut [[f64; 2]; 3], y: [[f64; 2]; 3]| {
-            for d in 0..3 {
-                x[d][0] = x[d][0].min(y[d][0]);
-                x[d][1] = x[d][1].max(y[d][1]);
-            }
-        };
         // Start after an uncovered gap so runs are not split at the reference point.
         let Some(first) = (0..len).find(|&k| !self.covered[k]) else {
             // The whole circle is covered: one run.
-            let mut b = gap_box(0);
-            (1..len).for_each(|k| join(&mut b, gap_box(k)));
+            let b = (1..len).fold(gap_box(0), |b, k| b.union(&gap_box(k)));
             f(b, None);
             return;
         };
@@ -699,13 +700,13 @@ impl Ring {
                 .then_some([pa, pb])
         };
         // cur: (box, first point index of the run).
-        let mut cur: Option<([[f64; 2]; 3], usize)> = None;
+        let mut cur: Option<(Aabb<f64>, usize)> = None;
         for step in 1..=len {
             let k = (first + step) % len;
             if self.covered[k] {
                 let b = gap_box(k);
                 match &mut cur {
-                    Some((c, _)) => join(c, b),
+                    Some((c, _)) => *c = c.union(&b),
                     None => cur = Some((b, k)),
                 }
             } else if let Some((c, start)) = cur.take() {
@@ -877,61 +878,39 @@ fn sort_around<L>(v: &Vec3, around: &mut [u32], edges: &[Edge<L>], circles: &[Ve
     }
 }
 
-/// Pairs of boxes that overlap, by sort-and-sweep along x.
-fn candidate_pairs(boxes: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
-    let mut order: Vec<usize> = (0..boxes.len()).collect();
-    order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
-    let mut out = Vec::new();
-    let mut active: Vec<usize> = Vec::new();
-    for &i in &order {
-        let lo = boxes[i][0][0];
-        active.retain(|&j| boxes[j][0][1] >= lo);
-        for &j in &active {
-            if overlap(&boxes[i], &boxes[j]) {
-                out.push((j.min(i), j.max(i)));
-            }
-        }
-        active.push(i);
+/// Pairs of boxes that overlap, each `(smaller index, larger)`, ordered by the later box
+/// of the pair in the order of low x, then by the earlier one.
+///
+/// The order matters: the crossings' vertices are numbered in the order the pairs come,
+/// and the numbering decides each circle's reference point, hence the order of the edges,
+/// half-edges, cycles and faces that plans and pictures follow. The kernel's sweep
+/// reports a pair when its earlier box is swept (by the earlier box, then the later);
+/// a stable counting sort by the later box's rank puts them in this order in linear time.
+fn candidate_pairs(boxes: &[Aabb<f64>]) -> Vec<(usize, usize)> {
+    let mut rank = vec![0u32; boxes.len()];
+    for (r, &i) in by_low_x(boxes).iter().enumerate() {
+        rank[i as usize] = r as u32;
+    }
+    let mut found: Vec<(u32, u32)> = Vec::new();
+    let _ = sweep_pairs(boxes, |earlier, later| {
+        found.push((earlier as u32, later as u32));
+        ControlFlow::<()>::Continue(())
+    });
+    // start[r]: where the pairs whose later box has rank r go.
+    let mut start = vec![0usize; boxes.len() + 1];
+    for &(_, later) in &found {
+        start[rank[later as usize] as usize + 1] += 1;
+    }
+    for r in 0..boxes.len() {
+        start[r + 1] += start[r];
+    }
+    let mut out = vec![(0, 0); found.len()];
+    for &(a, b) in &found {
+        let slot = &mut start[rank[b as usize] as usize];
+        out[*slot] = (a.min(b) as usize, a.max(b) as usize);
+        *slot += 1;
     }
     out
-}
-
-/// Pairs (arc box, point box) that overlap.
-fn candidate_pairs_between(a: &[[[f64; 2]; 3]], b: &[[[f64; 2]; 3]]) -> Vec<(usize, usize)> {
-    let mut events: Vec<(f64, u8, usize)> = Vec::with_capacity(a.len() + b.len());
-    for (i, bx) in a.iter().enumerate() {
-        events.push((bx[0][0], 0, i));
-    }
-    for (i, bx) in b.iter().enumerate() {
-        events.push((bx[0][0], 1, i));
-    }
-    events.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    let (mut act_a, mut act_b): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
-    let mut out = Vec::new();
-    for (lo, kind, i) in events {
-        act_a.retain(|&j| a[j][0][1] >= lo);
-        act_b.retain(|&j| b[j][0][1] >= lo);
-        if kind == 0 {
-            for &k in &act_b {
-                if overlap(&a[i], &b[k]) {
-                    out.push((i, k));
-                }
-            }
-            act_a.push(i);
-        } else {
-            for &j in &act_a {
-                if overlap(&a[j], &b[i]) {
-                    out.push((j, i));
-                }
-            }
-            act_b.push(i);
-        }
-    }
-    out
-}
-
-fn overlap(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
-    (0..3).all(|k| a[k][0] <= b[k][1] && b[k][0] <= a[k][1])
 }
 
 /// Structural arcs that connect the components of `arr` (empty when connected).
@@ -1044,6 +1023,53 @@ mod tests {
         InputArc {
             arc: Arc::between(&Vec3::from(a), &Vec3::from(b)).unwrap(),
             label: Some(L(1)),
+        }
+    }
+
+    /// The sort and sweep the arrangement used before the kernel's: each pair reported
+    /// when its later box is swept, against the earlier boxes still active in order.
+    fn pairs_by_later_box(boxes: &[Aabb<f64>]) -> Vec<(usize, usize)> {
+        let mut order: Vec<usize> = (0..boxes.len()).collect();
+        order.sort_by(|&a, &b| boxes[a].min[0].total_cmp(&boxes[b].min[0]));
+        let mut out = Vec::new();
+        let mut active: Vec<usize> = Vec::new();
+        for &i in &order {
+            let lo = boxes[i].min[0];
+            active.retain(|&j| boxes[j].max[0] >= lo);
+            for &j in &active {
+                if boxes[i].overlaps(&boxes[j]) {
+                    out.push((j.min(i), j.max(i)));
+                }
+            }
+            active.push(i);
+        }
+        out
+    }
+
+    #[test]
+    fn candidate_pairs_come_in_the_order_of_their_later_box() {
+        // Boxes on a coarse grid (many equal low x, equal ends and touching faces).
+        let mut s = 12345u64;
+        let mut next = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % m
+        };
+        for n in [0, 1, 2, 5, 20, 200] {
+            for _ in 0..20 {
+                let boxes: Vec<Aabb<f64>> = (0..n)
+                    .map(|_| {
+                        let lo = [0, 1, 2].map(|_| next(8) as f64 / 4.0 - 1.0);
+                        let len = [0, 1, 2].map(|_| next(4) as f64 / 4.0);
+                        Aabb {
+                            min: lo,
+                            max: [0, 1, 2].map(|k| lo[k] + len[k]),
+                        }
+                    })
+                    .collect();
+                assert_eq!(candidate_pairs(&boxes), pairs_by_later_box(&boxes));
+            }
         }
     }
 

@@ -22,9 +22,9 @@ impl ArcIndex {
         };
         for (i, a) in arcs.iter().enumerate() {
             let b = a.bbox();
-            let (x0, x1) = (cell(b[0][0]), cell(b[0][1]));
-            let (y0, y1) = (cell(b[1][0]), cell(b[1][1]));
-            let (z0, z1) = (cell(b[2][0]), cell(b[2][1]));
+            let (x0, x1) = (cell(b.min[0]), cell(b.max[0]));
+            let (y0, y1) = (cell(b.min[1]), cell(b.max[1]));
+            let (z0, z1) = (cell(b.min[2]), cell(b.max[2]));
             for x in x0..=x1 {
                 for y in y0..=y1 {
                     for z in z0..=z1 {

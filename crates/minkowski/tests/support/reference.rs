@@ -41,12 +41,13 @@ fn crossing(a: &GaussArc, b: &GaussArc) -> bool {
 fn boxes(arcs: &[GaussArc]) -> Vec<[[f64; 2]; 3]> {
     arcs.iter()
         .map(|a| {
-            apart_sphere::Arc {
+            let b = apart_sphere::Arc {
                 normal: a.c.clone(),
                 start: a.m0.clone(),
                 end: a.m1.clone(),
             }
-            .bbox()
+            .bbox();
+            [0, 1, 2].map(|k| [b.min[k], b.max[k]])
         })
         .collect()
 }
