@@ -10,7 +10,7 @@ use apart_kernel::fvec;
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
 use apart_plan::{partition_subset, BlockingRegions, CellKind, MotionSpace, Solution, Step};
-use apart_sphere::Arc;
+use apart_sphere::{Arc, EdgeId, FaceId};
 use std::fmt::Write;
 
 /// How each hemisphere is flattened onto its disk.
@@ -110,12 +110,12 @@ impl Frame {
 }
 
 /// Which hemisphere a face of the equator-split arrangement lies in (`true` = z >= 0).
-fn face_is_upper(ms: &MotionSpace, f: u32) -> bool {
+fn face_is_upper(ms: &MotionSpace, f: FaceId) -> bool {
     let arr = ms.arrangement();
     let z = Vec3::new(0, 0, 1);
     for lp in arr.boundary_loops(f) {
         for &h in &lp {
-            match dot_sign(&z, &arr.vertices()[arr.origin(h) as usize].point) {
+            match dot_sign(&z, &arr.vertex(arr.origin(h)).point) {
                 Sign::Positive => return true,
                 Sign::Negative => return false,
                 Sign::Zero => {}
@@ -221,8 +221,8 @@ pub fn motion_space_svg(
     }
 
     // Faces.
-    for f in 0..arr.faces().len() as u32 {
-        let count = ms.blocked_pairs(&st.faces[f as usize]);
+    for f in arr.face_ids() {
+        let count = ms.blocked_pairs(&st.faces[f.index()]);
         let up = face_is_upper(&ms, f);
         let fill = shade(count, max_count);
         let mut d = String::new();
@@ -247,7 +247,8 @@ pub fn motion_space_svg(
         );
     }
     // Arcs (region boundaries), drawn in both views where they lie.
-    for (e, edge) in arr.edges().iter().enumerate() {
+    for e in arr.edge_ids() {
+        let edge = arr.edge(e);
         if edge.structural
             || edge
                 .labels
@@ -256,7 +257,7 @@ pub fn motion_space_svg(
         {
             continue;
         }
-        let pts = arc_points(&arr.edge_arc(e as u32));
+        let pts = arc_points(&arr.edge_arc(e));
         draw_polyline(&mut svg, &frame, &pts, "#333333", 0.8, None);
     }
     for k in 0..2 {
@@ -561,36 +562,30 @@ fn svg_png(svg: &str) -> Vec<u8> {
 
 /// The arrangement edges of the edge cell through point `d`: the edge containing it,
 /// extended along its circle through vertices where the blocking status does not change.
-fn edge_run(ms: &MotionSpace, d: &Vec3) -> Vec<u32> {
+fn edge_run(ms: &MotionSpace, d: &Vec3) -> Vec<EdgeId> {
     let arr = ms.arrangement();
     let st = ms.statuses();
     let p = d.primitive();
-    let Some(e0) = (0..arr.edges().len() as u32).find(|&e| {
+    let Some(e0) = arr.edge_ids().find(|&e| {
         arr.edge_arc(e)
             .locate(&p)
             .is_some_and(|pos| pos != apart_kernel::spherical::ArcPosition::Outside)
     }) else {
         return Vec::new();
     };
-    let circle = arr.edges()[e0 as usize].circle;
+    let circle = arr.edge(e0).circle;
     let mut run = vec![e0];
     for forward in [true, false] {
         let mut e = e0;
         loop {
-            let edge = &arr.edges()[e as usize];
+            let edge = arr.edge(e);
             let v = if forward { edge.to } else { edge.from };
-            if st.vertices[v as usize] != st.edges[e as usize] {
+            if st.vertices[v.index()] != st.edges[e.index()] {
                 break;
             }
-            let next = arr.vertices()[v as usize]
-                .around
-                .iter()
-                .map(|&h| h / 2)
-                .find(|&g| {
-                    g != e
-                        && arr.edges()[g as usize].circle == circle
-                        && st.edges[g as usize] == st.edges[e as usize]
-                });
+            let next = arr.vertex(v).around.iter().map(|&h| h.edge()).find(|&g| {
+                g != e && arr.edge(g).circle == circle && st.edges[g.index()] == st.edges[e.index()]
+            });
             match next {
                 Some(g) if !run.contains(&g) => {
                     run.push(g);

@@ -84,11 +84,8 @@ pub fn isolated_points(arr: &RegionArrangement) -> Vec<Vec<V3>> {
         if v.structural || v.around.is_empty() {
             continue;
         }
-        if v.around
-            .iter()
-            .all(|&h| arr.edges()[(h / 2) as usize].structural)
-        {
-            out[arr.face_of(v.around[0]) as usize].push(v.point.unit_f64());
+        if v.around.iter().all(|&h| arr.edge(h.edge()).structural) {
+            out[arr.face(v.around[0]).index()].push(v.point.unit_f64());
         }
     }
     out

@@ -8,7 +8,7 @@ use apart_kernel::Vec3;
 use apart_sphere::arrangement::BuildStats;
 use apart_sphere::overlay::{cell_statuses, CellStatuses, RegionArrangement};
 use apart_sphere::region::region_inputs_with_antipodes;
-use apart_sphere::{Arc, Arrangement, BitSet, MapSet};
+use apart_sphere::{Arc, Arrangement, BitSet, EdgeId, FaceId, MapSet};
 use rustc_hash::FxHashMap as HashMap;
 
 /// The kind of a cell of the motion space.
@@ -42,12 +42,12 @@ pub struct MotionSpace {
     st: CellStatuses<MapSet>,
     vertex_is_cell: Vec<bool>,
     edge_cell_of: Vec<u32>,
-    edge_cells: Vec<Vec<u32>>,
+    edge_cells: Vec<Vec<EdgeId>>,
     vertex_edge_cell: Vec<u32>,
     /// Arcs of the real edges (by edge index; structural edges get a dummy) and their index.
     edge_arcs: Vec<Arc>,
     edge_index: apart_sphere::index::ArcIndex,
-    real_edge_ids: Vec<u32>,
+    real_edge_ids: Vec<EdgeId>,
     vertex_at: HashMap<Vec3, u32>,
     /// Arcs inserted into the overlay (from the simplified pair regions).
     pub input_arcs: usize,
@@ -211,17 +211,16 @@ impl MotionSpace {
             edge_cells,
             vertex_edge_cell,
         } = cells(&arr, &st);
-        let edge_arcs: Vec<Arc> = (0..arr.edges().len() as u32)
-            .map(|e| arr.edge_arc(e))
-            .collect();
+        let edge_arcs: Vec<Arc> = arr.edge_ids().map(|e| arr.edge_arc(e)).collect();
         let real_arcs: Vec<Arc> = edge_arcs
             .iter()
             .zip(arr.edges())
             .filter(|(_, e)| !e.structural)
             .map(|(a, _)| a.clone())
             .collect();
-        let real_ids: Vec<u32> = (0..arr.edges().len() as u32)
-            .filter(|&e| !arr.edges()[e as usize].structural)
+        let real_ids: Vec<EdgeId> = arr
+            .edge_ids()
+            .filter(|&e| !arr.edge(e).structural)
             .collect();
         let edge_index = apart_sphere::index::ArcIndex::new(&real_arcs);
         let vertex_at = arr
@@ -383,14 +382,14 @@ impl MotionSpace {
     /// The edge cells: maximal connected sets of arrangement edges (and the vertices
     /// between them) with one blocking status that differs from the status of the faces
     /// on both sides; each a list of arrangement edge indices.
-    pub fn edge_cells(&self) -> &[Vec<u32>] {
+    pub fn edge_cells(&self) -> &[Vec<EdgeId>] {
         &self.edge_cells
     }
 
     /// The edge cell an arrangement edge belongs to (`None` for structural edges and for
     /// edges with the status of a face beside them, which belong to that face).
-    pub fn edge_cell_of(&self, e: usize) -> Option<usize> {
-        let c = self.edge_cell_of[e];
+    pub fn edge_cell_of(&self, e: EdgeId) -> Option<usize> {
+        let c = self.edge_cell_of[e.index()];
         (c != u32::MAX).then_some(c as usize)
     }
 
@@ -411,7 +410,7 @@ impl MotionSpace {
             };
         }
         match self.edge_index.locate(&self.edge_arcs, &p) {
-            Some((k, _)) => match self.edge_cell_of(self.real_edge_ids[k as usize] as usize) {
+            Some((k, _)) => match self.edge_cell_of(self.real_edge_ids[k as usize]) {
                 Some(c) => (CellKind::Edge, Some(c)),
                 None => (CellKind::Face, None),
             },
@@ -425,7 +424,7 @@ impl MotionSpace {
     /// `k · m + n`, where `m` is an interior point of one of the face's boundary edges and
     /// `n` that edge's normal towards the face, for `k` large enough that the short arc
     /// from `m` to the point crosses no edge of the motion space.
-    pub fn face_sample(&self, f: u32) -> Vec3 {
+    pub fn face_sample(&self, f: FaceId) -> Vec3 {
         let arr = &self.arr;
         let h = arr
             .boundary_loops(f)
@@ -433,7 +432,7 @@ impl MotionSpace {
             .flatten()
             .next()
             .or_else(|| {
-                arr.faces()[f as usize]
+                arr.face_cycles(f)
                     .iter()
                     .map(|&c| arr.cycle_start(c))
                     .next()
@@ -448,9 +447,8 @@ impl MotionSpace {
         loop {
             let x = m.scale(&k).add(&arc.normal).primitive();
             let probe = Arc::between(&m, &x).expect("distinct points");
-            let clear = arr.edges().iter().enumerate().all(|(e, _)| {
-                e as u32 == h / 2
-                    || !apart_sphere::arc::arcs_intersect(&probe, &arr.edge_arc(e as u32))
+            let clear = arr.edge_ids().all(|e| {
+                e == h.edge() || !apart_sphere::arc::arcs_intersect(&probe, &arr.edge_arc(e))
             }) && arr.vertices().iter().all(|v| {
                 probe
                     .locate(&v.point)
@@ -498,12 +496,13 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
         x
     }
     // Real edges that are cells: a status different from both faces beside them.
-    let edge_is_cell: Vec<bool> = (0..n)
+    let edge_is_cell: Vec<bool> = arr
+        .edge_ids()
         .map(|e| {
-            let s = &st.edges[e];
-            !arr.edges()[e].structural
-                && *s != st.cycles[arr.cycle_of(2 * e as u32) as usize]
-                && *s != st.cycles[arr.cycle_of(2 * e as u32 + 1) as usize]
+            let s = &st.edges[e.index()];
+            !arr.edge(e).structural
+                && *s != st.cycles[arr.cycle(e.forward()).index()]
+                && *s != st.cycles[arr.cycle(e.backward()).index()]
         })
         .collect();
     let mut is_cell = vec![false; arr.vertices().len()];
@@ -514,7 +513,7 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
         let real = || {
             vert.around
                 .iter()
-                .map(|&h| (h / 2) as usize)
+                .map(|&h| h.edge().index())
                 .filter(|&e| !arr.edges()[e].structural)
         };
         if vert.structural {
@@ -538,7 +537,7 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
         if vert
             .around
             .iter()
-            .any(|&h| st.cycles[arr.cycle_of(h) as usize] == *s)
+            .any(|&h| st.cycles[arr.cycle(h).index()] == *s)
         {
             continue;
         }
@@ -556,7 +555,7 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
         is_cell[v] = true;
     }
     let mut ids: HashMap<usize, u32> = HashMap::default();
-    let mut groups: Vec<Vec<u32>> = Vec::new();
+    let mut groups: Vec<Vec<EdgeId>> = Vec::new();
     let mut of = vec![u32::MAX; n];
     for (e, slot) in of.iter_mut().enumerate() {
         if !edge_is_cell[e] {
@@ -567,7 +566,7 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
             groups.push(Vec::new());
             (groups.len() - 1) as u32
         });
-        groups[c as usize].push(e as u32);
+        groups[c as usize].push(EdgeId::new(e));
         *slot = c;
     }
     let vertex_edge_cell = joins
@@ -592,7 +591,7 @@ fn cells(arr: &RegionArrangement, st: &CellStatuses<MapSet>) -> Cells {
 struct Cells {
     vertex_is_cell: Vec<bool>,
     edge_cell_of: Vec<u32>,
-    edge_cells: Vec<Vec<u32>>,
+    edge_cells: Vec<Vec<EdgeId>>,
     /// For a vertex that is no cell but lies in an edge cell, that cell (else `u32::MAX`).
     vertex_edge_cell: Vec<u32>,
 }

@@ -8,6 +8,7 @@ use crate::progress::{phases, Progress};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
 use apart_kernel::Vec3;
+use apart_sphere::{EdgeId, FaceId, HalfEdge};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
@@ -440,7 +441,7 @@ pub(crate) fn cell_solutions(ms: &MotionSpace, quota: &mut Quota) -> Vec<Solutio
         .map(|cell| {
             (
                 CellKind::Edge,
-                &st.edges[cell[0] as usize],
+                &st.edges[cell[0].index()],
                 Cell::Edge(cell[0]),
             )
         })
@@ -494,7 +495,7 @@ const STOP_EVERY: usize = 256;
 /// An edge cell (by its first arrangement edge) or a vertex cell.
 #[derive(Clone, Copy)]
 enum Cell {
-    Edge(u32),
+    Edge(EdgeId),
     Vertex(usize),
 }
 
@@ -561,9 +562,9 @@ struct FreeRegion {
     /// The moving set (local indices), a minimal moving set of `seed`.
     moving: Vec<usize>,
     /// A face of the region where `moving` is a minimal moving set.
-    seed: u32,
+    seed: FaceId,
     /// The real half-edges bounding the region (region on their left).
-    boundary: Vec<u32>,
+    boundary: Vec<HalfEdge>,
 }
 
 /// For every face and each of its minimal moving sets, the connected region of faces
@@ -578,8 +579,8 @@ fn free_regions(ms: &MotionSpace, first: bool, progress: &Progress) -> (Vec<Free
     let faces = arr.faces().len();
     let mut ids: HashMap<Vec<usize>, usize> = HashMap::default();
     let mut seen: Vec<Vec<u64>> = Vec::new();
-    let mark = |seen: &mut [Vec<u64>], id: usize, f: u32| -> bool {
-        let (w, b) = (f as usize / 64, 1u64 << (f % 64));
+    let mark = |seen: &mut [Vec<u64>], id: usize, f: FaceId| -> bool {
+        let (w, b) = (f.index() / 64, 1u64 << (f.index() % 64));
         let new = seen[id][w] & b == 0;
         seen[id][w] |= b;
         new
@@ -587,20 +588,20 @@ fn free_regions(ms: &MotionSpace, first: bool, progress: &Progress) -> (Vec<Free
     let mut alone: Vec<Option<apart_sphere::BitSet>> = vec![None; faces];
     let mut out = Vec::new();
     let counter = progress.counter(phases::FREE_REGIONS, faces);
-    for f in 0..faces as u32 {
-        if f as usize % STOP_EVERY == 0 {
+    for f in arr.face_ids() {
+        if f.index() % STOP_EVERY == 0 {
             if progress.stopped() {
                 return (out, true);
             }
-            counter.add(if f == 0 { 0 } else { STOP_EVERY });
+            counter.add(if f.index() == 0 { 0 } else { STOP_EVERY });
         }
-        for m in ms.minimal_moving_sets(&st.faces[f as usize]) {
+        for m in ms.minimal_moving_sets(&st.faces[f.index()]) {
             let next = ids.len();
             let id = *ids.entry(m.clone()).or_insert(next);
             if id == seen.len() {
                 seen.push(vec![0; faces.div_ceil(64)]);
             }
-            if seen[id][f as usize / 64] >> (f % 64) & 1 == 1 {
+            if seen[id][f.index() / 64] >> (f.index() % 64) & 1 == 1 {
                 continue;
             }
             if first && !out.is_empty() {
@@ -611,20 +612,20 @@ fn free_regions(ms: &MotionSpace, first: bool, progress: &Progress) -> (Vec<Free
             let mut boundary = Vec::new();
             let mut todo = vec![f];
             while let Some(g) = todo.pop() {
-                for &c in &arr.faces()[g as usize] {
+                for &c in arr.face_cycles(g) {
                     for h in arr.cycle_half_edges(c) {
-                        if arr.edges()[(h / 2) as usize].structural {
+                        if arr.edge(h.edge()).structural {
                             continue;
                         }
-                        let other = arr.face_of(h ^ 1);
-                        let (w, b) = (other as usize / 64, 1u64 << (other % 64));
+                        let other = arr.face(h.twin());
+                        let (w, b) = (other.index() / 64, 1u64 << (other.index() % 64));
                         let free = seen[id][w] & b != 0
                             || match m[..] {
                                 // One part alone: the face's parts free alone, found once.
-                                [a] => alone[other as usize]
-                                    .get_or_insert_with(|| ms.free_alone(&st.faces[other as usize]))
+                                [a] => alone[other.index()]
+                                    .get_or_insert_with(|| ms.free_alone(&st.faces[other.index()]))
                                     .get(a),
-                                _ => ms.can_move(&st.faces[other as usize], &m),
+                                _ => ms.can_move(&st.faces[other.index()], &m),
                             };
                         if free {
                             if mark(&mut seen, id, other) {
@@ -655,16 +656,15 @@ pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -
     let st = ms.statuses();
     let mut free: Vec<Option<bool>> = vec![None; arr.faces().len()];
     let mut c2 = 4.0f64;
-    for (e, edge) in arr.edges().iter().enumerate() {
-        if edge.structural {
+    for e in arr.edge_ids() {
+        if arr.edge(e).structural {
             continue;
         }
-        let h = 2 * e as u32;
-        let mut is_free = |f: u32| {
-            *free[f as usize].get_or_insert_with(|| ms.can_move(&st.faces[f as usize], moving))
+        let mut is_free = |f: FaceId| {
+            *free[f.index()].get_or_insert_with(|| ms.can_move(&st.faces[f.index()], moving))
         };
-        if is_free(arr.face_of(h)) != is_free(arr.face_of(h ^ 1)) {
-            let arc = arr.edge_arc(e as u32);
+        if is_free(arr.face(e.forward())) != is_free(arr.face(e.backward())) {
+            let arc = arr.edge_arc(e);
             let fa = FArc::new(
                 arc.start.unit_f64(),
                 arc.end.unit_f64(),

@@ -9,7 +9,7 @@ use crate::regions::BlockingRegions;
 use apart_kernel::Vec3;
 use apart_sphere::overlay::{cell_statuses, RegionArrangement};
 use apart_sphere::region::arrangement_of;
-use apart_sphere::{Arc, BitSet};
+use apart_sphere::{Arc, BitSet, FaceId};
 
 /// An open region of separating directions.
 #[derive(Clone, Debug)]
@@ -93,12 +93,12 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
             continue;
         }
         let loops: Vec<Vec<Arc>> = arr
-            .boundary_loops(f as u32)
+            .boundary_loops(FaceId::new(f))
             .into_iter()
             .map(|lp| lp.into_iter().map(|h| arr.half_edge_arc(h)).collect())
             .collect();
         let area = face_area(&loops);
-        let (direction, clearance) = deep_direction(&arr, f as u32, points, &|d| {
+        let (direction, clearance) = deep_direction(&arr, FaceId::new(f), points, &|d| {
             !blocks(d, &Vec3::ZERO) && on_no_arc(&arr, d)
         });
         faces.push(FreeFace {
@@ -109,13 +109,13 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
         });
     }
     let mut sliding = Vec::new();
-    for (e, edge) in arr.edges().iter().enumerate() {
-        if edge.structural || blocked(&st.edges[e]) {
+    for e in arr.edge_ids() {
+        if arr.edge(e).structural || blocked(&st.edges[e.index()]) {
             continue;
         }
-        let (l, r) = (arr.cycle_of(2 * e as u32), arr.cycle_of(2 * e as u32 + 1));
-        if blocked(&st.cycles[l as usize]) && blocked(&st.cycles[r as usize]) {
-            sliding.push(arr.edge_arc(e as u32));
+        let (l, r) = (arr.cycle(e.forward()), arr.cycle(e.backward()));
+        if blocked(&st.cycles[l.index()]) && blocked(&st.cycles[r.index()]) {
+            sliding.push(arr.edge_arc(e));
         }
     }
     let mut isolated = Vec::new();
@@ -124,9 +124,9 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
             continue;
         }
         let all_blocked = vert.around.iter().all(|&h| {
-            let e = (h / 2) as usize;
-            (arr.edges()[e].structural || blocked(&st.edges[e]))
-                && blocked(&st.cycles[arr.cycle_of(h) as usize])
+            let e = h.edge();
+            (arr.edge(e).structural || blocked(&st.edges[e.index()]))
+                && blocked(&st.cycles[arr.cycle(h).index()])
         });
         if all_blocked {
             isolated.push(vert.point.clone());
@@ -144,8 +144,8 @@ pub fn separate(regions: &BlockingRegions, a: usize, b: usize) -> Separation {
 fn on_no_arc(arr: &RegionArrangement, d: &Vec3) -> bool {
     let p = d.primitive();
     arr.vertices().iter().all(|v| v.point != p)
-        && (0..arr.edges().len() as u32).all(|e| {
-            arr.edges()[e as usize].structural
+        && arr.edge_ids().all(|e| {
+            arr.edge(e).structural
                 || arr
                     .edge_arc(e)
                     .locate(&p)
@@ -157,7 +157,7 @@ fn on_no_arc(arr: &RegionArrangement, d: &Vec3) -> bool {
 /// candidate exactly.
 fn deep_direction(
     arr: &RegionArrangement,
-    f: u32,
+    f: FaceId,
     points: &[[f64; 3]],
     ok: &dyn Fn(&Vec3) -> bool,
 ) -> (Vec3, f64) {

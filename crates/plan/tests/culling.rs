@@ -79,17 +79,17 @@ fn check(parts: &[PartPieces]) {
     // The simplified region maps, through the motion space built from them.
     let ms = MotionSpace::build(&regions, &[0, 1]);
     let st = ms.statuses();
-    for f in 0..ms.arrangement().faces().len() as u32 {
+    for f in ms.arrangement().face_ids() {
         let d = ms.face_sample(f);
         assert_eq!(
-            st.faces[f as usize].get(0),
+            st.faces[f.index()].get(0),
             !oracle.free(&[0], &[1], &d),
-            "face {f} at {d:?}"
+            "face {f:?} at {d:?}"
         );
         assert_eq!(
-            st.faces[f as usize].get(1),
+            st.faces[f.index()].get(1),
             !oracle.free(&[1], &[0], &d),
-            "face {f} at {d:?}"
+            "face {f:?} at {d:?}"
         );
     }
 }

@@ -32,7 +32,7 @@ fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseE
         for &e in cell {
             let d = arr.edge_arc(e).interior_point();
             prop_assert_eq!(
-                ms.dbg(&st.edges[e as usize]),
+                ms.dbg(&st.edges[e.index()]),
                 oracle.dbg(&d),
                 "edge point {:?}",
                 d
@@ -40,7 +40,7 @@ fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseE
         }
     }
     for f in 0..arr.faces().len() {
-        let d = ms.face_sample(f as u32);
+        let d = ms.face_sample(apart_sphere::FaceId::new(f));
         prop_assert_eq!(ms.dbg(&st.faces[f]), oracle.dbg(&d), "face sample {:?}", d);
     }
     for d in random_dirs {

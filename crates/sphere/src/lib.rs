@@ -7,6 +7,8 @@
 //! ([`overlay`]), and simplifies a union of regions to the arcs where its status
 //! changes ([`region`]).
 
+#![warn(missing_docs)]
+
 pub mod arc;
 pub mod arrangement;
 pub mod bitset;
@@ -16,6 +18,8 @@ pub mod polygon;
 pub mod region;
 
 pub use arc::Arc;
-pub use arrangement::{ArcLabel, Arrangement, InputArc, InputPoint};
+pub use arrangement::{
+    ArcLabel, Arrangement, CycleId, EdgeId, FaceId, HalfEdge, InputArc, InputPoint, VertexId,
+};
 pub use bitset::{BitSet, MapSet};
 pub use polygon::SphericalPolygon;

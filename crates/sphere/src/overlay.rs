@@ -10,7 +10,7 @@
 //! for maps with an arc on it; a vertex those of its faces except for maps with an arc
 //! through it or a point at it.
 
-use crate::arrangement::{ArcLabel, Arrangement};
+use crate::arrangement::{ArcLabel, Arrangement, EdgeId};
 use crate::bitset::{BitSet, MapSet};
 use crate::polygon::perpendicular;
 use apart_kernel::Vec3;
@@ -147,38 +147,39 @@ pub fn cell_statuses<S: Status>(
     }
 
     // Exact statuses just left of edge 0 (its positive side), then breadth-first.
-    let e0 = arr.edge_arc(0);
-    let start = oracle(&e0.interior_point(), &e0.normal);
+    let e0 = EdgeId::new(0);
+    let a0 = arr.edge_arc(e0);
+    let start = oracle(&a0.interior_point(), &a0.normal);
     let mut cycles: Vec<Option<S>> = vec![None; arr.cycle_count()];
-    let c0 = arr.cycle_of(0);
-    cycles[c0 as usize] = Some(start);
+    let c0 = arr.cycle(e0.forward());
+    cycles[c0.index()] = Some(start);
     let mut queue = VecDeque::from([c0]);
     let mut changes: Vec<(u32, bool)> = Vec::new();
     while let Some(c) = queue.pop_front() {
-        let status = cycles[c as usize].clone().unwrap();
+        let status = cycles[c.index()].clone().unwrap();
         for h in arr.cycle_half_edges(c) {
-            let twin = h ^ 1;
-            let d = arr.cycle_of(twin);
-            if cycles[d as usize].is_some() && !cfg!(debug_assertions) {
+            let twin = h.twin();
+            let d = arr.cycle(twin);
+            if cycles[d.index()].is_some() && !cfg!(debug_assertions) {
                 continue;
             }
             let mut s = status.clone();
-            let forward = Arrangement::<SideLabel, PointStatus>::is_forward(twin);
+            let forward = twin.is_forward();
             changes.clear();
             changes.extend(
-                arr.edges()[(h / 2) as usize]
+                arr.edge(h.edge())
                     .labels
                     .iter()
                     .map(|l| (l.map, if forward { l.pos } else { l.neg })),
             );
             s.assign_all(&mut changes);
-            match &cycles[d as usize] {
+            match &cycles[d.index()] {
                 None => {
-                    cycles[d as usize] = Some(s);
+                    cycles[d.index()] = Some(s);
                     queue.push_back(d);
                 }
                 Some(existing) => {
-                    debug_assert_eq!(existing, &s, "inconsistent labels around cycle {d}")
+                    debug_assert_eq!(existing, &s, "inconsistent labels around cycle {d:?}")
                 }
             }
         }
@@ -190,14 +191,14 @@ pub fn cell_statuses<S: Status>(
     let faces = arr
         .faces()
         .iter()
-        .map(|f| cycles[f[0] as usize].clone())
+        .map(|f| cycles[f[0].index()].clone())
         .collect();
     let edges = arr
         .edges()
         .iter()
         .enumerate()
         .map(|(e, edge)| {
-            let mut s = cycles[arr.cycle_of(2 * e as u32) as usize].clone();
+            let mut s = cycles[arr.cycle(EdgeId::new(e).forward()).index()].clone();
             changes.clear();
             changes.extend(edge.labels.iter().map(|l| (l.map, l.on)));
             s.assign_all(&mut changes);
@@ -210,17 +211,12 @@ pub fn cell_statuses<S: Status>(
         .enumerate()
         .map(|(v, vert)| {
             let mut s = match vert.around.first() {
-                Some(&h) => cycles[arr.cycle_of(h) as usize].clone(),
+                Some(&h) => cycles[arr.cycle(h).index()].clone(),
                 None => S::empty(maps),
             };
             changes.clear();
             for &h in &vert.around {
-                changes.extend(
-                    arr.edges()[(h / 2) as usize]
-                        .labels
-                        .iter()
-                        .map(|l| (l.map, l.on)),
-                );
+                changes.extend(arr.edge(h.edge()).labels.iter().map(|l| (l.map, l.on)));
             }
             changes.extend(arr.vertices()[v].labels.iter().map(|l| (l.map, l.on)));
             s.assign_all(&mut changes);

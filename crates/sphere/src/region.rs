@@ -2,7 +2,7 @@
 //! where its status changes.
 
 use crate::arc::Arc;
-use crate::arrangement::Arrangement;
+use crate::arrangement::{Arrangement, EdgeId, HalfEdge, VertexId};
 use crate::bitset::BitSet;
 use crate::overlay::{CellStatuses, PointStatus, RegionArrangement, SideLabel};
 use apart_kernel::predicates::det3_sign;
@@ -79,7 +79,7 @@ impl RegionMap {
 /// as the merged arc stays shorter than a half circle).
 pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
     let any = |b: &BitSet| !b.is_empty();
-    let face_status = |h: u32| any(&st.cycles[arr.cycle_of(h) as usize]);
+    let face_status = |h: HalfEdge| any(&st.cycles[arr.cycle(h).index()]);
     if arr.edges().is_empty() {
         let face = any(&st.faces[0]);
         let points = arr
@@ -95,11 +95,12 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
         };
     }
     let n_edges = arr.edges().len();
-    let sides: Vec<Sides> = (0..n_edges)
+    let sides: Vec<Sides> = arr
+        .edge_ids()
         .map(|e| Sides {
-            pos: face_status(2 * e as u32),
-            on: any(&st.edges[e]),
-            neg: face_status(2 * e as u32 + 1),
+            pos: face_status(e.forward()),
+            on: any(&st.edges[e.index()]),
+            neg: face_status(e.backward()),
         })
         .collect();
     let kept: Vec<bool> = sides
@@ -110,14 +111,14 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
     // A vertex can be skipped when exactly two kept edges meet there, on one circle,
     // continuing straight (one arrives, one leaves in circle order), with equal sides,
     // and the vertex has the arcs' status.
-    let kept_around: Vec<Vec<u32>> = arr
+    let kept_around: Vec<Vec<HalfEdge>> = arr
         .vertices()
         .iter()
         .map(|v| {
             v.around
                 .iter()
                 .copied()
-                .filter(|&h| kept[(h / 2) as usize])
+                .filter(|&h| kept[h.edge().index()])
                 .collect()
         })
         .collect();
@@ -127,10 +128,10 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
             if hs.len() != 2 {
                 return false;
             }
-            let (a, b) = ((hs[0] / 2) as usize, (hs[1] / 2) as usize);
+            let (a, b) = (hs[0].edge().index(), hs[1].edge().index());
             let (ea, eb) = (&arr.edges()[a], &arr.edges()[b]);
             ea.circle == eb.circle
-                && (hs[0] % 2) != (hs[1] % 2)
+                && hs[0].is_forward() != hs[1].is_forward()
                 && sides[a] == sides[b]
                 && vstatus[v] == sides[a].on
         })
@@ -151,54 +152,53 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
     // Merge chains of kept edges through skippable vertices.
     let mut arcs = Vec::new();
     let mut done = vec![false; n_edges];
-    let out_forward = |v: u32, circle: u32| -> Option<u32> {
-        kept_around[v as usize]
+    let out_forward = |v: VertexId, circle: u32| -> Option<EdgeId> {
+        kept_around[v.index()]
             .iter()
             .copied()
-            .find(|&h| h % 2 == 0 && arr.edges()[(h / 2) as usize].circle == circle)
-            .map(|h| h / 2)
+            .find(|&h| h.is_forward() && arr.edge(h.edge()).circle == circle)
+            .map(HalfEdge::edge)
     };
-    let in_forward = |v: u32, circle: u32| -> Option<u32> {
-        kept_around[v as usize]
+    let in_forward = |v: VertexId, circle: u32| -> Option<EdgeId> {
+        kept_around[v.index()]
             .iter()
             .copied()
-            .find(|&h| h % 2 == 1 && arr.edges()[(h / 2) as usize].circle == circle)
-            .map(|h| h / 2)
+            .find(|&h| !h.is_forward() && arr.edge(h.edge()).circle == circle)
+            .map(HalfEdge::edge)
     };
-    for e0 in 0..n_edges {
-        if !kept[e0] || done[e0] {
+    for e0 in arr.edge_ids() {
+        if !kept[e0.index()] || done[e0.index()] {
             continue;
         }
-        let circle = arr.edges()[e0].circle;
+        let circle = arr.edge(e0).circle;
         // Walk back to the start of the chain (or around a full circle of skippable ones).
-        let mut first = e0 as u32;
+        let mut first = e0;
         loop {
-            let v = arr.edges()[first as usize].from;
-            if !skippable[v as usize] {
+            let v = arr.edge(first).from;
+            if !skippable[v.index()] {
                 break;
             }
             match in_forward(v, circle) {
-                Some(p) if p != e0 as u32 => first = p,
+                Some(p) if p != e0 => first = p,
                 _ => break,
             }
         }
         // Walk forward, cutting where the arc would reach a half circle.
         let normal = &arr.circles()[circle as usize];
         let mut cur = first;
-        let mut start = arr.edges()[cur as usize].from;
+        let mut start = arr.edge(cur).from;
         loop {
-            done[cur as usize] = true;
-            let edge = &arr.edges()[cur as usize];
-            let end = edge.to;
-            let next = if skippable[end as usize] {
-                out_forward(end, circle).filter(|&n| !done[n as usize])
+            done[cur.index()] = true;
+            let end = arr.edge(cur).to;
+            let next = if skippable[end.index()] {
+                out_forward(end, circle).filter(|&n| !done[n.index()])
             } else {
                 None
             };
-            let close = match &next {
+            let close = match next {
                 Some(n) => {
-                    let far = &arr.vertices()[arr.edges()[*n as usize].to as usize].point;
-                    det3_sign(normal, &arr.vertices()[start as usize].point, far) != Sign::Positive
+                    let far = &arr.vertex(arr.edge(n).to).point;
+                    det3_sign(normal, &arr.vertex(start).point, far) != Sign::Positive
                 }
                 None => true,
             };
@@ -206,17 +206,14 @@ pub fn simplify_union(arr: &RegionArrangement, st: &CellStatuses) -> RegionMap {
                 arcs.push((
                     Arc {
                         normal: normal.clone(),
-                        start: arr.vertices()[start as usize].point.clone(),
-                        end: arr.vertices()[end as usize].point.clone(),
+                        start: arr.vertex(start).point.clone(),
+                        end: arr.vertex(end).point.clone(),
                     },
-                    sides[cur as usize],
+                    sides[cur.index()],
                 ));
-                if skippable[end as usize] && next.is_some() {
+                if skippable[end.index()] && next.is_some() {
                     // Cut here: the skipped vertex becomes an end point after all.
-                    points.push((
-                        arr.vertices()[end as usize].point.clone(),
-                        vstatus[end as usize],
-                    ));
+                    points.push((arr.vertex(end).point.clone(), vstatus[end.index()]));
                 }
                 start = end;
             }

@@ -3,7 +3,7 @@
 
 use apart_kernel::spherical::ArcPosition;
 use apart_kernel::Vec3;
-use apart_sphere::{Arc, ArcLabel, Arrangement, InputArc, InputPoint};
+use apart_sphere::{Arc, ArcLabel, Arrangement, EdgeId, InputArc, InputPoint};
 use proptest::prelude::*;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -46,11 +46,11 @@ proptest! {
         for vert in arr.vertices() {
             let is_end = input.iter().any(|a| a.start.primitive() == vert.point || a.end.primitive() == vert.point);
             let is_point = points.iter().any(|p| p.point.primitive() == vert.point);
-            let circles: std::collections::HashSet<u32> = vert.around.iter().map(|&h| &arr.edges()[(h / 2) as usize]).filter(|e| !e.structural).map(|e| e.circle).collect();
+            let circles: std::collections::HashSet<u32> = vert.around.iter().map(|&h| arr.edge(h.edge())).filter(|e| !e.structural).map(|e| e.circle).collect();
             prop_assert_eq!(!vert.structural, is_end || is_point || circles.len() >= 2, "vertex {:?}", vert.point);
         }
         for (k, edge) in arr.edges().iter().enumerate() {
-            let arc = arr.edge_arc(k as u32);
+            let arc = arr.edge_arc(EdgeId::new(k));
             let mid = arc.interior_point();
             // Input arcs containing the edge's midpoint (open or closed: an edge is cut at
             // every end point, so the midpoint is never an end point of an input arc).
