@@ -84,6 +84,7 @@ impl std::fmt::Write for Buf {
 
 /// Writes bytes to file descriptor `fd` without a lock or an allocation.
 #[cfg(unix)]
+#[allow(unsafe_code)]
 fn raw_write(fd: i32, bytes: &[u8]) {
     use std::io::Write;
     use std::os::fd::FromRawFd;
@@ -389,6 +390,7 @@ fn refund(bytes: usize) {
 
 // SAFETY: every call is forwarded to the system allocator with the same arguments;
 // the counting around it never allocates.
+#[allow(unsafe_code)]
 unsafe impl GlobalAlloc for Budget {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         charge(layout.size());

@@ -56,6 +56,7 @@ pub struct Global {
         allow_negative_numbers = true,
         help = limits::grid_bits_help()
     )]
+    /// Bits of a snapped coordinate (the help text is built by `limits`).
     pub grid_bits: u32,
     /// Verify every automatic convex decomposition exactly (pieces convex, interiors
     /// disjoint, inside the part, volumes adding up).

@@ -33,8 +33,6 @@
 //! }
 //! ```
 
-#![warn(missing_docs)]
-
 mod convex;
 mod error;
 mod inputs;

@@ -44,8 +44,6 @@
 //! std::fs::write("step-1-sphere.svg", sphere).unwrap();
 //! ```
 
-#![warn(missing_docs)]
-
 pub mod colors;
 pub mod gltf_export;
 pub mod html_viewer;

@@ -24,8 +24,6 @@
 //! assert_eq!(mesh.unwrap().triangles.len(), 4);
 //! ```
 
-#![warn(missing_docs)]
-
 pub mod escape;
 pub mod formats;
 pub mod intersect;

@@ -1,3 +1,5 @@
+//! Timing of the motion space of a row of N interlocking bricks (two cuboids each):
+//! `cargo run --release -p apart-plan --example brick_timing -- N`.
 #[path = "../tests/common/mod.rs"]
 mod common;
 fn main() {

@@ -48,8 +48,6 @@
 //! assert_eq!(best.cost, q(1)); // touching a face of the fixed cube
 //! ```
 
-#![warn(missing_docs)]
-
 // The float broad phase (to be replaced by the kernel's one box tree, issue 12); parts of
 // it no placement path calls stay, unexported.
 #[allow(dead_code)]

@@ -17,8 +17,6 @@
 //! - [`sheet_metal`]: the parametric parts of the stacking paper (cube, channel,
 //!   triangle, complex part) as integer meshes.
 
-#![warn(missing_docs)]
-
 pub mod curved;
 pub mod defects;
 pub mod joints;
