@@ -64,7 +64,7 @@ pub use partition::{
     partition_subset_with, MovingSet, Options, Partitioning, Solution, Stats,
 };
 pub use progress::{Progress, ProgressCallback};
-pub use regions::{decompose_part, parts_of, parts_of_with};
+pub use regions::parts_of;
 pub use regions::{BlockingRegions, PartPieces};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{sequence, sequence_with, Sequence, SequenceOptions, Step, Tolerance};
@@ -72,21 +72,12 @@ pub use sequence::{sequence, sequence_with, Sequence, SequenceOptions, Step, Tol
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PlanError {
-    /// A part has neither declared pieces nor a valid mesh to decompose.
+    /// A part has no convex pieces (the loader decomposes every part it loads).
     NoPieces {
         /// Part index.
         part: usize,
         /// Part name.
         name: String,
-    },
-    /// A part could not be decomposed into convex pieces.
-    Decompose {
-        /// Part index.
-        part: usize,
-        /// Part name.
-        name: String,
-        /// What went wrong.
-        message: String,
     },
     /// Two parts' interiors overlap (pieces `pieces.0` of the first and `pieces.1` of the
     /// second).
@@ -113,16 +104,13 @@ impl std::fmt::Display for PlanError {
         match self {
             PlanError::NoPieces { name, .. } => write!(
                 f,
-                "part \"{name}\" has no valid mesh to decompose and declares no convex pieces"
+                "part \"{name}\" has no convex pieces (apart_assembly::load decomposes the parts it loads)"
             ),
             PlanError::Overlap { names, pieces, .. } => write!(
                 f,
                 "parts \"{}\" and \"{}\" overlap (piece {} of the first and piece {} of the second share interior points)",
                 names.0, names.1, pieces.0, pieces.1
             ),
-            PlanError::Decompose { name, message, .. } => {
-                write!(f, "part \"{name}\" could not be decomposed into convex pieces: {message}")
-            }
             PlanError::Internal(m) => write!(f, "internal error: {m}"),
             PlanError::Stopped { phase } => write!(f, "stopped during {phase}"),
         }

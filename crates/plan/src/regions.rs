@@ -29,67 +29,28 @@ pub struct PartPieces {
     pub pieces: Vec<Polytope>,
 }
 
-/// The parts of an assembly as convex pieces: declared pieces, the part itself when
-/// convex, or an exact convex decomposition of its mesh (computed in parallel over the
-/// parts that need one).
+/// The parts of an assembly as convex pieces, as the loader gave them (declared pieces,
+/// the part itself when convex, or its exact convex decomposition: the planners never
+/// decompose). [`PlanError::NoPieces`] for a part without pieces, as an assembly built
+/// by hand rather than by `apart_assembly::load` may have.
 pub fn parts_of(assembly: &apart_assembly::Assembly) -> Result<Vec<PartPieces>, PlanError> {
-    parts_of_with(assembly, &|_, _| {})
-}
-
-/// [`parts_of`], calling `progress(done, total)` as decompositions finish.
-pub fn parts_of_with(
-    assembly: &apart_assembly::Assembly,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<Vec<PartPieces>, PlanError> {
-    let todo = assembly
-        .parts
-        .iter()
-        .filter(|p| p.pieces.is_empty())
-        .count();
-    let done = std::sync::atomic::AtomicUsize::new(0);
     assembly
         .parts
-        .par_iter()
+        .iter()
         .enumerate()
         .map(|(k, p)| {
-            if !p.pieces.is_empty() {
-                return Ok(PartPieces {
+            if p.pieces.is_empty() {
+                return Err(PlanError::NoPieces {
+                    part: k,
                     name: p.name.clone(),
-                    pieces: p.pieces.clone(),
                 });
             }
-            let pieces = decompose_part(k, p)?;
-            progress(
-                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
-                todo,
-            );
             Ok(PartPieces {
                 name: p.name.clone(),
-                pieces,
+                pieces: p.pieces.clone(),
             })
         })
         .collect()
-}
-
-/// The exact convex decomposition of a part's mesh.
-pub fn decompose_part(k: usize, part: &apart_assembly::Part) -> Result<Vec<Polytope>, PlanError> {
-    let Some(mesh) = &part.mesh else {
-        return Err(PlanError::NoPieces {
-            part: k,
-            name: part.name.clone(),
-        });
-    };
-    let d = apart_decompose::decompose(
-        &mesh.points(),
-        &mesh.triangles,
-        &apart_decompose::Options::default(),
-    )
-    .map_err(|e| PlanError::Decompose {
-        part: k,
-        name: part.name.clone(),
-        message: e.to_string(),
-    })?;
-    Ok(d.pieces)
 }
 
 /// The blocked region of one unordered pair of parts.
