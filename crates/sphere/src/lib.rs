@@ -7,8 +7,6 @@
 //! ([`overlay`]), and simplifies a union of regions to the arcs where its status
 //! changes ([`region`]).
 
-#![warn(missing_docs)]
-
 pub mod arc;
 pub mod arrangement;
 pub mod bitset;
