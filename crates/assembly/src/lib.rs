@@ -59,7 +59,7 @@ use apart_kernel::{Grid, Rational};
 /// A volume in grid units, printed in input units as `exact (≈ decimal)`.
 pub fn fmt_volume(v: &Rational, grid: &Grid) -> String {
     let u = apart_mesh::validate::volume_in_units(v, grid);
-    if u.denom() == &apart_kernel::Int::ONE {
+    if u.denom() == apart_kernel::Int::ONE {
         u.to_string()
     } else {
         format!("{u} (≈ {})", u.to_f64())

@@ -81,6 +81,44 @@ pub fn gcd(a: &Int, b: &Int) -> Int {
     Int::from(a.unsigned_abs().gcd(b.unsigned_abs()))
 }
 
+/// Least common multiple of two positive integers.
+pub fn lcm(a: &Int, b: &Int) -> Int {
+    let g = gcd(a, b);
+    if g == Int::ONE {
+        a * b
+    } else {
+        a / &g * b
+    }
+}
+
+/// `⌈sqrt(v)⌉` for `v >= 0` (0 for `v <= 0`), exactly: the smallest `k` with `k² >= v`.
+pub fn ceil_sqrt(v: &Int) -> Int {
+    if *v <= Int::ZERO {
+        return Int::ZERO;
+    }
+    let mut k = if bit_len(v) <= 100 {
+        // The float root is within one of the true one.
+        Int::from(to_f64(v).sqrt().floor() as u128)
+    } else {
+        // Newton's steps from above (2^⌈bits/2⌉ >= sqrt(v)) decrease to ⌊sqrt(v)⌋.
+        let mut k = Int::ONE << (bit_len(v) as usize).div_ceil(2);
+        loop {
+            let next: Int = (&k + v / &k) >> 1usize;
+            if next >= k {
+                break k;
+            }
+            k = next;
+        }
+    };
+    while &k * &k < *v {
+        k += Int::ONE;
+    }
+    while k > Int::ZERO && (&k - Int::ONE) * (&k - Int::ONE) >= *v {
+        k -= Int::ONE;
+    }
+    k
+}
+
 /// Greatest common divisor of |a| and |b| on machine words (gcd(0, 0) = 0).
 ///
 /// Binary gcd; switches to 64-bit words as soon as both operands fit, which is where
@@ -144,6 +182,23 @@ mod tests {
                 assert_eq!(gcd(&Int::from(a), &-Int::from(b)), Int::from(x));
             }
         }
+    }
+
+    #[test]
+    fn lcm_and_square_roots() {
+        assert_eq!(lcm(&Int::from(4), &Int::from(6)), Int::from(12));
+        assert_eq!(lcm(&Int::from(5), &Int::from(7)), Int::from(35));
+        for v in (0i64..200).chain([1 << 40, (1 << 40) + 1, i64::MAX]) {
+            let k = ceil_sqrt(&Int::from(v));
+            assert!(&k * &k >= Int::from(v), "{v}");
+            assert!(
+                k == Int::ZERO || (&k - Int::ONE) * (&k - Int::ONE) < Int::from(v),
+                "{v}"
+            );
+        }
+        let big = (Int::from(3) << 200usize) + Int::ONE;
+        let k = ceil_sqrt(&big);
+        assert!(&k * &k >= big && (&k - Int::ONE) * (&k - Int::ONE) < big);
     }
 
     #[test]

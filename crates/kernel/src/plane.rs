@@ -343,12 +343,9 @@ impl HPoint {
 
     /// The point of three exact rationals.
     pub fn from_rationals(r: &[Rational; 3]) -> HPoint {
-        let mut den = Int::ONE;
-        for c in r {
-            let g = int::gcd(&den, c.denom());
-            den = &den / &g * c.denom();
-        }
-        let num = [0, 1, 2].map(|k| r[k].numer() * &(&den / r[k].denom()));
+        let d = r.each_ref().map(Rational::denom);
+        let den = int::lcm(&int::lcm(&d[0], &d[1]), &d[2]);
+        let num = [0, 1, 2].map(|k| r[k].numer() * (&den / &d[k]));
         HPoint::from_big(num, den)
     }
 
