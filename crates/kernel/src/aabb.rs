@@ -1,36 +1,49 @@
-//! Axis-aligned boxes: on the grid (`Aabb`, integer coordinates, exact) and in floating
-//! point (`Aabb<f64>`, for filters and pictures only).
+//! Axis-aligned boxes: on the grid (`Aabb`, integer coordinates, exact), with rational
+//! corners (`Aabb<Rational>`, exact, for placement), and in floating point
+//! (`Aabb<f64>`, for filters and pictures only).
 
+use crate::int::Int;
+use crate::plane::BigPlane;
+use crate::{Rational, Vec3};
 use std::cmp::Ordering;
 use std::fmt::Debug;
 
-/// A coordinate type of [`Aabb`]: `i64` (grid points) or `f64`.
-pub trait Coord: Copy + PartialOrd + Debug + Send + Sync + 'static {
+/// A coordinate type of [`Aabb`]: ordered, with the smaller and larger of two values
+/// (`i64` and `f64`, see [`Coord`], and [`Rational`]).
+pub trait Bound: Clone + PartialOrd + Debug {
+    /// The smaller of two values (`f64::min` for floats).
+    fn min_of(&self, o: &Self) -> Self;
+    /// The larger of two values (`f64::max` for floats).
+    fn max_of(&self, o: &Self) -> Self;
+}
+
+/// A machine coordinate type of [`Aabb`] and of the broad phase ([`crate::bvh`]): `i64`
+/// (grid points) or `f64`.
+pub trait Coord: Bound + Copy + Send + Sync + 'static {
     /// The lowest value (the upper end of the empty box).
     const LOWEST: Self;
     /// The highest value (the lower end of the empty box).
     const HIGHEST: Self;
-    /// The smaller of two values (`f64::min` for floats).
-    fn min_of(self, o: Self) -> Self;
-    /// The larger of two values (`f64::max` for floats).
-    fn max_of(self, o: Self) -> Self;
     /// A total order (`f64::total_cmp` for floats), for sorting.
     fn total_cmp(&self, o: &Self) -> Ordering;
     /// The value as a double (`as f64`), for orders that only affect speed.
     fn to_f64(self) -> f64;
 }
 
+impl Bound for i64 {
+    #[inline]
+    fn min_of(&self, o: &i64) -> i64 {
+        (*self).min(*o)
+    }
+    #[inline]
+    fn max_of(&self, o: &i64) -> i64 {
+        (*self).max(*o)
+    }
+}
+
 impl Coord for i64 {
     const LOWEST: i64 = i64::MIN;
     const HIGHEST: i64 = i64::MAX;
-    #[inline]
-    fn min_of(self, o: i64) -> i64 {
-        self.min(o)
-    }
-    #[inline]
-    fn max_of(self, o: i64) -> i64 {
-        self.max(o)
-    }
     #[inline]
     fn total_cmp(&self, o: &i64) -> Ordering {
         self.cmp(o)
@@ -41,17 +54,20 @@ impl Coord for i64 {
     }
 }
 
+impl Bound for f64 {
+    #[inline]
+    fn min_of(&self, o: &f64) -> f64 {
+        self.min(*o)
+    }
+    #[inline]
+    fn max_of(&self, o: &f64) -> f64 {
+        self.max(*o)
+    }
+}
+
 impl Coord for f64 {
     const LOWEST: f64 = f64::NEG_INFINITY;
     const HIGHEST: f64 = f64::INFINITY;
-    #[inline]
-    fn min_of(self, o: f64) -> f64 {
-        self.min(o)
-    }
-    #[inline]
-    fn max_of(self, o: f64) -> f64 {
-        self.max(o)
-    }
     #[inline]
     fn total_cmp(&self, o: &f64) -> Ordering {
         f64::total_cmp(self, o)
@@ -62,8 +78,26 @@ impl Coord for f64 {
     }
 }
 
+impl Bound for Rational {
+    fn min_of(&self, o: &Rational) -> Rational {
+        if o < self {
+            o.clone()
+        } else {
+            self.clone()
+        }
+    }
+    fn max_of(&self, o: &Rational) -> Rational {
+        if o > self {
+            o.clone()
+        } else {
+            self.clone()
+        }
+    }
+}
+
 /// A closed axis-aligned box; empty when some `min > max`. `Aabb` (of `i64`) holds grid
-/// points exactly; `Aabb<f64>` serves float filters and pictures.
+/// points exactly, `Aabb<Rational>` rational points exactly; `Aabb<f64>` serves float
+/// filters and pictures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Aabb<T = i64> {
     /// Smallest coordinates.
@@ -79,18 +113,6 @@ impl<T: Coord> Aabb<T> {
         max: [T::LOWEST; 3],
     };
 
-    /// The box of one point.
-    #[inline]
-    pub fn point(p: &[T; 3]) -> Aabb<T> {
-        Aabb { min: *p, max: *p }
-    }
-
-    /// The smallest box containing the points (`None` for none).
-    pub fn of_points(points: &[[T; 3]]) -> Option<Aabb<T>> {
-        let first = points.first()?;
-        Some(points.iter().fold(Aabb::point(first), |b, p| b.with(p)))
-    }
-
     /// The box of a triangle or segment.
     #[inline]
     pub fn of<const N: usize>(ps: [&[T; 3]; N]) -> Aabb<T> {
@@ -100,22 +122,39 @@ impl<T: Coord> Aabb<T> {
         }
         b
     }
+}
+
+impl<T: Bound> Aabb<T> {
+    /// The box of one point.
+    #[inline]
+    pub fn point(p: &[T; 3]) -> Aabb<T> {
+        Aabb {
+            min: p.clone(),
+            max: p.clone(),
+        }
+    }
+
+    /// The smallest box containing the points (`None` for none).
+    pub fn of_points(points: &[[T; 3]]) -> Option<Aabb<T>> {
+        let first = points.first()?;
+        Some(points.iter().fold(Aabb::point(first), |b, p| b.with(p)))
+    }
 
     /// The box from per-axis intervals `[[lo, hi]; 3]`.
     #[inline]
     pub fn from_axes(axes: &[[T; 2]; 3]) -> Aabb<T> {
         Aabb {
-            min: [axes[0][0], axes[1][0], axes[2][0]],
-            max: [axes[0][1], axes[1][1], axes[2][1]],
+            min: [0, 1, 2].map(|k| axes[k][0].clone()),
+            max: [0, 1, 2].map(|k| axes[k][1].clone()),
         }
     }
 
     /// The box grown to contain `p`.
     #[inline]
     pub fn with(mut self, p: &[T; 3]) -> Aabb<T> {
-        for ((lo, hi), &c) in self.min.iter_mut().zip(self.max.iter_mut()).zip(p) {
-            *lo = (*lo).min_of(c);
-            *hi = (*hi).max_of(c);
+        for ((lo, hi), c) in self.min.iter_mut().zip(self.max.iter_mut()).zip(p) {
+            *lo = lo.min_of(c);
+            *hi = hi.max_of(c);
         }
         self
     }
@@ -123,23 +162,19 @@ impl<T: Coord> Aabb<T> {
     /// The smallest box containing both.
     #[inline]
     pub fn union(&self, o: &Aabb<T>) -> Aabb<T> {
-        let mut b = *self;
-        for k in 0..3 {
-            b.min[k] = b.min[k].min_of(o.min[k]);
-            b.max[k] = b.max[k].max_of(o.max[k]);
+        Aabb {
+            min: [0, 1, 2].map(|k| self.min[k].min_of(&o.min[k])),
+            max: [0, 1, 2].map(|k| self.max[k].max_of(&o.max[k])),
         }
-        b
     }
 
     /// The common part (maybe empty).
     #[inline]
     pub fn intersection(&self, o: &Aabb<T>) -> Aabb<T> {
-        let mut b = *self;
-        for k in 0..3 {
-            b.min[k] = b.min[k].max_of(o.min[k]);
-            b.max[k] = b.max[k].min_of(o.max[k]);
+        Aabb {
+            min: [0, 1, 2].map(|k| self.min[k].max_of(&o.min[k])),
+            max: [0, 1, 2].map(|k| self.max[k].min_of(&o.max[k])),
         }
-        b
     }
 
     /// True when the closed boxes share a point.
@@ -160,7 +195,7 @@ impl<T: Coord> Aabb<T> {
         (0..3).all(|k| self.min[k] <= p[k] && p[k] <= self.max[k])
     }
 
-    /// True for the empty box.
+    /// True for an empty box (some `min > max`: no point).
     #[inline]
     pub fn is_empty(&self) -> bool {
         (0..3).any(|k| self.min[k] > self.max[k])
@@ -185,6 +220,82 @@ impl Aabb<f64> {
     }
 }
 
+impl Aabb<Rational> {
+    /// The smallest box containing the points `v / den` (integer vectors over one positive
+    /// denominator, as a polytope stores its vertices). Panics for no points.
+    pub fn of_scaled<'a>(points: impl IntoIterator<Item = &'a Vec3>, den: &Int) -> Aabb<Rational> {
+        let mut it = points.into_iter();
+        let first = it.next().expect("box of no points").to_ints();
+        let (mut lo, mut hi) = (first.clone(), first);
+        for v in it {
+            for (k, c) in v.to_ints().into_iter().enumerate() {
+                if c < lo[k] {
+                    lo[k] = c;
+                } else if c > hi[k] {
+                    hi[k] = c;
+                }
+            }
+        }
+        Aabb {
+            min: lo.map(|c| Rational::new(c, den.clone())),
+            max: hi.map(|c| Rational::new(c, den.clone())),
+        }
+    }
+
+    /// The box moved by the vector `t`.
+    pub fn translated(&self, t: &[Rational; 3]) -> Aabb<Rational> {
+        Aabb {
+            min: crate::rational::add(&self.min, t),
+            max: crate::rational::add(&self.max, t),
+        }
+    }
+
+    /// A float box enclosing this one: each corner's nearest double moved outwards by
+    /// a relative `1e-9` (far more than its rounding), for float broad phases.
+    pub fn enclosing_f64(&self) -> Aabb<f64> {
+        let pad = |x: f64| x.abs() * 1e-9 + 1e-300;
+        Aabb {
+            min: [0, 1, 2].map(|k| {
+                let x = self.min[k].to_f64();
+                x - pad(x)
+            }),
+            max: [0, 1, 2].map(|k| {
+                let x = self.max[k].to_f64();
+                x + pad(x)
+            }),
+        }
+    }
+
+    /// The box as six closed half-spaces (reduced): `x_k <= max_k` then `-x_k <= -min_k`
+    /// for each axis `k` in turn.
+    pub fn halfspaces(&self) -> Vec<BigPlane> {
+        let mut out = Vec::with_capacity(6);
+        for k in 0..3 {
+            let mut n = [Int::ZERO, Int::ZERO, Int::ZERO];
+            n[k] = Int::ONE;
+            out.push(BigPlane::with_rational_offset(n.clone(), &self.max[k]));
+            n[k] = -Int::ONE;
+            out.push(BigPlane::with_rational_offset(n, &(-&self.min[k])));
+        }
+        out
+    }
+
+    /// The minimum of `n · p` over the box (at the corner each component of `n` points
+    /// away from).
+    pub fn min_dot(&self, n: &[Int; 3]) -> Rational {
+        let mut s = Rational::zero();
+        for (k, c) in n.iter().enumerate() {
+            let v = if *c >= Int::ZERO {
+                &self.min[k]
+            } else {
+                &self.max[k]
+            };
+            s = &s + &(&Rational::from_int(c.clone()) * v);
+        }
+        s
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,6 +309,34 @@ mod tests {
         assert_eq!(a.union(&b).max, [3, 2, 2]);
         assert!(a.intersection(&Aabb::of([&[5, 5, 5]])).is_empty());
         assert!(a.contains(&[1, 2, 0]) && !a.contains(&[1, 3, 0]));
+    }
+
+    #[test]
+    fn rational_boxes() {
+        let r = |n: i64, d: i64| Rational::from_i128(n as i128, d as i128);
+        let pts = [Vec3::new(1, -2, 3), Vec3::new(-1, 4, 3), Vec3::new(0, 0, 5)];
+        let b = Aabb::of_scaled(&pts, &Int::from(2));
+        assert_eq!(b.min, [r(-1, 2), r(-1, 1), r(3, 2)]);
+        assert_eq!(b.max, [r(1, 2), r(2, 1), r(5, 2)]);
+        let t = b.translated(&[r(1, 2), r(0, 1), r(-3, 2)]);
+        assert_eq!((t.min[0].clone(), t.max[2].clone()), (r(0, 1), r(1, 1)));
+        let u = b.union(&t);
+        assert_eq!((u.min[2].clone(), u.max[0].clone()), (r(0, 1), r(1, 1)));
+        assert!(!u.is_empty());
+        let e = Aabb {
+            min: b.max.clone(),
+            max: b.min.clone(),
+        };
+        assert!(e.is_empty());
+        let f = b.enclosing_f64();
+        assert!(f.min[0] < -0.5 && f.min[0] > -0.5000001 && f.max[2] > 2.5);
+        // x + 2y - z is smallest at (min x, min y, max z) = (-1/2, -1, 5/2).
+        assert_eq!(b.min_dot(&[1, 2, -1].map(Int::from)), r(-5, 1));
+        let h = b.halfspaces();
+        assert_eq!(h.len(), 6);
+        let corner = crate::HPoint::from_rationals(&b.max);
+        assert!(h.iter().all(|p| p.side(&corner) != crate::Sign::Positive));
+        assert_eq!(h[0].side(&corner), crate::Sign::Zero);
     }
 
     #[test]

@@ -2,10 +2,11 @@
 //! against part, piece against piece): which boxes meet.
 //!
 //! [`Bvh`] is a bounding-volume hierarchy. Boxes are ordered along a Morton (Z-order)
-//! curve of their centres, grouped into leaves of a few boxes, and a complete binary
-//! tree is built over the leaves in heap layout (node `i` has children `2i` and
-//! `2i + 1`). The build is a parallel sort plus a linear pass; a query walks the tree
-//! with an explicit stack.
+//! curve of their centres (or by recursive median splits, [`Bvh::by_median_splits`]),
+//! grouped into leaves of a few boxes, and a complete binary tree is built over the
+//! leaves in heap layout (node `i` has children `2i` and `2i + 1`). The build is a
+//! parallel sort plus a linear pass; a query walks the tree with an explicit stack and
+//! reports boxes in the build's order.
 //!
 //! [`sweep_pairs`] and [`sweep_pairs_between`] do the same job by sort and sweep along
 //! x, for small sets whose pairs must come in the order along x (the order in which a
@@ -36,10 +37,43 @@ fn spread(v: u64) -> u64 {
     x
 }
 
+impl<T: Coord> Default for Bvh<T> {
+    /// The hierarchy of no boxes.
+    fn default() -> Bvh<T> {
+        Bvh::from_order(Vec::new(), Vec::new())
+    }
+}
+
+/// Groups of at most this many boxes are not split further by [`Bvh::by_median_splits`].
+const MEDIAN_LEAF: usize = 4;
+
+/// Appends the indices `items` to `out` in the order of recursive median splits: a group
+/// of more than [`MEDIAN_LEAF`] boxes is split at the median of the box centres along the
+/// longest axis of its bounds (the last of equally long ones), the upper half first.
+fn median_order<T: Coord>(boxes: &[Aabb<T>], items: &mut [u32], out: &mut Vec<u32>) {
+    if items.len() <= MEDIAN_LEAF {
+        out.extend_from_slice(items);
+        return;
+    }
+    let b = items[1..].iter().fold(boxes[items[0] as usize], |b, &k| {
+        b.union(&boxes[k as usize])
+    });
+    let extent = |k: usize| b.max[k].to_f64() - b.min[k].to_f64();
+    let axis = (0..3)
+        .max_by(|&i, &j| extent(i).total_cmp(&extent(j)))
+        .expect("three axes");
+    let centre =
+        |k: u32| boxes[k as usize].min[axis].to_f64() + boxes[k as usize].max[axis].to_f64();
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)));
+    let (lower, upper) = items.split_at_mut(mid);
+    median_order(boxes, upper, out);
+    median_order(boxes, lower, out);
+}
+
 impl<T: Coord> Bvh<T> {
     /// Builds the hierarchy over `boxes` (their indices are what queries report).
     pub fn new(boxes: Vec<Aabb<T>>) -> Bvh<T> {
-        let n = boxes.len();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         // Centres quantised to 10 bits per axis (in floating point: the order only
         // affects speed, never results).
@@ -63,6 +97,24 @@ impl<T: Coord> Bvh<T> {
         keys.par_sort_unstable();
         let order: Vec<u32> = keys.iter().map(|k| *k as u32).collect();
         drop(keys);
+        Bvh::from_order(boxes, order)
+    }
+
+    /// Builds the hierarchy over `boxes` ordered by recursive median splits along the
+    /// longest axis instead of the Morton curve (sequential; for a few hundred boxes
+    /// rebuilt often). Queries report boxes in that order, upper halves first: the order
+    /// in which placement has always met its fixed pieces, which its cell decomposition
+    /// (and so its counters) follows.
+    pub fn by_median_splits(boxes: Vec<Aabb<T>>) -> Bvh<T> {
+        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
+        let mut order = Vec::with_capacity(items.len());
+        median_order(&boxes, &mut items, &mut order);
+        Bvh::from_order(boxes, order)
+    }
+
+    /// The hierarchy over `boxes` grouped into leaves along `order`.
+    fn from_order(boxes: Vec<Aabb<T>>, order: Vec<u32>) -> Bvh<T> {
+        let n = boxes.len();
         let leaves = n.div_ceil(LEAF).max(1).next_power_of_two();
         let mut nodes = vec![Aabb::EMPTY; 2 * leaves];
         nodes[leaves..]
@@ -88,6 +140,16 @@ impl<T: Coord> Bvh<T> {
     /// The boxes, by index.
     pub fn boxes(&self) -> &[Aabb<T>] {
         &self.boxes
+    }
+
+    /// Number of boxes.
+    pub fn len(&self) -> usize {
+        self.boxes.len()
+    }
+
+    /// True when there are no boxes.
+    pub fn is_empty(&self) -> bool {
+        self.boxes.is_empty()
     }
 
     /// Visits every unordered pair of distinct boxes `(i, j)`, `i < j`, that meet,
@@ -161,7 +223,8 @@ impl<T: Coord> Bvh<T> {
         &self.order[lo..hi]
     }
 
-    /// Calls `f(i)` for every box `i` that meets the closed box `q`.
+    /// Calls `f(i)` for every box `i` that meets the closed box `q`, in the build's order
+    /// (Morton or median splits).
     #[inline]
     pub fn query(&self, q: &Aabb<T>, mut f: impl FnMut(u32)) {
         if self.boxes.is_empty() {
@@ -474,6 +537,68 @@ mod tests {
             }
         }
         assert_eq!(got, want);
+    }
+
+    /// Median-split queries report the boxes meeting the query in one fixed order: the
+    /// upper half of each split (by box centres along the longest axis) before the lower.
+    #[test]
+    fn median_split_order() {
+        let mut s = 7u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) as f64 / (1u64 << 31) as f64 * 100.0
+        };
+        let boxes: Vec<Aabb<f64>> = (0..300)
+            .map(|_| {
+                let lo = [rnd(), rnd(), rnd()];
+                Aabb::from_axes(&[
+                    [lo[0], lo[0] + 5.0],
+                    [lo[1], lo[1] + 3.0],
+                    [lo[2], lo[2] + 8.0],
+                ])
+            })
+            .collect();
+        let bvh = Bvh::by_median_splits(boxes.clone());
+        assert_eq!(bvh.len(), 300);
+        let everything = Aabb::from_axes(&[[-1.0, 200.0]; 3]);
+        let mut all = Vec::new();
+        bvh.query(&everything, |i| all.push(i));
+        let mut sorted = all.clone();
+        sorted.sort();
+        assert_eq!(sorted, (0..300).collect::<Vec<u32>>());
+        let rank: Vec<usize> = {
+            let mut r = vec![0; 300];
+            for (k, &i) in all.iter().enumerate() {
+                r[i as usize] = k;
+            }
+            r
+        };
+        // The first split: along the longest axis (z here: 8 wide boxes over the same
+        // spread), the upper half of the centres first.
+        let c = |i: usize| boxes[i].min[2] + boxes[i].max[2];
+        let first: Vec<usize> = all[..150].iter().map(|&i| i as usize).collect();
+        let lowest_upper = first.iter().map(|&i| c(i)).fold(f64::INFINITY, f64::min);
+        assert!(all[150..].iter().all(|&i| c(i as usize) <= lowest_upper));
+        for _ in 0..50 {
+            let lo = [rnd(), rnd(), rnd()];
+            let q = Aabb::from_axes(&[
+                [lo[0], lo[0] + 10.0],
+                [lo[1], lo[1] + 10.0],
+                [lo[2], lo[2] + 10.0],
+            ]);
+            let mut got = Vec::new();
+            bvh.query(&q, |i| got.push(i));
+            let mut want: Vec<u32> = (0..300u32)
+                .filter(|&k| boxes[k as usize].overlaps(&q))
+                .collect();
+            want.sort_by_key(|&k| rank[k as usize]);
+            assert_eq!(got, want);
+        }
+        let empty = Bvh::<f64>::default();
+        assert!(empty.is_empty());
+        empty.query(&everything, |_| panic!("empty"));
     }
 
     #[test]

@@ -13,9 +13,11 @@
 //!   grid triangles.
 //! - [`plane`]: exact planes and half-spaces ([`Plane`], [`BigPlane`]) and the
 //!   homogeneous points where they meet ([`HPoint`]), with their float filter.
-//! - [`Rational`]: exact fractions for volumes and reported points.
-//! - [`Aabb`] and [`bvh`]: axis-aligned boxes (exact on the grid, or floats for filters
-//!   and pictures) and the broad phase over them (a hierarchy, or sort and sweep).
+//! - [`Rational`]: exact fractions (on machine words while they fit) for volumes,
+//!   reported points and placement, and [`rational`]'s helpers on rational vectors.
+//! - [`Aabb`] and [`bvh`]: axis-aligned boxes (exact on the grid or with rational
+//!   corners, or floats for filters and pictures) and the broad phase over them (a
+//!   hierarchy, or sort and sweep).
 //! - [`fvec`]: float vectors, for pictures, measurements and the shadows of float
 //!   filters (no float decides anything).
 //! - [`progress`]: progress reports and a stop flag shared by the long planners.

@@ -127,7 +127,7 @@ impl Plane {
     /// Exact sign of `n · p - c`: positive above the plane (outside the inner side).
     #[inline]
     pub fn side(&self, p: &HPoint) -> Sign {
-        if let Some(q) = &p.int {
+        if let Some(q) = p.as_int() {
             return self.side_int(q);
         }
         if p.filterable {
@@ -181,8 +181,8 @@ pub struct HPoint {
     f: [f64; 3],
     /// False when the shadow could not be computed safely (values beyond the f64 range).
     filterable: bool,
-    /// The coordinates when `W = 1` and they fit `i64`.
-    int: Option<[i64; 3]>,
+    /// `[X, W]` when all four fit `i64` (grid points have `W = 1`).
+    small: Option<[i64; 4]>,
 }
 
 impl PartialEq for HPoint {
@@ -206,7 +206,7 @@ impl HPoint {
             w: Int::ONE,
             f: p.map(|v| v as f64),
             filterable: true,
-            int: Some(p),
+            small: Some([p[0], p[1], p[2], 1]),
         }
     }
 
@@ -229,6 +229,10 @@ impl HPoint {
     /// The point `x / w` (`w != 0`), reduced.
     pub fn from_big(x: [Int; 3], w: Int) -> HPoint {
         debug_assert!(w != Int::ZERO);
+        let wide = |v: &Int| int::to_i128(v).filter(|&v| v != i128::MIN);
+        if let [Some(a), Some(b), Some(c), Some(d)] = [&x[0], &x[1], &x[2], &w].map(wide) {
+            return HPoint::from_wide([a, b, c], d);
+        }
         let (x, w) = if w < Int::ZERO {
             (x.map(|v| -v), -w)
         } else {
@@ -255,12 +259,13 @@ impl HPoint {
     }
 
     fn finish(x: [Int; 3], w: Int) -> HPoint {
-        let wf = int::to_f64(&w);
-        let f = [
-            int::to_f64(&x[0]) / wf,
-            int::to_f64(&x[1]) / wf,
-            int::to_f64(&x[2]) / wf,
-        ];
+        let small = fast4(&x, &w);
+        // Machine words convert as the arbitrary-precision values would (nearest double).
+        let (xf, wf) = match &small {
+            Some(s) => ([s[0] as f64, s[1] as f64, s[2] as f64], s[3] as f64),
+            None => (x.each_ref().map(int::to_f64), int::to_f64(&w)),
+        };
+        let f = xf.map(|v| v / wf);
         let filterable = wf.is_finite()
             && wf != 0.0
             && f.iter()
@@ -271,7 +276,7 @@ impl HPoint {
             w,
             f,
             filterable,
-            int: None,
+            small,
         }
     }
 
@@ -338,29 +343,88 @@ impl HPoint {
     /// The coordinates when the point is a grid point (`W = 1`) that fits `i64`.
     #[inline]
     pub fn as_int(&self) -> Option<&[i64; 3]> {
-        self.int.as_ref()
+        match &self.small {
+            Some(s) if s[3] == 1 => s[..3].try_into().ok(),
+            _ => None,
+        }
     }
 
     /// The point of three exact rationals.
     pub fn from_rationals(r: &[Rational; 3]) -> HPoint {
+        if let [Some((n0, d0)), Some((n1, d1)), Some((n2, d2))] =
+            r.each_ref().map(Rational::as_small)
+        {
+            // In machine words when the least common denominator and the numerators over
+            // it fit `i128` (always for placement's small denominators), else below.
+            let lcm = |a: u128, b: u128| (a / int::gcd_u128(a, b)).checked_mul(b);
+            let w = lcm(d0 as u128, d1 as u128).and_then(|w| lcm(w, d2 as u128));
+            if let Some(w) = w.filter(|&w| w <= i128::MAX as u128) {
+                let w = w as i128;
+                let x = [(n0, d0), (n1, d1), (n2, d2)]
+                    .map(|(n, d)| (n as i128).checked_mul(w / d as i128));
+                if let [Some(a), Some(b), Some(c)] = x {
+                    return HPoint::from_reduced_wide([a, b, c], w);
+                }
+            }
+        }
         let d = r.each_ref().map(Rational::denom);
         let den = int::lcm(&int::lcm(&d[0], &d[1]), &d[2]);
         let num = [0, 1, 2].map(|k| r[k].numer() * (&den / &d[k]));
-        HPoint::from_big(num, den)
+        // Already reduced: a prime dividing W to the power of some coordinate's reduced
+        // denominator does not divide that coordinate's X.
+        HPoint::from_reduced(num, den)
+    }
+
+    /// The point `x / w` of machine coordinates already reduced (`w > 0`,
+    /// `gcd(x, w) = 1`).
+    fn from_reduced_wide(x: [i128; 3], w: i128) -> HPoint {
+        if w == 1 && x.iter().all(|v| i64::try_from(*v).is_ok()) {
+            return HPoint::int(x.map(|v| v as i64));
+        }
+        HPoint::finish(x.map(Int::from), Int::from(w))
+    }
+
+    /// The point `x / w` of coordinates already reduced (`w > 0`, `gcd(x, w) = 1`).
+    fn from_reduced(x: [Int; 3], w: Int) -> HPoint {
+        if w == Int::ONE {
+            if let [Some(a), Some(b), Some(c)] =
+                [int::to_i64(&x[0]), int::to_i64(&x[1]), int::to_i64(&x[2])]
+            {
+                return HPoint::int([a, b, c]);
+            }
+        }
+        HPoint::finish(x, w)
     }
 
     /// The coordinates as exact rationals.
     pub fn to_rationals(&self) -> [Rational; 3] {
-        match &self.int {
+        match self.as_int() {
             Some(p) => p.map(Rational::from_int),
             None => self.x.clone().map(|n| Rational::new(n, self.w.clone())),
         }
     }
 
+    /// `self + t`, the point moved by the vector `t`.
+    pub fn add(&self, t: &HPoint) -> HPoint {
+        let x = [0, 1, 2].map(|i| &self.x[i] * &t.w + &t.x[i] * &self.w);
+        HPoint::from_big(x, &self.w * &t.w)
+    }
+
+    /// `self - o`, the vector from `o` to `self` (or the point moved by `-o`).
+    pub fn sub(&self, o: &HPoint) -> HPoint {
+        let x = [0, 1, 2].map(|i| &self.x[i] * &o.w - &o.x[i] * &self.w);
+        HPoint::from_big(x, &self.w * &o.w)
+    }
+
+    /// `-self`, the point reflected through the origin.
+    pub fn neg(&self) -> HPoint {
+        HPoint::from_reduced(self.x.clone().map(|c| -c), self.w.clone())
+    }
+
     /// The smallest grid box containing the point (coordinates beyond the `i64` range
     /// clamped to `±2^62`).
     pub fn bbox(&self) -> Aabb {
-        if let Some(p) = &self.int {
+        if let Some(p) = self.as_int() {
             return Aabb::point(p);
         }
         let lo = self.x.clone().map(|n| clamp_i64(&floor_div(&n, &self.w)));
@@ -377,6 +441,16 @@ fn floor_div(n: &Int, d: &Int) -> Int {
     } else {
         q
     }
+}
+
+/// `[a, b]` as machine words, when all four fit.
+fn fast4(a: &[Int; 3], b: &Int) -> Option<[i64; 4]> {
+    Some([
+        int::to_i64(&a[0])?,
+        int::to_i64(&a[1])?,
+        int::to_i64(&a[2])?,
+        int::to_i64(b)?,
+    ])
 }
 
 fn clamp_i64(v: &Int) -> i64 {
@@ -459,7 +533,10 @@ pub fn on_segment_big(a: &[Int; 3], b: &[Int; 3], n: &[Int; 3], c: &Int) -> Opti
     Some(HPoint::from_big(x, den))
 }
 
-/// An arbitrary-precision plane `n · x = c` with its floating-point shadow.
+/// An arbitrary-precision plane `n · x = c` with its floating-point shadow; as a
+/// half-space, `n · x <= c` is its inner side.
+///
+/// Equality and hashing are those of `(n, c)`; the shadows only serve the filters.
 #[derive(Clone, Debug)]
 pub struct BigPlane {
     /// Normal (any non-zero integer vector).
@@ -469,13 +546,32 @@ pub struct BigPlane {
     nf: [f64; 3],
     cf: f64,
     filterable: bool,
+    /// `[n, c]` when all four fit `i64`.
+    small: Option<[i64; 4]>,
+}
+
+impl PartialEq for BigPlane {
+    fn eq(&self, o: &Self) -> bool {
+        self.n == o.n && self.c == o.c
+    }
+}
+impl Eq for BigPlane {}
+impl Hash for BigPlane {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        self.n.hash(h);
+        self.c.hash(h);
+    }
 }
 
 impl BigPlane {
     /// The plane `n · x = c`.
     pub fn new(n: [Int; 3], c: Int) -> BigPlane {
-        let nf = [0, 1, 2].map(|i| int::to_f64(&n[i]));
-        let cf = int::to_f64(&c);
+        let small = fast4(&n, &c);
+        // Machine words convert as the arbitrary-precision values would (nearest double).
+        let (nf, cf) = match &small {
+            Some(s) => ([s[0] as f64, s[1] as f64, s[2] as f64], s[3] as f64),
+            None => (n.each_ref().map(int::to_f64), int::to_f64(&c)),
+        };
         let filterable = nf.iter().all(|v| v.is_finite()) && cf.is_finite();
         BigPlane {
             n,
@@ -483,11 +579,97 @@ impl BigPlane {
             nf,
             cf,
             filterable,
+            small,
         }
     }
 
-    /// Exact sign of `n · X - c · W` (filtered as [`Plane::side`]).
+    /// The plane `n · x = c` divided by the gcd of `n` and `c`, so that equal
+    /// half-spaces are equal values. Panics when `n` is zero.
+    pub fn reduced(n: [Int; 3], c: Int) -> BigPlane {
+        let wide = |v: &Int| int::to_i128(v).filter(|&v| v != i128::MIN);
+        if let [Some(a), Some(b), Some(d), Some(e)] = [&n[0], &n[1], &n[2], &c].map(wide) {
+            return BigPlane::reduced_wide([a, b, d], e);
+        }
+        let mut g = int::gcd(&int::gcd(&n[0], &n[1]), &n[2]);
+        assert!(g != Int::ZERO, "plane with a zero normal");
+        if g != Int::ONE {
+            g = int::gcd(&g, &c);
+        }
+        if g > Int::ONE {
+            BigPlane::new(n.map(|v| v / &g), c / g)
+        } else {
+            BigPlane::new(n, c)
+        }
+    }
+
+    /// [`BigPlane::reduced`] on machine integers (`n != 0`, no `i128::MIN`).
+    fn reduced_wide(n: [i128; 3], c: i128) -> BigPlane {
+        let g = gcd3(&n);
+        assert!(g != 0, "plane with a zero normal");
+        let g = int::gcd_u128(g, c.unsigned_abs()) as i128;
+        BigPlane::new(n.map(|v| Int::from(v / g)), Int::from(c / g))
+    }
+
+    /// The half-space `n · x <= c` for a rational `c`, scaled to integers and
+    /// [reduced](BigPlane::reduced).
+    pub fn with_rational_offset(n: [Int; 3], c: &Rational) -> BigPlane {
+        let d = c.denom();
+        BigPlane::reduced(n.map(|v| v * &d), c.numer())
+    }
+
+    /// The same plane with the opposite orientation (the complementary closed
+    /// half-space `n · x >= c`).
+    pub fn flipped(&self) -> BigPlane {
+        BigPlane {
+            n: self.n.clone().map(|v| -v),
+            c: -self.c.clone(),
+            nf: self.nf.map(|v| -v),
+            cf: -self.cf,
+            filterable: self.filterable,
+            small: self.small.and_then(|s| {
+                Some([
+                    s[0].checked_neg()?,
+                    s[1].checked_neg()?,
+                    s[2].checked_neg()?,
+                    s[3].checked_neg()?,
+                ])
+            }),
+        }
+    }
+
+    /// The plane moved by the vector `t` (`{x + t}` for `x` on it), reduced.
+    pub fn translated(&self, t: &HPoint) -> BigPlane {
+        if let (Some(h), Some(x)) = (&self.small, &t.small) {
+            // Products of two words fit `i128`; the sums are checked.
+            let w = x[3] as i128;
+            let nt = (h[0] as i128 * x[0] as i128)
+                .checked_add(h[1] as i128 * x[1] as i128)
+                .and_then(|v| v.checked_add(h[2] as i128 * x[2] as i128));
+            if let Some(c) = nt.and_then(|v| v.checked_add(h[3] as i128 * w)) {
+                if c != i128::MIN {
+                    let n = [h[0], h[1], h[2]].map(|v| v as i128 * w);
+                    return BigPlane::reduced_wide(n, c);
+                }
+            }
+        }
+        let nt = dot_big(&self.n, &t.x);
+        BigPlane::reduced(self.n.clone().map(|v| v * &t.w), &self.c * &t.w + nt)
+    }
+
+    /// Exact sign of `n · X - c · W` (filtered as [`Plane::side`], after a
+    /// machine-word path when the plane and the point fit `i64`).
+    #[inline]
     pub fn side(&self, p: &HPoint) -> Sign {
+        if let (Some(h), Some(x)) = (&self.small, &p.small) {
+            let t = [0, 1, 2, 3].map(|i| h[i] as i128 * x[i] as i128);
+            if let Some(v) = t[0]
+                .checked_add(t[1])
+                .and_then(|v| v.checked_add(t[2]))
+                .and_then(|v| v.checked_sub(t[3]))
+            {
+                return Sign::of_i128(v);
+            }
+        }
         if self.filterable && p.filterable {
             let t = [0, 1, 2].map(|i| self.nf[i] * p.f[i]);
             let v = t[0] + t[1] + t[2] - self.cf;
@@ -532,7 +714,7 @@ mod tests {
         let y = Plane::new([0, 1, 0], 2);
         let d = Plane::new([1, 1, 1], 4);
         let q = HPoint::meet(&x, &y, &d).unwrap();
-        assert_eq!(q.int, Some([1, 2, 1]));
+        assert_eq!(q.as_int(), Some(&[1, 2, 1]));
         // A rational point: x = 1, y = 2, 3z = 4.
         let z = Plane::new([1, 1, 3], 7);
         let q = HPoint::meet(&x, &y, &z).unwrap();
@@ -540,7 +722,51 @@ mod tests {
         assert_eq!(z.side(&q), Sign::Zero);
         assert_eq!(d.side(&q), Sign::Positive);
         let s = HPoint::on_segment(&[0, 0, 0], &[3, 3, 3], &Plane::new([1, 0, 0], 1));
-        assert_eq!(s.unwrap().int, Some([1, 1, 1]));
+        assert_eq!(s.unwrap().as_int(), Some(&[1, 1, 1]));
+    }
+
+    #[test]
+    fn point_arithmetic_and_big_planes() {
+        let r = |n: i64, d: i64| Rational::from_i128(n as i128, d as i128);
+        let p = HPoint::from_rationals(&[r(1, 2), r(1, 3), r(2, 1)]);
+        assert_eq!(p.den(), &Int::from(6));
+        assert_eq!(p.as_int(), None);
+        let q = HPoint::from_rationals(&[r(1, 2), r(2, 3), r(-2, 1)]);
+        assert_eq!(p.add(&q).as_int(), Some(&[1, 1, 0]));
+        assert_eq!(p.sub(&q).to_rationals(), [r(0, 1), r(-1, 3), r(4, 1)]);
+        assert_eq!(p.neg().add(&p), HPoint::int([0, 0, 0]));
+        // x <= 1/2, as 2x <= 1 (and 4x <= 2 reduces to it).
+        let h = BigPlane::reduced([4, 0, 0].map(Int::from), Int::from(2));
+        assert_eq!(
+            h,
+            BigPlane::with_rational_offset([1, 0, 0].map(Int::from), &r(1, 2))
+        );
+        assert_eq!((h.n[0].clone(), h.c.clone()), (Int::from(2), Int::from(1)));
+        assert_eq!(h.side(&p), Sign::Zero);
+        let moved = h.translated(&HPoint::from_rationals(&[r(1, 4), r(0, 1), r(0, 1)]));
+        assert_eq!(moved.side(&p), Sign::Negative);
+        assert_eq!(moved.flipped().side(&p), Sign::Positive);
+        // Beyond the machine words: the same signs by the filter or exactly.
+        let big = Int::from(1) << 80usize;
+        let far = BigPlane::reduced([big.clone(), Int::ZERO, Int::ZERO], &big * Int::from(3));
+        assert_eq!(far.side(&HPoint::int([3, 7, 7])), Sign::Zero);
+        assert_eq!(far.side(&p), Sign::Negative);
+        assert_eq!(far.flipped().side(&p), Sign::Positive);
+        // The machine-word and arbitrary-precision paths of `translated` and `reduced`
+        // agree: (n·w) · x <= c·w + n·X, divided by the common gcd.
+        for plane in [&h, &moved, &far, &far.flipped()] {
+            for t in [&p, &q, &HPoint::int([i64::MAX, 1, -3])] {
+                let (x, w) = (t.num(), t.den());
+                let n = plane.n.clone().map(|v| v * w);
+                let c =
+                    &plane.c * w + &plane.n[0] * &x[0] + &plane.n[1] * &x[1] + &plane.n[2] * &x[2];
+                let g = int::gcd(&int::gcd(&int::gcd(&n[0], &n[1]), &n[2]), &c);
+                let want = BigPlane::new(n.map(|v| v / &g), c / &g);
+                let got = plane.translated(t);
+                assert_eq!((&got.n, &got.c), (&want.n, &want.c));
+                assert_eq!(got.small, want.small);
+            }
+        }
     }
 
     #[test]
