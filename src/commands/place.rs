@@ -12,7 +12,7 @@ use crate::commands::placement_args::{
 use crate::output;
 use crate::{limits, Global};
 use apart::assembly::Assembly;
-use apart::stack::exact::{q_from_f64, QBox};
+use apart::kernel::{Aabb, Rational};
 use apart::stack::orientation::{orientations, Base};
 use apart::stack::part::PartModel;
 use apart::stack::partial::{place, Cost, Moving, PlaceOptions, PlaceStats, Region};
@@ -141,19 +141,19 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         }
     }
     let to_grid = |v: f64, flag: &str| grid_value(v, h, flag);
-    let boxed = |text: &str, flag: &str| -> anyhow::Result<QBox> {
+    let boxed = |text: &str, flag: &str| -> anyhow::Result<Aabb<Rational>> {
         let v = parse_numbers(text, 6, flag)?;
         anyhow::ensure!(
             (0..3).all(|i| v[i] <= v[i + 3]),
             "{flag} \"{text}\" is empty (a low corner above the high one)"
         );
-        Ok(QBox {
-            lo: [
+        Ok(Aabb {
+            min: [
                 to_grid(v[0], flag)?,
                 to_grid(v[1], flag)?,
                 to_grid(v[2], flag)?,
             ],
-            hi: [
+            max: [
                 to_grid(v[3], flag)?,
                 to_grid(v[4], flag)?,
                 to_grid(v[5], flag)?,
@@ -186,7 +186,7 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
                 anyhow::ensure!((0.0..=1.0).contains(&w), "--weight {w} is not in [0, 1]");
                 let f = parse_numbers(&args.floor_point, 3, "--floor-point")?;
                 Cost::Stacking {
-                    w: q_from_f64(w).expect("finite"),
+                    w: Rational::from_f64(w).expect("finite"),
                     floor: [
                         to_grid(f[0], "--floor-point")?,
                         to_grid(f[1], "--floor-point")?,
@@ -267,11 +267,11 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
 }
 
 /// The bounding box of every part grown by the new part's largest extent.
-fn default_region(asm: &Assembly, part: &PartModel) -> QBox {
-    let mut b: Option<QBox> = None;
+fn default_region(asm: &Assembly, part: &PartModel) -> Aabb<Rational> {
+    let mut b: Option<Aabb<Rational>> = None;
     for p in &asm.parts {
         for piece in &p.pieces {
-            let pb = QBox::of_points(piece.vertices(), piece.den());
+            let pb = Aabb::of_scaled(piece.vertices(), piece.den());
             b = Some(match b {
                 None => pb,
                 Some(a) => a.union(&pb),
@@ -283,12 +283,12 @@ fn default_region(asm: &Assembly, part: &PartModel) -> QBox {
         .orient(&apart::stack::orientation::Orientation::IDENTITY)
         .extent;
     let grow = (0..3)
-        .map(|i| &e.hi[i] - &e.lo[i])
+        .map(|i| &e.max[i] - &e.min[i])
         .max()
         .expect("three axes");
-    QBox {
-        lo: b.lo.clone().map(|v| &v - &grow),
-        hi: b.hi.clone().map(|v| &v + &grow),
+    Aabb {
+        min: b.min.clone().map(|v| &v - &grow),
+        max: b.max.clone().map(|v| &v + &grow),
     }
 }
 

@@ -5,7 +5,7 @@
 use crate::output;
 use apart::assembly::Assembly;
 use apart::draw::View;
-use apart::stack::exact::{q_from_f64, Q};
+use apart::kernel::Rational;
 use apart::stack::orientation::{Base, Orientation};
 use apart::stack::part::PartModel;
 use apart::stack::partial::{ObstacleStats, PlaceStats};
@@ -135,8 +135,8 @@ pub fn parse_bases(texts: &[String]) -> anyhow::Result<Vec<Base>> {
 }
 
 /// A value given in input units, exactly in grid units (`h` is a power of two).
-pub fn grid_value(v: f64, h: f64, flag: &str) -> anyhow::Result<Q> {
-    q_from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag} {v} is not a finite number"))
+pub fn grid_value(v: f64, h: f64, flag: &str) -> anyhow::Result<Rational> {
+    Rational::from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag} {v} is not a finite number"))
 }
 
 /// The exact turn about z as its rational cosine and sine, `["a/c", "b/c"]`.
@@ -146,13 +146,13 @@ pub fn exact_rotation(o: &Orientation) -> [String; 2] {
 }
 
 /// A grid-unit rational in input units, as `f64`.
-pub fn qunits(v: &Q, h: f64) -> f64 {
+pub fn qunits(v: &Rational, h: f64) -> f64 {
     v.to_f64() * h
 }
 
 /// A grid-unit rational in input units, exactly (`h` is a power of two).
-pub fn exact_units(v: &Q, h: f64) -> String {
-    let step = q_from_f64(h).expect("the grid step is a finite power of two");
+pub fn exact_units(v: &Rational, h: f64) -> String {
+    let step = Rational::from_f64(h).expect("the grid step is a finite power of two");
     (v * &step).to_string()
 }
 

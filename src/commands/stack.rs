@@ -13,6 +13,7 @@ use crate::commands::placement_args::{
 use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
+use apart::kernel::Rational;
 use apart::stack::planner::{stack_with, StackOptions, StackPlan};
 use apart::stack::stability::ContactWith;
 use serde::Serialize;
@@ -126,7 +127,7 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let extent = part
         .orient(&apart::stack::orientation::Orientation::IDENTITY)
         .extent;
-    let size = |i: usize| (&extent.hi[i] - &extent.lo[i]).to_f64() * h;
+    let size = |i: usize| (&extent.max[i] - &extent.min[i]).to_f64() * h;
     let floor = match &args.floor {
         Some(text) => {
             let v = parse_numbers(text, 4, "--floor")?;
@@ -140,7 +141,7 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     let mut opts = StackOptions::new(
         args.count,
-        apart::stack::exact::q_from_f64(args.weight).expect("checked finite"),
+        Rational::from_f64(args.weight).expect("checked finite"),
         [
             to_grid(floor[0], "--floor")?,
             to_grid(floor[1], "--floor")?,
@@ -150,8 +151,8 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
         match args.max_height {
             Some(m) => to_grid(m, "--max-height")?,
             None => {
-                let height = &extent.hi[2] - &extent.lo[2];
-                &height * &apart::stack::exact::q(args.count as i64)
+                let height = &extent.max[2] - &extent.min[2];
+                &height * &Rational::from(args.count as i64)
             }
         },
     );

@@ -7,8 +7,8 @@
 //! faces; the SVG's order must be right wherever faces overlap. Every part is named in
 //! the legend, in placing order.
 
-// apart-stack's test helpers: the sheet-metal test parts as placement models, and the
-// floor region around a part.
+// apart-stack's test helpers: the sheet-metal test parts as placement models, the floor
+// region around a part, and shorthands for rationals.
 #[path = "../../stack/tests/common/mod.rs"]
 mod stack_common;
 
@@ -16,13 +16,12 @@ use apart_draw::colors::{part_colors, Rgb};
 use apart_draw::stack_render::{plan_png, plan_shapes, plan_svg, scene_shapes};
 use apart_draw::svg_png::svg_to_pixmap;
 use apart_draw::{shapes_part_ids, shapes_png, shapes_svg, View};
-use apart_stack::exact::{q, qfrac};
 use apart_stack::part::PartModel;
 use apart_stack::planner::{stack, StackOptions};
 use apart_stack::scene::Scene;
 use resvg::tiny_skia::Pixmap;
-use stack_common::floor_around;
 use stack_common::parts::{channel, complex_part, cube, triangle_part};
+use stack_common::{floor_around, q, qfrac};
 
 const W: u32 = 480;
 const H: u32 = 360;

@@ -6,9 +6,9 @@
 #[path = "../tests/common/parts.rs"]
 mod parts;
 
-use apart_stack::exact::{q, qfrac, Point};
+use apart_kernel::{HPoint, Rational};
+use apart_pieces::interference::interiors_meet_translated;
 use apart_stack::extrapolate::Template;
-use apart_stack::interference::overlaps;
 use apart_stack::obstacle::ObstacleShape;
 use apart_stack::orientation::{Orientation, ZRotation};
 use apart_stack::part::PartModel;
@@ -77,10 +77,10 @@ fn micro() {
                 println!("| extrapolation, {name} | {label} | {:.1} |", t * 1e6);
             }
         }
-        let shift = Point::from_q(&[qfrac(1, 2), q(1), q(0)]);
-        let zero = Point::from_q(&[q(0), q(0), q(0)]);
+        let shift = HPoint::from_rationals(&[qfrac(1, 2), q(1), q(0)]);
+        let zero = HPoint::from_rationals(&[q(0), q(0), q(0)]);
         let t = per_call(|| {
-            std::hint::black_box(overlaps(a, &shift, b, &zero));
+            std::hint::black_box(interiors_meet_translated(a, &shift.sub(&zero), b));
         });
         println!("| interference test, {name} | {label} | {:.1} |", t * 1e6);
     }
@@ -90,11 +90,11 @@ fn micro() {
 fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<String>) {
     let e = part.orient(&Orientation::IDENTITY).extent;
     let size = (0..2)
-        .map(|i| (&e.hi[i] - &e.lo[i]).to_f64())
+        .map(|i| (&e.max[i] - &e.min[i]).to_f64())
         .fold(0.0, f64::max);
     let side = ((n as f64).sqrt().ceil() * size * 1.25).ceil() as i64;
     let half = side / 2 + 1;
-    let height = &(&e.hi[2] - &e.lo[2]) * &q(n as i64);
+    let height = &(&e.max[2] - &e.min[2]) * &q(n as i64);
     let mut opts = StackOptions::new(
         n,
         qfrac(w.0, w.1),
@@ -138,6 +138,14 @@ fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<
         s.place.cells,
         s.seconds
     ));
+}
+
+fn q(v: i64) -> Rational {
+    Rational::from(v)
+}
+
+fn qfrac(n: i64, d: i64) -> Rational {
+    Rational::from_i128(n.into(), d.into())
 }
 
 fn main() {

@@ -20,7 +20,6 @@
 //! as `b_j − R_θ1 a_i` and its facet planes through them. Tests compare extrapolated
 //! obstacles with freshly computed ones.
 
-use crate::exact::HalfSpace;
 use crate::obstacle::{provenance, ObstacleShape};
 use crate::orientation::ZRotation;
 use apart_kernel::int::sign_of;
@@ -118,7 +117,7 @@ impl Template {
     /// The obstacle at `theta`, from the structure (call only when [`Self::valid_at`]).
     pub fn extrapolate(&self, theta: ZRotation) -> ObstacleShape {
         let turned_den = self.moving.den() * Int::from(theta.c);
-        let den = crate::exact::lcm(self.fixed.den(), &turned_den);
+        let den = apart_kernel::int::lcm(self.fixed.den(), &turned_den);
         let kf = &den / self.fixed.den();
         let km = &den / &turned_den;
         let fixed: Vec<Vec3> = self.fixed.vertices().iter().map(|v| v.scale(&kf)).collect();
@@ -144,7 +143,7 @@ impl Template {
                 );
                 let n = v1.sub(v0).cross(&v2.sub(v1)).primitive();
                 let off = n.dot(v0);
-                HalfSpace::of_facet(&n, &off, &den)
+                crate::obstacle::facet_plane(&n, &off, &den)
             })
             .collect();
         ObstacleShape {

@@ -11,18 +11,17 @@
 //! splitting stops as soon as the rest lies beyond one facet plane, which also skips
 //! cells the obstacle does not reach. Every decision is an exact linear program.
 
-use crate::exact::{q, HalfSpace, Point, QBox, Q};
 use crate::obstacle::Obstacle;
 use crate::qp::min_linear;
-use apart_kernel::{Int, Sign};
+use apart_kernel::{Aabb, BigPlane, HPoint, Int, Rational, Sign};
 
 /// A closed convex cell `{p : every constraint}`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Cell {
     /// Its half-spaces.
-    pub(crate) constraints: Vec<HalfSpace>,
+    pub(crate) constraints: Vec<BigPlane>,
     /// A box containing the cell (Ω's box tightened by axis-aligned constraints).
-    pub(crate) bbox: QBox,
+    pub(crate) bbox: Aabb<Rational>,
 }
 
 /// The result of subtracting an obstacle from a cell.
@@ -33,7 +32,7 @@ pub(crate) enum Split {
     /// The cell minus the open obstacle, as closed convex pieces (possibly none), each
     /// with the half-space that cut it off (none for the last piece when the rest was
     /// found beyond a facet).
-    Pieces(Vec<(Cell, Option<HalfSpace>)>),
+    Pieces(Vec<(Cell, Option<BigPlane>)>),
 }
 
 /// Counters of the exact work done by subtractions.
@@ -51,7 +50,7 @@ pub(crate) struct SplitStats {
 
 impl Cell {
     /// The cell of a box.
-    pub(crate) fn of_box(b: &QBox) -> Cell {
+    pub(crate) fn of_box(b: &Aabb<Rational>) -> Cell {
         Cell {
             constraints: b.halfspaces(),
             bbox: b.clone(),
@@ -60,16 +59,16 @@ impl Cell {
 
     /// Adds a half-space (see [`add_constraint`]), tightening the box when it is
     /// axis-aligned.
-    pub(crate) fn add(&mut self, h: HalfSpace) {
+    pub(crate) fn add(&mut self, h: BigPlane) {
         let axis = (0..3).filter(|&i| h.n[i] != Int::ZERO).collect::<Vec<_>>();
         if let [i] = axis[..] {
-            let v = crate::exact::qdiv(&crate::exact::qz(&h.off), &crate::exact::qz(&h.n[i]));
+            let v = Rational::new(h.c.clone(), h.n[i].clone());
             if h.n[i] > Int::ZERO {
-                if v < self.bbox.hi[i] {
-                    self.bbox.hi[i] = v;
+                if v < self.bbox.max[i] {
+                    self.bbox.max[i] = v;
                 }
-            } else if v > self.bbox.lo[i] {
-                self.bbox.lo[i] = v;
+            } else if v > self.bbox.min[i] {
+                self.bbox.min[i] = v;
             }
         }
         add_constraint(&mut self.constraints, h);
@@ -79,7 +78,7 @@ impl Cell {
 /// Adds `h` to a list of half-spaces, keeping only the tightest of parallel ones with
 /// the same orientation (stacked identical parts give many such planes; without this a
 /// cell's list would grow with every obstacle subtracted from it).
-pub(crate) fn add_constraint(list: &mut Vec<HalfSpace>, h: HalfSpace) {
+pub(crate) fn add_constraint(list: &mut Vec<BigPlane>, h: BigPlane) {
     for g in list.iter_mut() {
         if let Some(cmp) = parallel_offsets(g, &h) {
             if cmp == std::cmp::Ordering::Greater {
@@ -93,7 +92,7 @@ pub(crate) fn add_constraint(list: &mut Vec<HalfSpace>, h: HalfSpace) {
 
 /// For half-spaces with positively parallel normals, the comparison of their offsets
 /// scaled to the same normal (`Less`: `a` is the tighter); `None` otherwise.
-fn parallel_offsets(a: &HalfSpace, b: &HalfSpace) -> Option<std::cmp::Ordering> {
+fn parallel_offsets(a: &BigPlane, b: &BigPlane) -> Option<std::cmp::Ordering> {
     // b.n = (s / t) a.n with s/t > 0  <=>  a.n × b.n = 0 and a.n · b.n > 0.
     let (x, y) = (&a.n, &b.n);
     let cross_zero = &x[1] * &y[2] == &x[2] * &y[1]
@@ -102,14 +101,14 @@ fn parallel_offsets(a: &HalfSpace, b: &HalfSpace) -> Option<std::cmp::Ordering> 
     if !cross_zero {
         return None;
     }
-    // Compare a.off / |a.n| and b.off / |b.n| through one non-zero component i:
-    // with b.n_i = k a.n_i, a is tighter when a.off · b.n_i < b.off · a.n_i (same sign).
+    // Compare a.c / |a.n| and b.c / |b.n| through one non-zero component i:
+    // with b.n_i = k a.n_i, a is tighter when a.c · b.n_i < b.c · a.n_i (same sign).
     let i = (0..3).find(|&i| x[i] != Int::ZERO)?;
     if (x[i] > Int::ZERO) != (y[i] > Int::ZERO) {
         return None;
     }
-    let l = &a.off * &y[i];
-    let r = &b.off * &x[i];
+    let l = &a.c * &y[i];
+    let r = &b.c * &x[i];
     Some(if x[i] > Int::ZERO {
         l.cmp(&r)
     } else {
@@ -124,14 +123,14 @@ fn parallel_offsets(a: &HalfSpace, b: &HalfSpace) -> Option<std::cmp::Ordering> 
 pub(crate) fn subtract(
     cell: &Cell,
     obstacle: &Obstacle,
-    bounds: &QBox,
-    known: &[Point],
+    bounds: &Aabb<Rational>,
+    known: &[HPoint],
     stats: &mut SplitStats,
 ) -> Split {
     // Quick rejections: boxes whose interiors are disjoint; the whole obstacle on or
     // beyond one of the cell's own planes.
     if let Some(ob) = &obstacle.bbox {
-        if (0..3).any(|i| ob.hi[i] <= cell.bbox.lo[i] || cell.bbox.hi[i] <= ob.lo[i]) {
+        if (0..3).any(|i| ob.max[i] <= cell.bbox.min[i] || cell.bbox.max[i] <= ob.min[i]) {
             stats.quick_rejects += 1;
             return Split::Unchanged;
         }
@@ -147,16 +146,16 @@ pub(crate) fn subtract(
         }
     }
     stats.full += 1;
-    let lower = |h: &HalfSpace| -> Q { &bounds.min_dot(&h.n) - &q(1) };
+    let lower = |h: &BigPlane| -> Rational { &bounds.min_dot(&h.n) - &Rational::from(1) };
     let mut rest = cell.clone();
-    let mut witnesses: Vec<Point> = known.to_vec();
+    let mut witnesses: Vec<HPoint> = known.to_vec();
     let mut pieces = Vec::new();
     // Facets in decreasing float distance of a point of the cell beyond them (its known
     // point, or its box centre): a facet separating the cell from the obstacle is then
     // usually tried first, and one linear program settles the subtraction.
     let probe: [f64; 3] = match known.first() {
-        Some(p) => p.to_f64(),
-        None => [0, 1, 2].map(|i| (cell.bbox.lo[i].to_f64() + cell.bbox.hi[i].to_f64()) / 2.0),
+        Some(p) => p.to_rationals().map(|v| v.to_f64()),
+        None => [0, 1, 2].map(|i| (cell.bbox.min[i].to_f64() + cell.bbox.max[i].to_f64()) / 2.0),
     };
     let mut order: Vec<(f64, usize)> = obstacle
         .halfspaces
@@ -166,7 +165,7 @@ pub(crate) fn subtract(
             let n = h.n.clone().map(|c| apart_kernel::int::to_f64(&c));
             let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             let d = (n[0] * probe[0] + n[1] * probe[1] + n[2] * probe[2]
-                - apart_kernel::int::to_f64(&h.off))
+                - apart_kernel::int::to_f64(&h.c))
                 / len;
             (if d.is_finite() { -d } else { 0.0 }, k)
         })
@@ -186,14 +185,14 @@ pub(crate) fn subtract(
                     Split::Pieces(pieces)
                 };
             };
-            if vmin >= crate::exact::qz(&h.off) {
+            if vmin >= Rational::from_int(h.c.clone()) {
                 if pieces.is_empty() {
                     return Split::Unchanged;
                 }
                 pieces.push((rest, None));
                 return Split::Pieces(pieces);
             }
-            witnesses.push(Point::from_q(&arg));
+            witnesses.push(HPoint::from_rationals(&arg));
         }
         // A point of the rest on or beyond the plane: a (possibly flat) piece lies beyond.
         let f = h.flipped();
@@ -201,13 +200,13 @@ pub(crate) fn subtract(
             stats.linear_programs += 1;
             let (neg_max, arg) =
                 min_linear(&rest.constraints, &f.n, &lower(&f)).expect("the rest is not empty");
-            witnesses.push(Point::from_q(&arg));
-            -&neg_max >= crate::exact::qz(&h.off)
+            witnesses.push(HPoint::from_rationals(&arg));
+            -&neg_max >= Rational::from_int(h.c.clone())
         };
         if beyond {
             let mut piece = rest.clone();
             piece.add(f.clone());
-            if (0..3).all(|i| piece.bbox.lo[i] <= piece.bbox.hi[i]) {
+            if (0..3).all(|i| piece.bbox.min[i] <= piece.bbox.max[i]) {
                 stats.pieces += 1;
                 pieces.push((piece, Some(f)));
             }
@@ -221,27 +220,27 @@ pub(crate) fn subtract(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::QBox;
     use crate::qp::{lexmin, Objective};
+    use crate::testing::q;
 
-    fn cube(lo: i64, hi: i64) -> QBox {
-        QBox {
-            lo: [q(lo), q(lo), q(lo)],
-            hi: [q(hi), q(hi), q(hi)],
+    fn cube(lo: i64, hi: i64) -> Aabb<Rational> {
+        Aabb {
+            min: [q(lo), q(lo), q(lo)],
+            max: [q(hi), q(hi), q(hi)],
         }
     }
 
-    fn obstacle(b: &QBox) -> Obstacle {
+    fn obstacle(b: &Aabb<Rational>) -> Obstacle {
         let mut vertices = Vec::new();
         for i in 0..8 {
             let p = [0, 1, 2].map(|k| {
                 if i >> k & 1 == 1 {
-                    b.hi[k].clone()
+                    b.max[k].clone()
                 } else {
-                    b.lo[k].clone()
+                    b.min[k].clone()
                 }
             });
-            vertices.push(Point::from_q(&p));
+            vertices.push(HPoint::from_rationals(&p));
         }
         Obstacle {
             halfspaces: b.halfspaces(),
@@ -286,7 +285,7 @@ mod tests {
 
     #[test]
     fn parallel_constraints_keep_the_tightest() {
-        let h = |n: [i64; 3], off: i64| HalfSpace::new(n.map(Int::from), Int::from(off));
+        let h = |n: [i64; 3], off: i64| BigPlane::reduced(n.map(Int::from), Int::from(off));
         let mut list = vec![h([1, 0, 0], 5)];
         add_constraint(&mut list, h([2, 0, 0], 8)); // x <= 4: tighter
         assert_eq!(list, vec![h([2, 0, 0], 8)]);
@@ -312,7 +311,7 @@ mod tests {
         let obj = Objective::distance(&[q(5), q(5), q(5)]);
         for (c, _) in &pieces {
             let p = lexmin(&c.constraints, &obj).unwrap();
-            assert!(!obstacle(&omega).contains_open(&Point::from_q(&p)));
+            assert!(!obstacle(&omega).contains_open(&HPoint::from_rationals(&p)));
         }
     }
 }

@@ -17,9 +17,11 @@
 //!
 //! The public API is what a user of placement needs: [`partial::place`] (positions of
 //! a new part among fixed ones, cheapest first) and [`planner::stack`] (a stack of
-//! identical parts), their options and answers, the part model, exact orientations and
-//! values, and for measurements the obstacle and its extrapolation; the cells, the
-//! solvers and the broad phase are internal.
+//! identical parts), their options and answers, the part model, exact orientations, and
+//! for measurements the obstacle and its extrapolation; the cells, the solvers and the
+//! broad phase are internal. Its numbers, points, half-spaces and boxes are apart-kernel's
+//! (`Rational`, `HPoint`, `BigPlane`, `Aabb<Rational>`), its broad phase the kernel's
+//! `Bvh`, its interference test apart-pieces' separating axes.
 //!
 //! Exactness: inputs are integers (grid points); orientations about z are exact rational
 //! rotations from Pythagorean triples ([`orientation`]); positions, costs, obstacles and
@@ -27,7 +29,7 @@
 //! the broad phase (conservative boxes), in reported angles and in pictures.
 //!
 //! ```
-//! use apart_stack::exact::{q, QBox};
+//! use apart_kernel::{Aabb, Rational};
 //! use apart_stack::orientation::{orientations, Base};
 //! use apart_stack::partial::{place, Cost, Moving, PlaceOptions, Region};
 //! use apart_stack::part::PartModel;
@@ -39,30 +41,42 @@
 //! scene.add_fixed_part(&part.pieces);
 //! let moving = Moving::new(part, &orientations(90.0, &[Base::IDENTITY], 0.05), true);
 //! let opts = PlaceOptions {
-//!     region: Region::Container(QBox { lo: [q(-5), q(-5), q(0)], hi: [q(5), q(5), q(5)] }),
-//!     cost: Cost::Distance([q(0), q(0), q(0)]),
+//!     region: Region::Container(Aabb {
+//!         min: [-5, -5, 0].map(Rational::from),
+//!         max: [5, 5, 5].map(Rational::from),
+//!     }),
+//!     cost: Cost::Distance([0, 0, 0].map(Rational::from)),
 //!     clearance: None,
 //!     extrapolate: true,
 //! };
 //! let best = &place(&scene, &moving, &opts, 1).unwrap().candidates[0];
-//! assert_eq!(best.cost, q(1)); // touching a face of the fixed cube
+//! assert_eq!(best.cost, Rational::from(1)); // touching a face of the fixed cube
 //! ```
 
-// The float broad phase (to be replaced by the kernel's one box tree, issue 12); parts of
-// it no placement path calls stay, unexported.
-#[allow(dead_code)]
-mod bvh;
-pub mod exact;
 pub mod extrapolate;
 mod free_space;
 mod guide;
-pub mod interference;
 pub mod obstacle;
 pub mod orientation;
 pub mod part;
 pub mod partial;
 pub mod planner;
 mod qp;
-mod rational;
 pub mod scene;
 pub mod stability;
+
+/// Shorthands for the exact numbers of the unit tests.
+#[cfg(test)]
+pub(crate) mod testing {
+    use apart_kernel::Rational;
+
+    /// The integer `v`.
+    pub(crate) fn q(v: i64) -> Rational {
+        Rational::from(v)
+    }
+
+    /// `n / d`.
+    pub(crate) fn qfrac(n: i64, d: i64) -> Rational {
+        Rational::from_i128(n.into(), d.into())
+    }
+}

@@ -7,8 +7,8 @@
 //! quick rejection). Construction is `apart_minkowski::minkowski_difference`, exact and
 //! output-sensitive.
 
-use crate::exact::{sqrt_upper, HalfSpace, Point, QBox, Q};
-use apart_kernel::{Int, Vec3};
+use apart_kernel::int::{ceil_sqrt, Int};
+use apart_kernel::{Aabb, BigPlane, HPoint, Rational, Vec3};
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -21,7 +21,7 @@ pub struct ObstacleShape {
     /// Common denominator of the vertices.
     pub den: Int,
     /// Facets as half-spaces of true coordinates, in the order of `cycles`.
-    pub halfspaces: Vec<HalfSpace>,
+    pub halfspaces: Vec<BigPlane>,
     /// Each facet's vertex cycle (indices into `vertices`), counter-clockwise outside.
     pub(crate) cycles: Vec<Vec<u32>>,
 }
@@ -38,7 +38,7 @@ impl ObstacleShape {
         let halfspaces = polytope
             .facets()
             .iter()
-            .map(|f| HalfSpace::of_facet(&f.normal, &f.offset, polytope.den()))
+            .map(|f| facet_plane(&f.normal, &f.offset, polytope.den()))
             .collect();
         ObstacleShape {
             vertices: polytope.vertices().to_vec(),
@@ -50,8 +50,8 @@ impl ObstacleShape {
 
     /// The obstacle moved by `t` (the fixed piece placed at `t`), grown by a horizontal
     /// clearance when given.
-    pub(crate) fn placed(&self, t: &Point, clearance: Option<&Q>) -> Obstacle {
-        let halfspaces: Vec<HalfSpace> = self
+    pub(crate) fn placed(&self, t: &HPoint, clearance: Option<&Rational>) -> Obstacle {
+        let halfspaces: Vec<BigPlane> = self
             .halfspaces
             .iter()
             .map(|h| {
@@ -67,13 +67,13 @@ impl ObstacleShape {
             _ => Some(
                 self.vertices
                     .iter()
-                    .map(|v| Point::stored(v, &self.den).add(t))
+                    .map(|v| HPoint::from_big(v.to_ints(), self.den.clone()).add(t))
                     .collect(),
             ),
         };
         let bbox = vertices
             .as_ref()
-            .map(|_| QBox::of_points(&self.vertices, &self.den).translated(&t.to_q()));
+            .map(|_| Aabb::of_scaled(&self.vertices, &self.den).translated(&t.to_rationals()));
         Obstacle {
             halfspaces,
             vertices,
@@ -85,12 +85,25 @@ impl ObstacleShape {
 /// `n · p <= off + clearance · r` with `r >= ‖(n_x, n_y)‖` (a rational upper bound
 /// within 2^-20): the paper's shift of each inequality's right-hand side (§VI-A.2),
 /// horizontal only so that a part can still rest on the one below.
-pub(crate) fn grow_horizontally(h: &HalfSpace, clearance: &Q) -> HalfSpace {
+pub(crate) fn grow_horizontally(h: &BigPlane, clearance: &Rational) -> BigPlane {
     let s = &h.n[0] * &h.n[0] + &h.n[1] * &h.n[1];
     let r = sqrt_upper(&s);
     let shift = clearance * &r;
-    let off = &crate::exact::qz(&h.off) + &shift;
-    HalfSpace::with_q(h.n.clone(), &off)
+    let off = &Rational::from_int(h.c.clone()) + &shift;
+    BigPlane::with_rational_offset(h.n.clone(), &off)
+}
+
+/// A rational `r >= sqrt(s)` within a relative `2^-20` of it, for `s >= 0`:
+/// `⌈sqrt(s · 4^20)⌉ / 2^20`.
+fn sqrt_upper(s: &Int) -> Rational {
+    const K: usize = 20;
+    Rational::new(ceil_sqrt(&(s << (2 * K))), Int::ONE << K)
+}
+
+/// The facet plane `normal · x <= offset` of a polytope whose stored integers are `den`
+/// times its coordinates, as a half-space of true coordinates (reduced).
+pub(crate) fn facet_plane(normal: &Vec3, offset: &Int, den: &Int) -> BigPlane {
+    BigPlane::reduced(normal.to_ints().map(|c| c * den), offset.clone())
 }
 
 /// A placed (and possibly grown) obstacle: the moving piece at `p` overlaps the fixed
@@ -98,16 +111,16 @@ pub(crate) fn grow_horizontally(h: &HalfSpace, clearance: &Q) -> HalfSpace {
 #[derive(Clone, Debug)]
 pub(crate) struct Obstacle {
     /// Half-spaces whose intersection is the closed obstacle.
-    pub(crate) halfspaces: Vec<HalfSpace>,
+    pub(crate) halfspaces: Vec<BigPlane>,
     /// Its vertices when known (not for grown obstacles).
-    pub(crate) vertices: Option<Vec<Point>>,
+    pub(crate) vertices: Option<Vec<HPoint>>,
     /// Its bounding box when known (not for grown obstacles).
-    pub(crate) bbox: Option<QBox>,
+    pub(crate) bbox: Option<Aabb<Rational>>,
 }
 
 impl Obstacle {
     /// True when `p` lies in the open obstacle.
-    pub(crate) fn contains_open(&self, p: &Point) -> bool {
+    pub(crate) fn contains_open(&self, p: &HPoint) -> bool {
         self.halfspaces
             .iter()
             .all(|h| h.side(p) == apart_kernel::Sign::Negative)
@@ -138,4 +151,22 @@ pub(crate) fn provenance(
                 .find_map(|(j, b)| index.get(&b.sub(s)).map(|&i| (i, j as u32)))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::q;
+
+    #[test]
+    fn square_root_bound() {
+        for s in [0i64, 1, 2, 3, 50, 1 << 40] {
+            let r = sqrt_upper(&Int::from(s));
+            assert!(&r * &r >= q(s));
+            if s > 0 {
+                assert!((r.to_f64() - (s as f64).sqrt()) / (s as f64).sqrt() < 1e-5);
+            }
+        }
+        assert_eq!(sqrt_upper(&Int::from(4)), q(2));
+    }
 }

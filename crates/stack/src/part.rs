@@ -1,9 +1,8 @@
 //! The part to place: convex pieces (and its mesh when known), exact centroid, and its
 //! rotated copies for each orientation.
 
-use crate::exact::{q, Point, QBox, Q};
 use crate::orientation::{Base, Orientation};
-use apart_kernel::{Int, Vec3};
+use apart_kernel::{Aabb, HPoint, Int, Rational, Vec3};
 use apart_pieces::Polytope;
 use rustc_hash::FxHashMap as HashMap;
 
@@ -39,8 +38,8 @@ pub struct PartModel {
     pub pieces: Vec<Polytope>,
     /// The boundary (integer points and outward triangles), when known.
     pub mesh: Option<(Vec<Vec3>, Vec<[u32; 3]>)>,
-    centroid: [Q; 3],
-    volume: Q,
+    centroid: [Rational; 3],
+    volume: Rational,
 }
 
 impl PartModel {
@@ -74,26 +73,27 @@ impl PartModel {
     }
 
     /// The exact centre of gravity (uniform density).
-    pub fn centroid(&self) -> &[Q; 3] {
+    pub fn centroid(&self) -> &[Rational; 3] {
         &self.centroid
     }
 
     /// The exact volume.
-    pub fn volume(&self) -> &Q {
+    pub fn volume(&self) -> &Rational {
         &self.volume
     }
 
     /// The part turned to an orientation (about the origin of its coordinates).
     pub fn orient(&self, o: &Orientation) -> OrientedPart {
         let pieces: Vec<Polytope> = self.pieces.iter().map(|p| o.rotate(p)).collect();
-        let boxes: Vec<QBox> = pieces
+        let boxes: Vec<Aabb<Rational>> = pieces
             .iter()
-            .map(|p| QBox::of_points(p.vertices(), p.den()))
+            .map(|p| Aabb::of_scaled(p.vertices(), p.den()))
             .collect();
         let extent = boxes[1..].iter().fold(boxes[0].clone(), |a, b| a.union(b));
-        let c = Point::from_q(&self.centroid);
-        let rc = o.apply_scaled(&Vec3::from_ints(c.x.clone()));
-        let centroid = Point::new(rc.to_ints(), &c.w * Int::from(o.theta.c)).to_q();
+        let c = HPoint::from_rationals(&self.centroid);
+        let rc = o.apply_scaled(&Vec3::from_ints(c.num().clone()));
+        let centroid =
+            HPoint::from_big(rc.to_ints(), c.den() * Int::from(o.theta.c)).to_rationals();
         OrientedPart {
             orientation: *o,
             pieces,
@@ -121,33 +121,33 @@ pub struct OrientedPart {
     /// Rotated pieces.
     pub pieces: Vec<Polytope>,
     /// Exact bounding box of each piece.
-    pub(crate) boxes: Vec<QBox>,
+    pub(crate) boxes: Vec<Aabb<Rational>>,
     /// Exact bounding box of the part.
-    pub extent: QBox,
+    pub extent: Aabb<Rational>,
     /// Rotated centre of gravity.
-    pub centroid: [Q; 3],
+    pub centroid: [Rational; 3],
 }
 
 impl OrientedPart {
     /// A key equal for orientations that give the same shape up to translation.
-    pub(crate) fn shape_key(&self) -> Vec<Vec<Point>> {
-        let lo = Point::from_q(&self.extent.lo);
-        let mut key: Vec<Vec<Point>> = self
+    pub(crate) fn shape_key(&self) -> Vec<Vec<HPoint>> {
+        let lo = HPoint::from_rationals(&self.extent.min);
+        let mut key: Vec<Vec<HPoint>> = self
             .pieces
             .iter()
             .map(|p| {
-                let mut vs: Vec<Point> = p
+                let mut vs: Vec<HPoint> = p
                     .vertices()
                     .iter()
-                    .map(|v| Point::stored(v, p.den()).sub(&lo))
+                    .map(|v| HPoint::from_big(v.to_ints(), p.den().clone()).sub(&lo))
                     .collect();
-                vs.sort_by_key(|v| (v.x.clone(), v.w.clone()));
+                vs.sort_by_key(|v| (v.num().clone(), v.den().clone()));
                 vs
             })
             .collect();
         key.sort_by_key(|v| {
             v.iter()
-                .map(|p| (p.x.clone(), p.w.clone()))
+                .map(|p| (p.num().clone(), p.den().clone()))
                 .collect::<Vec<_>>()
         });
         key
@@ -155,9 +155,9 @@ impl OrientedPart {
 }
 
 /// Exact centroid and volume of a union of convex pieces with disjoint interiors.
-pub(crate) fn centroid_of(pieces: &[Polytope]) -> ([Q; 3], Q) {
-    let mut vol = q(0);
-    let mut moment = [q(0), q(0), q(0)];
+pub(crate) fn centroid_of(pieces: &[Polytope]) -> ([Rational; 3], Rational) {
+    let mut vol = Rational::zero();
+    let mut moment = [Rational::zero(), Rational::zero(), Rational::zero()];
     for p in pieces {
         // Tetrahedra from vertex 0 over fans of every facet: volume6 = det, centroid =
         // (o + a + b + c) / 4; stored coordinates are den times true ones.
@@ -187,10 +187,10 @@ pub(crate) fn centroid_of(pieces: &[Polytope]) -> ([Q; 3], Q) {
         let den = p.den();
         let d3 = den * den * den;
         // True volume = v6 / (6 den³); true moment = Σ det/(6 den³) · s/(4 den).
-        let pv = Q::new(v6, &d3 * Int::from(6));
+        let pv = Rational::new(v6, &d3 * Int::from(6));
         let scale = &d3 * den * Int::from(24);
         for i in 0..3 {
-            moment[i] = &moment[i] + &Q::new(m[i].clone(), scale.clone());
+            moment[i] = &moment[i] + &Rational::new(m[i].clone(), scale.clone());
         }
         vol = &vol + &pv;
     }
@@ -204,7 +204,7 @@ pub(crate) fn distinct_orientations(
     part: &PartModel,
     orientations: &[Orientation],
 ) -> Vec<Orientation> {
-    let mut seen: HashMap<Vec<Vec<Point>>, ()> = HashMap::default();
+    let mut seen: HashMap<Vec<Vec<HPoint>>, ()> = HashMap::default();
     orientations
         .iter()
         .filter(|o| seen.insert(part.orient(o).shape_key(), ()).is_none())
@@ -215,7 +215,7 @@ pub(crate) fn distinct_orientations(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::qfrac;
+    use crate::testing::{q, qfrac};
 
     fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
         Polytope::cuboid(lo, hi).unwrap()

@@ -14,11 +14,8 @@
 //! successive calls yield the optima of further cells in increasing cost, for the
 //! planner's stability and feasibility checks.
 
-use crate::bvh::FBox;
-use crate::exact::{q, Point, QBox, Q};
 use crate::extrapolate::Template;
 use crate::free_space::{subtract, Cell, Split, SplitStats};
-use crate::interference::overlaps;
 use crate::obstacle::{Obstacle, ObstacleShape};
 use crate::orientation::{Base, Orientation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
@@ -28,6 +25,8 @@ use crate::scene::Scene;
 
 /// A newly found interfering pair: its placed obstacle and (fixed piece, moving piece).
 type Detected = (Obstacle, (usize, usize));
+use apart_kernel::{rational, Aabb, Bvh, HPoint, Rational};
+use apart_pieces::interference::interiors_meet_translated;
 use apart_pieces::Polytope;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::cmp::Ordering;
@@ -40,21 +39,21 @@ use std::time::Instant;
 pub enum Region {
     /// The translations themselves lie in this box (Ω given directly; equal `lo` and
     /// `hi` on z make it a plane: 2-D positions).
-    Translations(QBox),
+    Translations(Aabb<Rational>),
     /// The whole part must lie inside this box (Σ: floor area times the maximum
     /// height); Ω(θ) follows from the part's extent in each orientation.
-    Container(QBox),
+    Container(Aabb<Rational>),
 }
 
 impl Region {
     /// Ω for the part in one orientation: the allowed translations (empty when the
     /// part does not fit).
-    pub(crate) fn omega(&self, part: &OrientedPart) -> QBox {
+    pub(crate) fn omega(&self, part: &OrientedPart) -> Aabb<Rational> {
         match self {
             Region::Translations(b) => b.clone(),
-            Region::Container(s) => QBox {
-                lo: crate::exact::qsub3(&s.lo, &part.extent.lo),
-                hi: crate::exact::qsub3(&s.hi, &part.extent.hi),
+            Region::Container(s) => Aabb {
+                min: rational::sub(&s.min, &part.extent.min),
+                max: rational::sub(&s.max, &part.extent.max),
             },
         }
     }
@@ -64,15 +63,15 @@ impl Region {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Cost {
     /// `‖p − p_d‖²` for a desired translation `p_d`.
-    Distance([Q; 3]),
+    Distance([Rational; 3]),
     /// Paper 004 eq. (1) for the new part: `w [(max X − x0)² + (min X − x0)²] +
     /// w [(max Y − y0)² + (min Y − y0)²] + 4 (1 − w) (z_cg − z0)²` over the placed
     /// part's vertices and centre of gravity, with `floor = (x0, y0, z0)`.
     Stacking {
         /// Weight of floor-space use against height, in `[0, 1]`.
-        w: Q,
+        w: Rational,
         /// The floor point `(x0, y0, z0)`.
-        floor: [Q; 3],
+        floor: [Rational; 3],
     },
     /// The same quadratic in the translation for every orientation.
     Quadratic(Box<Objective>),
@@ -85,26 +84,27 @@ impl Cost {
             Cost::Distance(t) => Objective::distance(t),
             Cost::Quadratic(o) => (**o).clone(),
             Cost::Stacking { w, floor } => {
-                let one_w = &q(1) - w;
+                let one_w = &Rational::from(1) - w;
                 let e = &part.extent;
-                let z = || q(0);
+                let z = Rational::zero;
                 let mut h = [[z(), z(), z()], [z(), z(), z()], [z(), z(), z()]];
                 let mut g = [z(), z(), z()];
-                let mut c = q(0);
+                let mut c = Rational::zero();
                 let mut anchor = [z(), z(), z()];
                 for i in 0..2 {
                     // w[(p + u − x0)² + (p + l − x0)²] = 2w p² + 2w(u + l − 2x0) p + w[(u−x0)² + (l−x0)²]
-                    let (u, l) = (&e.hi[i] - &floor[i], &e.lo[i] - &floor[i]);
-                    h[i][i] = &q(2) * w;
-                    g[i] = &(&q(2) * w) * &(&u + &l);
+                    let (u, l) = (&e.max[i] - &floor[i], &e.min[i] - &floor[i]);
+                    h[i][i] = &Rational::from(2) * w;
+                    g[i] = &(&Rational::from(2) * w) * &(&u + &l);
                     c = &c + &(w * &(&(&u * &u) + &(&l * &l)));
-                    anchor[i] = &floor[i] - &(&(&e.hi[i] + &e.lo[i]) * &crate::exact::qfrac(1, 2));
+                    anchor[i] =
+                        &floor[i] - &(&(&e.max[i] + &e.min[i]) * &Rational::from_i128(1, 2));
                 }
                 // 4(1 − w)(p + cz − z0)²
                 let dz = &part.centroid[2] - &floor[2];
-                let k = &q(4) * &one_w;
+                let k = &Rational::from(4) * &one_w;
                 h[2][2] = k.clone();
-                g[2] = &(&q(2) * &k) * &dz;
+                g[2] = &(&Rational::from(2) * &k) * &dz;
                 c = &c + &(&k * &(&dz * &dz));
                 anchor[2] = -&dz;
                 Objective { h, g, c, anchor }
@@ -116,7 +116,7 @@ impl Cost {
     pub(crate) fn validate(&self) -> Result<(), StackError> {
         match self {
             Cost::Stacking { w, .. } => {
-                if *w < q(0) || *w > q(1) {
+                if *w < Rational::zero() || *w > Rational::from(1) {
                     return Err(StackError::Invalid(format!("weight {w} is not in [0, 1]")));
                 }
                 Ok(())
@@ -135,7 +135,7 @@ pub struct PlaceOptions {
     /// What to minimize.
     pub cost: Cost,
     /// Horizontal clearance to keep from fixed parts (robot positioning error), if any.
-    pub clearance: Option<Q>,
+    pub clearance: Option<Rational>,
     /// Reuse obstacle structures inside constant-topology intervals (§IV).
     pub extrapolate: bool,
 }
@@ -146,11 +146,11 @@ pub struct Candidate {
     /// Index into the orientations of the [`Moving`] part.
     pub orientation: usize,
     /// The translation applied after turning the part.
-    pub translation: [Q; 3],
+    pub translation: [Rational; 3],
     /// The cost.
-    pub cost: Q,
+    pub cost: Rational,
     /// The tie-breaker `‖p − anchor‖²`.
-    pub tie: Q,
+    pub tie: Rational,
 }
 
 /// The part to place with its orientations prepared (rotated pieces, boxes, extents).
@@ -307,11 +307,11 @@ struct Slot {
     alive: bool,
     /// The cell's optimum, once computed (children are queued with their parent's cost,
     /// a lower bound, and solved only when popped).
-    point: Option<[Q; 3]>,
+    point: Option<[Rational; 3]>,
 }
 
 struct OrientState {
-    omega: QBox,
+    omega: Aabb<Rational>,
     objective: Objective,
     obstacles: Vec<Obstacle>,
     index: ObstacleIndex,
@@ -322,8 +322,8 @@ struct OrientState {
 
 #[derive(Clone, Debug)]
 struct Entry {
-    cost: Q,
-    tie: Q,
+    cost: Rational,
+    tie: Rational,
     o: usize,
     cell: usize,
 }
@@ -355,7 +355,7 @@ pub(crate) struct Placer<'a> {
     opts: &'a PlaceOptions,
     states: Vec<Option<OrientState>>,
     heap: BinaryHeap<Entry>,
-    yielded: HashSet<(usize, Point)>,
+    yielded: HashSet<(usize, HPoint)>,
     split_stats: SplitStats,
     /// Counters of this placer.
     pub(crate) stats: PlaceStats,
@@ -417,8 +417,8 @@ impl<'a> Placer<'a> {
         o: usize,
         st: &mut OrientState,
         cell: Cell,
-        key: (Q, Q),
-        point: Option<[Q; 3]>,
+        key: (Rational, Rational),
+        point: Option<[Rational; 3]>,
     ) {
         self.stats.cells += 1;
         let entry = Entry {
@@ -487,7 +487,7 @@ impl<'a> Placer<'a> {
             // interior matters now; the cell is split by the first such one, and the
             // pieces are checked again against every obstacle when they come up.
             let t0 = Instant::now();
-            let p = Point::from_q(&point);
+            let p = HPoint::from_rationals(&point);
             let from = st.slots[e.cell].verified;
             let mut near = st.index.containing(&point, from);
             near.sort_unstable();
@@ -546,7 +546,7 @@ impl<'a> Placer<'a> {
             let m = self.moving.oriented[e.o].pieces.len() as u64;
             self.stats.pairs_total += m * self.scene.pieces().len() as u64;
         }
-        let p = Point::from_q(&point);
+        let p = HPoint::from_rationals(&point);
         let t0 = Instant::now();
         let pairs = self.detect(e.o, st, &point, &p)?;
         self.stats.detect_seconds += t0.elapsed().as_secs_f64();
@@ -578,21 +578,21 @@ impl<'a> Placer<'a> {
         &mut self,
         o: usize,
         st: &OrientState,
-        pq: &[Q; 3],
-        p: &Point,
+        pq: &[Rational; 3],
+        p: &HPoint,
     ) -> Result<Vec<Detected>, StackError> {
         let part = &self.moving.oriented[o];
         let clearance = self.opts.clearance.as_ref().filter(|c| !c.is_zero());
         let mut out = Vec::new();
         let mut near = Vec::new();
         for (a, b) in part.boxes.iter().enumerate() {
-            let mut fb: FBox = b.translated(pq).to_f64();
+            let mut fb = b.translated(pq).enclosing_f64();
             if let Some(c) = clearance {
                 let c = c.to_f64() * (1.0 + 1e-6);
-                for v in fb[0].iter_mut().take(2) {
+                for v in fb.min.iter_mut().take(2) {
                     *v -= c;
                 }
-                for v in fb[1].iter_mut().take(2) {
+                for v in fb.max.iter_mut().take(2) {
                     *v += c;
                 }
             }
@@ -605,11 +605,10 @@ impl<'a> Placer<'a> {
                 let sp = &self.scene.pieces()[k];
                 self.stats.interference_tests += 1;
                 let hit = match clearance {
-                    None => overlaps(
+                    None => interiors_meet_translated(
                         &part.pieces[a],
-                        p,
+                        &p.sub(&sp.translation),
                         &self.scene.shapes()[sp.shape],
-                        &sp.translation,
                     ),
                     Some(c) => {
                         let shape = self.cache.get(
@@ -642,35 +641,50 @@ impl<'a> Placer<'a> {
 
 /// The boxes of an orientation's obstacles, for finding those that may contain a point:
 /// a hierarchy rebuilt whenever the list has doubled, and a list of the newer ones.
+/// An obstacle without a box (grown by a clearance) may contain any point.
 #[derive(Default)]
 struct ObstacleIndex {
-    boxes: Vec<FBox>,
-    bvh: crate::bvh::Bvh,
+    /// Each obstacle's box (outward-rounded), if known.
+    boxes: Vec<Option<Aabb<f64>>>,
+    /// The hierarchy over the first `built` boxes (no box: the empty box).
+    bvh: Bvh<f64>,
+    /// The obstacles without a box among the first `built`.
+    unbounded: Vec<usize>,
     built: usize,
 }
 
 impl ObstacleIndex {
-    fn push(&mut self, b: Option<&QBox>) {
-        let inf = f64::INFINITY;
-        self.boxes
-            .push(b.map(QBox::to_f64).unwrap_or([[-inf; 3], [inf; 3]]));
+    fn push(&mut self, b: Option<&Aabb<Rational>>) {
+        self.boxes.push(b.map(Aabb::enclosing_f64));
         if self.boxes.len() >= 2 * self.built.max(16) {
-            self.bvh = crate::bvh::Bvh::build(self.boxes.clone());
+            let boxes = self
+                .boxes
+                .iter()
+                .map(|b| b.unwrap_or(Aabb::EMPTY))
+                .collect();
+            self.bvh = Bvh::new(boxes);
+            self.unbounded = (0..self.boxes.len())
+                .filter(|&k| self.boxes[k].is_none())
+                .collect();
             self.built = self.boxes.len();
         }
     }
 
-    /// Indices `>= from` of obstacles whose (outward-rounded) box contains `p`.
-    fn containing(&self, p: &[Q; 3], from: usize) -> Vec<usize> {
-        let f = p.clone().map(|v| v.to_f64());
-        let q: FBox = [f, f];
+    /// Indices `>= from` of obstacles whose (outward-rounded) box contains `p`, or that
+    /// have no box, in no particular order.
+    fn containing(&self, p: &[Rational; 3], from: usize) -> Vec<usize> {
+        let q = Aabb::point(&p.clone().map(|v| v.to_f64()));
         let mut out = Vec::new();
         if from < self.built {
-            self.bvh.query(&q, &mut out);
-            out.retain(|&k| k >= from);
+            self.bvh.query(&q, |k| {
+                if k as usize >= from {
+                    out.push(k as usize);
+                }
+            });
+            out.extend(self.unbounded.iter().filter(|&&k| k >= from));
         }
         for k in self.built.max(from)..self.boxes.len() {
-            if crate::bvh::overlap(&self.boxes[k], &q) {
+            if self.boxes[k].is_none_or(|b| b.overlaps(&q)) {
                 out.push(k);
             }
         }

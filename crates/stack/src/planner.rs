@@ -7,7 +7,6 @@
 //! to the maximum height. Within a stage the engine yields interference-free candidates
 //! in increasing cost over all orientations; the first one passing the checks is taken.
 
-use crate::exact::{q, qadd3, qfrac, QBox, Q};
 use crate::orientation::{orientations, Base, Orientation};
 use crate::part::{PartModel, StackError};
 use crate::partial::{
@@ -16,6 +15,7 @@ use crate::partial::{
 use crate::scene::Scene;
 use crate::stability::{contacts, lowerable, placed_pieces, stable, top, up_face_area, Contact};
 use apart_kernel::progress::{phases, Progress};
+use apart_kernel::{rational, Aabb, Rational};
 use apart_pieces::Polytope;
 use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
@@ -26,13 +26,13 @@ pub struct StackOptions {
     /// Number of parts.
     pub count: usize,
     /// Weight `w` of eq. (1): 0 minds only height, 1 only floor space.
-    pub weight: Q,
+    pub weight: Rational,
     /// Floor region `[x0, y0, x1, y1]`; its centre is eq. (1)'s `(x0, y0)`.
-    pub floor: [Q; 4],
+    pub floor: [Rational; 4],
     /// Height of the floor (eq. (1)'s `z0`).
-    pub floor_z: Q,
+    pub floor_z: Rational,
     /// Maximum height of the stack above the floor.
-    pub max_height: Q,
+    pub max_height: Rational,
     /// Step of the orientations about z, in degrees (360 or more: no turn).
     pub dtheta_deg: f64,
     /// Base orientations (quarter turns about x and y) to try.
@@ -40,12 +40,12 @@ pub struct StackOptions {
     /// Largest accepted error of an exact rotation against its wanted angle, degrees.
     pub max_angle_error_deg: f64,
     /// Horizontal clearance between parts (robot positioning error).
-    pub clearance: Option<Q>,
+    pub clearance: Option<Rational>,
     /// Smallest exposed upward face area for the suction gripper (must be positive).
-    pub min_grip_area: Q,
+    pub min_grip_area: Rational,
     /// Growth of the stack's bounding box in the first stage (default: a quarter of
     /// the part's smallest extent).
-    pub slack: Option<Q>,
+    pub slack: Option<Rational>,
     /// Candidates examined per stage before giving up.
     pub max_candidates: usize,
     /// Extrapolate obstacles inside constant-topology intervals.
@@ -54,18 +54,23 @@ pub struct StackOptions {
 
 impl StackOptions {
     /// Defaults for `count` parts with weight `w` on a floor region.
-    pub fn new(count: usize, weight: Q, floor: [Q; 4], max_height: Q) -> StackOptions {
+    pub fn new(
+        count: usize,
+        weight: Rational,
+        floor: [Rational; 4],
+        max_height: Rational,
+    ) -> StackOptions {
         StackOptions {
             count,
             weight,
             floor,
-            floor_z: q(0),
+            floor_z: Rational::zero(),
             max_height,
             dtheta_deg: 90.0,
             bases: vec![Base::IDENTITY],
             max_angle_error_deg: 0.05,
             clearance: None,
-            min_grip_area: q(0),
+            min_grip_area: Rational::zero(),
             slack: None,
             max_candidates: 500,
             extrapolate: true,
@@ -83,9 +88,9 @@ pub struct Placed {
     /// Its orientation.
     pub orientation: Orientation,
     /// Translation applied after turning the part's mesh about its origin.
-    pub translation: [Q; 3],
+    pub translation: [Rational; 3],
     /// Its term of eq. (1).
-    pub cost: Q,
+    pub cost: Rational,
     /// 1: inside the stack's (grown) bounding box; 2: anywhere.
     pub stage: u8,
     /// Contacts with the floor and earlier parts.
@@ -121,7 +126,7 @@ pub struct StackPlan {
     /// The parts placed, in order.
     pub placements: Vec<Placed>,
     /// Height of the stack above the floor.
-    pub stack_height: Q,
+    pub stack_height: Rational,
     /// Every part was placed.
     pub complete: bool,
     /// The stop flag of a [`Progress`] ended the run before every part was placed or
@@ -147,8 +152,10 @@ impl StackPlan {
     }
 
     /// The sum of the parts' costs (eq. (1)).
-    pub fn total_cost(&self) -> Q {
-        self.placements.iter().fold(q(0), |s, p| &s + &p.cost)
+    pub fn total_cost(&self) -> Rational {
+        self.placements
+            .iter()
+            .fold(Rational::zero(), |s, p| &s + &p.cost)
     }
 }
 
@@ -183,20 +190,20 @@ pub fn stack_with(
 ) -> Result<StackPlan, StackError> {
     let start = Instant::now();
     let [x0, y0, x1, y1] = opts.floor.clone();
-    if x0 >= x1 || y0 >= y1 || opts.max_height <= q(0) {
+    if x0 >= x1 || y0 >= y1 || opts.max_height <= Rational::zero() {
         return Err(StackError::Invalid(
             "the floor region or the maximum height is empty".into(),
         ));
     }
-    let half = qfrac(1, 2);
+    let half = Rational::from_i128(1, 2);
     let centre = [
         &(&x0 + &x1) * &half,
         &(&y0 + &y1) * &half,
         opts.floor_z.clone(),
     ];
-    let sigma = QBox {
-        lo: [x0.clone(), y0.clone(), opts.floor_z.clone()],
-        hi: [x1.clone(), y1.clone(), &opts.floor_z + &opts.max_height],
+    let sigma = Aabb {
+        min: [x0.clone(), y0.clone(), opts.floor_z.clone()],
+        max: [x1.clone(), y1.clone(), &opts.floor_z + &opts.max_height],
     };
     let all = orientations(opts.dtheta_deg, &opts.bases, opts.max_angle_error_deg);
     // Keep orientations with an upward face for the suction gripper.
@@ -206,7 +213,7 @@ pub fn stack_with(
         .filter(|o| {
             *grip.entry(o.base).or_insert_with(|| {
                 let a = up_face_area(&part.base_pieces(o.base));
-                a > q(0) && a >= opts.min_grip_area
+                a > Rational::zero() && a >= opts.min_grip_area
             })
         })
         .collect();
@@ -219,10 +226,10 @@ pub fn stack_with(
     let slack = opts.slack.clone().unwrap_or_else(|| {
         let e = &moving.oriented[0].extent;
         let m = (0..3)
-            .map(|i| &e.hi[i] - &e.lo[i])
+            .map(|i| &e.max[i] - &e.min[i])
             .min()
             .expect("three axes");
-        &m * &qfrac(1, 4)
+        &m * &Rational::from_i128(1, 4)
     });
     let cost = Cost::Stacking {
         w: opts.weight.clone(),
@@ -250,9 +257,9 @@ pub fn stack_with(
         for &stage in stages {
             let region = if stage == 1 {
                 let bb = scene.bbox().expect("a stack with parts");
-                QBox {
-                    lo: [0, 1, 2].map(|i| (&bb.lo[i] - &slack).max(sigma.lo[i].clone())),
-                    hi: [0, 1, 2].map(|i| (&bb.hi[i] + &slack).min(sigma.hi[i].clone())),
+                Aabb {
+                    min: [0, 1, 2].map(|i| (&bb.min[i] - &slack).max(sigma.min[i].clone())),
+                    max: [0, 1, 2].map(|i| (&bb.max[i] + &slack).min(sigma.max[i].clone())),
                 }
             } else {
                 sigma.clone()
@@ -278,7 +285,7 @@ pub fn stack_with(
                 let placed = placed_pieces(&oriented.pieces, &c.translation);
                 let t0 = Instant::now();
                 let cts = contacts(&placed, &opts.floor_z, &scene);
-                let cg = qadd3(&oriented.centroid, &c.translation);
+                let cg = rational::add(&oriented.centroid, &c.translation);
                 let ok = stable(&cg, &cts);
                 stats.stability_seconds += t0.elapsed().as_secs_f64();
                 if !ok {
@@ -329,7 +336,7 @@ pub fn stack_with(
         .filter_map(|k| top(&[scene.placed(k)]))
         .max()
         .map(|t| &t - &opts.floor_z)
-        .unwrap_or_else(|| q(0));
+        .unwrap_or_else(Rational::zero);
     stats.obstacles = cache.stats;
     stats.seconds = start.elapsed().as_secs_f64();
     Ok(StackPlan {

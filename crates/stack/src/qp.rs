@@ -15,21 +15,20 @@
 //! closed convex set, which holds for `(F, G)` (see `DESIGN` in the crate docs). Linear
 //! programs use the same machinery with `F = (n · p − L)²`, `L` a strict lower bound.
 
-use crate::exact::{q, qdot, qz, HalfSpace, Point, Q};
-use apart_kernel::Sign;
+use apart_kernel::{int, rational, BigPlane, HPoint, Rational, Sign};
 
 /// A convex quadratic `pᵀHp + g·p + c` with the anchor of its tie-breaker
 /// `‖p − anchor‖²`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Objective {
     /// Symmetric positive semidefinite matrix.
-    pub h: [[Q; 3]; 3],
+    pub h: [[Rational; 3]; 3],
     /// Linear part.
-    pub g: [Q; 3],
+    pub g: [Rational; 3],
     /// Constant.
-    pub c: Q,
+    pub c: Rational,
     /// Ties between minimizers of the quadratic go to the point nearest this one.
-    pub anchor: [Q; 3],
+    pub anchor: [Rational; 3],
 }
 
 /// Why an objective is not a bounded-below convex quadratic.
@@ -49,19 +48,27 @@ pub enum ObjectiveError {
 
 impl Objective {
     /// `‖p − target‖²`.
-    pub(crate) fn distance(target: &[Q; 3]) -> Objective {
-        Objective::diagonal(&[q(1), q(1), q(1)], target, &q(0))
+    pub(crate) fn distance(target: &[Rational; 3]) -> Objective {
+        Objective::diagonal(
+            &[Rational::from(1), Rational::from(1), Rational::from(1)],
+            target,
+            &Rational::zero(),
+        )
     }
 
     /// `Σ weight_i (p_i − target_i)² + constant` (weights `>= 0`), ties to `target`.
-    pub(crate) fn diagonal(weight: &[Q; 3], target: &[Q; 3], constant: &Q) -> Objective {
-        let z = || q(0);
+    pub(crate) fn diagonal(
+        weight: &[Rational; 3],
+        target: &[Rational; 3],
+        constant: &Rational,
+    ) -> Objective {
+        let z = Rational::zero;
         let mut h = [[z(), z(), z()], [z(), z(), z()], [z(), z(), z()]];
         let mut g = [z(), z(), z()];
         let mut c = constant.clone();
         for i in 0..3 {
             h[i][i] = weight[i].clone();
-            g[i] = &(&q(-2) * &weight[i]) * &target[i];
+            g[i] = &(&Rational::from(-2) * &weight[i]) * &target[i];
             c = &c + &(&weight[i] * &(&target[i] * &target[i]));
         }
         Objective {
@@ -74,15 +81,15 @@ impl Objective {
 
     /// `(n · p − lower)²` for integer `n`: minimizing it over a set where `n · p >= lower`
     /// minimizes `n · p`.
-    pub(crate) fn linear(n: &[apart_kernel::Int; 3], lower: &Q) -> Objective {
-        let nq = n.clone().map(Q::from_int);
+    pub(crate) fn linear(n: &[apart_kernel::Int; 3], lower: &Rational) -> Objective {
+        let nq = n.clone().map(Rational::from_int);
         let h = [0, 1, 2].map(|i| [0, 1, 2].map(|j| &nq[i] * &nq[j]));
-        let g = [0, 1, 2].map(|i| &(&q(-2) * lower) * &nq[i]);
+        let g = [0, 1, 2].map(|i| &(&Rational::from(-2) * lower) * &nq[i]);
         Objective {
             h,
             g,
             c: lower * lower,
-            anchor: [q(0), q(0), q(0)],
+            anchor: [Rational::zero(), Rational::zero(), Rational::zero()],
         }
     }
 
@@ -111,10 +118,10 @@ impl Objective {
             return Err(ObjectiveError::NotConvex);
         }
         // Bounded below: 2H x = -g solvable.
-        let a: Vec<Vec<Q>> = (0..3)
-            .map(|i| (0..3).map(|j| &q(2) * &h[i][j]).collect())
+        let a: Vec<Vec<Rational>> = (0..3)
+            .map(|i| (0..3).map(|j| &Rational::from(2) * &h[i][j]).collect())
             .collect();
-        let b: Vec<Q> = self.g.iter().map(|v| -v).collect();
+        let b: Vec<Rational> = self.g.iter().map(|v| -v).collect();
         if affine_solutions(&a, &b, 3).is_none() {
             return Err(ObjectiveError::Unbounded);
         }
@@ -122,36 +129,40 @@ impl Objective {
     }
 
     /// `F(p)`.
-    pub(crate) fn value(&self, p: &[Q; 3]) -> Q {
+    pub(crate) fn value(&self, p: &[Rational; 3]) -> Rational {
         let hp = mat_vec(&self.h, p);
-        &(&qdot(p, &hp) + &qdot(&self.g, p)) + &self.c
+        &(&rational::dot(p, &hp) + &rational::dot(&self.g, p)) + &self.c
     }
 
     /// The tie-breaker `‖p − anchor‖²`.
-    pub(crate) fn tie(&self, p: &[Q; 3]) -> Q {
-        let d = crate::exact::qsub3(p, &self.anchor);
-        qdot(&d, &d)
+    pub(crate) fn tie(&self, p: &[Rational; 3]) -> Rational {
+        let d = rational::sub(p, &self.anchor);
+        rational::dot(&d, &d)
     }
 }
 
-fn det3(h: &[[Q; 3]; 3]) -> Q {
-    let m = |a: &Q, b: &Q, c: &Q, d: &Q| &(a * d) - &(b * c);
+fn det3(h: &[[Rational; 3]; 3]) -> Rational {
+    let m = |a: &Rational, b: &Rational, c: &Rational, d: &Rational| &(a * d) - &(b * c);
     let t0 = &h[0][0] * &m(&h[1][1], &h[1][2], &h[2][1], &h[2][2]);
     let t1 = &h[0][1] * &m(&h[1][0], &h[1][2], &h[2][0], &h[2][2]);
     let t2 = &h[0][2] * &m(&h[1][0], &h[1][1], &h[2][0], &h[2][1]);
     &(&t0 - &t1) + &t2
 }
 
-fn mat_vec(h: &[[Q; 3]; 3], p: &[Q; 3]) -> [Q; 3] {
-    [0, 1, 2].map(|i| qdot(&h[i], p))
+fn mat_vec(h: &[[Rational; 3]; 3], p: &[Rational; 3]) -> [Rational; 3] {
+    [0, 1, 2].map(|i| rational::dot(&h[i], p))
 }
 
 /// All solutions of `a x = b` (`a`: rows of length `k`): a particular solution and a
 /// basis of the null space of `a`; `None` when inconsistent. Exact Gauss–Jordan.
 // Row reduction reads and writes two rows at once by index.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q>, Vec<Vec<Q>>)> {
-    let mut rows: Vec<Vec<Q>> = a
+pub(crate) fn affine_solutions(
+    a: &[Vec<Rational>],
+    b: &[Rational],
+    k: usize,
+) -> Option<(Vec<Rational>, Vec<Vec<Rational>>)> {
+    let mut rows: Vec<Vec<Rational>> = a
         .iter()
         .zip(b)
         .map(|(r, v)| {
@@ -190,7 +201,7 @@ pub(crate) fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q
     if rows[r..].iter().any(|row| !row[k].is_zero()) {
         return None;
     }
-    let mut x = vec![q(0); k];
+    let mut x = vec![Rational::zero(); k];
     for (i, &c) in pivots.iter().enumerate() {
         x[c] = rows[i][k].clone();
     }
@@ -198,8 +209,8 @@ pub(crate) fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q
     let basis = free
         .iter()
         .map(|&f| {
-            let mut v = vec![q(0); k];
-            v[f] = q(1);
+            let mut v = vec![Rational::zero(); k];
+            v[f] = Rational::from(1);
             for (i, &c) in pivots.iter().enumerate() {
                 v[c] = -&rows[i][f];
             }
@@ -212,16 +223,22 @@ pub(crate) fn affine_solutions(a: &[Vec<Q>], b: &[Q], k: usize) -> Option<(Vec<Q
 /// The lexicographic minimizer of `(F, G)` on the affine subspace where every `eqs`
 /// holds with equality; `None` when the equalities are inconsistent (or `F` is
 /// unbounded there, which a validated objective excludes).
-fn affine_min(eqs: &[&HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
-    let a: Vec<Vec<Q>> = eqs.iter().map(|h| h.n.iter().map(qz).collect()).collect();
-    let b: Vec<Q> = eqs.iter().map(|h| qz(&h.off)).collect();
+fn affine_min(eqs: &[&BigPlane], obj: &Objective) -> Option<[Rational; 3]> {
+    let a: Vec<Vec<Rational>> = eqs
+        .iter()
+        .map(|h| h.n.iter().map(|c| Rational::from_int(c.clone())).collect())
+        .collect();
+    let b: Vec<Rational> = eqs
+        .iter()
+        .map(|h| Rational::from_int(h.c.clone()))
+        .collect();
     let (p0, basis) = if eqs.is_empty() {
         (
-            vec![q(0), q(0), q(0)],
+            vec![Rational::zero(), Rational::zero(), Rational::zero()],
             vec![
-                vec![q(1), q(0), q(0)],
-                vec![q(0), q(1), q(0)],
-                vec![q(0), q(0), q(1)],
+                vec![Rational::from(1), Rational::zero(), Rational::zero()],
+                vec![Rational::zero(), Rational::from(1), Rational::zero()],
+                vec![Rational::zero(), Rational::zero(), Rational::from(1)],
             ],
         )
     } else {
@@ -231,22 +248,26 @@ fn affine_min(eqs: &[&HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
     if basis.is_empty() {
         return Some(p0);
     }
-    let basis: Vec<[Q; 3]> = basis
+    let basis: Vec<[Rational; 3]> = basis
         .into_iter()
         .map(|v| [v[0].clone(), v[1].clone(), v[2].clone()])
         .collect();
     let d = basis.len();
     // Stage F: 2 BᵀHB u = −Bᵀ(2Hp0 + g).
     let hp0 = mat_vec(&obj.h, &p0);
-    let grad0 = [0, 1, 2].map(|i| &(&q(2) * &hp0[i]) + &obj.g[i]);
-    let hb: Vec<[Q; 3]> = basis.iter().map(|b| mat_vec(&obj.h, b)).collect();
-    let m: Vec<Vec<Q>> = (0..d)
-        .map(|i| (0..d).map(|j| &q(2) * &qdot(&basis[i], &hb[j])).collect())
+    let grad0 = [0, 1, 2].map(|i| &(&Rational::from(2) * &hp0[i]) + &obj.g[i]);
+    let hb: Vec<[Rational; 3]> = basis.iter().map(|b| mat_vec(&obj.h, b)).collect();
+    let m: Vec<Vec<Rational>> = (0..d)
+        .map(|i| {
+            (0..d)
+                .map(|j| &Rational::from(2) * &rational::dot(&basis[i], &hb[j]))
+                .collect()
+        })
         .collect();
-    let r: Vec<Q> = (0..d).map(|i| -&qdot(&basis[i], &grad0)).collect();
+    let r: Vec<Rational> = (0..d).map(|i| -&rational::dot(&basis[i], &grad0)).collect();
     let (u0, kern) = affine_solutions(&m, &r, d)?;
-    let combine = |coef: &[Q], vecs: &[[Q; 3]]| -> [Q; 3] {
-        let mut s = [q(0), q(0), q(0)];
+    let combine = |coef: &[Rational], vecs: &[[Rational; 3]]| -> [Rational; 3] {
+        let mut s = [Rational::zero(), Rational::zero(), Rational::zero()];
         for (c, v) in coef.iter().zip(vecs) {
             if c.is_zero() {
                 continue;
@@ -262,35 +283,35 @@ fn affine_min(eqs: &[&HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
     if kern.is_empty() {
         return Some(p1);
     }
-    let b1: Vec<[Q; 3]> = kern.iter().map(|k| combine(k, &basis)).collect();
+    let b1: Vec<[Rational; 3]> = kern.iter().map(|k| combine(k, &basis)).collect();
     // Stage G: (B1ᵀB1) v = B1ᵀ(anchor − p1), positive definite.
     let e = d - kern.len();
     let _ = e;
-    let diff = crate::exact::qsub3(&obj.anchor, &p1);
+    let diff = rational::sub(&obj.anchor, &p1);
     let n = b1.len();
-    let m: Vec<Vec<Q>> = (0..n)
-        .map(|i| (0..n).map(|j| qdot(&b1[i], &b1[j])).collect())
+    let m: Vec<Vec<Rational>> = (0..n)
+        .map(|i| (0..n).map(|j| rational::dot(&b1[i], &b1[j])).collect())
         .collect();
-    let r: Vec<Q> = (0..n).map(|i| qdot(&b1[i], &diff)).collect();
+    let r: Vec<Rational> = (0..n).map(|i| rational::dot(&b1[i], &diff)).collect();
     let (v, _) = affine_solutions(&m, &r, n)?;
     let dv = combine(&v, &b1);
     Some([0, 1, 2].map(|i| &p1[i] + &dv[i]))
 }
 
 fn seidel<'a>(
-    cons: &[&'a HalfSpace],
-    eqs: &mut Vec<&'a HalfSpace>,
+    cons: &[&'a BigPlane],
+    eqs: &mut Vec<&'a BigPlane>,
     obj: &Objective,
-) -> Option<[Q; 3]> {
+) -> Option<[Rational; 3]> {
     let mut p = affine_min(eqs, obj)?;
-    let mut hp = Point::from_q(&p);
+    let mut hp = HPoint::from_rationals(&p);
     for k in 0..cons.len() {
         if cons[k].side(&hp) == Sign::Positive {
             eqs.push(cons[k]);
             let r = seidel(&cons[..k], eqs, obj);
             eqs.pop();
             p = r?;
-            hp = Point::from_q(&p);
+            hp = HPoint::from_rationals(&p);
         }
     }
     Some(p)
@@ -318,14 +339,14 @@ fn shuffled(n: usize) -> Vec<usize> {
 /// the answer is certified exactly (the point on those planes is feasible and its
 /// Lagrange multipliers are non-negative: the KKT conditions, sufficient for a convex
 /// program); otherwise, or when the certificate fails, exact Seidel decides.
-pub(crate) fn lexmin(constraints: &[HalfSpace], obj: &Objective) -> Option<[Q; 3]> {
+pub(crate) fn lexmin(constraints: &[BigPlane], obj: &Objective) -> Option<[Rational; 3]> {
     let order = shuffled(constraints.len());
     if obj.definite() {
         if let Some(p) = guided(constraints, &order, obj, &obj.gradient_at_neg()) {
             return Some(p);
         }
     }
-    let cons: Vec<&HalfSpace> = order.iter().map(|&i| &constraints[i]).collect();
+    let cons: Vec<&BigPlane> = order.iter().map(|&i| &constraints[i]).collect();
     seidel(&cons, &mut Vec::with_capacity(4), obj)
 }
 
@@ -333,26 +354,30 @@ pub(crate) fn lexmin(constraints: &[HalfSpace], obj: &Objective) -> Option<[Q; 3
 /// feasibility, and multipliers `λ >= 0` with `Σ λ_i n_i = r(p)` (for the quadratic,
 /// `r = −∇F(p)`; for a linear objective `c · p`, `r = −c`).
 fn guided(
-    constraints: &[HalfSpace],
+    constraints: &[BigPlane],
     order: &[usize],
     obj: &Objective,
-    rhs: &dyn Fn(&[Q; 3]) -> [Q; 3],
-) -> Option<[Q; 3]> {
+    rhs: &dyn Fn(&[Rational; 3]) -> [Rational; 3],
+) -> Option<[Rational; 3]> {
     let fc: Vec<crate::guide::FHalf> = constraints.iter().map(to_float).collect::<Option<_>>()?;
     let (_, active) = crate::guide::lexmin(&fc, order, &obj.to_float())?;
-    let eqs: Vec<&HalfSpace> = active.iter().map(|&i| &constraints[i]).collect();
+    let eqs: Vec<&BigPlane> = active.iter().map(|&i| &constraints[i]).collect();
     let p = affine_min(&eqs, obj)?;
-    let hp = Point::from_q(&p);
+    let hp = HPoint::from_rationals(&p);
     if constraints.iter().any(|h| h.side(&hp) == Sign::Positive) {
         return None;
     }
     let r = rhs(&p);
     if eqs.is_empty() {
-        return r.iter().all(Q::is_zero).then_some(p);
+        return r.iter().all(Rational::is_zero).then_some(p);
     }
     // Σ λ_i n_i = r: three equations in |S| unknowns; a unique solution with λ >= 0.
-    let a: Vec<Vec<Q>> = (0..3)
-        .map(|j| eqs.iter().map(|h| qz(&h.n[j])).collect())
+    let a: Vec<Vec<Rational>> = (0..3)
+        .map(|j| {
+            eqs.iter()
+                .map(|h| Rational::from_int(h.n[j].clone()))
+                .collect()
+        })
         .collect();
     let (lambda, null) = affine_solutions(&a, &r, eqs.len())?;
     if !null.is_empty() || lambda.iter().any(|l| l.sign() == Sign::Negative) {
@@ -361,8 +386,15 @@ fn guided(
     Some(p)
 }
 
-fn to_float(h: &HalfSpace) -> Option<crate::guide::FHalf> {
-    h.to_float()
+/// The half-space as doubles: unit normal and offset (`None` beyond the range).
+fn to_float(h: &BigPlane) -> Option<crate::guide::FHalf> {
+    let a = [0, 1, 2].map(|i| int::to_f64(&h.n[i]));
+    let b = int::to_f64(&h.c);
+    let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    if !norm.is_finite() || !b.is_finite() || norm == 0.0 {
+        return None;
+    }
+    Some((a.map(|v| v / norm), b / norm))
 }
 
 impl Objective {
@@ -377,10 +409,10 @@ impl Objective {
     }
 
     /// `p -> −∇F(p) = −(2Hp + g)`.
-    fn gradient_at_neg(&self) -> impl Fn(&[Q; 3]) -> [Q; 3] + '_ {
-        move |p: &[Q; 3]| {
+    fn gradient_at_neg(&self) -> impl Fn(&[Rational; 3]) -> [Rational; 3] + '_ {
+        move |p: &[Rational; 3]| {
             let hp = mat_vec(&self.h, p);
-            [0, 1, 2].map(|i| -&(&(&q(2) * &hp[i]) + &self.g[i]))
+            [0, 1, 2].map(|i| -&(&(&Rational::from(2) * &hp[i]) + &self.g[i]))
         }
     }
 
@@ -398,34 +430,34 @@ impl Objective {
 /// the cell is empty. A float guide proposes the optimal face; an exact dual certificate
 /// (`n = −Σ λ_i n_i`, `λ >= 0` over its planes) confirms it, else exact Seidel decides.
 pub(crate) fn min_linear(
-    constraints: &[HalfSpace],
+    constraints: &[BigPlane],
     n: &[apart_kernel::Int; 3],
-    lower: &Q,
-) -> Option<(Q, [Q; 3])> {
+    lower: &Rational,
+) -> Option<(Rational, [Rational; 3])> {
     let obj = Objective::linear(n, lower);
-    let nq = n.clone().map(Q::from_int);
+    let nq = n.clone().map(Rational::from_int);
     let order = shuffled(constraints.len());
     let neg_n = [-&nq[0], -&nq[1], -&nq[2]];
     let p = match guided(constraints, &order, &obj, &|_| neg_n.clone()) {
         Some(p) => p,
         None => {
-            let cons: Vec<&HalfSpace> = order.iter().map(|&i| &constraints[i]).collect();
+            let cons: Vec<&BigPlane> = order.iter().map(|&i| &constraints[i]).collect();
             seidel(&cons, &mut Vec::with_capacity(4), &obj)?
         }
     };
-    Some((qdot(&nq, &p), p))
+    Some((rational::dot(&nq, &p), p))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::{qfrac, QBox};
-    use apart_kernel::Int;
+    use crate::testing::{q, qfrac};
+    use apart_kernel::{Aabb, Int};
 
-    fn unit_box() -> Vec<HalfSpace> {
-        QBox {
-            lo: [q(0), q(0), q(0)],
-            hi: [q(1), q(1), q(1)],
+    fn unit_box() -> Vec<BigPlane> {
+        Aabb {
+            min: [q(0), q(0), q(0)],
+            max: [q(1), q(1), q(1)],
         }
         .halfspaces()
     }
@@ -443,7 +475,7 @@ mod tests {
     fn slanted_plane_and_ties() {
         // x + y + z <= 1 inside the unit box; nearest point to (1, 1, 1) is (1/3, 1/3, 1/3).
         let mut c = unit_box();
-        c.push(HalfSpace::new([1, 1, 1].map(Int::from), Int::from(1)));
+        c.push(BigPlane::reduced([1, 1, 1].map(Int::from), Int::from(1)));
         let p = lexmin(&c, &Objective::distance(&[q(1), q(1), q(1)])).unwrap();
         assert_eq!(p, [qfrac(1, 3), qfrac(1, 3), qfrac(1, 3)]);
         // Weight only on z: every point with z minimal ties; the anchor decides.
@@ -461,10 +493,10 @@ mod tests {
     #[test]
     fn empty_and_flat_cells() {
         let mut c = unit_box();
-        c.push(HalfSpace::new([-1, 0, 0].map(Int::from), Int::from(-2))); // x >= 2
+        c.push(BigPlane::reduced([-1, 0, 0].map(Int::from), Int::from(-2))); // x >= 2
         assert!(lexmin(&c, &Objective::distance(&[q(0), q(0), q(0)])).is_none());
         let mut f = unit_box();
-        f.push(HalfSpace::new([-1, 0, 0].map(Int::from), Int::from(-1))); // x >= 1: a face
+        f.push(BigPlane::reduced([-1, 0, 0].map(Int::from), Int::from(-1))); // x >= 1: a face
         let p = lexmin(&f, &Objective::distance(&[q(0), qfrac(1, 2), q(7)])).unwrap();
         assert_eq!(p, [q(1), qfrac(1, 2), q(1)]);
     }
@@ -472,7 +504,7 @@ mod tests {
     #[test]
     fn linear_programs() {
         let mut c = unit_box();
-        c.push(HalfSpace::new([1, 1, 0].map(Int::from), Int::from(1)));
+        c.push(BigPlane::reduced([1, 1, 0].map(Int::from), Int::from(1)));
         let (v, _) = min_linear(&c, &[-1, -2, 0].map(Int::from), &q(-10)).unwrap();
         assert_eq!(v, q(-2)); // max x + 2y on the triangle is 2 at (0, 1)
     }

@@ -13,10 +13,8 @@
 //!   without its interior meeting any stack part, decided exactly per piece pair by
 //!   the open blocked polygons of apart-minkowski (sliding contact stays free).
 
-use crate::exact::{q, Point, QBox, Q};
-use crate::interference::{touch, translated};
-use crate::scene::Scene;
-use apart_kernel::{Sign, Vec3};
+use crate::scene::{translated, Scene};
+use apart_kernel::{Aabb, HPoint, Int, Rational, Sign, Vec3};
 use apart_minkowski::{blocked_polygon, Blocking};
 use apart_pieces::Polytope;
 
@@ -35,20 +33,20 @@ pub struct Contact {
     /// The other side.
     pub with: ContactWith,
     /// Points of the contact set (its vertices among them).
-    pub points: Vec<[Q; 3]>,
+    pub points: Vec<[Rational; 3]>,
     /// The other side holds the new part up (a supporting contact).
     pub supports: bool,
 }
 
 /// The contacts of the placed pieces with the floor (`z = floor_z`) and the scene.
-pub(crate) fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<Contact> {
+pub(crate) fn contacts(placed: &[Polytope], floor_z: &Rational, scene: &Scene) -> Vec<Contact> {
     let mut out: Vec<Contact> = Vec::new();
     let mut floor = Vec::new();
     for p in placed {
         for v in p.vertices() {
-            let z = Q::new(v.get(2), p.den().clone());
+            let z = Rational::new(v.get(2), p.den().clone());
             if z == *floor_z {
-                floor.push(Point::stored(v, p.den()).to_q());
+                floor.push(HPoint::from_big(v.to_ints(), p.den().clone()).to_rationals());
             }
         }
     }
@@ -63,7 +61,7 @@ pub(crate) fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<C
     }
     let mut near = Vec::new();
     for p in placed {
-        let b = QBox::of_points(p.vertices(), p.den()).to_f64();
+        let b = Aabb::of_scaled(p.vertices(), p.den()).enclosing_f64();
         near.clear();
         scene.near(&b, &mut near);
         for &k in &near {
@@ -93,21 +91,75 @@ pub(crate) fn contacts(placed: &[Polytope], floor_z: &Q, scene: &Scene) -> Vec<C
     out
 }
 
-fn cross2(o: &[Q; 2], a: &[Q; 2], b: &[Q; 2]) -> Q {
+/// How two closed convex pieces with disjoint interiors touch.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Touch {
+    /// The vertices (and more) of the contact set `a ∩ b`.
+    pub(crate) points: Vec<[Rational; 3]>,
+    /// Some plane separating them has `a` on its upper side (`b` supports `a`).
+    pub(crate) supports: bool,
+}
+
+/// The contact of `a` and `b` (closed sets, interiors disjoint): `None` when they do not
+/// touch. The points are a superset of the vertices of `a ∩ b`: vertices of one in the
+/// other, and crossings of the edges of one with the facets of the other.
+pub(crate) fn touch(a: &Polytope, b: &Polytope) -> Option<Touch> {
+    let (a, b) = Polytope::common(a, b);
+    let den = a.den().clone();
+    let pts = apart_pieces::interference::contact_points(&a, &b);
+    if pts.is_empty() {
+        return None;
+    }
+    let mut points: Vec<[Rational; 3]> = pts
+        .into_iter()
+        .map(|(x, w)| HPoint::from_big(x.to_ints(), &w * &den).to_rationals())
+        .collect();
+    points.sort();
+    points.dedup();
+    // b supports a: a separating plane n with max_b n·x = min_a n·x and n_z > 0.
+    let touching_up = |n: &Vec3| -> bool {
+        if n.get(2) <= Int::ZERO {
+            return false;
+        }
+        let (hb, _) = b.support(n);
+        let (ha_neg, _) = a.support(&n.neg());
+        hb + ha_neg == Int::ZERO
+    };
+    let mut supports = b.facets().iter().any(|f| touching_up(&f.normal))
+        || a.facets().iter().any(|f| touching_up(&f.normal.neg()));
+    if !supports {
+        'outer: for ea in a.edge_directions() {
+            for eb in b.edge_directions() {
+                let n = ea.cross(eb);
+                if n.is_zero() {
+                    continue;
+                }
+                let n = n.primitive();
+                if touching_up(&n) || touching_up(&n.neg()) {
+                    supports = true;
+                    break 'outer;
+                }
+            }
+        }
+    }
+    Some(Touch { points, supports })
+}
+
+fn cross2(o: &[Rational; 2], a: &[Rational; 2], b: &[Rational; 2]) -> Rational {
     let l = &(&a[0] - &o[0]) * &(&b[1] - &o[1]);
     let r = &(&a[1] - &o[1]) * &(&b[0] - &o[0]);
     &l - &r
 }
 
 /// The strictly convex hull of 2-D points, counter-clockwise (monotone chain, exact).
-pub(crate) fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
+pub(crate) fn convex_hull_2d(points: &[[Rational; 2]]) -> Vec<[Rational; 2]> {
     let mut pts = points.to_vec();
     pts.sort();
     pts.dedup();
     if pts.len() < 3 {
         return pts;
     }
-    let mut lower: Vec<[Q; 2]> = Vec::new();
+    let mut lower: Vec<[Rational; 2]> = Vec::new();
     for p in &pts {
         while lower.len() >= 2
             && cross2(&lower[lower.len() - 2], &lower[lower.len() - 1], p).sign() != Sign::Positive
@@ -116,7 +168,7 @@ pub(crate) fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
         }
         lower.push(p.clone());
     }
-    let mut upper: Vec<[Q; 2]> = Vec::new();
+    let mut upper: Vec<[Rational; 2]> = Vec::new();
     for p in pts.iter().rev() {
         while upper.len() >= 2
             && cross2(&upper[upper.len() - 2], &upper[upper.len() - 1], p).sign() != Sign::Positive
@@ -133,8 +185,8 @@ pub(crate) fn convex_hull_2d(points: &[[Q; 2]]) -> Vec<[Q; 2]> {
 
 /// True when the centre of gravity projects strictly inside the support polygon of the
 /// supporting contacts.
-pub(crate) fn stable(cg: &[Q; 3], contacts: &[Contact]) -> bool {
-    let pts: Vec<[Q; 2]> = contacts
+pub(crate) fn stable(cg: &[Rational; 3], contacts: &[Contact]) -> bool {
+    let pts: Vec<[Rational; 2]> = contacts
         .iter()
         .filter(|c| c.supports)
         .flat_map(|c| c.points.iter().map(|p| [p[0].clone(), p[1].clone()]))
@@ -149,17 +201,17 @@ pub(crate) fn stable(cg: &[Q; 3], contacts: &[Contact]) -> bool {
 }
 
 /// Area of a simple polygon given counter-clockwise (shoelace).
-fn area(poly: &[[Q; 2]]) -> Q {
-    let mut s = q(0);
+fn area(poly: &[[Rational; 2]]) -> Rational {
+    let mut s = Rational::zero();
     for i in 0..poly.len() {
         let (a, b) = (&poly[i], &poly[(i + 1) % poly.len()]);
         s = &s + &(&(&a[0] * &b[1]) - &(&a[1] * &b[0]));
     }
-    &s * &crate::exact::qfrac(1, 2)
+    &s * &Rational::from_i128(1, 2)
 }
 
 /// `subject` clipped to the convex counter-clockwise polygon `clip` (Sutherland–Hodgman).
-fn clip(subject: &[[Q; 2]], clip: &[[Q; 2]]) -> Vec<[Q; 2]> {
+fn clip(subject: &[[Rational; 2]], clip: &[[Rational; 2]]) -> Vec<[Rational; 2]> {
     let mut out = subject.to_vec();
     for i in 0..clip.len() {
         if out.is_empty() {
@@ -177,7 +229,7 @@ fn clip(subject: &[[Q; 2]], clip: &[[Q; 2]]) -> Vec<[Q; 2]> {
             }
             if pin != rin {
                 // p + (r − p) sp / (sp − sr)
-                let t = crate::exact::qdiv(&sp, &(&sp - &sr));
+                let t = &sp / &(&sp - &sr);
                 out.push([
                     &p[0] + &(&(&r[0] - &p[0]) * &t),
                     &p[1] + &(&(&r[1] - &p[1]) * &t),
@@ -191,11 +243,11 @@ fn clip(subject: &[[Q; 2]], clip: &[[Q; 2]]) -> Vec<[Q; 2]> {
 /// The largest exposed area of an upward horizontal face of the part (facets with
 /// normal +z minus the parts covered by other pieces' downward facets on the same
 /// plane), exactly.
-pub(crate) fn up_face_area(pieces: &[Polytope]) -> Q {
+pub(crate) fn up_face_area(pieces: &[Polytope]) -> Rational {
     let up = Vec3::new(0, 0, 1);
     let down = Vec3::new(0, 0, -1);
     // (height, polygon counter-clockwise seen from above, is_up)
-    let mut faces: Vec<(Q, Vec<[Q; 2]>, bool)> = Vec::new();
+    let mut faces: Vec<(Rational, Vec<[Rational; 2]>, bool)> = Vec::new();
     for p in pieces {
         let den = p.den();
         for f in p.facets() {
@@ -203,12 +255,15 @@ pub(crate) fn up_face_area(pieces: &[Polytope]) -> Q {
             if !is_up && f.normal != down {
                 continue;
             }
-            let mut poly: Vec<[Q; 2]> = f
+            let mut poly: Vec<[Rational; 2]> = f
                 .cycle
                 .iter()
                 .map(|&i| {
                     let v = &p.vertices()[i as usize];
-                    [Q::new(v.get(0), den.clone()), Q::new(v.get(1), den.clone())]
+                    [
+                        Rational::new(v.get(0), den.clone()),
+                        Rational::new(v.get(1), den.clone()),
+                    ]
                 })
                 .collect();
             if !is_up {
@@ -219,25 +274,25 @@ pub(crate) fn up_face_area(pieces: &[Polytope]) -> Q {
             } else {
                 -f.offset.clone()
             };
-            faces.push((Q::new(off, den.clone()), poly, is_up));
+            faces.push((Rational::new(off, den.clone()), poly, is_up));
         }
     }
-    let mut best = q(0);
-    let mut heights: Vec<Q> = faces.iter().filter(|f| f.2).map(|f| f.0.clone()).collect();
+    let mut best = Rational::zero();
+    let mut heights: Vec<Rational> = faces.iter().filter(|f| f.2).map(|f| f.0.clone()).collect();
     heights.sort();
     heights.dedup();
     for h in heights {
-        let ups: Vec<&Vec<[Q; 2]>> = faces
+        let ups: Vec<&Vec<[Rational; 2]>> = faces
             .iter()
             .filter(|f| f.2 && f.0 == h)
             .map(|f| &f.1)
             .collect();
-        let downs: Vec<&Vec<[Q; 2]>> = faces
+        let downs: Vec<&Vec<[Rational; 2]>> = faces
             .iter()
             .filter(|f| !f.2 && f.0 == h)
             .map(|f| &f.1)
             .collect();
-        let mut a = q(0);
+        let mut a = Rational::zero();
         for u in &ups {
             a = &a + &area(u);
             for d in &downs {
@@ -269,16 +324,16 @@ pub(crate) fn lowerable(
     placed: &[Polytope],
     scene: &Scene,
 ) -> Result<bool, crate::part::StackError> {
-    let boxes: Vec<QBox> = placed
+    let boxes: Vec<Aabb<Rational>> = placed
         .iter()
-        .map(|p| QBox::of_points(p.vertices(), p.den()))
+        .map(|p| Aabb::of_scaled(p.vertices(), p.den()))
         .collect();
     let up = Vec3::new(0, 0, 1);
     for (k, sp) in scene.pieces().iter().enumerate() {
         let mut fixed = None;
         for (i, b) in boxes.iter().enumerate() {
-            let meets = (0..2).all(|a| sp.bbox.lo[a] < b.hi[a] && b.lo[a] < sp.bbox.hi[a])
-                && sp.bbox.hi[2] > b.lo[2];
+            let meets = (0..2).all(|a| sp.bbox.min[a] < b.max[a] && b.min[a] < sp.bbox.max[a])
+                && sp.bbox.max[2] > b.min[2];
             if !meets {
                 continue;
             }
@@ -306,19 +361,19 @@ pub(crate) fn lowerable(
 }
 
 /// The pieces of a part turned and translated into place.
-pub fn placed_pieces(rotated: &[Polytope], t: &[Q; 3]) -> Vec<Polytope> {
-    let tp = Point::from_q(t);
+pub fn placed_pieces(rotated: &[Polytope], t: &[Rational; 3]) -> Vec<Polytope> {
+    let tp = HPoint::from_rationals(t);
     rotated.iter().map(|p| translated(p, &tp)).collect()
 }
 
 /// The exact height of the highest vertex of the pieces.
-pub(crate) fn top(pieces: &[Polytope]) -> Option<Q> {
+pub(crate) fn top(pieces: &[Polytope]) -> Option<Rational> {
     pieces
         .iter()
         .flat_map(|p| {
             p.vertices()
                 .iter()
-                .map(move |v| Q::new(v.get(2), p.den().clone()))
+                .map(move |v| Rational::new(v.get(2), p.den().clone()))
         })
         .max()
 }
@@ -326,7 +381,7 @@ pub(crate) fn top(pieces: &[Polytope]) -> Option<Q> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::qfrac;
+    use crate::testing::{q, qfrac};
 
     fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
         Polytope::cuboid(lo, hi).unwrap()
@@ -350,6 +405,29 @@ mod tests {
         let c3 = contacts(&fl, &q(0), &scene);
         assert_eq!(c3[0].with, ContactWith::Floor);
         assert!(stable(&[qfrac(11, 2), qfrac(11, 2), qfrac(1, 2)], &c3));
+    }
+
+    fn unit(o: [i64; 3]) -> Polytope {
+        let pts: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new(o[0] + (i & 1), o[1] + (i >> 1 & 1), o[2] + (i >> 2 & 1)))
+            .collect();
+        Polytope::hull_of_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn contacts_and_support() {
+        let low = unit([0, 0, 0]);
+        let high = translated(
+            &unit([0, 0, 0]),
+            &HPoint::from_rationals(&[qfrac(1, 2), q(0), q(1)]),
+        );
+        let t = touch(&high, &low).unwrap();
+        assert!(t.supports);
+        assert_eq!(t.points.len(), 4); // the rectangle [1/2, 1] x [0, 1] at z = 1
+        let side = unit([1, 0, 0]);
+        let t = touch(&side, &low).unwrap();
+        assert!(!t.supports); // side by side
+        assert!(touch(&unit([3, 0, 0]), &low).is_none());
     }
 
     #[test]
@@ -403,7 +481,7 @@ mod tests {
             return Pair::Overlap;
         }
         let mut lower = q(0);
-        let mut upper: Option<Q> = None;
+        let mut upper: Option<Rational> = None;
         for f in m.facets() {
             let nz = f.normal.get(2);
             if nz == zero {
@@ -412,7 +490,7 @@ mod tests {
                 }
                 continue;
             }
-            let bound = Q::new(f.offset.clone(), nz.clone());
+            let bound = Rational::new(f.offset.clone(), nz.clone());
             if nz > zero {
                 upper = Some(match upper {
                     Some(u) if u <= bound => u,

@@ -2,12 +2,12 @@
 
 mod common;
 
-use apart_stack::exact::{q, qfrac, Q};
+use apart_kernel::Rational;
 use apart_stack::planner::{stack, StackOptions, StackPlan};
 use common::parts::cube;
-use common::{assert_no_interference, assert_stable, height};
+use common::{assert_no_interference, assert_stable, height, q, qfrac};
 
-fn cubes(w: Q) -> StackPlan {
+fn cubes(w: Rational) -> StackPlan {
     // A 16 x 16 floor centred on the origin: room for all 121 cubes in one layer.
     let floor = [q(-8), q(-8), q(8), q(8)];
     let mut opts = StackOptions::new(121, w, floor, q(200));
@@ -18,18 +18,8 @@ fn cubes(w: Q) -> StackPlan {
     assert_eq!(plan.stats.orientations, 1);
     assert_no_interference(&plan);
     assert_stable(&plan, &q(0));
-    assert_eq!(plan.stack_height, height(&plan, &q(0)).into_q());
+    assert_eq!(plan.stack_height, height(&plan, &q(0)));
     plan
-}
-
-trait IntoQ {
-    fn into_q(self) -> Q;
-}
-
-impl IntoQ for apart_kernel::Rational {
-    fn into_q(self) -> Q {
-        Q::new(self.numer().clone(), self.denom().clone())
-    }
 }
 
 /// Cubes per layer, bottom first.

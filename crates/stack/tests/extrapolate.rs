@@ -1,9 +1,8 @@
 //! Extrapolated obstacles equal freshly computed ones within each constant-topology
 //! interval (paper 004 §IV, Appendix C), for random convex pieces turned about z.
 
-use apart_kernel::Vec3;
+use apart_kernel::{BigPlane, HPoint, Vec3};
 use apart_pieces::Polytope;
-use apart_stack::exact::{HalfSpace, Point};
 use apart_stack::extrapolate::{rotate_z, Template};
 use apart_stack::obstacle::ObstacleShape;
 use apart_stack::orientation::ZRotation;
@@ -24,12 +23,17 @@ fn canonical(o: &ObstacleShape) -> (BTreeSet<String>, BTreeSet<String>) {
     let v = o
         .vertices
         .iter()
-        .map(|v| format!("{:?}", Point::stored(v, &o.den).to_q()))
+        .map(|v| {
+            format!(
+                "{:?}",
+                HPoint::from_big(v.to_ints(), o.den.clone()).to_rationals()
+            )
+        })
         .collect();
     let f = o
         .halfspaces
         .iter()
-        .map(|h: &HalfSpace| format!("{:?} {:?}", h.n, h.off))
+        .map(|h: &BigPlane| format!("{:?} {:?}", h.n, h.c))
         .collect();
     (v, f)
 }

@@ -5,18 +5,17 @@
 
 mod common;
 
-use apart_stack::exact::{q, qfrac};
 use apart_stack::part::PartModel;
 use apart_stack::planner::{stack, StackOptions};
 use common::parts::{channel, triangle_part};
-use common::{assert_no_interference, assert_stable, floor_around, height};
+use common::{assert_no_interference, assert_stable, floor_around, height, q, qfrac};
 
 /// Stacks fifteen copies and returns stack height / (15 × part height).
 fn nested_ratio(part: &PartModel) -> f64 {
     let e = part
         .orient(&apart_stack::orientation::Orientation::IDENTITY)
         .extent;
-    let part_height = &e.hi[2] - &e.lo[2];
+    let part_height = &e.max[2] - &e.min[2];
     let floor = floor_around(part, 3, 2);
     let mut opts = StackOptions::new(15, qfrac(1, 2), floor, q(1000));
     opts.dtheta_deg = 90.0;

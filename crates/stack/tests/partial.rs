@@ -2,14 +2,14 @@
 //! same orientation (paper 004 §V-B), on random scenes; and the best configuration is
 //! free and no free grid point is cheaper (an independent brute force).
 
+use apart_kernel::{Aabb, Rational};
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::Polytope;
-use apart_stack::exact::{q, qfrac, Point, QBox, Q};
-use apart_stack::interference::translated;
 use apart_stack::orientation::{orientations, Base};
 use apart_stack::part::PartModel;
 use apart_stack::partial::{best_full, place, Cost, Moving, PlaceOptions, Region};
 use apart_stack::scene::Scene;
+use apart_stack::stability::placed_pieces;
 use proptest::prelude::*;
 
 fn boxp(lo: [i64; 3], size: [i64; 3]) -> Polytope {
@@ -40,11 +40,19 @@ fn moving_l(a: i64, b: i64) -> PartModel {
     .unwrap()
 }
 
-fn opts(target: [Q; 3], w: Option<Q>) -> PlaceOptions {
+fn q(v: i64) -> Rational {
+    Rational::from(v)
+}
+
+fn qfrac(n: i64, d: i64) -> Rational {
+    Rational::from_i128(n.into(), d.into())
+}
+
+fn opts(target: [Rational; 3], w: Option<Rational>) -> PlaceOptions {
     PlaceOptions {
-        region: Region::Container(QBox {
-            lo: [q(-4), q(-4), q(0)],
-            hi: [q(16), q(16), q(12)],
+        region: Region::Container(Aabb {
+            min: [q(-4), q(-4), q(0)],
+            max: [q(16), q(16), q(12)],
         }),
         cost: match w {
             None => Cost::Distance(target),
@@ -58,13 +66,10 @@ fn opts(target: [Q; 3], w: Option<Q>) -> PlaceOptions {
     }
 }
 
-fn free(moving: &Moving, o: usize, t: &[Q; 3], fixed: &[Polytope]) -> bool {
-    let p = Point::from_q(t);
-    moving.oriented[o].pieces.iter().all(|a| {
-        fixed
-            .iter()
-            .all(|b| interiors_disjoint(&translated(a, &p), b))
-    })
+fn free(moving: &Moving, o: usize, t: &[Rational; 3], fixed: &[Polytope]) -> bool {
+    placed_pieces(&moving.oriented[o].pieces, t)
+        .iter()
+        .all(|a| fixed.iter().all(|b| interiors_disjoint(a, b)))
 }
 
 proptest! {
@@ -141,7 +146,7 @@ fn no_free_grid_point_is_cheaper() {
                         let p = [qfrac(x, 2), qfrac(y, 2), qfrac(z, 2)];
                         let lo = [q(-4), q(-4), q(0)];
                         let hi = [q(16), q(16), q(12)];
-                        if (0..3).any(|i| &e.lo[i] + &p[i] < lo[i] || &e.hi[i] + &p[i] > hi[i]) {
+                        if (0..3).any(|i| &e.min[i] + &p[i] < lo[i] || &e.max[i] + &p[i] > hi[i]) {
                             continue;
                         }
                         let d = [&p[0] - &t[0], &p[1] - &t[1], &p[2] - &t[2]];

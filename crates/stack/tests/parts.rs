@@ -4,9 +4,9 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_stack::exact::q;
 use apart_testkit::sheet_metal::{ChannelParams, TriangleParams};
 use common::parts::{channel, cube, triangle_part};
+use common::q;
 
 fn mesh_volume6(points: &[Vec3], tris: &[[u32; 3]]) -> apart_kernel::Int {
     let mut v = apart_kernel::Int::ZERO;
@@ -26,7 +26,7 @@ fn generated_parts_are_closed_and_decompose() {
         // The pieces' volume equals the mesh's (divergence theorem).
         assert_eq!(
             *part.volume(),
-            apart_stack::exact::Q::new(v6, apart_kernel::Int::from(6)),
+            apart_kernel::Rational::new(v6, apart_kernel::Int::from(6)),
             "{}",
             part.name
         );

@@ -5,10 +5,9 @@
 mod common;
 
 use apart_kernel::progress::{phases, Progress};
-use apart_stack::exact::{q, qfrac};
 use apart_stack::planner::{stack, stack_with, StackOptions};
 use common::parts::cube;
-use common::{assert_no_interference, assert_stable};
+use common::{assert_no_interference, assert_stable, q, qfrac};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 

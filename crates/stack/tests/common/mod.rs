@@ -7,21 +7,29 @@ pub mod parts;
 use apart_kernel::{Int, Rational, Sign, Vec3};
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::Polytope;
-use apart_stack::exact::Q;
 use apart_stack::part::PartModel;
 use apart_stack::planner::StackPlan;
 
+/// The integer `v` as a rational.
+pub fn q(v: i64) -> Rational {
+    Rational::from(v)
+}
+
+/// `n / d` as a rational.
+pub fn qfrac(n: i64, d: i64) -> Rational {
+    Rational::from_i128(n.into(), d.into())
+}
+
 /// A floor region `factor` times the part's footprint in each direction, centred on the
 /// footprint of the part as given.
-pub fn floor_around(part: &PartModel, factor_num: i64, factor_den: i64) -> [Q; 4] {
+pub fn floor_around(part: &PartModel, factor_num: i64, factor_den: i64) -> [Rational; 4] {
     let e = part
         .orient(&apart_stack::orientation::Orientation::IDENTITY)
         .extent;
     let half = |i: usize| {
-        let w = &e.hi[i] - &e.lo[i];
-        let c = &(&e.hi[i] + &e.lo[i]) * &apart_stack::exact::qfrac(1, 2);
-        let r = &(&w * &apart_stack::exact::qfrac(factor_num, factor_den))
-            * &apart_stack::exact::qfrac(1, 2);
+        let w = &e.max[i] - &e.min[i];
+        let c = &(&e.max[i] + &e.min[i]) * &qfrac(1, 2);
+        let r = &(&w * &qfrac(factor_num, factor_den)) * &qfrac(1, 2);
         (&c - &r, &c + &r)
     };
     let (x0, x1) = half(0);
@@ -131,9 +139,9 @@ fn facet_xy(p: &Polytope, f: &apart_pieces::Facet) -> Vec<[Rational; 2]> {
 /// Support points of part `k` of a plan: its vertices on the floor, and the corners of
 /// the overlaps of its downward facets with coplanar upward facets of earlier parts
 /// (face contacts only).
-pub fn support_points(plan: &StackPlan, k: usize, floor_z: &Q) -> Vec<[Rational; 2]> {
+pub fn support_points(plan: &StackPlan, k: usize, floor_z: &Rational) -> Vec<[Rational; 2]> {
     let mine = plan.pieces_of(k);
-    let fz = floor_z.to_rational();
+    let fz = floor_z.clone();
     let mut pts = Vec::new();
     for p in &mine {
         for v in p.vertices() {
@@ -199,7 +207,7 @@ pub fn strictly_inside_hull(pts: &[[Rational; 2]], c: &[Rational; 2]) -> bool {
 
 /// Every part's centre of gravity projects strictly inside its face-contact support
 /// polygon (independent of the planner's contact code).
-pub fn assert_stable(plan: &StackPlan, floor_z: &Q) {
+pub fn assert_stable(plan: &StackPlan, floor_z: &Rational) {
     for k in 0..plan.placements.len() {
         let cg = centre_of_gravity(&plan.pieces_of(k));
         let pts = support_points(plan, k, floor_z);
@@ -212,8 +220,8 @@ pub fn assert_stable(plan: &StackPlan, floor_z: &Q) {
 }
 
 /// The height of the plan's stack, recomputed from the placed pieces.
-pub fn height(plan: &StackPlan, floor_z: &Q) -> Rational {
-    let mut top = floor_z.to_rational();
+pub fn height(plan: &StackPlan, floor_z: &Rational) -> Rational {
+    let mut top = floor_z.clone();
     for k in 0..plan.placements.len() {
         for p in plan.pieces_of(k) {
             for v in p.vertices() {
@@ -224,5 +232,5 @@ pub fn height(plan: &StackPlan, floor_z: &Q) -> Rational {
             }
         }
     }
-    &top - &floor_z.to_rational()
+    &top - floor_z
 }
