@@ -4,6 +4,8 @@
 //! Lagrange multipliers). When the certificate fails (degenerate or badly conditioned
 //! input) the exact algorithm runs instead, so floating point never decides anything.
 
+use apart_kernel::fvec::dot;
+
 /// A constraint `a · p <= b` in doubles, scaled to a unit normal.
 pub(crate) type FHalf = ([f64; 3], f64);
 
@@ -19,10 +21,6 @@ pub(crate) struct FObjective {
 }
 
 const EPS: f64 = 1e-9;
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 /// Solutions of `a x = b` (`k` unknowns): a particular solution and a null-space basis,
 /// by Gauss–Jordan with partial pivoting; `None` when clearly inconsistent.
@@ -104,7 +102,7 @@ fn affine_min(eqs: &[&FHalf], obj: &FObjective) -> Option<[f64; 3]> {
     if basis.is_empty() {
         return Some(p0);
     }
-    let mv = |h: &[[f64; 3]; 3], p: &[f64; 3]| [dot(&h[0], p), dot(&h[1], p), dot(&h[2], p)];
+    let mv = |h: &[[f64; 3]; 3], p: &[f64; 3]| [dot(h[0], *p), dot(h[1], *p), dot(h[2], *p)];
     let hp0 = mv(&obj.h, &p0);
     let grad0 = [0, 1, 2].map(|i| 2.0 * hp0[i] + obj.g[i]);
     let d = basis.len();
@@ -112,9 +110,9 @@ fn affine_min(eqs: &[&FHalf], obj: &FObjective) -> Option<[f64; 3]> {
         .map(|i| {
             let mut r = [0.0; 4];
             for (j, rj) in r.iter_mut().enumerate().take(d) {
-                *rj = 2.0 * dot(&basis[i], &mv(&obj.h, &basis[j]));
+                *rj = 2.0 * dot(basis[i], mv(&obj.h, &basis[j]));
             }
-            r[3] = -dot(&basis[i], &grad0);
+            r[3] = -dot(basis[i], grad0);
             r
         })
         .collect();
@@ -140,9 +138,9 @@ fn affine_min(eqs: &[&FHalf], obj: &FObjective) -> Option<[f64; 3]> {
         .map(|i| {
             let mut r = [0.0; 4];
             for (j, rj) in r.iter_mut().enumerate().take(n) {
-                *rj = dot(&b1[i], &b1[j]);
+                *rj = dot(b1[i], b1[j]);
             }
-            r[3] = dot(&b1[i], &diff);
+            r[3] = dot(b1[i], diff);
             r
         })
         .collect();
@@ -152,7 +150,7 @@ fn affine_min(eqs: &[&FHalf], obj: &FObjective) -> Option<[f64; 3]> {
 }
 
 fn violates(h: &FHalf, p: &[f64; 3]) -> bool {
-    let s = dot(&h.0, p) - h.1;
+    let s = dot(h.0, *p) - h.1;
     s > 1e-9 * (1.0 + h.1.abs() + p.iter().map(|v| v.abs()).fold(0.0, f64::max))
 }
 
