@@ -4,8 +4,9 @@
 use crate::limits::TimedOut;
 use crate::Global;
 use apart::assembly::{Progress, ProgressFn};
+use apart::kernel::Aabb;
 use apart::kernel::Grid;
-use apart::mesh::{Aabb, Problem};
+use apart::mesh::Problem;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -37,9 +37,6 @@ mod triangulate;
 pub mod validate;
 mod weld;
 
-/// Re-export of the kernel's box, kept for the CLI (`src/output.rs` names
-/// `apart::mesh::Aabb`), which is not yet moved to `apart_kernel::Aabb`.
-pub use apart_kernel::Aabb;
 pub use mesh::{fmt_point, Mesh};
 pub use problem::{Problem, ProblemKind, Severity};
 pub use raw::{Polygons, RawObject};
