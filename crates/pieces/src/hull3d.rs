@@ -10,7 +10,7 @@ use crate::hull2d::hull_in_plane;
 use crate::polytope::{Polytope, PolytopeError};
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Int, Sign, Vec3};
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashSet;
 
 /// Gift wrapping about the line through `a` along `d`: the point `p` of `pts` (off the
 /// line, and off `skip_plane` when given) that turns the plane through the line
@@ -100,11 +100,11 @@ impl Polytope {
         }
         let first = first_facet(&pts).ok_or(PolytopeError::Flat)?;
         let mut facets: Vec<(Vec3, Int, Vec<u32>)> = Vec::new();
-        let mut seen: FxHashMap<(Vec3, Int), ()> = FxHashMap::default();
+        let mut seen: FxHashSet<(Vec3, Int)> = FxHashSet::default();
         let mut edges: FxHashSet<(u32, u32)> = FxHashSet::default();
         let mut queue = vec![first];
         while let Some((n, off)) = queue.pop() {
-            if seen.insert((n.clone(), off.clone()), ()).is_some() {
+            if !seen.insert((n.clone(), off.clone())) {
                 continue;
             }
             let on: Vec<u32> = (0..pts.len() as u32)
@@ -127,14 +127,13 @@ impl Polytope {
                 // first candidate is off the facet's plane, and the sense of rotation
                 // is whichever `wrap` uses; `supporting` checks the result exactly and
                 // the other sense is tried when it is not the neighbour.
-                let next = wrap(&pts, pu, &e, Some((&n, &off)))
-                    .and_then(|q| supporting(&pts, pu, pv, &pts[q]))
-                    .filter(|(m, o)| !(m == &n && o == &off))
-                    .or_else(|| {
-                        wrap(&pts, pu, &e.neg(), Some((&n, &off)))
-                            .and_then(|q| supporting(&pts, pu, pv, &pts[q]))
-                            .filter(|(m, o)| !(m == &n && o == &off))
-                    })
+                let turn = |d: &Vec3| {
+                    wrap(&pts, pu, d, Some((&n, &off)))
+                        .and_then(|q| supporting(&pts, pu, pv, &pts[q]))
+                        .filter(|(m, o)| !(m == &n && o == &off))
+                };
+                let next = turn(&e)
+                    .or_else(|| turn(&e.neg()))
                     .ok_or(PolytopeError::Flat)?;
                 queue.push(next);
             }

@@ -34,29 +34,6 @@ struct Vertex {
     on: Vec<u32>,
 }
 
-/// `⌈sqrt(v)⌉` for `v >= 0`, exactly.
-fn ceil_sqrt(v: &Int) -> Int {
-    if *v <= Int::ZERO {
-        return Int::ZERO;
-    }
-    let mut k = Int::from(int::to_f64(v).sqrt().ceil() as u128);
-    // Newton steps from above, then the exact correction.
-    loop {
-        let next: Int = (&k + v / &k) / Int::from(2);
-        if next >= k {
-            break;
-        }
-        k = next;
-    }
-    while &k * &k < *v {
-        k += Int::ONE;
-    }
-    while k > Int::ZERO && &(&k - Int::ONE) * &(&k - Int::ONE) >= *v {
-        k -= Int::ONE;
-    }
-    k
-}
-
 /// Sign of `n · (y / w) - c` (as `w > 0`), and the value `n · y - c w`.
 fn side(h: &BigPlane, v: &Vertex) -> (Sign, Int) {
     let s = h.value(&v.p);
@@ -295,7 +272,7 @@ fn solve3(m: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
 
 /// `⌈256 |n|⌉`: 256 times the rational upper bound of a normal's length.
 fn length_bound_256(n: &Vec3) -> Int {
-    ceil_sqrt(&(n.dot(n) * Int::from(65536)))
+    int::ceil_sqrt(&(n.dot(n) * Int::from(65536)))
 }
 
 impl Polytope {
@@ -533,21 +510,6 @@ mod tests {
 
     fn cube(lo: i64, hi: i64) -> Polytope {
         Polytope::cuboid([lo; 3], [hi; 3]).unwrap()
-    }
-
-    #[test]
-    fn ceil_sqrt_is_exact() {
-        for v in 0u64..2000 {
-            let k = ceil_sqrt(&Int::from(v));
-            let k = u64::try_from(&k).unwrap();
-            assert!(
-                k * k >= v && (k == 0 || (k - 1) * (k - 1) < v),
-                "{v} -> {k}"
-            );
-        }
-        let big = Int::from(1u128 << 100) + Int::from(7);
-        let k = ceil_sqrt(&big);
-        assert!(&k * &k >= big && &(&k - Int::ONE) * &(&k - Int::ONE) < big);
     }
 
     #[test]
