@@ -6,7 +6,7 @@ mod common;
 use apart_draw::colors::{part_colors, Rgb};
 use apart_draw::raster::AXIS_COLORS;
 use apart_draw::{assembly_png, step_pngs, View};
-use common::{count_shades, pixel};
+use common::{count_shades, part_of, pixel};
 use resvg::tiny_skia::Pixmap;
 
 const W: u32 = 480;
@@ -127,30 +127,6 @@ fn pieces_only_parts_render() {
     let colors = part_colors(&a.parts.iter().map(|p| p.name.clone()).collect::<Vec<_>>());
     let img = Pixmap::decode_png(&assembly_png(&a, &[0], &no_labels(), W, H)).unwrap();
     assert!(count_shades(&img, colors[0], W) > 1000);
-}
-
-/// The part whose colour `c` is a shade of (flat shading scales the three channels by
-/// one factor), `Some(None)` for the white background, and `None` for a colour of no
-/// part (an outline, a blend at an edge). A channel may be off by 8 levels: where two
-/// paths of one face meet, resvg's anti-aliasing lets up to 4 levels of what lies
-/// behind show through.
-fn part_of(c: [u8; 3], colors: &[Rgb]) -> Option<Option<usize>> {
-    if c == [255, 255, 255] {
-        return Some(None);
-    }
-    let p = c.map(|v| v as f64);
-    colors
-        .iter()
-        .enumerate()
-        .filter_map(|(k, base)| {
-            let b = [base.0 as f64, base.1 as f64, base.2 as f64];
-            let s = (p[0] * b[0] + p[1] * b[1] + p[2] * b[2])
-                / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-            let err = (0..3).map(|i| (p[i] - s * b[i]).abs()).fold(0.0, f64::max);
-            (err <= 8.0 && (0.3..=1.02).contains(&s)).then_some((err, k))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, k)| Some(k))
 }
 
 #[test]

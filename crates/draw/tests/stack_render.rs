@@ -9,6 +9,7 @@
 
 // apart-stack's test helpers: the sheet-metal test parts as placement models, the floor
 // region around a part, and shorthands for rationals.
+mod common;
 #[path = "../../stack/tests/common/mod.rs"]
 mod stack_common;
 
@@ -19,35 +20,13 @@ use apart_draw::{shapes_part_ids, shapes_png, shapes_svg, View};
 use apart_stack::part::PartModel;
 use apart_stack::planner::{stack, StackOptions};
 use apart_stack::scene::Scene;
+use common::part_of;
 use resvg::tiny_skia::Pixmap;
 use stack_common::parts::{channel, complex_part, cube, triangle_part};
 use stack_common::{floor_around, q, qfrac};
 
 const W: u32 = 480;
 const H: u32 = 360;
-
-/// The part whose colour `c` is a shade of (flat shading scales all three channels by
-/// one factor, and where two paths of one face meet resvg's anti-aliasing lets up to 4
-/// levels of what lies behind show through), `Some(None)` for the white background, or
-/// `None` for a colour of no part.
-fn part_of(c: [u8; 3], colors: &[Rgb]) -> Option<Option<usize>> {
-    if c == [255, 255, 255] {
-        return Some(None);
-    }
-    let p = c.map(|v| v as f64);
-    colors
-        .iter()
-        .enumerate()
-        .filter_map(|(k, base)| {
-            let b = [base.0 as f64, base.1 as f64, base.2 as f64];
-            let s = (p[0] * b[0] + p[1] * b[1] + p[2] * b[2])
-                / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-            let err = (0..3).map(|i| (p[i] - s * b[i]).abs()).fold(0.0, f64::max);
-            (err <= 8.0 && (0.3..=1.02).contains(&s)).then_some((err, k))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, k)| Some(k))
-}
 
 /// The part a pixel of a picture shows, by its colour.
 fn seen_at(img: &Pixmap, x: i64, y: i64, colors: &[Rgb]) -> Option<Option<usize>> {

@@ -68,7 +68,16 @@ pub mod stability;
 /// Shorthands for the exact numbers of the unit tests.
 #[cfg(test)]
 pub(crate) mod testing {
-    use apart_kernel::Rational;
+    use apart_kernel::{Rational, Vec3};
+    use apart_pieces::Polytope;
+
+    /// The unit cube with its lowest corner at `o`.
+    pub(crate) fn unit(o: [i64; 3]) -> Polytope {
+        let pts: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new(o[0] + (i & 1), o[1] + (i >> 1 & 1), o[2] + (i >> 2 & 1)))
+            .collect();
+        Polytope::hull_of_points(&pts).unwrap()
+    }
 
     /// The integer `v`.
     pub(crate) fn q(v: i64) -> Rational {

@@ -121,15 +121,8 @@ pub(crate) fn translated(p: &Polytope, t: &HPoint) -> Polytope {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::{q, qfrac};
+    use crate::testing::{q, qfrac, unit};
     use apart_pieces::interference::{interiors_disjoint, interiors_meet_translated};
-
-    fn unit(o: [i64; 3]) -> Polytope {
-        let pts: Vec<Vec3> = (0..8)
-            .map(|i| Vec3::new(o[0] + (i & 1), o[1] + (i >> 1 & 1), o[2] + (i >> 2 & 1)))
-            .collect();
-        Polytope::hull_of_points(&pts).unwrap()
-    }
 
     /// The translated polytope agrees with apart-pieces' separating-axis test for a
     /// translated piece (which placement's detection calls).

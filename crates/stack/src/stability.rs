@@ -381,7 +381,7 @@ pub(crate) fn top(pieces: &[Polytope]) -> Option<Rational> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::{q, qfrac};
+    use crate::testing::{q, qfrac, unit};
 
     fn boxp(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
         Polytope::cuboid(lo, hi).unwrap()
@@ -405,13 +405,6 @@ mod tests {
         let c3 = contacts(&fl, &q(0), &scene);
         assert_eq!(c3[0].with, ContactWith::Floor);
         assert!(stable(&[qfrac(11, 2), qfrac(11, 2), qfrac(1, 2)], &c3));
-    }
-
-    fn unit(o: [i64; 3]) -> Polytope {
-        let pts: Vec<Vec3> = (0..8)
-            .map(|i| Vec3::new(o[0] + (i & 1), o[1] + (i >> 1 & 1), o[2] + (i >> 2 & 1)))
-            .collect();
-        Polytope::hull_of_points(&pts).unwrap()
     }
 
     #[test]

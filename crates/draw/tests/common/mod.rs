@@ -126,3 +126,27 @@ pub fn count_shades(p: &Pixmap, base: Rgb, max_x: u32) -> usize {
     }
     n
 }
+
+/// The part whose colour `c` is a shade of (flat shading scales the three channels by
+/// one factor), `Some(None)` for the white background, and `None` for a colour of no
+/// part (an outline, a blend at an edge). A channel may be off by 8 levels: where two
+/// paths of one face meet, resvg's anti-aliasing lets up to 4 levels of what lies
+/// behind show through.
+pub fn part_of(c: [u8; 3], colors: &[Rgb]) -> Option<Option<usize>> {
+    if c == [255, 255, 255] {
+        return Some(None);
+    }
+    let p = c.map(|v| v as f64);
+    colors
+        .iter()
+        .enumerate()
+        .filter_map(|(k, base)| {
+            let b = [base.0 as f64, base.1 as f64, base.2 as f64];
+            let s = (p[0] * b[0] + p[1] * b[1] + p[2] * b[2])
+                / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+            let err = (0..3).map(|i| (p[i] - s * b[i]).abs()).fold(0.0, f64::max);
+            (err <= 8.0 && (0.3..=1.02).contains(&s)).then_some((err, k))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, k)| Some(k))
+}
