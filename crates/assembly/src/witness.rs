@@ -4,7 +4,7 @@
 
 use apart_kernel::int::bit_len;
 use apart_kernel::orient::{normal, on_triangle};
-use apart_kernel::HPoint;
+use apart_kernel::{rational, HPoint};
 use apart_kernel::{Grid, Int, Rational, Sign};
 use apart_mesh::locate::Locator;
 use apart_pieces::Polytope;
@@ -19,10 +19,6 @@ fn pow2(k: u32) -> Rational {
 
 fn add(a: &[Rational; 3], b: &[Rational; 3], s: &Rational) -> [Rational; 3] {
     [0, 1, 2].map(|k| &a[k] + &(&b[k] * s))
-}
-
-fn sub(a: &[Rational; 3], b: &[Rational; 3]) -> [Rational; 3] {
-    [0, 1, 2].map(|k| &a[k] - &b[k])
 }
 
 /// A point strictly inside both solids near `c`, where `c` lies on the boundary of `a`
@@ -46,7 +42,7 @@ pub(crate) fn into_both(a: &Locator, b: &Locator, c: &HPoint) -> Option<HPoint> 
         let nb = n.iter().map(bit_len).max().unwrap_or(0);
         let n = n.map(Rational::from_int);
         for k in STEPS {
-            let c1 = add(&cr, &sub(&g, &cr), &pow2(k));
+            let c1 = add(&cr, &rational::sub(&g, &cr), &pow2(k));
             let c2 = add(&c1, &n, &(-&pow2(2 * k + nb)));
             let w = HPoint::from_rationals(&c2);
             if a.strictly_inside(&w) && b.strictly_inside(&w) {
