@@ -13,11 +13,13 @@
 //! those polygons (at `d` and `−d`, which the reversed pair sees) has, at `d`, the same
 //! vertex, edge or face as the full one.
 
-use crate::clearance::{to_angle, FArc};
+use crate::clearance::{chord2, to_angle, FArc};
+use crate::cull::{pairs_where, split_pair, sum_box, PieceTree};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::pairs::{
-    axes, classify, pair_polygon, ray_meets_box, Axis, PairPolygon, PieceInfo, Sep,
+    axes, classify, pair_polygon, ray_meets_box, ray_meets_int_box, Axis, PairPolygon, PieceInfo,
+    Sep,
 };
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
 use crate::regions::{BlockingRegions, PartPieces};
@@ -68,6 +70,9 @@ struct PairCache {
 pub struct DirectionQuery<'a> {
     parts: &'a [PartPieces],
     info: Vec<Vec<PieceInfo>>,
+    /// Each part's box tree over its pieces (`None` when its coordinates are too large
+    /// for integer boxes: then every piece pair is visited).
+    trees: Vec<Option<PieceTree>>,
     /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`).
     cache: Vec<Vec<PairCache>>,
     pair_index: Vec<usize>,
@@ -92,6 +97,10 @@ impl<'a> DirectionQuery<'a> {
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
+        let trees = parts
+            .par_iter()
+            .map(|p| PieceTree::new(&p.pieces))
+            .collect();
         let mut pair_index = vec![usize::MAX; n * n];
         let mut cache = Vec::new();
         for i in 0..n {
@@ -104,6 +113,7 @@ impl<'a> DirectionQuery<'a> {
         Ok(DirectionQuery {
             parts,
             info,
+            trees,
             cache,
             pair_index,
             n_axes: AtomicUsize::new(0),
@@ -179,21 +189,40 @@ impl<'a> DirectionQuery<'a> {
         }
     }
 
-    /// The status of every piece pair of `{i, j}` at `x`: outside when the ray along `x`
-    /// misses the box of the pair's sum, else by exact boxes then axes.
-    fn classify_all(&self, i: usize, j: usize, x: &Vec3) -> Vec<Sep> {
+    /// The piece pairs of `{i, j}` whose sum's box the ray along `x` may meet (a
+    /// superset, from the parts' box trees; every pair without them), in increasing order.
+    fn along_ray(&self, i: usize, j: usize, x: &Vec3) -> Vec<usize> {
         let nb = self.parts[j].pieces.len();
-        let m = self.parts[i].pieces.len() * nb;
-        (0..m)
-            .into_par_iter()
+        let (Some(ti), Some(tj), Some(xs)) = (&self.trees[i], &self.trees[j], x.as_small()) else {
+            return (0..self.parts[i].pieces.len() * nb).collect();
+        };
+        let mut out = Vec::new();
+        pairs_where(
+            ti,
+            tj,
+            |lo, hi, _| ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs),
+            |a, b| out.push(a * nb + b),
+        );
+        out.sort_unstable();
+        out
+    }
+
+    /// The piece pairs of `{i, j}` that `x` does not put outside their closed
+    /// projections, with their status: the ray along `x` meets the box of the pair's sum
+    /// (exactly), and the axes do not exclude `x`. In increasing order.
+    fn classify_all(&self, i: usize, j: usize, x: &Vec3) -> Vec<(usize, Sep)> {
+        let nb = self.parts[j].pieces.len();
+        let near = self.along_ray(i, j, x);
+        near.into_par_iter()
             .with_min_len(64)
-            .map(|k| {
+            .filter_map(|k| {
                 let (a, b) = (k / nb, k % nb);
                 let (pa, pb) = (&self.parts[i].pieces[a], &self.parts[j].pieces[b]);
                 if !ray_meets_box(&self.info[i][a], pa.den(), &self.info[j][b], pb.den(), x) {
-                    return Sep::Outside;
+                    return None;
                 }
-                classify(self.axes(i, j, k), x)
+                let s = classify(self.axes(i, j, k), x);
+                (s != Sep::Outside).then_some((k, s))
             })
             .collect()
     }
@@ -206,11 +235,13 @@ impl<'a> DirectionQuery<'a> {
         &self,
         i: usize,
         j: usize,
-        sep: &[Sep],
+        sep: &[(usize, Sep)],
         x: &Vec3,
     ) -> Result<Option<usize>, PlanError> {
-        let (touching, others): (Vec<usize>, Vec<usize>) = (0..sep.len())
-            .filter(|&k| sep[k] == Sep::Unknown)
+        let (touching, others): (Vec<usize>, Vec<usize>) = sep
+            .iter()
+            .filter(|(_, s)| *s == Sep::Unknown)
+            .map(|(k, _)| *k)
             .partition(|&k| self.axes(i, j, k).iter().any(|a| !a.strict));
         for chunk in std::iter::once(&touching[..]).chain(others.chunks(64)) {
             let hit: Vec<Option<usize>> = chunk
@@ -249,8 +280,9 @@ impl<'a> DirectionQuery<'a> {
         // polygon inside the open hemisphere of a face contact of the same parts changes
         // nothing near x (its open set lies in that hemisphere, which is in the union),
         // so non-touching pairs covered that way are not summed.
-        let (touching, others): (Vec<usize>, Vec<usize>) = (0..sep.len())
-            .filter(|&k| sep[k] != Sep::Outside)
+        let (touching, others): (Vec<usize>, Vec<usize>) = sep
+            .iter()
+            .map(|(k, _)| *k)
             .partition(|&k| self.axes(i, j, k).iter().any(|a| !a.strict));
         let mut on: Vec<Option<usize>> = touching
             .par_iter()
@@ -375,8 +407,8 @@ impl<'a> DirectionQuery<'a> {
         let n = self.parts.len();
         for i in 0..n {
             for j in i + 1..n {
-                let m = self.pair(i, j).len();
-                let found: Vec<Vec3> = (0..m)
+                let found: Vec<Vec3> = self
+                    .touching_pairs(i, j)
                     .into_par_iter()
                     .with_min_len(64)
                     .filter_map(|k| crate::pairs::touching_normal(self.axes(i, j, k)).cloned())
@@ -397,33 +429,71 @@ impl<'a> DirectionQuery<'a> {
         out
     }
 
+    /// The piece pairs of `{i, j}` whose boxes touch or overlap (a superset, from the
+    /// parts' box trees; every pair without them): the only ones that can touch.
+    fn touching_pairs(&self, i: usize, j: usize) -> Vec<usize> {
+        let nb = self.parts[j].pieces.len();
+        let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
+            return (0..self.parts[i].pieces.len() * nb).collect();
+        };
+        let mut out = Vec::new();
+        pairs_where(
+            ti,
+            tj,
+            |lo, hi, _| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]),
+            |a, b| out.push(a * nb + b),
+        );
+        out.sort_unstable();
+        out
+    }
+
     /// Angular clearance (radians) at `d` of the moving set `moving` (global indices):
     /// the distance to the nearest direction along which a part of `moving` hits a part
-    /// outside it. Piece pairs are visited by increasing lower bound (the angle to the
-    /// cone of the bounding sphere of their sum's box, and the hemispheres of their
-    /// separating axes) and stop once the bound exceeds the best distance so far (within a
-    /// relative 1e-6), so the value is the true distance (in floating point) or at most a
-    /// millionth more.
+    /// outside it. Groups of piece pairs (node pairs of the parts' box trees) are visited
+    /// best first by a lower bound, the angle from `d` to the cone over the box of their
+    /// sums ([`box_angle`]); a single pair's bound also uses the hemispheres of its
+    /// separating axes. The search stops once the bound exceeds the best distance so far
+    /// (within a relative 1e-6), so the value is the true distance (in floating point) or
+    /// at most a millionth more.
     pub fn clearance(&self, d: &Vec3, moving: &[usize]) -> Result<f64, PlanError> {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        // Bounds are non-negative, so their bit patterns order like the values.
+        type Key = Reverse<(u64, usize, usize, bool, usize, usize)>;
+        let key = |bound: f64, p, q, flip, na, nb| -> Key {
+            Reverse((bound.max(0.0).to_bits(), p, q, flip, na, nb))
+        };
         let n = self.parts.len();
-        let mut cands: Vec<(f64, usize, usize, usize, Vec3)> = Vec::new();
+        let units = [d.unit_f64(), d.neg().unit_f64()];
+        let xs = [d.clone(), d.neg()];
+        let mut heap: BinaryHeap<Key> = BinaryHeap::new();
+        // Pairs of parts without box trees: each piece pair on its own, bounded by the
+        // floating-point box of its sum.
+        let mut loose: Vec<(f64, usize, usize, bool, usize)> = Vec::new();
         for i in moving.iter().copied() {
             for j in (0..n).filter(|j| !moving.contains(j)) {
                 // Map i -> j is P_ab of the pair (min, max) at d when i < j, at −d else.
-                let (p, q, x) = if i < j {
-                    (i, j, d.clone())
-                } else {
-                    (j, i, d.neg())
-                };
-                let ux = x.unit_f64();
-                let nb = self.parts[q].pieces.len();
-                for k in 0..self.parts[p].pieces.len() * nb {
-                    let bound = self.sphere_bound(p, q, k, &ux);
-                    cands.push((bound, p, q, k, x.clone()));
+                let (p, q, flip) = if i < j { (i, j, false) } else { (j, i, true) };
+                let u = &units[usize::from(flip)];
+                if let (Some(tp), Some(tq)) = (&self.trees[p], &self.trees[q]) {
+                    if let (Some(ra), Some(rb)) = (tp.root(), tq.root()) {
+                        let (lo, hi) = sum_box(tp, ra, tq, rb);
+                        heap.push(key(box_angle(lo, hi, u), p, q, flip, ra, rb));
+                    }
+                    continue;
+                }
+                let fa: Vec<_> = self.parts[p].pieces.iter().map(float_box).collect();
+                let fq: Vec<_> = self.parts[q].pieces.iter().map(float_box).collect();
+                for (a, (alo, ahi)) in fa.iter().enumerate() {
+                    for (b, (blo, bhi)) in fq.iter().enumerate() {
+                        let lo = std::array::from_fn(|k| blo[k] - ahi[k]);
+                        let hi = std::array::from_fn(|k| bhi[k] - alo[k]);
+                        loose.push((box_angle_f64(lo, hi, u), p, q, flip, a * fq.len() + b));
+                    }
                 }
             }
         }
-        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        loose.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut best = std::f64::consts::PI;
         // A pair is skipped when its bound is within a relative 1e-6 of the best so far:
         // the value may exceed the true distance by that much, no more. Under a
@@ -431,59 +501,53 @@ impl<'a> DirectionQuery<'a> {
         // contact's great circle), and each would otherwise be summed to shave the last
         // digits.
         let slack = |best: f64| best * (1.0 - 1e-6);
-        for (bound, p, q, k, x) in cands {
+        // One piece pair whose bound is below the best: a tighter bound from its
+        // separating axes, then its polygon. Pieces a gap apart (every contact under a
+        // tolerance) have boxes that meet, so the box bound is 0 for pairs that the
+        // contact's own axis puts far from x.
+        let visit = |p: usize, q: usize, flip: bool, k: usize, best: &mut f64| {
+            let x = &xs[usize::from(flip)];
+            if axes_bound(self.axes(p, q, k), x) >= slack(*best) {
+                return Ok(());
+            }
+            let poly = self.polygon(p, q, k)?;
+            *best = best.min(distance(poly, x));
+            Ok::<(), PlanError>(())
+        };
+        for (bound, p, q, flip, k) in loose {
             if bound >= slack(best) {
                 break;
             }
-            // A tighter bound before the sum: the projection lies in the closed
-            // hemisphere n · u >= 0 of each separating axis n, at least
-            // asin(-n̂ · x̂) from x. Pieces a gap apart (every contact under a
-            // tolerance) have boxes that meet, so the ball bound above is 0 for
-            // thousands of pairs that the contact's own axis puts far from x.
-            if axes_bound(self.axes(p, q, k), &x) >= slack(best) {
-                continue;
-            }
-            let poly = self.polygon(p, q, k)?;
-            best = best.min(distance(poly, &x));
+            visit(p, q, flip, k, &mut best)?;
         }
-        Ok(best)
-    }
-
-    /// A lower bound of the angle from unit `ux` to the projection of piece pair `k` of
-    /// `{p, q}`: the sum lies in its box, the box in its circumscribed ball.
-    fn sphere_bound(&self, p: usize, q: usize, k: usize, ux: &[f64; 3]) -> f64 {
-        let nb = self.parts[q].pieces.len();
-        let (a, b) = (&self.parts[p].pieces[k / nb], &self.parts[q].pieces[k % nb]);
-        let bounds = |x: &apart_pieces::Polytope| {
-            let den = apart_kernel::int::to_f64(x.den());
-            let mut lo = [f64::INFINITY; 3];
-            let mut hi = [f64::NEG_INFINITY; 3];
-            for v in x.vertices() {
-                let c = v.approx();
-                for t in 0..3 {
-                    lo[t] = lo[t].min(c[t] / den);
-                    hi[t] = hi[t].max(c[t] / den);
+        while let Some(Reverse((bits, p, q, flip, na, nb))) = heap.pop() {
+            if f64::from_bits(bits) >= slack(best) {
+                break;
+            }
+            let (Some(tp), Some(tq)) = (&self.trees[p], &self.trees[q]) else {
+                continue;
+            };
+            match split_pair(tp, na, tq, nb) {
+                Some(children) => {
+                    for (ca, cb) in children {
+                        let (lo, hi) = sum_box(tp, ca, tq, cb);
+                        let bound = box_angle(lo, hi, &units[usize::from(flip)]);
+                        if bound < slack(best) {
+                            heap.push(key(bound, p, q, flip, ca, cb));
+                        }
+                    }
+                }
+                None => {
+                    let m = self.parts[q].pieces.len();
+                    for &a in tp.pieces(na) {
+                        for &b in tq.pieces(nb) {
+                            visit(p, q, flip, a * m + b, &mut best)?;
+                        }
+                    }
                 }
             }
-            (lo, hi)
-        };
-        let ((alo, ahi), (blo, bhi)) = (bounds(a), bounds(b));
-        let mut c = [0.0; 3];
-        let mut r2 = 0.0;
-        for t in 0..3 {
-            let (lo, hi) = (blo[t] - ahi[t], bhi[t] - alo[t]);
-            c[t] = 0.5 * (lo + hi);
-            r2 += (0.5 * (hi - lo)).powi(2);
         }
-        let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-        // Generous margin: a bound, only used to order and stop the search.
-        let r = r2.sqrt() * (1.0 + 1e-9) + 1e-12 * c2.sqrt();
-        if c2.sqrt() <= r {
-            return 0.0;
-        }
-        let cos = (c[0] * ux[0] + c[1] * ux[1] + c[2] * ux[2]) / c2.sqrt();
-        let angle = cos.clamp(-1.0, 1.0).acos();
-        (angle - (r / c2.sqrt()).asin() - 1e-9).max(0.0)
+        Ok(best)
     }
 
     /// The first solution of candidate directions ([`DirectionQuery::candidates`]): the
@@ -543,6 +607,83 @@ fn distance(p: &SphericalPolygon, x: &Vec3) -> f64 {
         .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()).distance2(&u))
         .fold(4.0, f64::min);
     to_angle(c2)
+}
+
+/// The floating-point bounds of a piece (true coordinates).
+fn float_box(x: &apart_pieces::Polytope) -> ([f64; 3], [f64; 3]) {
+    let den = apart_kernel::int::to_f64(x.den());
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for v in x.vertices() {
+        let c = v.approx();
+        for t in 0..3 {
+            lo[t] = lo[t].min(c[t] / den);
+            hi[t] = hi[t].max(c[t] / den);
+        }
+    }
+    (lo, hi)
+}
+
+/// [`box_angle_f64`] of an integer box.
+fn box_angle(lo: [i64; 3], hi: [i64; 3], u: &[f64; 3]) -> f64 {
+    box_angle_f64(lo.map(|x| x as f64), hi.map(|x| x as f64), u)
+}
+
+/// A lower bound of the angle (radians) from unit `u` to the direction of every point
+/// of the closed box `[lo, hi]`: 0 when the box, widened by a relative 1e-9, holds the
+/// origin or meets the ray along `u`; else the distance to the arcs of the box's 12
+/// edges, less 1e-9 (the cone over a convex set without the origin is bounded by its
+/// silhouette, which is made of edges). Floating point; only used to order and skip
+/// the clearance search.
+fn box_angle_f64(lo: [f64; 3], hi: [f64; 3], u: &[f64; 3]) -> f64 {
+    use apart_kernel::fvec;
+    let scale = (0..3)
+        .map(|k| lo[k].abs().max(hi[k].abs()))
+        .fold(0.0, f64::max);
+    let pad = scale * 1e-9 + f64::MIN_POSITIVE;
+    let (lo, hi) = (lo.map(|x| x - pad), hi.map(|x| x + pad));
+    if (0..3).all(|k| lo[k] <= 0.0 && 0.0 <= hi[k]) {
+        return 0.0;
+    }
+    // The ray t u (t > 0) against the slabs.
+    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+    for k in 0..3 {
+        if u[k] == 0.0 {
+            if lo[k] > 0.0 || hi[k] < 0.0 {
+                t1 = -1.0;
+            }
+            continue;
+        }
+        let (a, b) = (lo[k] / u[k], hi[k] / u[k]);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    if t0 <= t1 {
+        return 0.0;
+    }
+    let corners: [[f64; 3]; 8] = std::array::from_fn(|c| {
+        fvec::normalize(std::array::from_fn(|k| {
+            if c >> k & 1 == 1 {
+                hi[k]
+            } else {
+                lo[k]
+            }
+        }))
+    });
+    let mut c2 = 4.0f64;
+    for c in 0..8 {
+        for k in (0..3).filter(|k| c >> k & 1 == 0) {
+            let (a, b) = (corners[c], corners[c | 1 << k]);
+            let n = fvec::cross(a, b);
+            let len = fvec::norm(n);
+            c2 = c2.min(if len > 1e-12 {
+                FArc::new(a, b, n.map(|x| x / len)).distance2(u)
+            } else {
+                chord2(u, &a).min(chord2(u, &b))
+            });
+        }
+    }
+    (to_angle(c2) - 1e-9).max(0.0)
 }
 
 /// The exact blocking graph, minimal moving sets and cell kind at `d`, from per-piece-

@@ -144,9 +144,85 @@ impl PieceTree {
     }
 
     /// The pieces under node `n`.
-    fn pieces(&self, n: usize) -> &[usize] {
+    pub(crate) fn pieces(&self, n: usize) -> &[usize] {
         let node = &self.nodes[n];
         &self.order[node.start..node.start + node.len]
+    }
+
+    /// The root node, or `None` for a tree of no pieces.
+    pub(crate) fn root(&self) -> Option<usize> {
+        (!self.nodes.is_empty()).then_some(0)
+    }
+}
+
+/// The box `[lo_b − hi_a, hi_b − lo_a]` holding every `b ⊕ −a` of the pieces under nodes
+/// `na` of `moving` and `nb` of `fixed`.
+pub(crate) fn sum_box(
+    moving: &PieceTree,
+    na: usize,
+    fixed: &PieceTree,
+    nb: usize,
+) -> ([i64; 3], [i64; 3]) {
+    let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
+    (
+        std::array::from_fn(|k| b.lo[k] - a.hi[k]),
+        std::array::from_fn(|k| b.hi[k] - a.lo[k]),
+    )
+}
+
+/// The node pairs to visit after `(na, nb)`: the larger node split (both trees' leaves
+/// give none).
+pub(crate) fn split_pair(
+    moving: &PieceTree,
+    na: usize,
+    fixed: &PieceTree,
+    nb: usize,
+) -> Option<[(usize, usize); 2]> {
+    let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
+    match (a.children, b.children) {
+        (None, None) => None,
+        (Some((a0, a1)), None) => Some([(a0, nb), (a1, nb)]),
+        (None, Some((b0, b1))) => Some([(na, b0), (na, b1)]),
+        (Some((a0, a1)), Some((b0, b1))) => Some(if a.len >= b.len {
+            [(a0, nb), (a1, nb)]
+        } else {
+            [(na, b0), (na, b1)]
+        }),
+    }
+}
+
+/// Every piece pair `(a, b)` (`a` of `moving`, `b` of `fixed`) under a chain of node
+/// pairs that `keep` accepts: `keep(lo, hi, pairs)` gets the box of the node pair's sums
+/// ([`sum_box`]) and how many piece pairs lie under it, and returns whether to descend.
+/// Depth first from the roots, splitting the larger node.
+pub(crate) fn pairs_where(
+    moving: &PieceTree,
+    fixed: &PieceTree,
+    mut keep: impl FnMut([i64; 3], [i64; 3], usize) -> bool,
+    mut leaf: impl FnMut(usize, usize),
+) {
+    let (Some(ra), Some(rb)) = (moving.root(), fixed.root()) else {
+        return;
+    };
+    let mut stack = vec![(ra, rb)];
+    while let Some((na, nb)) = stack.pop() {
+        let (lo, hi) = sum_box(moving, na, fixed, nb);
+        if !keep(lo, hi, moving.nodes[na].len * fixed.nodes[nb].len) {
+            continue;
+        }
+        match split_pair(moving, na, fixed, nb) {
+            Some([x, y]) => {
+                stack.push(x);
+                stack.push(y);
+            }
+            None => {
+                for &pa in moving.pieces(na) {
+                    for &pb in fixed.pieces(nb) {
+                        leaf(pa, pb);
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -319,50 +395,24 @@ pub(crate) fn uncovered_pairs(
 ) -> (Vec<(usize, usize)>, CullStats) {
     let mut out = Vec::new();
     let mut stats = CullStats::default();
-    if moving.nodes.is_empty() || fixed.nodes.is_empty() {
-        return (out, stats);
-    }
-    let mut stack = vec![(0usize, 0usize)];
-    while let Some((na, nb)) = stack.pop() {
-        let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
-        // The box of every b ⊕ −a: [lo_b − hi_a, hi_b − lo_a].
-        let lo: [i64; 3] = std::array::from_fn(|k| b.lo[k] - a.hi[k]);
-        let hi: [i64; 3] = std::array::from_fn(|k| b.hi[k] - a.lo[k]);
-        let holds_origin = (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]);
-        stats.tested += 1;
-        if !holds_origin && box_projection_covered(lo, hi, cover) {
-            stats.culled += a.len * b.len;
-            continue;
-        }
-        match (a.children, b.children) {
-            (None, None) => {
-                for &pa in moving.pieces(na) {
-                    for &pb in fixed.pieces(nb) {
-                        if need(pa, pb) {
-                            out.push((pa, pb));
-                        }
-                    }
-                }
+    pairs_where(
+        moving,
+        fixed,
+        |lo, hi, pairs| {
+            let holds_origin = (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]);
+            stats.tested += 1;
+            if !holds_origin && box_projection_covered(lo, hi, cover) {
+                stats.culled += pairs;
+                return false;
             }
-            (Some((a0, a1)), None) => {
-                stack.push((a0, nb));
-                stack.push((a1, nb));
+            true
+        },
+        |pa, pb| {
+            if need(pa, pb) {
+                out.push((pa, pb));
             }
-            (None, Some((b0, b1))) => {
-                stack.push((na, b0));
-                stack.push((na, b1));
-            }
-            (Some((a0, a1)), Some((b0, b1))) => {
-                if a.len >= b.len {
-                    stack.push((a0, nb));
-                    stack.push((a1, nb));
-                } else {
-                    stack.push((na, b0));
-                    stack.push((na, b1));
-                }
-            }
-        }
-    }
+        },
+    );
     (out, stats)
 }
 

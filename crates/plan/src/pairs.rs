@@ -89,11 +89,20 @@ pub(crate) fn ray_meets_box(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, 
 /// direction below 2^62: box bounds below 2^62, products of fractions below 2^124, all
 /// exact in `i128`.
 fn ray_meets_small_box(a: &([i64; 3], [i64; 3]), b: &([i64; 3], [i64; 3]), x: &[i64; 3]) -> bool {
+    ray_meets_int_box(
+        std::array::from_fn(|k| b.0[k] as i128 - a.1[k] as i128),
+        std::array::from_fn(|k| b.1[k] as i128 - a.0[k] as i128),
+        x,
+    )
+}
+
+/// Whether the ray `{t x : t > 0}` meets the closed box `[lo, hi]`, exactly, for bounds
+/// below 2^62 in magnitude and a direction below 2^62 (products below 2^124).
+pub(crate) fn ray_meets_int_box(lo: [i128; 3], hi: [i128; 3], x: &[i64; 3]) -> bool {
     let mut lower: (i128, i128) = (0, 1);
     let mut upper: Option<(i128, i128)> = None;
     for (k, &xk) in x.iter().enumerate() {
-        let lo = b.0[k] as i128 - a.1[k] as i128;
-        let hi = b.1[k] as i128 - a.0[k] as i128;
+        let (lo, hi) = (lo[k], hi[k]);
         let xk = xk as i128;
         let (l, u, den) = match xk.cmp(&0) {
             Ordering::Equal => {
