@@ -15,7 +15,12 @@
 //!
 //! What the planners get ([`Polytope::shrunk`]) is that cut made one grid step deeper,
 //! with each vertex rounded to the nearest grid point and the convex hull taken: still
-//! at least `eps` inside every face, with integers as short as the input's.
+//! at least `eps` inside every face, with integers as short as the input's. Since the
+//! vertices are rounded anyway, that cut is first made in floating point (the same
+//! clipping, generic over its arithmetic); the rounded hull is kept only when an exact test
+//! puts every vertex at least `eps` inside every facet, else the exact cut is made.
+//! Either way the result holds the exact cut by `eps` plus two steps: a hull of points
+//! each less than a step from a convex set's vertices holds that set eroded by a step.
 
 use crate::hull2d::hull_in_plane;
 use crate::polytope::Polytope;
@@ -24,24 +29,75 @@ use apart_kernel::int::{self, Int};
 use apart_kernel::{BigPlane, HPoint, Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
 
-/// A vertex `y / w` (the kernel's reduced homogeneous point: `w > 0`, stored integers of
-/// the piece scaled by `1 / w`) and the sorted indices of the half-spaces whose plane
-/// passes through it. Half-spaces are the kernel's [`BigPlane`]s `n · y <= c` on the
-/// piece's stored integers `y` (true point `y / den`).
+/// A vertex of a polytope being cut, and the sorted indices of the half-spaces whose
+/// plane passes through it.
 #[derive(Clone)]
-struct Vertex {
-    p: HPoint,
+struct Vertex<P> {
+    p: P,
     on: Vec<u32>,
 }
 
-/// Sign of `n · (y / w) - c` (as `w > 0`), and the value `n · y - c w`.
-fn side(h: &BigPlane, v: &Vertex) -> (Sign, Int) {
-    let s = h.value(&v.p);
-    (int::sign_of(&s), s)
+/// The arithmetic of a cut: a point type, its half-space type and the value of a point
+/// against a half-space (positive outside).
+trait Cut: Sized {
+    /// A half-space.
+    type Half;
+    /// How far outside a half-space a point is (scaled).
+    type Value;
+    /// The side of the half-space's plane the point is on, and its value.
+    fn side(&self, h: &Self::Half) -> (Sign, Self::Value);
+    /// The point on the plane between `inner` (value `vi < 0`) and `outer` (`vo > 0`).
+    fn between(inner: &Self, outer: &Self, vi: &Self::Value, vo: &Self::Value) -> Self;
 }
 
+/// Exact: the kernel's reduced homogeneous point `y / w` (`w > 0`, stored integers of
+/// the piece scaled by `1 / w`) against a [`BigPlane`] `n · y <= c` on the piece's
+/// stored integers `y` (true point `y / den`).
+impl Cut for HPoint {
+    type Half = BigPlane;
+    type Value = Int;
+    /// Sign of `n · (y / w) - c` (as `w > 0`), and the value `n · y - c w`.
+    fn side(&self, h: &BigPlane) -> (Sign, Int) {
+        let s = h.value(self);
+        (int::sign_of(&s), s)
+    }
+    fn between(inner: &HPoint, outer: &HPoint, vi: &Int, vo: &Int) -> HPoint {
+        // vo * inner - vi * outer lies on the plane; its weight is positive because
+        // vo > 0 > vi and both weights are positive.
+        let (iy, oy) = (inner.num(), outer.num());
+        let y = [0, 1, 2].map(|k| vo * &iy[k] - vi * &oy[k]);
+        let w = vo * inner.den() - vi * outer.den();
+        HPoint::from_big(y, w)
+    }
+}
+
+/// Floating point, for [`Polytope::shrunk`]'s fast path: a true point against a unit
+/// normal and offset `(u, h)`, `u · x <= h`; values within [`FLOAT_ON`] of the plane
+/// count as on it (never trusted: the result is checked exactly).
+impl Cut for [f64; 3] {
+    type Half = ([f64; 3], f64);
+    type Value = f64;
+    fn side(&self, h: &([f64; 3], f64)) -> (Sign, f64) {
+        let s = fvec::dot(h.0, *self) - h.1;
+        let sign = if s > FLOAT_ON {
+            Sign::Positive
+        } else if s < -FLOAT_ON {
+            Sign::Negative
+        } else {
+            Sign::Zero
+        };
+        (sign, s)
+    }
+    fn between(inner: &[f64; 3], outer: &[f64; 3], vi: &f64, vo: &f64) -> [f64; 3] {
+        fvec::lerp(*inner, *outer, vi / (vi - vo))
+    }
+}
+
+/// How close to a plane (grid steps) a floating-point vertex counts as on it.
+const FLOAT_ON: f64 = 1e-6;
+
 /// The edges of the current polytope: pairs of vertices sharing two planes.
-fn edges(verts: &[Vertex]) -> Vec<(u32, u32)> {
+fn edges<P>(verts: &[Vertex<P>]) -> Vec<(u32, u32)> {
     let mut by_pair: HashMap<(u32, u32), Vec<u32>> = HashMap::default();
     for (i, v) in verts.iter().enumerate() {
         for a in 0..v.on.len() {
@@ -65,8 +121,8 @@ fn edges(verts: &[Vertex]) -> Vec<(u32, u32)> {
 
 /// Clips `verts` by half-space number `hi`. `None` when nothing of positive volume is
 /// left on the inner side.
-fn clip(verts: Vec<Vertex>, h: &BigPlane, hi: u32) -> Option<Vec<Vertex>> {
-    let sides: Vec<(Sign, Int)> = verts.iter().map(|v| side(h, v)).collect();
+fn clip<P: Cut>(verts: Vec<Vertex<P>>, h: &P::Half, hi: u32) -> Option<Vec<Vertex<P>>> {
+    let sides: Vec<(Sign, P::Value)> = verts.iter().map(|v| v.p.side(h)).collect();
     if sides.iter().all(|(s, _)| *s != Sign::Positive) {
         // Nothing cut; vertices on the plane learn it.
         return Some(
@@ -85,7 +141,7 @@ fn clip(verts: Vec<Vertex>, h: &BigPlane, hi: u32) -> Option<Vec<Vertex>> {
     if sides.iter().all(|(s, _)| *s != Sign::Negative) {
         return None;
     }
-    let mut out: Vec<Vertex> = Vec::with_capacity(verts.len() + 8);
+    let mut out: Vec<Vertex<P>> = Vec::with_capacity(verts.len() + 8);
     for (e0, e1) in edges(&verts) {
         let (a, b) = (&verts[e0 as usize], &verts[e1 as usize]);
         let ((sa, va), (sb, vb)) = (&sides[e0 as usize], &sides[e1 as usize]);
@@ -94,12 +150,7 @@ fn clip(verts: Vec<Vertex>, h: &BigPlane, hi: u32) -> Option<Vec<Vertex>> {
             (Sign::Positive, Sign::Negative) => (b, a, vb, va),
             _ => continue,
         };
-        // vo * inner - vi * outer lies on the plane; its weight is positive because
-        // vo > 0 > vi and both weights are positive.
-        let (iy, oy) = (inner.p.num(), outer.p.num());
-        let y = [0, 1, 2].map(|k| vo * &iy[k] - vi * &oy[k]);
-        let w = vo * inner.p.den() - vi * outer.p.den();
-        let p = HPoint::from_big(y, w);
+        let p = P::between(&inner.p, &outer.p, vi, vo);
         let mut on: Vec<u32> = inner
             .on
             .iter()
@@ -281,7 +332,8 @@ impl Polytope {
     /// step), with its vertices on the grid again. `None` when nothing of positive volume
     /// is left.
     ///
-    /// The piece is cut by `eps` plus one grid step: exactly ([`Polytope::shrunk_exact`])
+    /// The piece is cut by `eps` plus one grid step: in floating point first, kept when
+    /// an exact test confirms it; else exactly ([`Polytope::shrunk_exact`])
     /// when it has at most 32 facets, else by scaling about an inner point
     /// ([`Polytope::shrunk_by_scaling`], which moves some faces more). Each vertex of the
     /// cut is then rounded to the nearest grid point, and the result is the convex hull
@@ -292,6 +344,9 @@ impl Polytope {
     /// projection and arrangement paid for.
     pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
         let margin = eps_num + eps_den; // eps + 1 step
+        if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
+            return Some(p);
+        }
         let cut = if self.facets().len() <= 32 {
             self.shrunk_exact(&margin, eps_den)?
         } else {
@@ -301,6 +356,73 @@ impl Polytope {
             return Some(cut);
         }
         cut.rounded_to_grid()
+    }
+
+    /// [`Polytope::shrunk`]'s fast path: the cut by `margin` (grid steps, as a fraction
+    /// over `eps_den`) computed in floating point, each vertex rounded to the nearest
+    /// grid point, and the exact hull of those points, returned only when every one of
+    /// them lies at least `eps` inside every facet of the piece, checked exactly (the
+    /// bound [`Polytope::shrunk_exact`] guarantees). `None` when that check fails, or
+    /// when the floating-point cut leaves nothing: then the exact cut decides.
+    fn shrunk_in_floats(&self, margin: &Int, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
+        let den = self.den();
+        let fden = int::to_f64(den);
+        let m = int::to_f64(margin) / int::to_f64(eps_den);
+        let nf = self.facets().len() as u32;
+        let mut halves: Vec<([f64; 3], f64)> = Vec::with_capacity(2 * nf as usize);
+        let bounds: Vec<Int> = self
+            .facets()
+            .iter()
+            .map(|f| length_bound_256(&f.normal))
+            .collect();
+        for (f, r) in self.facets().iter().zip(&bounds) {
+            let n = f.normal.approx();
+            let len = fvec::norm(n);
+            let h = int::to_f64(&f.offset) / fden - m * int::to_f64(r) / 256.0;
+            halves.push((n.map(|x| x / len), h / len));
+        }
+        let mut on_of: Vec<Vec<u32>> = vec![Vec::new(); self.vertices().len()];
+        for (f, facet) in self.facets().iter().enumerate() {
+            for &v in &facet.cycle {
+                on_of[v as usize].push(nf + f as u32);
+            }
+        }
+        let mut verts: Vec<Vertex<[f64; 3]>> = self
+            .vertices()
+            .iter()
+            .zip(on_of)
+            .map(|(v, on)| Vertex {
+                p: v.approx().map(|x| x / fden),
+                on,
+            })
+            .collect();
+        for hi in 0..nf {
+            verts = clip(verts, &halves[hi as usize], hi)?;
+        }
+        const LIMIT: f64 = (1u64 << 52) as f64;
+        let points: Vec<Vec3> = verts
+            .iter()
+            .map(|v| {
+                let r = v.p.map(f64::round);
+                r.iter()
+                    .all(|x| x.abs() < LIMIT)
+                    .then(|| Vec3::new(r[0] as i64, r[1] as i64, r[2] as i64))
+            })
+            .collect::<Option<_>>()?;
+        let hull = Polytope::hull(&points).ok()?;
+        if hull.volume6() <= Int::ZERO {
+            return None;
+        }
+        // Every hull vertex v (true coordinates, integers) at least eps inside every
+        // facet n · x <= c / den: 256 eps_den (c - den n · v) >= eps_num den ⌈256 |n|⌉.
+        let scale = Int::from(256) * eps_den;
+        let inside = self.facets().iter().zip(&bounds).all(|(f, r)| {
+            let need = eps_num * den * r;
+            hull.vertices()
+                .iter()
+                .all(|v| &scale * (&f.offset - den * f.normal.dot(v)) >= need)
+        });
+        inside.then_some(hull)
     }
 
     /// The convex hull of this polytope's vertices, each rounded to the nearest point of
@@ -451,7 +573,7 @@ impl Polytope {
                 on_of[v as usize].push(nf + f as u32);
             }
         }
-        let mut verts: Vec<Vertex> = self
+        let mut verts: Vec<Vertex<HPoint>> = self
             .vertices()
             .iter()
             .zip(on_of)

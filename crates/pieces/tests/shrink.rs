@@ -1,4 +1,4 @@
-//! Property tests of `Polytope::shrunk_exact` against its definition: the intersection of the
+//! Property tests of `Polytope::shrunk_exact` and `Polytope::shrunk` against their definitions: the intersection of the
 //! facet half-spaces moved inward by `eps · ⌈256 |n|⌉ / 256`. Checked exactly on random
 //! hulls, independently of the clipping code: every vertex of the result satisfies every
 //! moved half-space, lies on at least three moved planes whose normals span space, and
@@ -113,6 +113,39 @@ proptest! {
                     let rhs = &(&eps * &eps) * &Rational::from_int(f.normal.dot(&f.normal));
                     prop_assert!(gap > Rational::zero() && &gap * &gap >= rhs);
                 }
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// And not much smaller: `shrunk` (whose cut by eps + 1 step may be computed in
+    /// floating point) holds the exact cut by eps + 2 steps, whose every vertex lies in
+    /// it (a vertex moved by less than a step leaves the eroded cut inside the hull).
+    /// Pieces of up to 32 facets, where the cut is not a scaling.
+    #[test]
+    fn shrunk_holds_the_exact_cut_two_steps_deeper(
+        pts in prop::collection::vec((-400i64..400, -400i64..400, -4000i64..4000), 5..12),
+        num in 1i64..6,
+        den in 1i64..4,
+    ) {
+        let pts: Vec<Vec3> = pts.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
+        let Ok(p) = Polytope::hull_of_points(&pts) else { return Ok(()) };
+        prop_assume!(p.facets().len() <= 32);
+        let (num, den) = (Int::from(num), Int::from(den));
+        let deeper = &num + Int::from(2) * &den;
+        let Some(inner) = p.shrunk_exact(&deeper, &den) else { return Ok(()) };
+        let s = p.shrunk(&num, &den);
+        prop_assert!(s.is_some(), "the deeper cut is not empty, so neither is the shrunk piece");
+        let s = s.unwrap();
+        for v in inner.vertices() {
+            for f in s.facets() {
+                // n · (v / den_inner) <= offset / den_s.
+                prop_assert!(
+                    f.normal.dot(v) * s.den() <= &f.offset * inner.den(),
+                    "a vertex of the cut two steps deeper lies outside the shrunk piece"
+                );
             }
         }
     }
