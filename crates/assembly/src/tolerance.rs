@@ -18,10 +18,11 @@ use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::fmt_witness;
+use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::{Problem, ProblemKind};
-use apart_pieces::interference::overlap_with_depth;
+use apart_pieces::interference::{overlap_deeper_than, overlap_with_depth};
 use apart_pieces::shrink::max_face_shift;
 use apart_pieces::Polytope;
 use rayon::prelude::*;
@@ -91,22 +92,42 @@ fn pair_boxes(parts: &[Part]) -> Vec<(usize, usize)> {
 }
 
 /// The deepest overlap of two parts' pieces (grid units), or `None` when their
-/// interiors are disjoint.
+/// interiors are disjoint. The piece pairs whose open boxes meet are tested in parallel;
+/// once one overlap is found, a pair is measured only as far as it could be deeper
+/// ([`overlap_deeper_than`]), so the many shallow overlaps of a tessellated fit cost one
+/// axis each. The result is the same maximum.
 pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f64> {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    let ba: Vec<Aabb> = a.iter().map(polytope_bbox).collect();
     let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
-    let mut deepest: Option<f64> = None;
-    for pa in a {
-        let ba = polytope_bbox(pa);
-        for (pb, bbox) in b.iter().zip(&bb) {
-            if !ba.overlaps_open(bbox) {
-                continue;
+    let pairs: Vec<(usize, usize)> = sweep_pairs_between(&ba, &by_low_x(&ba), &bb, &by_low_x(&bb))
+        .into_iter()
+        .filter(|&(i, j)| ba[i].overlaps_open(&bb[j]))
+        .collect();
+    // The deepest overlap so far as the bits of a non-negative f64 (which order like
+    // the values); NONE before the first.
+    const NONE: u64 = u64::MAX;
+    let deepest = AtomicU64::new(NONE);
+    pairs.par_iter().with_min_len(16).for_each(|&(i, j)| {
+        let seen = deepest.load(Ordering::Relaxed);
+        let found = if seen == NONE {
+            match overlap_with_depth(&a[i], &b[j]) {
+                (true, d) => Some(d.max(0.0)),
+                (false, _) => None,
             }
-            if let (true, d) = overlap_with_depth(pa, pb) {
-                deepest = Some(deepest.map_or(d, |x: f64| x.max(d)));
-            }
+        } else {
+            overlap_deeper_than(&a[i], &b[j], f64::from_bits(seen))
+        };
+        if let Some(d) = found {
+            // +0.0 for zero (-0.0 would not order by its bits).
+            let bits = if d > 0.0 { d.to_bits() } else { 0 };
+            let _ = deepest.fetch_update(Ordering::Relaxed, Ordering::Relaxed, |x| {
+                (x == NONE || x < bits).then_some(bits)
+            });
         }
-    }
-    deepest
+    });
+    let d = deepest.into_inner();
+    (d != NONE).then(|| f64::from_bits(d))
 }
 
 fn overlaps(parts: &[Part]) -> Vec<Overlap> {
@@ -308,6 +329,41 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
 mod tests {
     use super::*;
     use apart_kernel::Int;
+
+    #[test]
+    fn the_deepest_overlap_is_the_largest_of_every_pair() {
+        // Two rows of boxes of different sizes and offsets, overlapping by various
+        // depths (and some only touching or apart): the pruned parallel search finds
+        // the largest depth any pair has, as every pair measured in turn says.
+        let mut seed = 7u64;
+        let mut next = |m: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as i64 % m
+        };
+        for _ in 0..20 {
+            let row = |next: &mut dyn FnMut(i64) -> i64, z: i64| -> Vec<Polytope> {
+                (0..30)
+                    .map(|k| {
+                        let x = 100 * k + next(50);
+                        let lo = [x, next(40), z - next(30)];
+                        let hi = [x + 60 + next(80), 60 + next(40), z + 1 + next(30)];
+                        Polytope::cuboid(lo, hi).unwrap()
+                    })
+                    .collect()
+            };
+            let a = row(&mut next, 0);
+            let b = row(&mut next, 40);
+            let naive = a
+                .iter()
+                .flat_map(|pa| b.iter().map(move |pb| overlap_with_depth(pa, pb)))
+                .filter(|(o, _)| *o)
+                .map(|(_, d)| d)
+                .fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.max(d))));
+            assert_eq!(deepest_piece_overlap(&a, &b), naive);
+        }
+    }
 
     #[test]
     fn dyadic_is_exact() {

@@ -664,9 +664,24 @@ pub fn overlap_with_depth(a: &Polytope, b: &Polytope) -> (bool, f64) {
     }
 }
 
+/// [`overlap_with_depth`] for a search of the deepest of many pairs: `None` when the
+/// interiors do not overlap, or when the depth is at most `floor` (then the axes stop as
+/// soon as one shows it, and the exact test is skipped). Otherwise the same depth as
+/// [`overlap_with_depth`].
+pub fn overlap_deeper_than(a: &Polytope, b: &Polytope, floor: f64) -> Option<f64> {
+    let d = signed_depth_above(a, b, floor);
+    (d > floor && !interiors_disjoint(a, b)).then_some(d.max(0.0))
+}
+
 /// The smallest signed overlap of `a` and `b` over the candidate axes (negative: a gap),
 /// in floating point.
 fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
+    signed_depth_above(a, b, f64::NEG_INFINITY)
+}
+
+/// [`signed_depth`], stopping at the first axis whose overlap is at most `floor` (and
+/// returning that overlap).
+fn signed_depth_above(a: &Polytope, b: &Polytope, floor: f64) -> f64 {
     let (mut wa, mut wb) = (Extremes::new(a), Extremes::new(b));
     let overlap_along = |n: [f64; 3], wa: &mut Extremes, wb: &mut Extremes| -> f64 {
         let len = fvec::norm(n);
@@ -680,6 +695,9 @@ fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
     let mut best = f64::INFINITY;
     for f in a.facets().iter().chain(b.facets()) {
         best = best.min(overlap_along(f.normal.approx(), &mut wa, &mut wb));
+        if best <= floor {
+            return best;
+        }
     }
     let (ea, eb) = (a.edge_directions(), b.edge_directions());
     if ea.len() * eb.len() <= 4096 {
@@ -688,6 +706,9 @@ fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
                 let n = da.cross(db);
                 if !n.is_zero() {
                     best = best.min(overlap_along(n.approx(), &mut wa, &mut wb));
+                    if best <= floor {
+                        return best;
+                    }
                 }
             }
         }
@@ -700,48 +721,63 @@ fn signed_depth(a: &Polytope, b: &Polytope) -> f64 {
 }
 
 /// Floating-point extremes of a polytope's vertices along unit axes: a scan for small
-/// polytopes, for big ones a walk along the edges from the last extreme found (on a
-/// convex polytope a vertex with no better neighbour is extreme; in floating point the
-/// walk may stop within rounding of it, which a measurement allows).
-struct Extremes {
-    points: Vec<[f64; 3]>,
+/// polytopes and the first few axes, for big ones then a walk along the edges from the
+/// last extreme found (on a convex polytope a vertex with no better neighbour is
+/// extreme; in floating point the walk may stop within rounding of it, which a
+/// measurement allows). The edge lists are built only when a walk is due: a search for
+/// the deepest of many overlaps often needs one axis per pair.
+struct Extremes<'a> {
+    polytope: &'a Polytope,
+    points: std::borrow::Cow<'a, [[f64; 3]]>,
     /// Neighbours of each vertex (empty for a scan).
     neighbours: Vec<Vec<u32>>,
+    /// Axes asked so far.
+    asked: usize,
     /// The last maximum and minimum found.
     hint: [usize; 2],
 }
 
-impl Extremes {
-    fn new(p: &Polytope) -> Extremes {
+/// Vertices above which [`Extremes`] walks instead of scanning.
+const WALK_ABOVE: usize = 64;
+
+/// Axes [`Extremes`] scans before it builds the edge lists of a big polytope.
+const SCANS_FIRST: usize = 8;
+
+impl<'a> Extremes<'a> {
+    fn new(p: &'a Polytope) -> Extremes<'a> {
         let points = match p.shadow() {
-            Some(s) => s.points.clone(),
+            Some(s) => std::borrow::Cow::Borrowed(&s.points[..]),
             // Exact values divided once: `approx` is only proportional for big vectors.
-            None => p
-                .vertices()
-                .iter()
-                .map(|v| [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()))
-                .collect(),
+            None => std::borrow::Cow::Owned(
+                p.vertices()
+                    .iter()
+                    .map(|v| [0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()))
+                    .collect(),
+            ),
         };
-        let mut neighbours = Vec::new();
-        if points.len() > 64 {
-            neighbours = vec![Vec::new(); points.len()];
-            for e in p.edges() {
-                let [s, t] = e.ends;
-                neighbours[s as usize].push(t);
-                neighbours[t as usize].push(s);
-            }
-        }
         Extremes {
+            polytope: p,
             points,
-            neighbours,
+            neighbours: Vec::new(),
+            asked: 0,
             hint: [0, 0],
         }
     }
 
     /// The smallest and largest `u · x` over the vertices.
     fn range(&mut self, u: &[f64; 3]) -> (f64, f64) {
-        if self.neighbours.is_empty() {
+        self.asked += 1;
+        if self.points.len() <= WALK_ABOVE || self.asked <= SCANS_FIRST {
             return range_of(&self.points, u);
+        }
+        if self.neighbours.is_empty() {
+            let mut neighbours = vec![Vec::new(); self.points.len()];
+            for e in self.polytope.edges() {
+                let [s, t] = e.ends;
+                neighbours[s as usize].push(t);
+                neighbours[t as usize].push(s);
+            }
+            self.neighbours = neighbours;
         }
         let hi = self.climb(0, u);
         let lo = -self.climb(1, &fvec::neg(*u));
@@ -790,7 +826,6 @@ mod depth_tests {
         let p = prism(48, 1.0e6, [-50_000, 70_000], 0.1);
         assert!(p.vertices().len() > 64, "the walk is used");
         let mut walk = Extremes::new(&p);
-        assert!(!walk.neighbours.is_empty());
         let pts = &p.shadow().unwrap().points;
         let mut seed = 12345u64;
         let mut next = || {
@@ -813,6 +848,35 @@ mod depth_tests {
                 (lo - scan.0).abs() <= 1e-6 && (hi - scan.1).abs() <= 1e-6,
                 "{u:?}"
             );
+        }
+        assert!(!walk.neighbours.is_empty(), "the walk was used");
+    }
+
+    #[test]
+    fn a_floor_skips_only_pairs_no_deeper_than_it() {
+        // A 96-gon prism (walked) against boxes cutting into it by various depths, and
+        // one apart from it: above the floor the depth is overlap_with_depth's, at or
+        // below it (or with no overlap) there is none.
+        let p = prism(96, 1.0e6, [0, 100_000], 0.0);
+        for (x0, x1) in [
+            (990_000, 1_200_000),
+            (900_000, 1_100_000),
+            (1_000_010, 1_100_000),
+        ] {
+            let b = Polytope::cuboid([x0, -20_000, 10_000], [x1, 20_000, 60_000]).unwrap();
+            let (overlap, depth) = overlap_with_depth(&p, &b);
+            assert_eq!(
+                overlap_deeper_than(&p, &b, f64::NEG_INFINITY).is_some(),
+                overlap
+            );
+            if !overlap {
+                assert_eq!(overlap_deeper_than(&p, &b, 0.0), None);
+                continue;
+            }
+            assert!(depth > 0.0);
+            assert_eq!(overlap_deeper_than(&p, &b, depth * 0.5), Some(depth));
+            assert_eq!(overlap_deeper_than(&p, &b, depth), None);
+            assert_eq!(overlap_deeper_than(&p, &b, depth * 2.0), None);
         }
     }
 
