@@ -204,6 +204,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         base,
         max_depth: args.max_depth,
         tolerance: args.growth,
+        ..Default::default()
     };
     let plan = match &regions {
         // Stopped while the pair regions were computed: no step yet.
