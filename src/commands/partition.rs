@@ -17,7 +17,7 @@ use apart::draw::{motion_space_png, motion_space_svg, SphereProjection, SphereSv
 use apart::kernel::{Grid, Vec3};
 use apart::plan::{
     dbg_along, partition_first, partition_subset_with, parts_of, BlockingRegions, CellKind,
-    Options, Partitioning, PlanError,
+    MotionSpace, Options, Partitioning, PlanError,
 };
 use serde::Serialize;
 use std::collections::HashMap;
@@ -230,6 +230,7 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
                 first: args.first,
                 ..Default::default()
             };
+            // (Its motion space is dropped here: the picture needs one cut at the equator.)
             let (p, _) = partition_subset_with(&regions, &all, &opts, &progress);
             (p, Some(regions))
         }
@@ -242,11 +243,14 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
             projection: args.projection.into(),
             ..Default::default()
         };
+        // One motion space for both pictures, with the solutions planned above.
+        let ms = MotionSpace::build_split_at_equator(&regions, &all);
+        let names = regions.names();
         if let Some(path) = &args.svg {
-            output::write_file(path, motion_space_svg(&regions, &all, &p.solutions, &opts))?;
+            output::write_file(path, motion_space_svg(&ms, names, &p.solutions, &opts))?;
         }
         if let Some(path) = &args.png {
-            output::write_file(path, motion_space_png(&regions, &all, &p.solutions, &opts))?;
+            output::write_file(path, motion_space_png(&ms, names, &p.solutions, &opts))?;
         }
     }
     report(&p, &loaded, args, global, load_seconds, &stop)?;

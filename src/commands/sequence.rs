@@ -17,8 +17,8 @@ use apart::draw::{
 };
 use apart::plan::sequence::{Choice, Keys};
 use apart::plan::{
-    parts_of, sequence_with, BlockingRegions, CellKind, PlanError, Sequence, SequenceOptions, Step,
-    Tolerance,
+    parts_of, sequence_with, BlockingRegions, CellKind, KeepSolutions, MotionSpace, PlanError,
+    Sequence, SequenceOptions, Step, Tolerance,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -204,6 +204,12 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         base,
         max_depth: args.max_depth,
         tolerance: args.growth,
+        // The step the sphere pictures draw keeps its solutions: drawing plans nothing.
+        keep_solutions: if args.svg.is_some() || args.png.is_some() {
+            KeepSolutions::Step(args.step.saturating_sub(1))
+        } else {
+            KeepSolutions::Nothing
+        },
     };
     let plan = match &regions {
         // Stopped while the pair regions were computed: no step yet.
@@ -283,11 +289,14 @@ fn pictures(
             projection: args.projection.into(),
             ..Default::default()
         };
+        // One motion space for both pictures, cut at the equator (the planner's is not).
+        let ms = MotionSpace::build_split_at_equator(regions, &step.subassembly);
+        let names = regions.names();
         if let Some(p) = &args.svg {
-            output::write_file(p, step_motion_space_svg(regions, step, &opts))?;
+            output::write_file(p, step_motion_space_svg(&ms, names, step, &opts))?;
         }
         if let Some(p) = &args.png {
-            output::write_file(p, step_motion_space_png(regions, step, &opts))?;
+            output::write_file(p, step_motion_space_png(&ms, names, step, &opts))?;
         }
     }
     if let Some(p) = &args.glb {

@@ -6,7 +6,8 @@
 mod common;
 
 use apart_draw::{SphereProjection, SphereSvgOptions, View};
-use apart_plan::{parts_of, sequence, BlockingRegions, SequenceOptions};
+use apart_plan::SequenceOptions;
+use apart_plan::{parts_of, sequence, BlockingRegions, KeepSolutions, MotionSpace};
 use std::time::Instant;
 
 fn main() {
@@ -26,7 +27,12 @@ fn main() {
     };
     let a = &assembly;
     let regions = BlockingRegions::compute(&parts_of(a).unwrap()).unwrap();
-    let plan = sequence(&regions, &SequenceOptions::default());
+    // Every step keeps its solutions, for its sphere pictures.
+    let opts = SequenceOptions {
+        keep_solutions: KeepSolutions::EveryStep,
+        ..Default::default()
+    };
+    let plan = sequence(&regions, &opts);
     println!(
         "{}: {} parts, {} steps",
         a.name,
@@ -70,6 +76,7 @@ fn main() {
 
     let t = Instant::now();
     for (k, step) in plan.steps.iter().enumerate() {
+        let ms = MotionSpace::build_split_at_equator(&regions, &step.subassembly);
         for (projection, tag) in [
             (SphereProjection::EqualArea, "equal-area"),
             (SphereProjection::Orthographic, "orthographic"),
@@ -78,9 +85,9 @@ fn main() {
                 projection,
                 ..Default::default()
             };
-            let svg = apart_draw::step_motion_space_svg(&regions, step, &opts);
+            let svg = apart_draw::step_motion_space_svg(&ms, regions.names(), step, &opts);
             std::fs::write(out.join(format!("step-{}-sphere-{tag}.svg", k + 1)), &svg).unwrap();
-            let png = apart_draw::step_motion_space_png(&regions, step, &opts);
+            let png = apart_draw::step_motion_space_png(&ms, regions.names(), step, &opts);
             std::fs::write(out.join(format!("step-{}-sphere-{tag}.png", k + 1)), &png).unwrap();
         }
     }

@@ -14,9 +14,10 @@ fn main() {
     let regions = apart_plan::BlockingRegions::compute(&parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
     let (p, _) = apart_plan::partition_subset(&regions, &all, &Default::default());
+    let ms = apart_plan::MotionSpace::build_split_at_equator(&regions, &all);
     let svg = apart_draw::motion_space_svg(
-        &regions,
-        &all,
+        &ms,
+        regions.names(),
         &p.solutions,
         &apart_draw::SphereSvgOptions {
             title: which.clone(),

@@ -5,7 +5,8 @@
 //!
 //! - **The motion-space sphere** of a (sub)assembly, for any step:
 //!   [`motion_space_svg`] / [`motion_space_png`], or [`step_motion_space_svg`] /
-//!   [`step_motion_space_png`] for a step of a plan. Both hemispheres in Lambert
+//!   [`step_motion_space_png`] for a step of a plan. They draw the motion space and the
+//!   solutions they are handed and never run the planner. Both hemispheres in Lambert
 //!   equal-area or orthographic projection ([`SphereProjection`]), faces shaded by how
 //!   many ordered pairs of parts block them, region boundaries drawn, the solutions
 //!   (isolated directions as dots, sliding edges as thick arcs, faces as dots at their
@@ -27,11 +28,14 @@
 //!
 //! ```no_run
 //! use apart_assembly::{load, LoadOptions};
-//! use apart_plan::{parts_of, sequence, BlockingRegions, SequenceOptions};
+//! use apart_plan::{parts_of, sequence, BlockingRegions, KeepSolutions, MotionSpace};
+//! use apart_plan::SequenceOptions;
 //! let loaded = load(std::path::Path::new("examples/split-star-3"), &LoadOptions::default()).unwrap();
 //! let assembly = &loaded.assembly;
 //! let regions = BlockingRegions::compute(&parts_of(assembly).unwrap()).unwrap();
-//! let plan = sequence(&regions, &SequenceOptions::default());
+//! // The first step keeps its solutions, for its sphere picture.
+//! let opts = SequenceOptions { keep_solutions: KeepSolutions::Step(0), ..Default::default() };
+//! let plan = sequence(&regions, &opts);
 //! std::fs::write("plan.glb", apart_draw::disassembly_glb(assembly, &plan)).unwrap();
 //! std::fs::write("plan.html", apart_draw::disassembly_html(assembly, &plan)).unwrap();
 //! for (k, png) in apart_draw::step_pngs(assembly, &plan, &Default::default(), 800, 600)
@@ -40,7 +44,9 @@
 //! {
 //!     std::fs::write(format!("step-{}.png", k + 1), png).unwrap();
 //! }
-//! let sphere = apart_draw::step_motion_space_svg(&regions, &plan.steps[0], &Default::default());
+//! let step = &plan.steps[0];
+//! let ms = MotionSpace::build_split_at_equator(&regions, &step.subassembly);
+//! let sphere = apart_draw::step_motion_space_svg(&ms, regions.names(), step, &Default::default());
 //! std::fs::write("step-1-sphere.svg", sphere).unwrap();
 //! ```
 

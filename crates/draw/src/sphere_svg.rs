@@ -9,7 +9,7 @@ use crate::svg_png::{escape, png_bytes, svg_to_pixmap, FONT_FAMILY};
 use apart_kernel::fvec;
 use apart_kernel::predicates::dot_sign;
 use apart_kernel::{Sign, Vec3};
-use apart_plan::{partition_subset, BlockingRegions, CellKind, MotionSpace, Solution, Step};
+use apart_plan::{CellKind, MotionSpace, Solution, Step};
 use apart_sphere::{Arc, EdgeId, FaceId};
 use std::fmt::Write;
 
@@ -127,22 +127,20 @@ fn face_is_upper(ms: &MotionSpace, f: FaceId) -> bool {
     h.is_none_or(|h| dot_sign(&z, &arr.half_edge_arc(h).normal) != Sign::Negative)
 }
 
-/// Draws the motion space of the parts `subset` (global part indices) as SVG, with the
-/// `solutions` of partitioning it (e.g. from [`apart_plan::partition_subset`]).
+/// Draws the motion space `ms` of a (sub)assembly as SVG, with the `solutions` of
+/// partitioning it (e.g. from [`apart_plan::partition_subset`]); `names` are the part
+/// names (global order, as [`apart_plan::BlockingRegions::names`]). The picture draws
+/// each face in its hemisphere: build `ms` with
+/// [`MotionSpace::build_split_at_equator`]. Nothing is planned here.
 pub fn motion_space_svg(
-    regions: &BlockingRegions,
-    subset: &[usize],
+    ms: &MotionSpace,
+    names: &[String],
     solutions: &[Solution],
     opts: &SphereSvgOptions,
 ) -> String {
-    let eq = [[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]].map(Vec3::from);
-    let guides: Vec<Arc> = (0..4)
-        .map(|k| Arc::between(&eq[k], &eq[(k + 1) % 4]).unwrap())
-        .collect();
-    let ms = MotionSpace::build_with_guides(regions, subset, &guides);
+    let subset = ms.parts();
     let arr = ms.arrangement();
     let st = ms.statuses();
-    let names = regions.names();
     let r = opts.radius;
     let margin = 60.0;
     let legend_w = 470.0;
@@ -223,7 +221,7 @@ pub fn motion_space_svg(
     // Faces.
     for f in arr.face_ids() {
         let count = ms.blocked_pairs(&st.faces[f.index()]);
-        let up = face_is_upper(&ms, f);
+        let up = face_is_upper(ms, f);
         let fill = shade(count, max_count);
         let mut d = String::new();
         for lp in arr.boundary_loops(f) {
@@ -314,7 +312,7 @@ pub fn motion_space_svg(
             ),
             CellKind::Edge => {
                 // Thicken the whole edge through the representative direction.
-                for e in edge_run(&ms, &s.direction) {
+                for e in edge_run(ms, &s.direction) {
                     let pts = arc_points(&arr.edge_arc(e));
                     let title = format!("{who}: edge (sliding)");
                     let n = c.len() as f64;
@@ -511,28 +509,39 @@ fn wrap_words(text: &str, width: usize) -> Vec<String> {
 
 /// [`motion_space_svg`] rendered to PNG bytes (1 SVG pixel = 1 PNG pixel).
 pub fn motion_space_png(
-    regions: &BlockingRegions,
-    subset: &[usize],
+    ms: &MotionSpace,
+    names: &[String],
     solutions: &[Solution],
     opts: &SphereSvgOptions,
 ) -> Vec<u8> {
-    svg_png(&motion_space_svg(regions, subset, solutions, opts))
+    svg_png(&motion_space_svg(ms, names, solutions, opts))
 }
 
-/// The motion space of the subassembly a plan step splits, its solutions, and the
-/// step's direction ringed. When `opts.title` is left at its default, the title says
-/// which parts move along which direction.
+/// The motion space `ms` of the subassembly a plan step splits (built with
+/// [`MotionSpace::build_split_at_equator`] for `step.subassembly`), the step's
+/// solutions ([`Step::solutions`], kept by the plan) and its direction ringed. When
+/// `opts.title` is left at its default, the title says which parts move along which
+/// direction.
+///
+/// # Panics
+///
+/// When the step kept no solutions (see [`apart_plan::SequenceOptions::keep_solutions`]).
 pub fn step_motion_space_svg(
-    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    names: &[String],
     step: &Step,
     opts: &SphereSvgOptions,
 ) -> String {
-    let (p, _) = partition_subset(regions, &step.subassembly, &Default::default());
+    debug_assert_eq!(ms.parts(), &step.subassembly[..], "the step's motion space");
+    let solutions = step
+        .solutions
+        .as_deref()
+        .expect("the step kept its solutions (SequenceOptions::keep_solutions): draw never plans");
     let mut opts = opts.clone();
     if opts.title == SphereSvgOptions::default().title {
         opts.title = format!(
             "{} {} along {} ({} cell)",
-            names_list(regions.names(), &step.moving, 6),
+            names_list(names, &step.moving, 6),
             if step.moving.len() == 1 {
                 "moves"
             } else {
@@ -543,16 +552,17 @@ pub fn step_motion_space_svg(
         );
     }
     opts.highlight = Some(step.direction.clone());
-    motion_space_svg(regions, &step.subassembly, &p.solutions, &opts)
+    motion_space_svg(ms, names, solutions, &opts)
 }
 
 /// [`step_motion_space_svg`] rendered to PNG bytes.
 pub fn step_motion_space_png(
-    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    names: &[String],
     step: &Step,
     opts: &SphereSvgOptions,
 ) -> Vec<u8> {
-    svg_png(&step_motion_space_svg(regions, step, opts))
+    svg_png(&step_motion_space_svg(ms, names, step, opts))
 }
 
 fn svg_png(svg: &str) -> Vec<u8> {

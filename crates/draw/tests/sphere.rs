@@ -3,14 +3,34 @@
 
 mod common;
 
+use apart_assembly::Assembly;
 use apart_draw::colors::part_colors;
 use apart_draw::{
     motion_space_png, motion_space_svg, step_motion_space_png, step_motion_space_svg,
     SphereProjection, SphereSvgOptions,
 };
-use apart_plan::partition_subset;
+use apart_plan::{
+    partition_subset, sequence, BlockingRegions, KeepSolutions, MotionSpace, Sequence,
+    SequenceOptions,
+};
 use common::count_shades;
 use resvg::tiny_skia::Pixmap;
+
+/// The shared regions and the default plan, every step keeping its solutions to draw.
+fn plan(a: &Assembly) -> (BlockingRegions, Sequence) {
+    let regions = BlockingRegions::compute(&apart_plan::parts_of(a).unwrap()).unwrap();
+    let opts = SequenceOptions {
+        keep_solutions: KeepSolutions::EveryStep,
+        ..Default::default()
+    };
+    let plan = sequence(&regions, &opts);
+    (regions, plan)
+}
+
+/// The motion space the sphere pictures draw, of the parts `subset`.
+fn space(regions: &BlockingRegions, subset: &[usize]) -> MotionSpace {
+    MotionSpace::build_split_at_equator(regions, subset)
+}
 
 /// Centre of the ring drawn around the chosen direction in the upper hemisphere.
 fn ring_center(svg: &str) -> (f64, f64) {
@@ -28,7 +48,7 @@ fn ring_center(svg: &str) -> (f64, f64) {
 #[test]
 fn the_chosen_direction_sits_where_each_projection_puts_it() {
     let a = common::example("split-star-3");
-    let (regions, plan) = common::plan(&a);
+    let (regions, plan) = plan(&a);
     // The first step of the Split Star leaves along a diagonal (±1, ±1, ±1).
     let step = &plan.steps[0];
     let u = step.unit;
@@ -45,7 +65,8 @@ fn the_chosen_direction_sits_where_each_projection_puts_it() {
             projection,
             ..Default::default()
         };
-        let svg = step_motion_space_svg(&regions, step, &opts);
+        let ms = space(&regions, &step.subassembly);
+        let svg = step_motion_space_svg(&ms, regions.names(), step, &opts);
         let (x, y) = ring_center(&svg);
         assert!(
             (x - (cx + r * k * u[0])).abs() < 0.01,
@@ -66,10 +87,16 @@ fn the_chosen_direction_sits_where_each_projection_puts_it() {
 #[test]
 fn each_moving_subset_is_listed_by_part_names() {
     let a = common::example("split-star-3");
-    let (regions, _) = common::plan(&a);
+    let (regions, _) = plan(&a);
     let all: Vec<usize> = (0..a.parts.len()).collect();
     let (p, _) = partition_subset(&regions, &all, &Default::default());
-    let svg = motion_space_svg(&regions, &all, &p.solutions, &SphereSvgOptions::default());
+    let ms = space(&regions, &all);
+    let svg = motion_space_svg(
+        &ms,
+        regions.names(),
+        &p.solutions,
+        &SphereSvgOptions::default(),
+    );
     // The eight diagonals each move three parts, one of each opposite pair.
     assert_eq!(p.solutions.len(), 8);
     for s in &p.solutions {
@@ -84,19 +111,26 @@ fn each_moving_subset_is_listed_by_part_names() {
 #[test]
 fn the_png_shows_the_moving_parts_colours() {
     let a = common::example("split-star-3");
-    let (regions, plan) = common::plan(&a);
+    let (regions, plan) = plan(&a);
     let colors = part_colors(&a.parts.iter().map(|p| p.name.clone()).collect::<Vec<_>>());
     // Step 2 moves one part through a face: its mark and its sliding edges are in the
     // part's colour.
     let step = &plan.steps[1];
     assert_eq!(step.moving.len(), 1);
-    let png = step_motion_space_png(&regions, step, &SphereSvgOptions::default());
+    let ms = space(&regions, &step.subassembly);
+    let png = step_motion_space_png(&ms, regions.names(), step, &SphereSvgOptions::default());
     let img = Pixmap::decode_png(&png).unwrap();
     assert!(img.width() > 900 && img.height() > 400);
     assert!(count_shades(&img, colors[step.moving[0]], img.width()) > 200);
     let all: Vec<usize> = (0..a.parts.len()).collect();
     let (p, _) = partition_subset(&regions, &all, &Default::default());
-    let png2 = motion_space_png(&regions, &all, &p.solutions, &SphereSvgOptions::default());
+    let ms = space(&regions, &all);
+    let png2 = motion_space_png(
+        &ms,
+        regions.names(),
+        &p.solutions,
+        &SphereSvgOptions::default(),
+    );
     assert!(Pixmap::decode_png(&png2).is_ok());
 }
 
@@ -117,13 +151,15 @@ fn text_at(svg: &str, label: &str, nth: usize) -> (f64, f64) {
 #[test]
 fn both_hemispheres_name_their_axes_where_they_point() {
     let a = common::example("split-star-3");
-    let (regions, plan) = common::plan(&a);
+    let (regions, plan) = plan(&a);
     let r = 200.0;
     let opts = SphereSvgOptions {
         radius: r,
         ..Default::default()
     };
-    let svg = step_motion_space_svg(&regions, &plan.steps[0], &opts);
+    let step = &plan.steps[0];
+    let ms = space(&regions, &step.subassembly);
+    let svg = step_motion_space_svg(&ms, regions.names(), step, &opts);
     // The disks are centred at (60 + r, 100 + r) and one disk width and margin further.
     let upper = (60.0 + r, 100.0 + r);
     let lower = (upper.0 + 2.0 * r + 60.0, upper.1);

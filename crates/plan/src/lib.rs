@@ -67,7 +67,9 @@ pub use progress::{Progress, ProgressCallback};
 pub use regions::parts_of;
 pub use regions::{BlockingRegions, PartPieces};
 pub use separate::{separate, FreeFace, Separation};
-pub use sequence::{sequence, sequence_with, Sequence, SequenceOptions, Step, Tolerance};
+pub use sequence::{
+    sequence, sequence_with, KeepSolutions, Sequence, SequenceOptions, Step, Tolerance,
+};
 
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -151,6 +151,16 @@ impl MotionSpace {
         MotionSpace::build_with_guides(regions, subset, &[])
     }
 
+    /// [`MotionSpace::build_with_guides`] with the equator as guide arcs, so that every
+    /// face lies in one closed hemisphere: the space the sphere pictures draw.
+    pub fn build_split_at_equator(regions: &BlockingRegions, subset: &[usize]) -> MotionSpace {
+        let eq = [[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]].map(Vec3::from);
+        let guides: Vec<Arc> = (0..4)
+            .map(|k| Arc::between(&eq[k], &eq[(k + 1) % 4]).expect("a quarter of the equator"))
+            .collect();
+        MotionSpace::build_with_guides(regions, subset, &guides)
+    }
+
     /// Like [`MotionSpace::build`], with extra *guide* arcs that change no status but cut
     /// faces and edges (the equator, to draw each hemisphere separately). Guide arcs make
     /// vertices and edges of their own: use this arrangement for drawing, not for cells.

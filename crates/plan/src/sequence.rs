@@ -34,6 +34,32 @@ pub struct SequenceOptions {
     /// For each step, compute the largest uniform growth of the parts that keeps the
     /// separation (see [`growth_tolerance`]).
     pub tolerance: bool,
+    /// Which steps keep every solution of their motion space in [`Step::solutions`]
+    /// (to draw them; costs the edge and vertex solutions' enumeration and memory).
+    pub keep_solutions: KeepSolutions,
+}
+
+/// Which steps of a plan keep their solutions ([`SequenceOptions::keep_solutions`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum KeepSolutions {
+    /// No step (the default).
+    #[default]
+    Nothing,
+    /// Every step.
+    EveryStep,
+    /// Only the step of this index in [`Sequence::steps`] (0-based).
+    Step(usize),
+}
+
+impl KeepSolutions {
+    /// Whether the step of index `k` in [`Sequence::steps`] keeps its solutions.
+    pub fn keeps(self, k: usize) -> bool {
+        match self {
+            KeepSolutions::Nothing => false,
+            KeepSolutions::EveryStep => true,
+            KeepSolutions::Step(j) => j == k,
+        }
+    }
 }
 
 /// One step: `moving` leaves `subassembly` along `direction`; the rest stays.
@@ -58,6 +84,11 @@ pub struct Step {
     pub tolerance: Option<Tolerance>,
     /// Why this step was chosen (see [`best_step`]).
     pub choice: Choice,
+    /// Every solution of the subassembly's motion space, as
+    /// [`partition_subset`](crate::partition_subset) lists them with default options
+    /// (faces by decreasing clearance, then edges, then vertices); `None` unless
+    /// [`SequenceOptions::keep_solutions`] asks for them.
+    pub solutions: Option<Vec<Solution>>,
 }
 
 /// How much the parts may grow before a step becomes impossible.
@@ -164,7 +195,8 @@ pub fn sequence_with(
             unsplit.push(sub);
             continue;
         }
-        match best_step_with(regions, &sub, opts, &inner) {
+        let keep = opts.keep_solutions.keeps(steps.len());
+        match best_step_with(regions, &sub, opts, keep, &inner) {
             Err(Stopped) => pending.push(sub),
             Ok(None) => {
                 done += sub.len() - 1;
@@ -222,17 +254,21 @@ pub fn sequence_with(
 /// preference for single or connected moves: otherwise none of them could rank first.
 /// With `base`, a set holding the base is replaced by its complement moving the
 /// opposite way. [`Step::choice`] records the keys, the number of candidates and the
-/// runner-up with the key it lost on.
+/// runner-up with the key it lost on. The step keeps its solutions ([`Step::solutions`])
+/// unless [`SequenceOptions::keep_solutions`] is [`KeepSolutions::Nothing`].
 pub fn best_step(regions: &BlockingRegions, sub: &[usize], opts: &SequenceOptions) -> Option<Step> {
-    best_step_with(regions, sub, opts, &Progress::new()).expect("no stop was requested")
+    let keep = opts.keep_solutions != KeepSolutions::Nothing;
+    best_step_with(regions, sub, opts, keep, &Progress::new()).expect("no stop was requested")
 }
 
-/// [`best_step`], giving up with [`Stopped`] when the stop flag rises before the step is
-/// chosen (checked after the overlay and after each enumeration of candidates).
+/// [`best_step`], keeping the solutions with `keep`, giving up with [`Stopped`] when the
+/// stop flag rises before the step is chosen (checked after the overlay and after each
+/// enumeration of candidates).
 fn best_step_with(
     regions: &BlockingRegions,
     sub: &[usize],
     opts: &SequenceOptions,
+    keep: bool,
     progress: &Progress,
 ) -> Result<Option<Step>, Stopped> {
     let quota = || Quota::unlimited().watching(progress.clone());
@@ -241,14 +277,27 @@ fn best_step_with(
         return Err(Stopped);
     }
     let mut candidates = face_solutions(regions, &ms, &mut quota());
+    // The face solutions lead the candidates; kept, they lead the step's solutions.
+    let faces = candidates.len();
     if opts.prefer_axes {
         candidates.extend(axis_candidates(regions, &ms));
     }
     let mut best = rank::choose(regions, &ms, opts, &candidates);
+    let mut cells = None;
     if best.as_ref().is_none_or(|(missed, _, _)| *missed) {
-        candidates.extend(cell_solutions(&ms, &mut quota()));
+        let found = cell_solutions(&ms, &mut quota());
+        if keep {
+            cells = Some(found.clone());
+        }
+        candidates.extend(found);
         best = rank::choose(regions, &ms, opts, &candidates);
     }
+    // What partition_subset lists: the face solutions, then the edges and vertices.
+    let solutions = keep.then(|| {
+        let mut all = candidates[..faces].to_vec();
+        all.extend(cells.unwrap_or_else(|| cell_solutions(&ms, &mut quota())));
+        all
+    });
     // A set chosen along another direction may also be free along an axis, where it
     // is not a minimal moving set (so not yet a candidate): it moves along the axis.
     if let Some((_, chosen, _)) = best.as_ref().filter(|_| opts.prefer_axes) {
@@ -277,6 +326,7 @@ fn best_step_with(
         depth: 0,
         tolerance: None,
         choice,
+        solutions,
     }))
 }
 

@@ -226,3 +226,42 @@ proptest! {
         check_plan(&parts, &p);
     }
 }
+
+/// A step keeps, when asked, exactly what partitioning its subassembly lists, so that a
+/// picture of the step needs no second run of the planner; other steps keep nothing.
+#[test]
+fn kept_solutions_are_those_of_partitioning_the_step() {
+    use apart_plan::{partition_subset, KeepSolutions};
+    for parts in [
+        common::split_star(),
+        common::dovetail(),
+        common::peg_in_hole(),
+        common::cubes_in_a_row(4),
+    ] {
+        let regions = BlockingRegions::compute(&parts).unwrap();
+        for prefer_axes in [false, true] {
+            let opts = |keep_solutions| SequenceOptions {
+                prefer_axes,
+                keep_solutions,
+                ..Default::default()
+            };
+            let plain = sequence(&regions, &opts(KeepSolutions::Nothing));
+            let every = sequence(&regions, &opts(KeepSolutions::EveryStep));
+            let one = sequence(&regions, &opts(KeepSolutions::Step(1)));
+            assert!(!plain.steps.is_empty());
+            for (k, step) in every.steps.iter().enumerate() {
+                let (p, _) = partition_subset(&regions, &step.subassembly, &Default::default());
+                assert_eq!(step.solutions.as_ref(), Some(&p.solutions));
+                assert_eq!(plain.steps[k].solutions, None);
+                assert_eq!(one.steps[k].solutions.is_some(), k == 1);
+                // Keeping changes no choice.
+                let bare = |s: &apart_plan::Step| apart_plan::Step {
+                    solutions: None,
+                    ..s.clone()
+                };
+                assert_eq!(bare(step), plain.steps[k]);
+                assert_eq!(bare(&one.steps[k]), plain.steps[k]);
+            }
+        }
+    }
+}
