@@ -93,6 +93,9 @@ impl Cut for [f64; 3] {
     }
 }
 
+/// Pieces of at most this many facets are cut plane by plane; bigger ones are scaled.
+const EXACT_CUT_FACETS: usize = 32;
+
 /// How close to a plane (grid steps) a floating-point vertex counts as on it.
 const FLOAT_ON: f64 = 1e-6;
 
@@ -332,9 +335,10 @@ impl Polytope {
     /// step), with its vertices on the grid again. `None` when nothing of positive volume
     /// is left.
     ///
-    /// The piece is cut by `eps` plus one grid step: in floating point first, kept when
-    /// an exact test confirms it; else exactly ([`Polytope::shrunk_exact`])
-    /// when it has at most 32 facets, else by scaling about an inner point
+    /// The piece is cut by `eps` plus one grid step. When it has at most 32 facets, the
+    /// cut is made in floating point first and kept when an exact test confirms it, else
+    /// exactly ([`Polytope::shrunk_exact`]); a bigger piece (each plane's cut costs a
+    /// pass over all its vertices) is scaled about an inner point
     /// ([`Polytope::shrunk_by_scaling`], which moves some faces more). Each vertex of the
     /// cut is then rounded to the nearest grid point, and the result is the convex hull
     /// of those points ([`Polytope::hull`]). A rounded point lies less than one step from
@@ -344,10 +348,12 @@ impl Polytope {
     /// projection and arrangement paid for.
     pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
         let margin = eps_num + eps_den; // eps + 1 step
-        if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
-            return Some(p);
+        if self.facets().len() <= EXACT_CUT_FACETS {
+            if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
+                return Some(p);
+            }
         }
-        let cut = if self.facets().len() <= 32 {
+        let cut = if self.facets().len() <= EXACT_CUT_FACETS {
             self.shrunk_exact(&margin, eps_den)?
         } else {
             self.shrunk_by_scaling(&margin, eps_den)?
