@@ -5,10 +5,10 @@
 use crate::error::LoadError;
 use crate::manifest;
 use crate::model::Skipped;
-use apart_mesh::escape::path as escaped;
-use apart_mesh::formats::{read_file_with, Format, ReadOptions};
-use apart_mesh::transform::Affine;
-use apart_mesh::{Problem, RawObject};
+use apart_formats::escape::path as escaped;
+use apart_formats::transform::Affine;
+use apart_formats::{read_file_with, Format, RawObject, ReadOptions};
+use apart_mesh::Problem;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

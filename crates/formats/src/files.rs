@@ -9,9 +9,9 @@
 //! - At most [`MAX_FILE_BYTES`] (4 GiB) are read from one file; a larger file is an
 //!   error before anything is read.
 //! - A file referred to from another one must lie inside the referring file's folder,
-//!   unless [`super::ReadOptions::allow_outside`] is set: [`resolve_inside`].
+//!   unless [`crate::ReadOptions::allow_outside`] is set: [`resolve_inside`].
 
-use super::ReadError;
+use crate::ReadError;
 use std::fs::{File, FileType, Metadata};
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
