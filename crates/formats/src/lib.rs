@@ -56,7 +56,7 @@ mod raw;
 pub mod stl;
 pub mod transform;
 
-pub use files::{read_regular, resolve_inside, MAX_FILE_BYTES};
+pub use files::{file_kind, read_regular, resolve_inside, MAX_FILE_BYTES};
 pub use raw::{Polygons, RawObject};
 
 use std::cell::Cell;
