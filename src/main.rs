@@ -129,7 +129,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    apart::mesh::formats::quiet_parser_panics();
+    apart::formats::quiet_parser_panics();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),

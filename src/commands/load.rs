@@ -4,7 +4,7 @@
 use crate::output;
 use crate::Global;
 use apart::assembly::{load, Assembly, Decompose, LoadOptions, Loaded};
-use apart::mesh::escape::{escape, path as escaped};
+use apart::formats::escape::{escape, path as escaped};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -9,7 +9,7 @@ use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFact
 use crate::output;
 use crate::Global;
 use apart::assembly::Decompose;
-use apart::mesh::escape::escape;
+use apart::formats::escape::escape;
 use apart::plan::{parts_of, separate, BlockingRegions, Separation};
 use apart::sphere::Arc;
 use serde::Serialize;

@@ -7,8 +7,7 @@
 //! images under axis permutations and mirrorings (a mirroring reverses the faces so
 //! that they stay outward).
 
-use apart_mesh::formats::off;
-use apart_mesh::Polygons;
+use apart_formats::{off, Polygons};
 use std::path::PathBuf;
 
 const RED: [[f64; 3]; 10] = [

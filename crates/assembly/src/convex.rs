@@ -97,9 +97,9 @@ pub(crate) fn convex_polytope(mesh: &Mesh) -> Result<Polytope, PolytopeError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use apart_formats::{Polygons, RawObject};
     use apart_kernel::Grid;
     use apart_mesh::validate::check_solid;
-    use apart_mesh::{Polygons, RawObject};
 
     /// A cube of side `k` whose faces are k x k grids of unit quads.
     fn subdivided_cube(k: i64) -> RawObject {

@@ -1,8 +1,8 @@
 //! Why an assembly could not be loaded at all (problems with single parts are
 //! [`apart_mesh::Problem`]s instead, collected in [`crate::Loaded`]).
 
-use apart_mesh::escape::{escape, path as escaped};
-use apart_mesh::formats::ReadError;
+use apart_formats::escape::{escape, path as escaped};
+use apart_formats::ReadError;
 use std::path::PathBuf;
 
 /// A failure that leaves nothing to show.

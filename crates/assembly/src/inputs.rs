@@ -5,10 +5,10 @@
 use crate::error::LoadError;
 use crate::manifest;
 use crate::model::Skipped;
-use apart_mesh::escape::path as escaped;
-use apart_mesh::formats::{read_file_with, Format, ReadOptions};
-use apart_mesh::transform::Affine;
-use apart_mesh::{Problem, RawObject};
+use apart_formats::escape::path as escaped;
+use apart_formats::transform::Affine;
+use apart_formats::{file_kind, read_file_with, Format, RawObject, ReadOptions};
+use apart_mesh::Problem;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -66,27 +66,10 @@ fn plain(path: PathBuf) -> SourceRef {
 /// What kind of file system entry `meta` describes, when it is not a regular file or a
 /// folder: `"a named pipe (FIFO)"`, `"a socket"`, `"a character device"`...
 pub(crate) fn special_kind(meta: &std::fs::Metadata) -> Option<&'static str> {
-    let t = meta.file_type();
-    if t.is_file() || t.is_dir() {
+    if meta.is_dir() {
         return None;
     }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_fifo() {
-            return Some("a named pipe (FIFO)");
-        }
-        if t.is_socket() {
-            return Some("a socket");
-        }
-        if t.is_char_device() {
-            return Some("a character device");
-        }
-        if t.is_block_device() {
-            return Some("a block device");
-        }
-    }
-    Some("not a regular file")
+    file_kind(&meta.file_type())
 }
 
 /// Fails unless `path` (followed through symbolic links) is a regular file: a named

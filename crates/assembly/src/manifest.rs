@@ -16,7 +16,7 @@
 //! is applied first. Matrix entries within 4 ulps of 0, ±1/2 or ±1 are snapped to those
 //! values. Unknown keys are ignored.
 
-use apart_mesh::transform::{Affine, TOL_F64};
+use apart_formats::transform::{Affine, TOL_F64};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 

@@ -4,9 +4,10 @@
 use crate::convex::{convex_polytope, QUADRATIC_LIMIT};
 use crate::load::polytope_bbox;
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
+use apart_formats::RawObject;
 use apart_kernel::Grid;
 use apart_mesh::validate::check_solid;
-use apart_mesh::{fmt_point, Problem, ProblemKind, RawObject};
+use apart_mesh::{fmt_point, Problem, ProblemKind};
 use apart_pieces::interference::interior_witness;
 use apart_pieces::{Polytope, PolytopeError};
 use std::path::PathBuf;

@@ -9,7 +9,7 @@ proptest! {
 
     #[test]
     fn garbage_files_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..400), ext in 0usize..7) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let exts = ["off", "obj", "stl", "ply", "gltf", "glb", "json"];
         let d = std::env::temp_dir().join(format!("apart-fuzz-{}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
@@ -20,7 +20,7 @@ proptest! {
 
     #[test]
     fn mutated_manifests_never_panic(cut in 0usize..400, junk in "[\\[\\]{}\":,0-9a-z. -]{0,12}") {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let d = std::env::temp_dir().join(format!("apart-fuzz-m-{}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         std::fs::write(d.join("a.off"), "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n").unwrap();

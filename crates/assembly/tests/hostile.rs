@@ -5,8 +5,7 @@
 //! part, or with the right answer; known answers are worked out by hand in each test.
 
 use apart_assembly::{load, LoadError, LoadOptions, Loaded, Problem, Severity};
-use apart_mesh::formats::off;
-use apart_mesh::{Polygons, RawObject};
+use apart_formats::{off, Polygons, RawObject};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;

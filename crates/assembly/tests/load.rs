@@ -2,9 +2,9 @@
 //! Expected values are computed by hand from the boxes written.
 
 use apart_assembly::{load, LoadError, LoadOptions, Stage};
+use apart_formats::{obj, off, stl, Polygons, RawObject};
 use apart_kernel::{Int, Rational};
-use apart_mesh::formats::{obj, off, stl};
-use apart_mesh::{Polygons, RawObject, Severity};
+use apart_mesh::Severity;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 

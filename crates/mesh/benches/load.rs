@@ -5,12 +5,12 @@
 mod torus;
 
 use apart_kernel::Grid;
-use apart_mesh::{formats, validate, Mesh};
+use apart_mesh::{validate, Mesh};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Instant;
 
 fn load(path: &std::path::Path) -> usize {
-    let objects = formats::read_file(path).expect("read");
+    let objects = apart_formats::read_file(path).expect("read");
     let raw = &objects[0];
     let grid = Grid::choose(raw.vertices.iter().flatten().copied(), 30).expect("grid");
     let (mesh, _) = Mesh::from_raw(raw, &grid);

@@ -7,7 +7,7 @@
 mod torus;
 
 use apart_kernel::Grid;
-use apart_mesh::{formats, validate, Mesh};
+use apart_mesh::{validate, Mesh};
 use std::time::Instant;
 
 fn main() {
@@ -21,7 +21,7 @@ fn main() {
         std::path::PathBuf::from(args.first().expect("usage: check_mesh FILE"))
     };
     let t0 = Instant::now();
-    let objects = formats::read_file(&path).unwrap_or_else(|e| {
+    let objects = apart_formats::read_file(&path).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     });

@@ -3,11 +3,11 @@
 //! with a third of its triangles reversed, as a float32 binary STL; and 4000 boxes in
 //! one mesh, half of them inside out, split into bodies.
 
+use apart_formats::{read_bytes, Format, Polygons, RawObject};
 use apart_kernel::Grid;
-use apart_mesh::formats::{read_bytes, Format};
 use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::validate;
-use apart_mesh::{Mesh, Polygons, RawObject};
+use apart_mesh::Mesh;
 use apart_testkit::defects::{
     box_soup, decimal_seamed_box, seamed_box, seamed_box_extent_unit, seamed_box_tjunctions,
 };

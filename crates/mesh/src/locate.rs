@@ -113,7 +113,7 @@ impl<'m> Locator<'m> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raw::{Polygons, RawObject};
+    use apart_formats::{Polygons, RawObject};
     use apart_kernel::{Grid, Int};
 
     pub(crate) fn cube(lo: i64, hi: i64) -> Mesh {

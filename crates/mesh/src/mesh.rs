@@ -1,9 +1,9 @@
 //! The snapped triangle mesh of one object, built from a [`RawObject`].
 
 use crate::problem::{Capped, Problem, ProblemKind};
-use crate::raw::RawObject;
 use crate::triangulate::{triangulate, Outcome};
 use crate::weld::{snap_all, weld};
+use apart_formats::RawObject;
 use apart_kernel::predicates::det3_i128;
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Int, Vec3};
@@ -31,7 +31,7 @@ pub(crate) const LIST: usize = 5;
 
 /// A grid point in input units, for messages: `(1, 0, 2.5)`.
 pub fn fmt_point(grid: &Grid, p: &[i64; 3]) -> String {
-    let [x, y, z] = p.map(|c| crate::formats::off::number(grid.to_units(c)));
+    let [x, y, z] = p.map(|c| apart_formats::off::number(grid.to_units(c)));
     format!("({x}, {y}, {z})")
 }
 
@@ -231,7 +231,7 @@ impl Mesh {
                 .iter()
                 .map(|p| p.map(|c| grid.to_units(c)))
                 .collect(),
-            faces: crate::raw::Polygons::from_triangles(&self.triangles),
+            faces: apart_formats::Polygons::from_triangles(&self.triangles),
         }
     }
 }
@@ -239,7 +239,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raw::Polygons;
+    use apart_formats::Polygons;
 
     fn cube_raw(s: f64) -> RawObject {
         let mut vertices = Vec::new();

@@ -159,7 +159,7 @@ impl fmt::Display for Problem {
     /// file, the part and the element are escaped (they come from file and object
     /// names): no control character reaches the terminal.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use crate::escape::{escape, path};
+        use apart_formats::escape::{escape, path};
         write!(f, "{}: ", self.severity)?;
         let mut context = String::new();
         match (&self.file, &self.part) {

@@ -3,10 +3,9 @@
 //! (cargo-fuzz needs a nightly toolchain, which this project does not assume; these
 //! proptest runs are the stable substitute.)
 
+use apart_formats::{off, read_bytes, stl, Format, Polygons, RawObject};
 use apart_kernel::Grid;
-use apart_mesh::formats::{off, read_bytes, stl, Format};
 use apart_mesh::validate::check_solid;
-use apart_mesh::{Polygons, RawObject};
 use proptest::prelude::*;
 
 fn cube() -> RawObject {
@@ -43,7 +42,7 @@ fn samples() -> Vec<(Format, Vec<u8>)> {
     off::write(&mut b, &c.vertices, &c.faces).unwrap();
     out.push((Format::Off, b));
     let mut b = Vec::new();
-    apart_mesh::formats::obj::write(
+    apart_formats::obj::write(
         &mut b,
         &[
             c.clone(),
@@ -287,7 +286,7 @@ fn exercise(format: Format, bytes: &[u8]) {
 
 #[test]
 fn samples_are_valid_solids() {
-    apart_mesh::formats::quiet_parser_panics();
+    apart_formats::quiet_parser_panics();
     for (format, bytes) in samples() {
         let objects = read_bytes(&bytes, format, None).unwrap_or_else(|e| panic!("{format}: {e}"));
         assert!(!objects.is_empty());
@@ -317,7 +316,7 @@ fn polygon_samples_are_valid_solids() {
 
 #[test]
 fn hostile_samples_are_refused_quickly() {
-    apart_mesh::formats::quiet_parser_panics();
+    apart_formats::quiet_parser_panics();
     for (format, bytes) in hostile_samples() {
         let t = std::time::Instant::now();
         let e = read_bytes(&bytes, format, None).unwrap_err().to_string();
@@ -392,13 +391,13 @@ proptest! {
 
     #[test]
     fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..600), f in 0usize..5) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         exercise(Format::ALL[f], &bytes);
     }
 
     #[test]
     fn mutated_files_never_panic(which in 0usize..9, muts in prop::collection::vec(mutation(), 1..6)) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let s = samples();
         let (format, bytes) = &s[which % s.len()];
         exercise(*format, &apply(bytes, &muts));
@@ -406,7 +405,7 @@ proptest! {
 
     #[test]
     fn mutated_large_polygons_never_panic(which in 0usize..2, muts in prop::collection::vec(mutation(), 1..6)) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let s = polygon_samples();
         let (format, bytes) = &s[which % s.len()];
         exercise(*format, &apply(bytes, &muts));
@@ -414,7 +413,7 @@ proptest! {
 
     #[test]
     fn mutated_hostile_files_never_panic(which in 0usize..11, muts in prop::collection::vec(mutation(), 1..6)) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let s = hostile_samples();
         let (format, bytes) = &s[which % s.len()];
         exercise(*format, &apply(bytes, &muts));
@@ -428,7 +427,7 @@ proptest! {
         count in prop_oneof![0u64..16, any::<u32>().prop_map(u64::from), any::<u64>()],
         tail in prop::collection::vec(any::<u8>(), 0..200),
     ) {
-        apart_mesh::formats::quiet_parser_panics();
+        apart_formats::quiet_parser_panics();
         let (format, mut bytes) = match which {
             0 => (Format::Ply, format!("ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\nproperty float y\nproperty float z\nend_header\n").into_bytes()),
             1 => (Format::Ply, format!("ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement junk {count}\nend_header\n").into_bytes()),

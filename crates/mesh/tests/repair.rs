@@ -2,12 +2,12 @@
 //! apart-testkit are built to have (exact volumes, numbers of injected defects), never
 //! against the repair's own output; and fuzzed: garbage never panics and repair ends.
 
+use apart_formats::{read_bytes, Format, Polygons, RawObject};
 use apart_kernel::orient::collinear;
 use apart_kernel::{Grid, Int};
-use apart_mesh::formats::{read_bytes, Format};
 use apart_mesh::repair::{bodies, repair, RepairOptions, RepairReport};
 use apart_mesh::validate::validate;
-use apart_mesh::{Mesh, Polygons, Problem, RawObject};
+use apart_mesh::{Mesh, Problem};
 use apart_testkit::defects::*;
 use apart_testkit::Soup;
 use proptest::prelude::*;

@@ -1,8 +1,9 @@
 //! Validation of hand-built solids against hand-computed facts.
 
+use apart_formats::{Polygons, RawObject};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::validate::{check_solid, MeshInfo};
-use apart_mesh::{Polygons, Problem, RawObject, Severity};
+use apart_mesh::{Problem, Severity};
 
 /// The 6 quads of the box [lo, hi], outward.
 fn box_faces(base: u32) -> Vec<Vec<u32>> {

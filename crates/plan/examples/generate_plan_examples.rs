@@ -17,9 +17,8 @@
 #[path = "../../decompose/tests/common/shapes.rs"]
 mod shapes;
 
+use apart_formats::{off, Polygons};
 use apart_kernel::Vec3;
-use apart_mesh::formats::off;
-use apart_mesh::Polygons;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

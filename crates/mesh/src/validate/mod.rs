@@ -319,7 +319,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
 /// Reads, snaps, welds, triangulates and validates one object: the mesh (when one
 /// could be built), what validation learnt, and every problem found on the way.
 pub fn check_solid(
-    raw: &crate::raw::RawObject,
+    raw: &apart_formats::RawObject,
     grid: &Grid,
 ) -> (Option<Mesh>, Option<MeshInfo>, Vec<Problem>) {
     let (mesh, mut problems) = Mesh::from_raw(raw, grid);

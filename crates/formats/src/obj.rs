@@ -3,8 +3,8 @@
 //! splits a group where its material changes) are merged back into one object.
 //! Materials, normals and texture coordinates are ignored.
 
-use super::{Format, ReadError};
 use crate::raw::{Polygons, RawObject};
+use crate::{Format, ReadError};
 use std::io::Write;
 
 /// Parses an OBJ file into one object per group.
@@ -87,9 +87,9 @@ pub fn write(out: &mut impl Write, objects: &[RawObject]) -> std::io::Result<()>
             writeln!(
                 out,
                 "v {} {} {}",
-                super::off::number(v[0]),
-                super::off::number(v[1]),
-                super::off::number(v[2])
+                crate::off::number(v[0]),
+                crate::off::number(v[1]),
+                crate::off::number(v[2])
             )?;
         }
         for f in o.faces.iter() {

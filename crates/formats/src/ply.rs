@@ -9,9 +9,9 @@
 //! digit and one separator per ASCII value, and at least one byte even without
 //! properties), so a 250-byte file declaring four billion faces is an error at once.
 
-use super::{Format, ReadError};
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
+use crate::{Format, ReadError};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{
     ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType,

@@ -10,7 +10,7 @@
 //!
 //! - external buffers outside the file's folder (absolute paths, `..` climbing above
 //!   it, symbolic links leading out), unless [`ReadOptions::allow_outside`]; files that
-//!   are not regular or larger than [`super::MAX_FILE_BYTES`]; URI schemes other than
+//!   are not regular or larger than [`crate::MAX_FILE_BYTES`]; URI schemes other than
 //!   `data:` and `file:`. Images are never opened (only geometry is read), so their
 //!   URIs are not looked at;
 //! - a buffer shorter than its declared `byteLength`, a buffer view beyond its buffer,
@@ -28,11 +28,11 @@
 //!   [`QUATERNION_TOLERANCE`] from 1 (such as `[0, 0, 0, 0]`, or `1e39` which `f32`
 //!   makes infinite) is an error; a norm within it is normalised (`f32` rounding).
 
-use super::files::{read_regular, resolve_inside};
-use super::{Format, ReadError, ReadOptions};
 use crate::escape::quoted;
+use crate::files::{read_regular, resolve_inside};
 use crate::raw::RawObject;
 use crate::transform::{Affine, TOL_F32};
+use crate::{Format, ReadError, ReadOptions};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 use std::path::{Path, PathBuf};

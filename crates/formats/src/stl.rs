@@ -4,9 +4,9 @@
 //! stl_io take them for ASCII). Facet normals are ignored: orientation comes from the
 //! vertex order. Writing uses stl_io (binary, `f32`).
 
-use super::{Format, ReadError};
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
+use crate::{Format, ReadError};
 use apart_kernel::fvec;
 use rayon::prelude::*;
 use std::io::Write;

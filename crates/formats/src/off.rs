@@ -2,9 +2,9 @@
 //! prefixes), counts `vertices faces [edges]`, one vertex per line, one polygon per line
 //! (`n i1 ... in`, extra values such as colours ignored), `#` comments.
 
-use super::{capped, Format, ReadError};
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
+use crate::{capped, Format, ReadError};
 use std::io::Write;
 
 fn bad(line: usize, detail: impl std::fmt::Display) -> ReadError {
@@ -148,8 +148,9 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     })
 }
 
-/// Formats a coordinate as the shortest decimal that reads back as the same `f64`.
-pub(crate) fn number(v: f64) -> String {
+/// Formats a coordinate as the shortest decimal that reads back as the same `f64`
+/// (as the writers write it; apart-mesh shows grid points in messages with it).
+pub fn number(v: f64) -> String {
     if v == 0.0 {
         "0".to_string() // no "-0"
     } else {

@@ -9,9 +9,9 @@
 //! - At most [`MAX_FILE_BYTES`] (4 GiB) are read from one file; a larger file is an
 //!   error before anything is read.
 //! - A file referred to from another one must lie inside the referring file's folder,
-//!   unless [`super::ReadOptions::allow_outside`] is set: [`resolve_inside`].
+//!   unless [`crate::ReadOptions::allow_outside`] is set: [`resolve_inside`].
 
-use super::ReadError;
+use crate::ReadError;
 use std::fs::{File, FileType, Metadata};
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
@@ -26,8 +26,9 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> ReadError + '_ {
     }
 }
 
-/// What a path that is not a regular file is, for messages; `None` for a regular file.
-fn kind(t: &FileType) -> Option<&'static str> {
+/// What a path that is not a regular file is, for messages: `"a folder"`, `"a named
+/// pipe (FIFO)"`, `"a character device"`...; `None` for a regular file.
+pub fn file_kind(t: &FileType) -> Option<&'static str> {
     if t.is_file() {
         return None;
     }
@@ -55,7 +56,7 @@ fn kind(t: &FileType) -> Option<&'static str> {
 
 /// Errors unless `meta` describes a regular file of at most `limit` bytes.
 fn check(path: &Path, meta: &Metadata, limit: u64) -> Result<(), ReadError> {
-    if let Some(kind) = kind(&meta.file_type()) {
+    if let Some(kind) = file_kind(&meta.file_type()) {
         return Err(ReadError::NotRegular {
             path: path.to_path_buf(),
             kind,

@@ -1,4 +1,24 @@
-//! Mesh file formats: readers return [`RawObject`]s, writers take vertices and polygons.
+//! Mesh files of apart: the readers and writers of every format, and the
+//! floating-point objects they produce and consume, before anything is snapped.
+//!
+//! Readers return [`RawObject`]s (an optional name, `f64` vertices in input units, and
+//! [`Polygons`]); writers take vertices and polygons. The affine input transforms
+//! ([`transform`]: the glTF node transforms, which the glTF reader applies, and the
+//! manifest's, which apart-assembly's loader applies) work in `f64`, before snapping.
+//! The solid model built from a `RawObject` on the integer grid, its repair and its
+//! validation are apart-mesh's; this crate knows nothing of grids.
+//!
+//! ```
+//! let off = b"OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+//! let objects = apart_formats::read_bytes(off, apart_formats::Format::Off, None).unwrap();
+//! assert_eq!(objects.len(), 1);
+//! assert_eq!(objects[0].vertices[3], [0.0, 0.0, 1.0]);
+//! assert_eq!(objects[0].faces.get(0), &[0, 2, 1]);
+//! let mut written = Vec::new();
+//! apart_formats::off::write(&mut written, &objects[0].vertices, &objects[0].faces).unwrap();
+//! let again = apart_formats::read_bytes(&written, apart_formats::Format::Off, None).unwrap();
+//! assert_eq!(again[0], objects[0]);
+//! ```
 //!
 //! | format | read | write | objects |
 //! |---|---|---|---|
@@ -26,16 +46,19 @@
 //!   quaternions, positions `FLOAT` `VEC3` ([`gltf`]);
 //! - messages escape whatever they quote from a file ([`crate::escape`]).
 
+pub mod escape;
 mod files;
 pub mod gltf;
 pub mod obj;
 pub mod off;
 pub mod ply;
+mod raw;
 pub mod stl;
+pub mod transform;
 
-pub use files::{read_regular, resolve_inside, MAX_FILE_BYTES};
+pub use files::{file_kind, read_regular, resolve_inside, MAX_FILE_BYTES};
+pub use raw::{Polygons, RawObject};
 
-use crate::raw::RawObject;
 use std::cell::Cell;
 use std::fmt;
 use std::panic::{self, AssertUnwindSafe};

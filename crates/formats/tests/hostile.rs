@@ -2,7 +2,7 @@
 //! ends quickly with a clear error naming the file and the element, or reads right.
 //! The inputs are built here, small; nothing big is committed.
 
-use apart_mesh::formats::{read_file, read_file_with, ReadOptions, MAX_FILE_BYTES};
+use apart_formats::{read_file, read_file_with, ReadOptions, MAX_FILE_BYTES};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
@@ -34,7 +34,7 @@ const TETRA: &[u8] =
 
 #[test]
 fn only_regular_files_are_read() {
-    apart_mesh::formats::quiet_parser_panics();
+    apart_formats::quiet_parser_panics();
     let d = scratch("regular");
     std::fs::write(d.join("ok.off"), TETRA).unwrap();
     assert_eq!(read_file(&d.join("ok.off")).unwrap().len(), 1);
@@ -200,50 +200,4 @@ fn gltf_buffers_stay_in_the_folder_of_the_file() {
         }
     }
     let _ = std::fs::remove_dir_all(&d);
-}
-
-/// A prism over a `k`-gon (radius 1000, height 10; every other vertex at `inner`
-/// times the radius), its caps single polygons.
-fn prism(k: usize, inner: f64) -> apart_mesh::RawObject {
-    let mut vertices = Vec::with_capacity(2 * k);
-    for z in [0.0, 10.0] {
-        for i in 0..k {
-            let a = std::f64::consts::TAU * i as f64 / k as f64;
-            let r = if i % 2 == 1 { 1000.0 * inner } else { 1000.0 };
-            vertices.push([r * a.cos(), r * a.sin(), z]);
-        }
-    }
-    let k32 = k as u32;
-    let mut faces = apart_mesh::Polygons::new();
-    faces.push(&(0..k32).rev().collect::<Vec<_>>());
-    faces.push(&(k32..2 * k32).collect::<Vec<_>>());
-    for i in 0..k32 {
-        let j = (i + 1) % k32;
-        faces.push(&[i, j, k32 + j, k32 + i]);
-    }
-    apart_mesh::RawObject {
-        name: None,
-        vertices,
-        faces,
-    }
-}
-
-/// Checking a prism over a 100,000-gon was quadratic (ear clipping, and fans whose
-/// triangles' boxes meet every rim face): minutes. Now a few seconds.
-#[test]
-fn large_polygons_are_checked_in_near_linear_time() {
-    let k = 100_000;
-    // Convex (a strip), and non-convex with teeth as deep as they are wide (the sweep).
-    for inner in [1.0, 1.0 - std::f64::consts::TAU / k as f64] {
-        let raw = prism(k, inner);
-        let grid = apart_kernel::Grid::choose(raw.vertices.iter().flatten().copied(), 30).unwrap();
-        let t = std::time::Instant::now();
-        let (_, info, problems) = apart_mesh::validate::check_solid(&raw, &grid);
-        let s = t.elapsed().as_secs_f64();
-        assert!(problems.is_empty(), "{inner}: {problems:?}");
-        let info = info.unwrap();
-        assert_eq!(info.triangles, 4 * k - 4);
-        assert!(info.closed && info.self_intersections == 0);
-        assert!(s < 60.0, "{inner}: {s} s");
-    }
 }
