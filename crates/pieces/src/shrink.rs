@@ -97,7 +97,7 @@ impl Cut for [f64; 3] {
 const EXACT_CUT_FACETS: usize = 32;
 
 /// How close to a plane (grid steps) a floating-point vertex counts as on it.
-const FLOAT_ON: f64 = 1e-6;
+const FLOAT_ON: f64 = 1e-4;
 
 /// The edges of the current polytope: pairs of vertices sharing two planes.
 fn edges<P>(verts: &[Vertex<P>]) -> Vec<(u32, u32)> {
@@ -350,7 +350,7 @@ impl Polytope {
         let margin = eps_num + eps_den; // eps + 1 step
         if self.facets().len() <= EXACT_CUT_FACETS {
             if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
-                return Some(p);
+                return p;
             }
         }
         let cut = if self.facets().len() <= EXACT_CUT_FACETS {
@@ -368,42 +368,57 @@ impl Polytope {
     /// over `eps_den`) computed in floating point, each vertex rounded to the nearest
     /// grid point, and the exact hull of those points, returned only when every one of
     /// them lies at least `eps` inside every facet of the piece, checked exactly (the
-    /// bound [`Polytope::shrunk_exact`] guarantees). `None` when that check fails, or
-    /// when the floating-point cut leaves nothing: then the exact cut decides.
-    fn shrunk_in_floats(&self, margin: &Int, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
+    /// bound [`Polytope::shrunk_exact`] guarantees). `Some(None)` when the cut leaves
+    /// nothing, or the rounded points span no volume: nothing is lost then, as the cut
+    /// one step deeper has no interior. `None` when the check fails (or a coordinate
+    /// does not fit): then the exact cut decides.
+    fn shrunk_in_floats(
+        &self,
+        margin: &Int,
+        eps_num: &Int,
+        eps_den: &Int,
+    ) -> Option<Option<Polytope>> {
         let den = self.den();
-        let fden = int::to_f64(den);
         let m = int::to_f64(margin) / int::to_f64(eps_den);
         let nf = self.facets().len() as u32;
-        let mut halves: Vec<([f64; 3], f64)> = Vec::with_capacity(2 * nf as usize);
+        // True coordinates and unit facet planes (exact values divided once: decomposed
+        // pieces have denominators of hundreds of bits).
+        let shadow = self.shadow()?;
         let bounds: Vec<Int> = self
             .facets()
             .iter()
             .map(|f| length_bound_256(&f.normal))
             .collect();
-        for (f, r) in self.facets().iter().zip(&bounds) {
-            let n = f.normal.approx();
-            let len = fvec::norm(n);
-            let h = int::to_f64(&f.offset) / fden - m * int::to_f64(r) / 256.0;
-            halves.push((n.map(|x| x / len), h / len));
-        }
+        let halves: Vec<([f64; 3], f64)> = self
+            .facets()
+            .iter()
+            .zip(&bounds)
+            .enumerate()
+            .map(|(k, (f, r))| {
+                // Moved by margin r / |n| (1 up to 1 / (256 |n|)).
+                let n2 = int::to_f64(&f.normal.dot(&f.normal));
+                let stretch = int::to_f64(r) / 256.0 / n2.sqrt();
+                let stretch = if stretch.is_finite() { stretch } else { 1.0 };
+                (shadow.facet_units[k], shadow.facet_levels[k] - m * stretch)
+            })
+            .collect();
         let mut on_of: Vec<Vec<u32>> = vec![Vec::new(); self.vertices().len()];
         for (f, facet) in self.facets().iter().enumerate() {
             for &v in &facet.cycle {
                 on_of[v as usize].push(nf + f as u32);
             }
         }
-        let mut verts: Vec<Vertex<[f64; 3]>> = self
-            .vertices()
+        let mut verts: Vec<Vertex<[f64; 3]>> = shadow
+            .points
             .iter()
             .zip(on_of)
-            .map(|(v, on)| Vertex {
-                p: v.approx().map(|x| x / fden),
-                on,
-            })
+            .map(|(v, on)| Vertex { p: *v, on })
             .collect();
         for hi in 0..nf {
-            verts = clip(verts, &halves[hi as usize], hi)?;
+            match clip(verts, &halves[hi as usize], hi) {
+                Some(v) => verts = v,
+                None => return Some(None),
+            }
         }
         const LIMIT: f64 = (1u64 << 52) as f64;
         let points: Vec<Vec3> = verts
@@ -415,9 +430,13 @@ impl Polytope {
                     .then(|| Vec3::new(r[0] as i64, r[1] as i64, r[2] as i64))
             })
             .collect::<Option<_>>()?;
-        let hull = Polytope::hull(&points).ok()?;
+        let hull = match Polytope::hull(&points) {
+            Ok(h) => h,
+            Err(crate::polytope::PolytopeError::Flat) => return Some(None),
+            Err(_) => return None,
+        };
         if hull.volume6() <= Int::ZERO {
-            return None;
+            return Some(None);
         }
         // Every hull vertex v (true coordinates, integers) at least eps inside every
         // facet n · x <= c / den: 256 eps_den (c - den n · v) >= eps_num den ⌈256 |n|⌉.
@@ -428,7 +447,7 @@ impl Polytope {
                 .iter()
                 .all(|v| &scale * (&f.offset - den * f.normal.dot(v)) >= need)
         });
-        inside.then_some(hull)
+        inside.then_some(Some(hull))
     }
 
     /// The convex hull of this polytope's vertices, each rounded to the nearest point of
