@@ -196,13 +196,15 @@ impl<'a> DirectionQuery<'a> {
         let (Some(ti), Some(tj), Some(xs)) = (&self.trees[i], &self.trees[j], x.as_small()) else {
             return (0..self.parts[i].pieces.len() * nb).collect();
         };
-        let mut out = Vec::new();
-        pairs_where(
+        let mut out: Vec<usize> = pairs_where(
             ti,
             tj,
-            |lo, hi, _| ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs),
-            |a, b| out.push(a * nb + b),
-        );
+            &|lo, hi, _| ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs),
+            &|_, _| true,
+        )
+        .into_iter()
+        .map(|(a, b)| a * nb + b)
+        .collect();
         out.sort_unstable();
         out
     }
@@ -436,13 +438,15 @@ impl<'a> DirectionQuery<'a> {
         let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
             return (0..self.parts[i].pieces.len() * nb).collect();
         };
-        let mut out = Vec::new();
-        pairs_where(
+        let mut out: Vec<usize> = pairs_where(
             ti,
             tj,
-            |lo, hi, _| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]),
-            |a, b| out.push(a * nb + b),
-        );
+            &|lo, hi, _| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]),
+            &|_, _| true,
+        )
+        .into_iter()
+        .map(|(a, b)| a * nb + b)
+        .collect();
         out.sort_unstable();
         out
     }

@@ -192,38 +192,70 @@ pub(crate) fn split_pair(
 }
 
 /// Every piece pair `(a, b)` (`a` of `moving`, `b` of `fixed`) under a chain of node
-/// pairs that `keep` accepts: `keep(lo, hi, pairs)` gets the box of the node pair's sums
-/// ([`sum_box`]) and how many piece pairs lie under it, and returns whether to descend.
-/// Depth first from the roots, splitting the larger node.
+/// pairs that `keep` accepts and for which `leaf(a, b)` holds: `keep(lo, hi, pairs)`
+/// gets the box of the node pair's sums ([`sum_box`]) and how many piece pairs lie under
+/// it, and returns whether to descend. Depth first from the roots, splitting the larger
+/// node, the second child first; the top of the walk runs in parallel, and the pairs
+/// come in the order of the sequential walk.
 pub(crate) fn pairs_where(
     moving: &PieceTree,
     fixed: &PieceTree,
-    mut keep: impl FnMut([i64; 3], [i64; 3], usize) -> bool,
-    mut leaf: impl FnMut(usize, usize),
-) {
-    let (Some(ra), Some(rb)) = (moving.root(), fixed.root()) else {
-        return;
-    };
-    let mut stack = vec![(ra, rb)];
-    while let Some((na, nb)) = stack.pop() {
+    keep: &(dyn Fn([i64; 3], [i64; 3], usize) -> bool + Sync),
+    leaf: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Vec<(usize, usize)> {
+    /// Depth of node pairs down to which the walk forks.
+    const PARALLEL_DEPTH: u32 = 8;
+    fn walk(
+        t: (&PieceTree, &PieceTree),
+        na: usize,
+        nb: usize,
+        depth: u32,
+        keep: &(dyn Fn([i64; 3], [i64; 3], usize) -> bool + Sync),
+        leaf: &(dyn Fn(usize, usize) -> bool + Sync),
+        out: &mut Vec<(usize, usize)>,
+    ) {
+        let (moving, fixed) = t;
         let (lo, hi) = sum_box(moving, na, fixed, nb);
         if !keep(lo, hi, moving.nodes[na].len * fixed.nodes[nb].len) {
-            continue;
+            return;
         }
         match split_pair(moving, na, fixed, nb) {
+            Some([x, y]) if depth < PARALLEL_DEPTH => {
+                let (mut first, second) = rayon::join(
+                    || {
+                        let mut v = Vec::new();
+                        walk(t, y.0, y.1, depth + 1, keep, leaf, &mut v);
+                        v
+                    },
+                    || {
+                        let mut v = Vec::new();
+                        walk(t, x.0, x.1, depth + 1, keep, leaf, &mut v);
+                        v
+                    },
+                );
+                first.extend(second);
+                out.extend(first);
+            }
             Some([x, y]) => {
-                stack.push(x);
-                stack.push(y);
+                walk(t, y.0, y.1, depth + 1, keep, leaf, out);
+                walk(t, x.0, x.1, depth + 1, keep, leaf, out);
             }
             None => {
                 for &pa in moving.pieces(na) {
                     for &pb in fixed.pieces(nb) {
-                        leaf(pa, pb);
+                        if leaf(pa, pb) {
+                            out.push((pa, pb));
+                        }
                     }
                 }
             }
         }
     }
+    let mut out = Vec::new();
+    if let (Some(ra), Some(rb)) = (moving.root(), fixed.root()) {
+        walk((moving, fixed), ra, rb, 0, keep, leaf, &mut out);
+    }
+    out
 }
 
 /// The open union of some polygons, ready for containment tests.
@@ -391,38 +423,17 @@ pub(crate) fn uncovered_pairs(
     moving: &PieceTree,
     fixed: &PieceTree,
     cover: &Cover,
-    need: &dyn Fn(usize, usize) -> bool,
-) -> (Vec<(usize, usize)>, CullStats) {
-    let mut out = Vec::new();
-    let mut stats = CullStats::default();
+    need: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Vec<(usize, usize)> {
     pairs_where(
         moving,
         fixed,
-        |lo, hi, pairs| {
+        &|lo, hi, _| {
             let holds_origin = (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]);
-            stats.tested += 1;
-            if !holds_origin && box_projection_covered(lo, hi, cover) {
-                stats.culled += pairs;
-                return false;
-            }
-            true
+            holds_origin || !box_projection_covered(lo, hi, cover)
         },
-        |pa, pb| {
-            if need(pa, pb) {
-                out.push((pa, pb));
-            }
-        },
-    );
-    (out, stats)
-}
-
-/// Counts of a culling traversal.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct CullStats {
-    /// Node pairs tested.
-    pub(crate) tested: usize,
-    /// Piece pairs under culled node pairs (including pairs that needed no sum).
-    pub(crate) culled: usize,
+        need,
+    )
 }
 
 /// True when the open projection of the box `[lo, hi]` (not holding the origin) lies in

@@ -520,12 +520,10 @@ fn pair_region(
                     .collect::<Result<_, _>>()?;
                 let t0 = Instant::now();
                 let cover = Cover::new(&polygons, &map);
+                contact |= made.iter().any(|(_, touch)| *touch);
                 let new: Vec<SphericalPolygon> = made
-                    .into_iter()
-                    .filter_map(|(p, touch)| {
-                        contact |= touch;
-                        (!cover.contains(&p)).then_some(p)
-                    })
+                    .into_par_iter()
+                    .filter_map(|(p, _)| (!cover.contains(&p)).then_some(p))
                     .collect();
                 if !new.is_empty() {
                     // The round's own union, merged into the union so far.
@@ -535,7 +533,7 @@ fn pair_region(
                     polygons = pruned(std::mem::take(&mut polygons));
                 }
                 let cover = Cover::new(&polygons, &map);
-                let (rest, _) = uncovered_pairs(ti, tj, &cover, &|a, b| need[a * pj.len() + b]);
+                let rest = uncovered_pairs(ti, tj, &cover, &|a, b| need[a * pj.len() + b]);
                 prune_seconds += t0.elapsed().as_secs_f64();
                 if rest.is_empty() {
                     break;
