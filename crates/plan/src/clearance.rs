@@ -7,30 +7,14 @@
 //! Internally distances are compared as squared chord lengths `2 − 2 cos θ`, which grow
 //! with the angle θ and need no trigonometry; [`to_angle`] converts back.
 
+use apart_kernel::fvec::{self, cross, dot, normalize};
 use apart_sphere::overlay::RegionArrangement;
 
 type V3 = [f64; 3];
 
-pub(crate) fn dot(a: &V3, b: &V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &V3, b: &V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn normalize(a: V3) -> V3 {
-    let n = dot(&a, &a).sqrt();
-    [a[0] / n, a[1] / n, a[2] / n]
-}
-
 pub(crate) fn chord2(a: &V3, b: &V3) -> f64 {
-    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    dot(&d, &d)
+    let d = fvec::sub(*a, *b);
+    fvec::dot(d, d)
 }
 
 /// The angle (radians) of a squared chord length.
@@ -59,15 +43,14 @@ impl FArc {
 
     /// Squared chord distance from unit point `p` to the closed arc.
     pub fn distance2(&self, p: &V3) -> f64 {
-        let s = dot(&self.n, p);
+        let s = dot(self.n, *p);
         let q = [
             p[0] - s * self.n[0],
             p[1] - s * self.n[1],
             p[2] - s * self.n[2],
         ];
-        let within =
-            dot(&cross(&self.a, &q), &self.n) >= 0.0 && dot(&cross(&q, &self.b), &self.n) >= 0.0;
-        if within && dot(&q, &q) > 1e-30 {
+        let within = dot(cross(self.a, q), self.n) >= 0.0 && dot(cross(q, self.b), self.n) >= 0.0;
+        if within && dot(q, q) > 1e-30 {
             // Nearest point: the projection onto the circle, at angle asin|s|.
             2.0 - 2.0 * (1.0 - s * s).max(0.0).sqrt()
         } else {
@@ -181,8 +164,8 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
         } else {
             [0.0, 1.0, 0.0]
         };
-        let u = normalize(cross(&p, &helper));
-        let w = cross(&p, &u);
+        let u = normalize(cross(p, helper));
+        let w = cross(p, u);
         let mut best: Option<(V3, f64)> = None;
         for (co, s) in DIRS {
             let d = [

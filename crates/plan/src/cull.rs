@@ -18,7 +18,8 @@
 //! of at most 90° first, so the float filters and the exact arc test hold for arcs of
 //! any length.
 
-use crate::clearance::{chord2, dot, FArc};
+use crate::clearance::{chord2, FArc};
+use apart_kernel::fvec::dot;
 use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
 use apart_kernel::{Int, Sign, Vec3};
 use apart_minkowski::{project, Projection};
@@ -307,7 +308,7 @@ impl<'a> Cover<'a> {
         });
         let near = |q: &[f64; 3]| match &cap {
             Some((c, reach2)) => chord2(q, c) <= *reach2,
-            None => !normals.iter().any(|m| dot(m, q) < -1e-9),
+            None => !normals.iter().any(|m| dot(*m, *q) < -1e-9),
         };
         if self
             .points
@@ -354,7 +355,7 @@ fn arc_meets_open(arc: &Arc, f: &FArc, normals: &[[f64; 3]], p: &SphericalPolygo
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut sure = true;
     for m in normals {
-        let (a, b) = (dot(m, &s), dot(m, &e));
+        let (a, b) = (dot(*m, s), dot(*m, e));
         if a < -FILTER && b < -FILTER {
             return false;
         }

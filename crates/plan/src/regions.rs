@@ -6,11 +6,11 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
-use crate::clearance::dot;
 use crate::cull::{largest, uncovered_pairs, Cover, PieceTree};
 use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::progress::{phases, Progress};
 use crate::PlanError;
+use apart_kernel::fvec::dot;
 use apart_kernel::Vec3;
 use apart_minkowski::{project, sum_prepared, Projection};
 use apart_pieces::Polytope;
@@ -684,8 +684,8 @@ impl Approx {
         let corners: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
         let normals = p.normals().iter().map(|n| n.unit_f64()).collect();
         let gnomonic = match &cap {
-            Some(c) if corners.iter().all(|u| dot(u, &c.centre) > 1e-6) => {
-                corners.iter().map(|u| 1.0 / dot(u, &c.centre)).collect()
+            Some(c) if corners.iter().all(|u| dot(*u, c.centre) > 1e-6) => {
+                corners.iter().map(|u| 1.0 / dot(*u, c.centre)).collect()
             }
             _ => Vec::new(),
         };
@@ -710,9 +710,9 @@ impl Approx {
             return !q
                 .normals
                 .iter()
-                .any(|n| self.corners.iter().any(|c| dot(n, c) < MARGIN));
+                .any(|n| self.corners.iter().any(|c| dot(*n, *c) < MARGIN));
         }
-        let g = |n: &[f64; 3], k: usize| dot(n, &self.corners[k]) * self.gnomonic[k];
+        let g = |n: &[f64; 3], k: usize| dot(*n, self.corners[k]) * self.gnomonic[k];
         let mut i = 0;
         for n in &q.normals {
             let mut gi = g(n, i);
@@ -727,7 +727,7 @@ impl Approx {
                     }
                 }
             }
-            if dot(n, &self.corners[i]) < MARGIN {
+            if dot(*n, self.corners[i]) < MARGIN {
                 return false;
             }
         }

@@ -6,6 +6,7 @@
 
 use crate::clearance::{isolated_points, to_angle, FArc};
 use crate::regions::BlockingRegions;
+use apart_kernel::fvec::{cross, dot};
 use apart_kernel::Vec3;
 use apart_sphere::overlay::{cell_statuses, RegionArrangement};
 use apart_sphere::region::arrangement_of;
@@ -208,24 +209,12 @@ pub fn face_area(loops: &[Vec<Arc>]) -> f64 {
             let next = &lp[(k + 1) % lp.len()];
             // Tangents at the shared corner v: incoming n1 × v, outgoing n2 × v.
             let v = arc.end.unit_f64();
-            let t1 = cross(&arc.normal.unit_f64(), &v);
-            let t2 = cross(&next.normal.unit_f64(), &v);
-            let sin = dot(&v, &cross(&t1, &t2));
-            let cos = dot(&t1, &t2);
+            let t1 = cross(arc.normal.unit_f64(), v);
+            let t2 = cross(next.normal.unit_f64(), v);
+            let sin = dot(v, cross(t1, t2));
+            let cos = dot(t1, t2);
             turning += sin.atan2(cos);
         }
     }
     2.0 * PI * (2.0 - loops.len() as f64) - turning
-}
-
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
