@@ -511,7 +511,9 @@ impl<'a> DirectionQuery<'a> {
         // contact's own axis puts far from x.
         let visit = |p: usize, q: usize, flip: bool, k: usize, best: &mut f64| {
             let x = &xs[usize::from(flip)];
-            if axes_bound(self.axes(p, q, k), x) >= slack(*best) {
+            let m = self.parts[q].pieces.len();
+            let (a, b) = (&self.parts[p].pieces[k / m], &self.parts[q].pieces[k % m]);
+            if axes_bound(self.axes(p, q, k), a, b, x) >= slack(*best) {
                 return Ok(());
             }
             let poly = self.polygon(p, q, k)?;
@@ -580,21 +582,72 @@ impl<'a> DirectionQuery<'a> {
     }
 }
 
-/// A lower bound of the angle (radians) from `x` to a piece pair's closed projection
-/// from its separating axes: the projection lies in each closed hemisphere `n · u >= 0`,
-/// which is `asin(-n̂ · x̂)` away from `x` when `x` is outside it (floating point, with a
-/// margin of 1e-9 rad; only used to skip sums in [`DirectionQuery::clearance`]).
-fn axes_bound(axes: &[Axis], x: &Vec3) -> f64 {
+/// A lower bound of the angle (radians) from `x` to the closed projection of the piece
+/// pair `(a, b)` (the directions of `b ⊕ −a`) from its separating axes. Along a unit
+/// axis `n̂` the pieces are a gap `g >= 0` apart (`a` below), so every point `y` of the
+/// sum has `n̂ · y >= g`, and the sum's box bounds `x̂ · y <= h`. In the plane of `x̂`
+/// and `n̂` (`n̂ = c x̂ + s e`), a point with `x̂ · y = u` is at least `atan((g − c u) /
+/// (s u))` from `x̂`, least at `u = h`; for `g = 0` this is the closed hemisphere's
+/// `asin(−n̂ · x̂)`. So a pair sliding past `x` a tolerance's gap apart (`n` square to
+/// `x`) is as far as the gap seen from the sum's far end, not 0. Floating point,
+/// widened by 1e-9 (relative to the coordinates in lengths, radians in angles); only
+/// used to skip sums in [`DirectionQuery::clearance`].
+fn axes_bound(
+    axes: &[Axis],
+    a: &apart_pieces::Polytope,
+    b: &apart_pieces::Polytope,
+    x: &Vec3,
+) -> f64 {
+    use apart_kernel::fvec;
+    use std::f64::consts::FRAC_PI_2;
     let u = x.unit_f64();
+    let ((alo, ahi), (blo, bhi)) = (float_box(a), float_box(b));
+    let mut scale = 0.0f64;
+    let mut h = 0.0;
+    for k in 0..3 {
+        let (lo, hi) = (blo[k] - ahi[k], bhi[k] - alo[k]);
+        h += (u[k] * lo).max(u[k] * hi);
+        for v in [alo[k], ahi[k], blo[k], bhi[k]] {
+            scale = scale.max(v.abs());
+        }
+    }
+    let margin = 1e-9 * scale;
+    let h = h + margin;
+    let points = |p: &apart_pieces::Polytope| -> Option<Vec<[f64; 3]>> {
+        p.shadow().map(|s| s.points.clone())
+    };
+    let (pa, pb) = (points(a), points(b));
     axes.iter()
         .map(|ax| {
             let n = ax.n.unit_f64();
-            let s = -(n[0] * u[0] + n[1] * u[1] + n[2] * u[2]);
-            if s > 0.0 {
-                (s.min(1.0).asin() - 1e-9).max(0.0)
-            } else {
+            let c = fvec::dot(u, n);
+            let s = fvec::norm(fvec::cross(u, n));
+            // The closed hemisphere n̂ · y >= 0.
+            let hemisphere = (s.atan2(c) - FRAC_PI_2 - 1e-9).max(0.0);
+            let gap = match (&pa, &pb) {
+                (Some(pa), Some(pb)) if ax.strict => {
+                    let top_a = pa
+                        .iter()
+                        .map(|v| fvec::dot(n, *v))
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    let low_b = pb
+                        .iter()
+                        .map(|v| fvec::dot(n, *v))
+                        .fold(f64::INFINITY, f64::min);
+                    low_b - top_a - margin
+                }
+                _ => 0.0,
+            };
+            let cap = if gap <= 0.0 || !gap.is_finite() || !h.is_finite() {
                 0.0
-            }
+            } else if h <= 0.0 {
+                FRAC_PI_2 - 1e-9
+            } else if gap - c * h <= 0.0 || s <= 0.0 {
+                0.0
+            } else {
+                ((gap - c * h).atan2(s * h) - 1e-9).max(0.0)
+            };
+            hemisphere.max(cap)
         })
         .fold(0.0, f64::max)
 }
