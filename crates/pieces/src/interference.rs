@@ -693,7 +693,14 @@ fn signed_depth_above(a: &Polytope, b: &Polytope, floor: f64) -> f64 {
         (ahi - blo).min(bhi - alo)
     };
     let mut best = f64::INFINITY;
-    for f in a.facets().iter().chain(b.facets()) {
+    // The smaller piece's facets first: with a floor, the axis that shows a shallow
+    // overlap is most often the small piece's face against the big one.
+    let (first, second) = if a.facets().len() <= b.facets().len() {
+        (a, b)
+    } else {
+        (b, a)
+    };
+    for f in first.facets().iter().chain(second.facets()) {
         best = best.min(overlap_along(f.normal.approx(), &mut wa, &mut wb));
         if best <= floor {
             return best;
