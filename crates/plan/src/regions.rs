@@ -394,29 +394,50 @@ fn pair_region(
     // Separating axes of every piece pair (exact; coordinate axes first, which settle
     // far-apart pairs at once). Touching pairs get their projection, the contact cone,
     // from the small sum of their face neighbourhoods (the same polygon as the full
-    // sum's); the others keep their axes for the cover test below.
-    let first: Vec<(Option<Cone>, Vec<Axis>)> = jobs
-        .par_iter()
+    // sum's); the others near each other keep their axes for the cover test below, and
+    // pairs strictly apart along a coordinate axis keep nothing (their axes are those
+    // coordinate axes, found again in a moment if the test needs them): most of a big
+    // pair's 10^6 piece pairs are such, and their axes were most of its memory.
+    enum First {
+        Near(Vec<Axis>),
+        Cone(Cone),
+    }
+    let first: Vec<(usize, First)> = (0..jobs.len())
+        .into_par_iter()
         .with_min_len(16)
-        .map(|&(a, b)| {
+        .filter_map(|k| {
+            let (a, b) = jobs[k];
             let ax = axes(&pi[a], &info[i][a], &pj[b], &info[j][b]);
             let Some(n) = crate::pairs::touching_normal(&ax) else {
-                return Ok((None, ax));
+                return (!ax.iter().any(|x| x.strict)).then_some(Ok((k, First::Near(ax))));
             };
             match contact_polygon(&pi[a], &pj[b], n) {
-                None => Ok((None, ax)),
-                Some(Ok(PairPolygon::Polygon(p, touch))) => Ok((Some((p, touch)), Vec::new())),
-                Some(Ok(PairPolygon::Overlap)) => Err(overlap(a, b)),
-                Some(Err(e)) => Err(name_err(e)),
+                None => Some(Ok((k, First::Near(ax)))),
+                Some(Ok(PairPolygon::Polygon(p, touch))) => Some(Ok((k, First::Cone((p, touch))))),
+                Some(Ok(PairPolygon::Overlap)) => Some(Err(overlap(a, b))),
+                Some(Err(e)) => Some(Err(name_err(e))),
             }
         })
         .collect::<Result<_, _>>()?;
-    let (cones, pair_axes): (Vec<_>, Vec<_>) = first.into_iter().unzip();
-    let cone_count = cones.iter().filter(|c| c.is_some()).count();
+    let mut is_cone = vec![false; jobs.len()];
+    let mut cones: Vec<Cone> = Vec::new();
+    let mut near: rustc_hash::FxHashMap<usize, Vec<Axis>> = Default::default();
+    for (k, f) in first {
+        match f {
+            First::Cone(c) => {
+                is_cone[k] = true;
+                cones.push(c);
+            }
+            First::Near(ax) => {
+                near.insert(k, ax);
+            }
+        }
+    }
+    let cone_count = cones.len();
     stats.contact_cones += cone_count;
     // Open hemispheres already in the union (face contacts).
     let mut hemispheres: rustc_hash::FxHashSet<Vec3> = Default::default();
-    for (p, _) in cones.iter().flatten() {
+    for (p, _) in &cones {
         if p.normals().len() == 1 {
             hemispheres.insert(p.normals()[0].clone());
         }
@@ -424,12 +445,16 @@ fn pair_region(
     // A pair lying weakly below along an axis n has its projection in the closed
     // hemisphere {n·x >= 0}: it adds nothing when the open one is in the union.
     let covered = |k: usize| {
+        if hemispheres.is_empty() {
+            return false;
+        }
         let (a, b) = jobs[k];
-        !hemispheres.is_empty()
-            && (pair_axes[k]
-                .iter()
-                .any(|ax| hemispheres.contains(&ax.n.primitive()))
-                || below_along_any(&pi[a], &pj[b], &hemispheres))
+        let in_union = |ax: &[Axis]| ax.iter().any(|ax| hemispheres.contains(&ax.n.primitive()));
+        let by_axes = match near.get(&k) {
+            Some(ax) => in_union(ax),
+            None => in_union(&axes(&pi[a], &info[i][a], &pj[b], &info[j][b])),
+        };
+        by_axes || below_along_any(&pi[a], &pj[b], &hemispheres)
     };
     let axes_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
@@ -437,9 +462,11 @@ fn pair_region(
     let sum_ns = std::sync::atomic::AtomicU64::new(0);
     let proj_ns = std::sync::atomic::AtomicU64::new(0);
     let todo: Vec<usize> = (0..jobs.len())
-        .filter(|&k| cones[k].is_none() && !covered(k))
+        .into_par_iter()
+        .with_min_len(64)
+        .filter(|&k| !is_cone[k] && !covered(k))
         .collect();
-    drop(pair_axes);
+    drop(near);
     stats.skipped += jobs.len() - todo.len() - cone_count;
     let polygon_of = |k: usize| -> Result<Cone, PlanError> {
         let (a, b) = jobs[k];
@@ -478,7 +505,6 @@ fn pair_region(
     let mut contact = false;
     let mut polygons: Vec<SphericalPolygon> = cones
         .into_iter()
-        .flatten()
         .map(|(p, touch)| {
             contact |= touch;
             p
