@@ -192,19 +192,30 @@ impl<'a> DirectionQuery<'a> {
     /// The piece pairs of `{i, j}` whose sum's box the ray along `x` may meet (a
     /// superset, from the parts' box trees; every pair without them), in increasing order.
     fn along_ray(&self, i: usize, j: usize, x: &Vec3) -> Vec<usize> {
+        match x.as_small() {
+            Some(xs) => self.tree_pairs(i, j, &|lo, hi| {
+                ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs)
+            }),
+            None => (0..self.parts[i].pieces.len() * self.parts[j].pieces.len()).collect(),
+        }
+    }
+
+    /// The piece pairs `k` of `{i, j}` under node pairs of the parts' box trees whose
+    /// box of sums `keep` accepts, in increasing order (every pair without trees).
+    fn tree_pairs(
+        &self,
+        i: usize,
+        j: usize,
+        keep: &(dyn Fn([i64; 3], [i64; 3]) -> bool + Sync),
+    ) -> Vec<usize> {
         let nb = self.parts[j].pieces.len();
-        let (Some(ti), Some(tj), Some(xs)) = (&self.trees[i], &self.trees[j], x.as_small()) else {
+        let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
             return (0..self.parts[i].pieces.len() * nb).collect();
         };
-        let mut out: Vec<usize> = pairs_where(
-            ti,
-            tj,
-            &|lo, hi, _| ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs),
-            &|_, _| true,
-        )
-        .into_iter()
-        .map(|(a, b)| a * nb + b)
-        .collect();
+        let mut out: Vec<usize> = pairs_where(ti, tj, &|lo, hi, _| keep(lo, hi), &|_, _| true)
+            .into_iter()
+            .map(|(a, b)| a * nb + b)
+            .collect();
         out.sort_unstable();
         out
     }
@@ -434,21 +445,7 @@ impl<'a> DirectionQuery<'a> {
     /// The piece pairs of `{i, j}` whose boxes touch or overlap (a superset, from the
     /// parts' box trees; every pair without them): the only ones that can touch.
     fn touching_pairs(&self, i: usize, j: usize) -> Vec<usize> {
-        let nb = self.parts[j].pieces.len();
-        let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
-            return (0..self.parts[i].pieces.len() * nb).collect();
-        };
-        let mut out: Vec<usize> = pairs_where(
-            ti,
-            tj,
-            &|lo, hi, _| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]),
-            &|_, _| true,
-        )
-        .into_iter()
-        .map(|(a, b)| a * nb + b)
-        .collect();
-        out.sort_unstable();
-        out
+        self.tree_pairs(i, j, &|lo, hi| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]))
     }
 
     /// Angular clearance (radians) at `d` of the moving set `moving` (global indices):
