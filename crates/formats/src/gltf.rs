@@ -738,30 +738,11 @@ mod tests {
         bin
     }
 
-    fn base64(bin: &[u8]) -> String {
-        const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        let mut b64 = String::new();
-        for chunk in bin.chunks(3) {
-            let n = chunk
-                .iter()
-                .enumerate()
-                .fold(0u32, |a, (i, &b)| a | (b as u32) << (16 - 8 * i));
-            for k in 0..4 {
-                if k <= chunk.len() {
-                    b64.push(T[(n >> (18 - 6 * k) & 63) as usize] as char);
-                } else {
-                    b64.push('=');
-                }
-            }
-        }
-        b64
-    }
-
     #[test]
     fn base64_data_decodes_with_or_without_padding() {
         for n in 0..40usize {
             let bin: Vec<u8> = (0..n).map(|k| (k * 37 + 11) as u8).collect();
-            let text = base64(&bin);
+            let text = apart_testkit::base64(&bin);
             assert_eq!(base64_decode(&text).unwrap(), bin, "{text}");
             assert_eq!(base64_decode(text.trim_end_matches('=')).unwrap(), bin);
             let uri = format!("data:application/octet-stream;base64,{text}");
@@ -786,7 +767,10 @@ mod tests {
         let bin = triangle_bin();
         let uri = match uri {
             Some(u) => u.to_string(),
-            None => format!("data:application/octet-stream;base64,{}", base64(&bin)),
+            None => format!(
+                "data:application/octet-stream;base64,{}",
+                apart_testkit::base64(&bin)
+            ),
         };
         let mut j = String::new();
         write!(

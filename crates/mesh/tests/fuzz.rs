@@ -141,31 +141,12 @@ fn gltf_parts(c: &RawObject) -> (String, Vec<u8>) {
     (json, bin)
 }
 
-fn base64(bin: &[u8]) -> String {
-    const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for chunk in bin.chunks(3) {
-        let n = chunk
-            .iter()
-            .enumerate()
-            .fold(0u32, |a, (i, &b)| a | (b as u32) << (16 - 8 * i));
-        for k in 0..4 {
-            s.push(if k <= chunk.len() {
-                T[(n >> (18 - 6 * k) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    s
-}
-
 fn gltf_with_data_uri(json: &str, bin: &[u8]) -> Vec<u8> {
     json.replace(
         "URI",
         &format!(
             ",\"uri\":\"data:application/octet-stream;base64,{}\"",
-            base64(bin)
+            apart_testkit::base64(bin)
         ),
     )
     .into_bytes()

@@ -24,4 +24,4 @@ pub mod sheet_metal;
 pub mod solids;
 mod soup;
 
-pub use soup::Soup;
+pub use soup::{base64, Soup};
