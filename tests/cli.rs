@@ -3,6 +3,7 @@
 //! Split Star's eight isolated directions ±(1,1,1)… from paper 001, the geometry of the
 //! hand-made examples, and exact re-checks of what the JSON claims).
 
+use apart_testkit::Scratch;
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::Command;
@@ -242,8 +243,7 @@ fn place_puts_a_copy_next_to_the_original_without_overlap() {
 
 #[test]
 fn bad_input_fails_with_a_message_and_no_panic() {
-    let dir = std::env::temp_dir().join(format!("apart-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("cli");
     let bad = dir.join("broken.off");
     std::fs::write(&bad, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").unwrap();
     for cmd in ["partition", "sequence", "stack"] {

@@ -6,6 +6,7 @@
 //! partial answer with its status (exit code 3), and --timeout while loading and
 //! --max-memory ending a run with a clear message.
 
+use apart_testkit::Scratch;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -39,11 +40,8 @@ fn json(out: &Output) -> Value {
 }
 
 /// A fresh folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-bounds-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> Scratch {
+    Scratch::new(&format!("bounds-{}", name))
 }
 
 /// The unit cube at `origin` as an OFF file.

@@ -3,6 +3,7 @@
 //! names, files of an assembly folder that are not read are listed with the reason,
 //! temporary paths never show, and a step moving one part "moves".
 
+use apart_testkit::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -31,11 +32,8 @@ fn out(o: &Output) -> String {
 }
 
 /// A fresh folder for one test's files.
-fn folder(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-messages-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn folder(tag: &str) -> Scratch {
+    Scratch::new(&format!("messages-{}", tag))
 }
 
 /// The OFF text of the box `[lo, hi]`.

@@ -2,6 +2,7 @@
 //! error ("wrote FILE") unless `--quiet`, standard output keeps only the answer (valid
 //! JSON with `--json`), and the pictures name the parts by their names.
 
+use apart_testkit::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -14,11 +15,8 @@ fn example(name: &str) -> String {
 }
 
 /// A fresh temporary folder for one test.
-fn scratch(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-cli-pictures-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(tag: &str) -> Scratch {
+    Scratch::new(&format!("cli-pictures-{}", tag))
 }
 
 fn apart(args: &[&str]) -> Output {

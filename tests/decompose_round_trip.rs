@@ -11,15 +11,13 @@ use apart::kernel::{Grid, Int, Rational};
 use apart::mesh::validate::volume_in_units;
 use apart::pieces::Polytope;
 use apart_testkit::curved;
+use apart_testkit::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// A fresh folder for one test's files.
-fn folder(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-roundtrip-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn folder(tag: &str) -> Scratch {
+    Scratch::new(&format!("roundtrip-{}", tag))
 }
 
 /// The OFF text of the prism over the counter-clockwise polygon `poly` from `z0` to `z1`,
@@ -154,7 +152,7 @@ fn round_trip(input: &Path, tag: &str) -> usize {
     written
 }
 
-fn write_case(tag: &str, parts: &[(&str, String)]) -> PathBuf {
+fn write_case(tag: &str, parts: &[(&str, String)]) -> Scratch {
     let dir = folder(tag);
     for (name, off) in parts {
         std::fs::write(dir.join(format!("{name}.off")), off).unwrap();

@@ -13,15 +13,12 @@ use apart::kernel::Vec3;
 use apart::plan::{partition, parts_of, CellKind, Options, PartPieces, Partitioning};
 use apart_testkit::curved::{self, NamedSoup};
 use apart_testkit::defects;
+use apart_testkit::Scratch;
 use apart_testkit::Soup;
-use std::path::PathBuf;
 
 /// A fresh folder for one test's files.
-fn folder(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-realcad-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn folder(tag: &str) -> Scratch {
+    Scratch::new(&format!("realcad-{}", tag))
 }
 
 fn write_off(dir: &std::path::Path, name: &str, soup: &Soup) {

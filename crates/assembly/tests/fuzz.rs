@@ -2,25 +2,8 @@
 //! fine). Stable-toolchain substitute for cargo-fuzz.
 
 use apart_assembly::{load, LoadOptions};
+use apart_testkit::Scratch;
 use proptest::prelude::*;
-use std::path::PathBuf;
-
-/// A scratch folder of this process, removed when the case ends.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Scratch {
-        let d = std::env::temp_dir().join(format!("apart-fuzz-{tag}{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        Scratch(d)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
@@ -29,8 +12,8 @@ proptest! {
     fn garbage_files_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..400), ext in 0usize..7) {
         apart_formats::quiet_parser_panics();
         let exts = ["off", "obj", "stl", "ply", "gltf", "glb", "json"];
-        let scratch = Scratch::new("");
-        let p = scratch.0.join(format!("x.{}", exts[ext]));
+        let scratch = Scratch::new("fuzz");
+        let p = scratch.join(format!("x.{}", exts[ext]));
         std::fs::write(&p, &bytes).unwrap();
         let _ = load(&p, &LoadOptions::default());
     }
@@ -38,8 +21,8 @@ proptest! {
     #[test]
     fn mutated_manifests_never_panic(cut in 0usize..400, junk in "[\\[\\]{}\":,0-9a-z. -]{0,12}") {
         apart_formats::quiet_parser_panics();
-        let scratch = Scratch::new("m-");
-        let d = &scratch.0;
+        let scratch = Scratch::new("fuzz-m");
+        let d: &std::path::Path = &scratch;
         std::fs::write(d.join("a.off"), "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n").unwrap();
         let m = r#"{"name": "m", "parts": [{"name": "a", "mesh": "a.off", "transform": {"translation": [1, 0, 0], "rotation": {"axis": [0, 0, 1], "angle_deg": 90}}}, {"name": "b", "mesh": "a.off", "pieces": ["a.off"], "transform": {"matrix": [1,0,0,5, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}]}"#;
         let cut = cut % (m.len() + 1);

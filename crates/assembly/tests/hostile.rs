@@ -6,15 +6,13 @@
 
 use apart_assembly::{load, LoadError, LoadOptions, Loaded, Problem, Severity};
 use apart_formats::{off, Polygons, RawObject};
-use std::path::{Path, PathBuf};
+use apart_testkit::Scratch;
+use std::path::Path;
 use std::sync::mpsc;
 use std::time::Duration;
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("apart-hostile-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn tmp(name: &str) -> Scratch {
+    Scratch::new(&format!("hostile-{}", name))
 }
 
 /// The box `lo..hi` with outward quadrilateral faces.
@@ -348,7 +346,7 @@ fn a_renamed_part_keeps_its_own_problems() {
 
 /// Two unit-footprint boxes near (1e6, 1e6, 1e6): "a" below, "b" on top of it starting
 /// at z = 1e6 + 1 + `gap` (a negative gap is an overlap); "b" is narrower when `narrow`.
-fn stacked(name: &str, gap: f64, narrow: bool) -> PathBuf {
+fn stacked(name: &str, gap: f64, narrow: bool) -> Scratch {
     let d = tmp(name);
     let b = 1e6;
     write_off(&d.join("a.off"), &boxed([b; 3], [b + 1.0; 3]));

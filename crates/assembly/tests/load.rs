@@ -5,14 +5,12 @@ use apart_assembly::{load, LoadError, LoadOptions, Stage};
 use apart_formats::{obj, off, stl, Polygons, RawObject};
 use apart_kernel::{Int, Rational};
 use apart_mesh::Severity;
-use std::path::{Path, PathBuf};
+use apart_testkit::Scratch;
+use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("apart-load-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn tmp(name: &str) -> Scratch {
+    Scratch::new(&format!("load-{}", name))
 }
 
 fn boxed(name: Option<&str>, lo: [f64; 3], hi: [f64; 3]) -> RawObject {

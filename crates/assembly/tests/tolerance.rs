@@ -5,12 +5,11 @@
 
 use apart_assembly::{load, LoadOptions, Tolerance};
 use apart_testkit::curved::{pin_in_hole, pin_in_hole_depth, write_off_dir, PIN_RADIUS};
+use apart_testkit::Scratch;
 use std::f64::consts::PI;
-use std::path::PathBuf;
 
-fn write(n: usize, m: usize, phase: f64, tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("apart-tol-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+fn write(n: usize, m: usize, phase: f64, tag: &str) -> Scratch {
+    let dir = Scratch::new(&format!("tol-{tag}"));
     write_off_dir(&pin_in_hole(n, m, phase), &dir).unwrap();
     dir
 }

@@ -8,6 +8,7 @@ mod common;
 use apart_draw::colors::part_colors;
 use apart_draw::disassembly_html;
 use apart_draw::raster::AXIS_COLORS;
+use apart_testkit::Scratch;
 use common::count_shades;
 use resvg::tiny_skia::Pixmap;
 use std::path::Path;
@@ -160,8 +161,7 @@ fn headless_chromium_draws_every_part_in_its_colour() {
     let a = common::example("split-star-3");
     let (_, plan) = common::plan(&a);
     let colors = part_colors(&a.parts.iter().map(|p| p.name.clone()).collect::<Vec<_>>());
-    let dir = std::env::temp_dir().join(format!("apart-draw-html-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("draw-html");
     let page = dir.join("split-star.html");
     std::fs::write(&page, disassembly_html(&a, &plan)).unwrap();
     let (w, h) = (1000, 700);
@@ -222,8 +222,7 @@ fn headless_chromium_builds_a_page_with_axes_a_scale_and_every_part_name() {
     }
     let a = common::example("hinge");
     let (_, plan) = common::plan(&a);
-    let dir = std::env::temp_dir().join(format!("apart-draw-dom-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("draw-dom");
     let page = dir.join("hinge.html");
     std::fs::write(&page, disassembly_html(&a, &plan)).unwrap();
     let dom = dump_dom(&format!("file://{}", page.display()), &dir, 1000, 700);

@@ -3,15 +3,13 @@
 //! The inputs are built here, small; nothing big is committed.
 
 use apart_formats::{read_file, read_file_with, ReadOptions, MAX_FILE_BYTES};
-use std::path::{Path, PathBuf};
+use apart_testkit::Scratch;
+use std::path::Path;
 use std::sync::mpsc;
 use std::time::Duration;
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("apart-hostile-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn scratch(name: &str) -> Scratch {
+    Scratch::new(&format!("fhostile-{}", name))
 }
 
 /// `read_file(path)`'s error message, failing the test if reading takes more than ten

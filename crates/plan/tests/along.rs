@@ -11,6 +11,7 @@ use apart_plan::{
     MotionSpace, PartPieces,
 };
 use apart_testkit::curved;
+use apart_testkit::Scratch;
 use std::path::{Path, PathBuf};
 
 fn example(name: &str) -> PathBuf {
@@ -46,11 +47,9 @@ fn try_load(dir: &Path) -> Option<Vec<PartPieces>> {
 }
 
 fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<PartPieces> {
-    let dir = std::env::temp_dir().join(format!("apart-along-{}-{name}", std::process::id()));
+    let dir = Scratch::new(&format!("along-{name}"));
     curved::write_off_dir(parts, &dir).unwrap();
-    let p = load_parts(&dir);
-    let _ = std::fs::remove_dir_all(&dir);
-    p
+    load_parts(&dir)
 }
 
 /// The 26 directions of {-1,0,1}^3, some random ones, and every vertex and an interior

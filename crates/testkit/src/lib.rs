@@ -20,8 +20,10 @@
 pub mod curved;
 pub mod defects;
 pub mod joints;
+mod scratch;
 pub mod sheet_metal;
 pub mod solids;
 mod soup;
 
+pub use scratch::Scratch;
 pub use soup::{base64, Soup};
