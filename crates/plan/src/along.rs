@@ -14,7 +14,7 @@
 //! vertex, edge or face as the full one.
 
 use crate::clearance::{chord2, to_angle, FArc};
-use crate::cull::{pairs_where, split_pair, sum_box, PieceTree};
+use crate::cull::{pairs_where, piece_tree, split_pair, sum_box};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::pairs::{
@@ -24,7 +24,7 @@ use crate::pairs::{
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
-use apart_kernel::Vec3;
+use apart_kernel::{Bvh, Vec3};
 use apart_sphere::SphericalPolygon;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -72,7 +72,7 @@ pub struct DirectionQuery<'a> {
     info: Vec<Vec<PieceInfo>>,
     /// Each part's box tree over its pieces (`None` when its coordinates are too large
     /// for integer boxes: then every piece pair is visited).
-    trees: Vec<Option<PieceTree>>,
+    trees: Vec<Option<Bvh>>,
     /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`).
     cache: Vec<Vec<PairCache>>,
     pair_index: Vec<usize>,
@@ -97,10 +97,7 @@ impl<'a> DirectionQuery<'a> {
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
-        let trees = parts
-            .par_iter()
-            .map(|p| PieceTree::new(&p.pieces))
-            .collect();
+        let trees = parts.par_iter().map(|p| piece_tree(&p.pieces)).collect();
         let mut pair_index = vec![usize::MAX; n * n];
         let mut cache = Vec::new();
         for i in 0..n {
@@ -199,7 +196,7 @@ impl<'a> DirectionQuery<'a> {
         let mut out: Vec<usize> = pairs_where(
             ti,
             tj,
-            &|lo, hi, _| ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs),
+            &|sum, _| ray_meets_int_box(sum.min.map(i128::from), sum.max.map(i128::from), xs),
             &|_, _| true,
         )
         .into_iter()
@@ -438,15 +435,11 @@ impl<'a> DirectionQuery<'a> {
         let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
             return (0..self.parts[i].pieces.len() * nb).collect();
         };
-        let mut out: Vec<usize> = pairs_where(
-            ti,
-            tj,
-            &|lo, hi, _| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]),
-            &|_, _| true,
-        )
-        .into_iter()
-        .map(|(a, b)| a * nb + b)
-        .collect();
+        let mut out: Vec<usize> =
+            pairs_where(ti, tj, &|sum, _| sum.contains(&[0; 3]), &|_, _| true)
+                .into_iter()
+                .map(|(a, b)| a * nb + b)
+                .collect();
         out.sort_unstable();
         out
     }
@@ -481,8 +474,8 @@ impl<'a> DirectionQuery<'a> {
                 let u = &units[usize::from(flip)];
                 if let (Some(tp), Some(tq)) = (&self.trees[p], &self.trees[q]) {
                     if let (Some(ra), Some(rb)) = (tp.root(), tq.root()) {
-                        let (lo, hi) = sum_box(tp, ra, tq, rb);
-                        heap.push(key(box_angle(lo, hi, u), p, q, flip, ra, rb));
+                        let s = sum_box(tp, ra, tq, rb);
+                        heap.push(key(box_angle(s.min, s.max, u), p, q, flip, ra, rb));
                     }
                     continue;
                 }
@@ -536,8 +529,8 @@ impl<'a> DirectionQuery<'a> {
             match split_pair(tp, na, tq, nb) {
                 Some(children) => {
                     for (ca, cb) in children {
-                        let (lo, hi) = sum_box(tp, ca, tq, cb);
-                        let bound = box_angle(lo, hi, &units[usize::from(flip)]);
+                        let s = sum_box(tp, ca, tq, cb);
+                        let bound = box_angle(s.min, s.max, &units[usize::from(flip)]);
                         if bound < slack(best) {
                             heap.push(key(bound, p, q, flip, ca, cb));
                         }
@@ -545,9 +538,9 @@ impl<'a> DirectionQuery<'a> {
                 }
                 None => {
                     let m = self.parts[q].pieces.len();
-                    for &a in tp.pieces(na) {
-                        for &b in tq.pieces(nb) {
-                            visit(p, q, flip, a * m + b, &mut best)?;
+                    for &a in tp.items(na) {
+                        for &b in tq.items(nb) {
+                            visit(p, q, flip, a as usize * m + b as usize, &mut best)?;
                         }
                     }
                 }
