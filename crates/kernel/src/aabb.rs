@@ -1,6 +1,7 @@
-//! Axis-aligned boxes: on the grid (`Aabb`, integer coordinates, exact), with rational
-//! corners (`Aabb<Rational>`, exact, for placement), and in floating point
-//! (`Aabb<f64>`, for filters and pictures only).
+//! Axis-aligned boxes: on the grid (`Aabb`, integer coordinates, exact), with
+//! arbitrary-precision integer corners (`Aabb<Int>`, exact, for pieces beyond machine
+//! integers), with rational corners (`Aabb<Rational>`, exact, for placement), and in
+//! floating point (`Aabb<f64>`, for filters and pictures only).
 
 use crate::int::Int;
 use crate::plane::BigPlane;
@@ -9,7 +10,7 @@ use std::cmp::Ordering;
 use std::fmt::Debug;
 
 /// A coordinate type of [`Aabb`]: ordered, with the smaller and larger of two values
-/// (`i64` and `f64`, see [`Coord`], and [`Rational`]).
+/// (`i64` and `f64`, see [`Coord`], [`Int`] and [`Rational`]).
 pub trait Bound: Clone + PartialOrd + Debug {
     /// The smaller of two values (`f64::min` for floats).
     fn min_of(&self, o: &Self) -> Self;
@@ -28,6 +29,12 @@ pub trait Coord: Bound + Copy + Send + Sync + 'static {
     fn total_cmp(&self, o: &Self) -> Ordering;
     /// The value as a double (`as f64`), for orders that only affect speed.
     fn to_f64(self) -> f64;
+    /// `a + b` against `c + d` (exactly for integers; the rounded sums for floats): box
+    /// centres compared.
+    fn cmp_sums(a: Self, b: Self, c: Self, d: Self) -> Ordering;
+    /// `a − b` against `c − d` (exactly for integers; the rounded differences for
+    /// floats): box extents compared.
+    fn cmp_differences(a: Self, b: Self, c: Self, d: Self) -> Ordering;
 }
 
 impl Bound for i64 {
@@ -52,6 +59,14 @@ impl Coord for i64 {
     fn to_f64(self) -> f64 {
         self as f64
     }
+    #[inline]
+    fn cmp_sums(a: i64, b: i64, c: i64, d: i64) -> Ordering {
+        (a as i128 + b as i128).cmp(&(c as i128 + d as i128))
+    }
+    #[inline]
+    fn cmp_differences(a: i64, b: i64, c: i64, d: i64) -> Ordering {
+        (a as i128 - b as i128).cmp(&(c as i128 - d as i128))
+    }
 }
 
 impl Bound for f64 {
@@ -75,6 +90,23 @@ impl Coord for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+    #[inline]
+    fn cmp_sums(a: f64, b: f64, c: f64, d: f64) -> Ordering {
+        (a + b).total_cmp(&(c + d))
+    }
+    #[inline]
+    fn cmp_differences(a: f64, b: f64, c: f64, d: f64) -> Ordering {
+        (a - b).total_cmp(&(c - d))
+    }
+}
+
+impl Bound for Int {
+    fn min_of(&self, o: &Int) -> Int {
+        self.min(o).clone()
+    }
+    fn max_of(&self, o: &Int) -> Int {
+        self.max(o).clone()
     }
 }
 

@@ -2,11 +2,13 @@
 //! against part, piece against piece): which boxes meet.
 //!
 //! [`Bvh`] is a bounding-volume hierarchy. Boxes are ordered along a Morton (Z-order)
-//! curve of their centres (or by recursive median splits, [`Bvh::by_median_splits`]),
-//! grouped into leaves of a few boxes, and a complete binary tree is built over the
-//! leaves in heap layout (node `i` has children `2i` and `2i + 1`). The build is a
-//! parallel sort plus a linear pass; a query walks the tree with an explicit stack and
-//! reports boxes in the build's order.
+//! curve of their centres, grouped into leaves of a few boxes, and a complete binary
+//! tree is built over the leaves in heap layout (node `i` has children `2i` and
+//! `2i + 1`): a parallel sort plus a linear pass. Or the tree is that of recursive
+//! median splits ([`Bvh::by_median_splits`], [`Bvh::by_median_splits_with_leaf`]),
+//! whose shape callers may walk themselves ([`Bvh::root`], [`Bvh::children`],
+//! [`Bvh::node_box`], [`Bvh::items`]). A query walks the tree with an explicit stack
+//! and reports boxes in the build's order.
 //!
 //! [`sweep_pairs`] and [`sweep_pairs_between`] do the same job by sort and sweep along
 //! x, for small sets whose pairs must come in the order along x (the order in which a
@@ -22,9 +24,15 @@ const LEAF: usize = 4;
 #[derive(Clone, Debug)]
 pub struct Bvh<T: Coord = i64> {
     boxes: Vec<Aabb<T>>,
+    /// Box indices in the build's order; every node's boxes are a range of it.
     order: Vec<u32>,
+    /// Node boxes by node index (index 0 unused, the root is 1).
     nodes: Vec<Aabb<T>>,
-    leaves: usize,
+    /// Each node's boxes: `order[start..end]`.
+    spans: Vec<[u32; 2]>,
+    /// Each node's children, the one whose boxes come first in `order` first (`[0, 0]`
+    /// for a leaf: node 0 is never a child).
+    kids: Vec<[u32; 2]>,
 }
 
 /// Spreads the low 10 bits of `v` to every third bit.
@@ -47,28 +55,40 @@ impl<T: Coord> Default for Bvh<T> {
 /// Groups of at most this many boxes are not split further by [`Bvh::by_median_splits`].
 const MEDIAN_LEAF: usize = 4;
 
-/// Appends the indices `items` to `out` in the order of recursive median splits: a group
-/// of more than [`MEDIAN_LEAF`] boxes is split at the median of the box centres along the
-/// longest axis of its bounds (the last of equally long ones), the upper half first.
-fn median_order<T: Coord>(boxes: &[Aabb<T>], items: &mut [u32], out: &mut Vec<u32>) {
-    if items.len() <= MEDIAN_LEAF {
-        out.extend_from_slice(items);
-        return;
-    }
+/// Adds to `bvh` the node of the boxes `items` (at `order[start..]`) and, unless there
+/// are at most `leaf` of them, its children: the boxes split at the median of their
+/// centres along the longest axis of their bounds (the last of equally long ones; `len/2`
+/// below, the rest above), the upper half first in `order` and in the node's children.
+/// Nodes are numbered in preorder with the lower half's subtree first. Returns the node.
+fn median_node<T: Coord>(bvh: &mut Bvh<T>, items: &mut [u32], start: usize, leaf: usize) -> u32 {
+    let boxes = &bvh.boxes;
     let b = items[1..].iter().fold(boxes[items[0] as usize], |b, &k| {
         b.union(&boxes[k as usize])
     });
-    let extent = |k: usize| b.max[k].to_f64() - b.min[k].to_f64();
+    let id = bvh.nodes.len() as u32;
+    bvh.nodes.push(b);
+    bvh.spans.push([start as u32, (start + items.len()) as u32]);
+    bvh.kids.push([0, 0]);
+    if items.len() <= leaf {
+        return id;
+    }
     let axis = (0..3)
-        .max_by(|&i, &j| extent(i).total_cmp(&extent(j)))
+        .max_by(|&i, &j| T::cmp_differences(b.max[i], b.min[i], b.max[j], b.min[j]))
         .expect("three axes");
-    let centre =
-        |k: u32| boxes[k as usize].min[axis].to_f64() + boxes[k as usize].max[axis].to_f64();
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)));
-    let (lower, upper) = items.split_at_mut(mid);
-    median_order(boxes, upper, out);
-    median_order(boxes, lower, out);
+    items.select_nth_unstable_by(mid, |&x, &y| {
+        let (x, y) = (&boxes[x as usize], &boxes[y as usize]);
+        T::cmp_sums(x.min[axis], x.max[axis], y.min[axis], y.max[axis])
+    });
+    // The upper half first (each half keeps its arrangement, so its own splits are
+    // those of the half left in place).
+    items.rotate_left(mid);
+    let upper_len = items.len() - mid;
+    let (upper, lower) = items.split_at_mut(upper_len);
+    let low = median_node(bvh, lower, start + upper_len, leaf);
+    let up = median_node(bvh, upper, start, leaf);
+    bvh.kids[id as usize] = [up, low];
+    id
 }
 
 impl<T: Coord> Bvh<T> {
@@ -100,19 +120,38 @@ impl<T: Coord> Bvh<T> {
         Bvh::from_order(boxes, order)
     }
 
-    /// Builds the hierarchy over `boxes` ordered by recursive median splits along the
-    /// longest axis instead of the Morton curve (sequential; for a few hundred boxes
-    /// rebuilt often). Queries report boxes in that order, upper halves first: the order
-    /// in which placement has always met its fixed pieces, which its cell decomposition
-    /// (and so its counters) follows.
+    /// Builds the hierarchy of recursive median splits along the longest axis over
+    /// `boxes`, down to groups of at most 4, instead of the Morton curve (sequential; for
+    /// a few hundred boxes rebuilt often). Queries report boxes in that order, upper
+    /// halves first: the order in which placement has always met its fixed pieces, which
+    /// its cell decomposition (and so its counters) follows.
     pub fn by_median_splits(boxes: Vec<Aabb<T>>) -> Bvh<T> {
-        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
-        let mut order = Vec::with_capacity(items.len());
-        median_order(&boxes, &mut items, &mut order);
-        Bvh::from_order(boxes, order)
+        Bvh::by_median_splits_with_leaf(boxes, MEDIAN_LEAF)
     }
 
-    /// The hierarchy over `boxes` grouped into leaves along `order`.
+    /// [`Bvh::by_median_splits`] down to groups of at most `leaf` boxes (at least 1):
+    /// a node of more is split at the median of its boxes' centres along the longest
+    /// axis of its box (the last of equally long ones, compared exactly for integers),
+    /// `len / 2` boxes in the lower half and the rest in the upper, which comes first.
+    /// Nodes are numbered in preorder, the lower half's subtree first.
+    pub fn by_median_splits_with_leaf(boxes: Vec<Aabb<T>>, leaf: usize) -> Bvh<T> {
+        let n = boxes.len();
+        let mut bvh = Bvh {
+            boxes,
+            order: (0..n as u32).collect(),
+            nodes: vec![Aabb::EMPTY],
+            spans: vec![[0, 0]],
+            kids: vec![[0, 0]],
+        };
+        if n > 0 {
+            let mut items = std::mem::take(&mut bvh.order);
+            median_node(&mut bvh, &mut items, 0, leaf.max(1));
+            bvh.order = items;
+        }
+        bvh
+    }
+
+    /// The hierarchy over `boxes` grouped into leaves along `order`, in heap layout.
     fn from_order(boxes: Vec<Aabb<T>>, order: Vec<u32>) -> Bvh<T> {
         let n = boxes.len();
         let leaves = n.div_ceil(LEAF).max(1).next_power_of_two();
@@ -129,11 +168,23 @@ impl<T: Coord> Bvh<T> {
         for i in (1..leaves).rev() {
             nodes[i] = nodes[2 * i].union(&nodes[2 * i + 1]);
         }
+        let mut spans = vec![[0u32; 2]; 2 * leaves];
+        for (l, span) in spans[leaves..].iter_mut().enumerate() {
+            *span = [(l * LEAF).min(n) as u32, ((l + 1) * LEAF).min(n) as u32];
+        }
+        for i in (1..leaves).rev() {
+            spans[i] = [spans[2 * i][0], spans[2 * i + 1][1]];
+        }
+        let mut kids = vec![[0u32; 2]; 2 * leaves];
+        for (i, k) in kids.iter_mut().enumerate().take(leaves).skip(1) {
+            *k = [2 * i as u32, 2 * i as u32 + 1];
+        }
         Bvh {
             boxes,
             order,
             nodes,
-            leaves,
+            spans,
+            kids,
         }
     }
 
@@ -188,39 +239,67 @@ impl<T: Coord> Bvh<T> {
         ctx.within(1, 0)
     }
 
-    /// A label for every node (index `i` in heap layout: the root is 1, the children
-    /// of `i` are `2i` and `2i + 1`; index 0 is unused and gets `empty`): `leaf` of the
-    /// primitives of each leaf (`empty` for a leaf without any), `join` of the children
-    /// for inner nodes.
+    /// A label for every node (by node index: the root is 1, every child has a larger
+    /// index than its parent; index 0 is unused and gets `empty`): `leaf` of the boxes
+    /// of each leaf (`empty` for a leaf without any), `join` of the children for inner
+    /// nodes.
     pub fn node_labels<L: Clone + Send + Sync>(
         &self,
         leaf: impl Fn(&[u32]) -> L + Sync,
         join: impl Fn(&L, &L) -> L,
         empty: L,
     ) -> Vec<L> {
-        let mut labels = vec![empty.clone(); 2 * self.leaves];
-        labels[self.leaves..]
+        let mut labels = vec![empty.clone(); self.nodes.len()];
+        labels
             .par_iter_mut()
             .enumerate()
+            .skip(1)
             .with_min_len(1024)
-            .for_each(|(l, label)| {
-                let prims = self.leaf(self.leaves + l);
-                if !prims.is_empty() {
+            .for_each(|(i, label)| {
+                let prims = self.items(i);
+                if self.is_leaf(i) && !prims.is_empty() {
                     *label = leaf(prims);
                 }
             });
-        for i in (1..self.leaves).rev() {
-            labels[i] = join(&labels[2 * i], &labels[2 * i + 1]);
+        for i in (1..self.nodes.len()).rev() {
+            if let Some([x, y]) = self.children(i) {
+                labels[i] = join(&labels[x], &labels[y]);
+            }
         }
         labels
     }
 
-    /// The primitives of leaf node `i`.
-    fn leaf(&self, i: usize) -> &[u32] {
-        let l = i - self.leaves;
-        let lo = (l * LEAF).min(self.order.len());
-        let hi = ((l + 1) * LEAF).min(self.order.len());
-        &self.order[lo..hi]
+    /// The root node, or `None` for no boxes.
+    #[inline]
+    pub fn root(&self) -> Option<usize> {
+        (!self.boxes.is_empty()).then_some(1)
+    }
+
+    /// The two children of node `n`, the one whose boxes come first in the build's order
+    /// first (`None` for a leaf).
+    #[inline]
+    pub fn children(&self, n: usize) -> Option<[usize; 2]> {
+        let [x, y] = self.kids[n];
+        (x != 0).then_some([x as usize, y as usize])
+    }
+
+    /// True when node `n` has no children.
+    #[inline]
+    fn is_leaf(&self, n: usize) -> bool {
+        self.kids[n][0] == 0
+    }
+
+    /// The box of node `n`: the smallest holding every box under it.
+    #[inline]
+    pub fn node_box(&self, n: usize) -> &Aabb<T> {
+        &self.nodes[n]
+    }
+
+    /// The indices of the boxes under node `n`, in the build's order.
+    #[inline]
+    pub fn items(&self, n: usize) -> &[u32] {
+        let [lo, hi] = self.spans[n];
+        &self.order[lo as usize..hi as usize]
     }
 
     /// Calls `f(i)` for every box `i` that meets the closed box `q`, in the build's order
@@ -239,16 +318,16 @@ impl<T: Coord> Bvh<T> {
             if !self.nodes[i].overlaps(q) {
                 continue;
             }
-            if i >= self.leaves {
-                let l = i - self.leaves;
-                for &p in self.order.iter().skip(l * LEAF).take(LEAF) {
+            let [x, y] = self.kids[i];
+            if x == 0 {
+                for &p in self.items(i) {
                     if self.boxes[p as usize].overlaps(q) {
                         f(p);
                     }
                 }
             } else {
-                stack[top] = 2 * i + 1;
-                stack[top + 1] = 2 * i;
+                stack[top] = y as usize;
+                stack[top + 1] = x as usize;
                 top += 2;
             }
         }
@@ -282,36 +361,42 @@ where
         if (self.prune)(i, i) {
             return (self.init)();
         }
-        if i >= b.leaves {
+        let Some([x, y]) = b.children(i) else {
             let mut acc = (self.init)();
-            let prims = b.leaf(i);
-            for (k, &p) in prims.iter().enumerate() {
-                for &q in &prims[k + 1..] {
-                    if b.boxes[p as usize].overlaps(&b.boxes[q as usize]) {
-                        (self.visit)(&mut acc, p.min(q), p.max(q));
-                    }
-                }
-            }
+            self.leaf_pairs(i, &mut acc);
             return acc;
-        }
+        };
         if b.nodes[i].is_empty() {
             return (self.init)();
         }
         if depth < PARALLEL_DEPTH {
-            let (x, (y, z)) = rayon::join(
-                || self.within(2 * i, depth + 1),
+            let (p, (q, r)) = rayon::join(
+                || self.within(x, depth + 1),
                 || {
                     rayon::join(
-                        || self.within(2 * i + 1, depth + 1),
-                        || self.across(2 * i, 2 * i + 1, depth + 1),
+                        || self.within(y, depth + 1),
+                        || self.across(x, y, depth + 1),
                     )
                 },
             );
-            (self.merge)(x, (self.merge)(y, z))
+            (self.merge)(p, (self.merge)(q, r))
         } else {
             let mut acc = (self.init)();
             self.within_seq(i, &mut acc);
             acc
+        }
+    }
+
+    /// Pairs of boxes of leaf `i`.
+    fn leaf_pairs(&self, i: usize, acc: &mut A) {
+        let b = self.bvh;
+        let prims = b.items(i);
+        for (k, &p) in prims.iter().enumerate() {
+            for &q in &prims[k + 1..] {
+                if b.boxes[p as usize].overlaps(&b.boxes[q as usize]) {
+                    (self.visit)(acc, p.min(q), p.max(q));
+                }
+            }
         }
     }
 
@@ -320,33 +405,28 @@ where
         if (self.prune)(i, i) {
             return;
         }
-        if i >= b.leaves {
-            let prims = b.leaf(i);
-            for (k, &p) in prims.iter().enumerate() {
-                for &q in &prims[k + 1..] {
-                    if b.boxes[p as usize].overlaps(&b.boxes[q as usize]) {
-                        (self.visit)(acc, p.min(q), p.max(q));
-                    }
-                }
-            }
+        let Some([x, y]) = b.children(i) else {
+            self.leaf_pairs(i, acc);
             return;
-        }
+        };
         if b.nodes[i].is_empty() {
             return;
         }
-        self.within_seq(2 * i, acc);
-        self.within_seq(2 * i + 1, acc);
-        self.across_seq(2 * i, 2 * i + 1, acc);
+        self.within_seq(x, acc);
+        self.within_seq(y, acc);
+        self.across_seq(x, y, acc);
     }
 
-    /// Pairs with one box under node `x` and the other under node `y` (same depth).
+    /// Pairs with one box under node `x` and the other under node `y` (disjoint
+    /// subtrees).
     fn across(&self, x: usize, y: usize, depth: u32) -> A {
         let b = self.bvh;
-        if depth >= PARALLEL_DEPTH
-            || x >= b.leaves
-            || !b.nodes[x].overlaps(&b.nodes[y])
-            || (self.prune)(x, y)
-        {
+        let (Some([x0, x1]), Some([y0, y1])) = (b.children(x), b.children(y)) else {
+            let mut acc = (self.init)();
+            self.across_seq(x, y, &mut acc);
+            return acc;
+        };
+        if depth >= PARALLEL_DEPTH || !b.nodes[x].overlaps(&b.nodes[y]) || (self.prune)(x, y) {
             let mut acc = (self.init)();
             self.across_seq(x, y, &mut acc);
             return acc;
@@ -354,15 +434,15 @@ where
         let (l, r) = rayon::join(
             || {
                 let (p, q) = rayon::join(
-                    || self.across(2 * x, 2 * y, depth + 1),
-                    || self.across(2 * x, 2 * y + 1, depth + 1),
+                    || self.across(x0, y0, depth + 1),
+                    || self.across(x0, y1, depth + 1),
                 );
                 (self.merge)(p, q)
             },
             || {
                 let (p, q) = rayon::join(
-                    || self.across(2 * x + 1, 2 * y, depth + 1),
-                    || self.across(2 * x + 1, 2 * y + 1, depth + 1),
+                    || self.across(x1, y0, depth + 1),
+                    || self.across(x1, y1, depth + 1),
                 );
                 (self.merge)(p, q)
             },
@@ -375,24 +455,35 @@ where
         if !b.nodes[x].overlaps(&b.nodes[y]) || (self.prune)(x, y) {
             return;
         }
-        if x >= b.leaves {
-            for &p in b.leaf(x) {
-                let bp = &b.boxes[p as usize];
-                if !bp.overlaps(&b.nodes[y]) {
-                    continue;
-                }
-                for &q in b.leaf(y) {
-                    if bp.overlaps(&b.boxes[q as usize]) {
-                        (self.visit)(acc, p.min(q), p.max(q));
+        match (b.children(x), b.children(y)) {
+            (None, None) => {
+                for &p in b.items(x) {
+                    let bp = &b.boxes[p as usize];
+                    if !bp.overlaps(&b.nodes[y]) {
+                        continue;
+                    }
+                    for &q in b.items(y) {
+                        if bp.overlaps(&b.boxes[q as usize]) {
+                            (self.visit)(acc, p.min(q), p.max(q));
+                        }
                     }
                 }
             }
-            return;
+            (Some([x0, x1]), None) => {
+                self.across_seq(x0, y, acc);
+                self.across_seq(x1, y, acc);
+            }
+            (None, Some([y0, y1])) => {
+                self.across_seq(x, y0, acc);
+                self.across_seq(x, y1, acc);
+            }
+            (Some([x0, x1]), Some([y0, y1])) => {
+                self.across_seq(x0, y0, acc);
+                self.across_seq(x0, y1, acc);
+                self.across_seq(x1, y0, acc);
+                self.across_seq(x1, y1, acc);
+            }
         }
-        self.across_seq(2 * x, 2 * y, acc);
-        self.across_seq(2 * x, 2 * y + 1, acc);
-        self.across_seq(2 * x + 1, 2 * y, acc);
-        self.across_seq(2 * x + 1, 2 * y + 1, acc);
     }
 }
 
@@ -599,6 +690,91 @@ mod tests {
         let empty = Bvh::<f64>::default();
         assert!(empty.is_empty());
         empty.query(&everything, |_| panic!("empty"));
+    }
+
+    /// The median-split tree's nodes, walked by the node API, against brute force: every
+    /// node holds the boxes under it, its box is their union, a split node's children
+    /// part its boxes (the upper half first, `len / 2` boxes in the lower one, no lower
+    /// centre along the longest axis above an upper one), leaves hold at most the leaf
+    /// size, children are numbered after their parent in preorder with the lower half's
+    /// subtree first, and the self pairs and labels of the tree are those of brute force.
+    #[test]
+    fn median_split_nodes() {
+        let mut s = 31u64;
+        let mut rnd = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) as i64) % m
+        };
+        for (n, leaf) in [(0, 1), (1, 1), (2, 1), (7, 1), (97, 1), (200, 3), (255, 4)] {
+            let boxes: Vec<Aabb<i64>> = (0..n)
+                .map(|_| {
+                    let p = [rnd(400), rnd(100), rnd(1000) - 500];
+                    let d = [rnd(30), rnd(30), rnd(30)];
+                    Aabb::of([&p, &[p[0] + d[0], p[1] + d[1], p[2] + d[2]]])
+                })
+                .collect();
+            let bvh = Bvh::by_median_splits_with_leaf(boxes.clone(), leaf);
+            let Some(root) = bvh.root() else {
+                assert_eq!(n, 0);
+                continue;
+            };
+            let mut all = bvh.items(root).to_vec();
+            all.sort();
+            assert_eq!(all, (0..n as u32).collect::<Vec<_>>());
+            // Preorder, lower subtree first: a walk visiting the second child first
+            // meets the nodes in increasing index order.
+            let mut stack = vec![root];
+            let mut seen = Vec::new();
+            while let Some(i) = stack.pop() {
+                seen.push(i);
+                let items = bvh.items(i);
+                let union = items
+                    .iter()
+                    .fold(Aabb::EMPTY, |b, &k| b.union(&boxes[k as usize]));
+                assert_eq!(*bvh.node_box(i), union);
+                match bvh.children(i) {
+                    None => assert!(!items.is_empty() && items.len() <= leaf),
+                    Some([up, low]) => {
+                        assert!(items.len() > leaf);
+                        let (u, l) = (bvh.items(up), bvh.items(low));
+                        assert_eq!(l.len(), items.len() / 2);
+                        assert_eq!([u, l].concat(), items);
+                        let b = bvh.node_box(i);
+                        let ext = |k: usize| b.max[k] - b.min[k];
+                        let axis = (0..3).max_by_key(|&k| ext(k)).unwrap();
+                        let c =
+                            |k: &u32| boxes[*k as usize].min[axis] + boxes[*k as usize].max[axis];
+                        assert!(l.iter().map(c).max() <= u.iter().map(c).min());
+                        assert!(up > i && low > i);
+                        stack.push(up);
+                        stack.push(low);
+                    }
+                }
+            }
+            assert!(seen.windows(2).all(|w| w[0] < w[1]), "{seen:?}");
+            let mut got = bvh.self_pairs(
+                Vec::new,
+                |v, i, j| v.push((i, j)),
+                |mut a, b| {
+                    a.extend(b);
+                    a
+                },
+            );
+            got.sort();
+            let mut want = Vec::new();
+            for i in 0..n as u32 {
+                for j in i + 1..n as u32 {
+                    if boxes[i as usize].overlaps(&boxes[j as usize]) {
+                        want.push((i, j));
+                    }
+                }
+            }
+            assert_eq!(got, want);
+            let counts = bvh.node_labels(|p| p.len(), |a, b| a + b, 0);
+            assert!((1..counts.len()).all(|i| counts[i] == bvh.items(i).len()));
+        }
     }
 
     #[test]

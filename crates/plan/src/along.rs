@@ -14,7 +14,7 @@
 //! vertex, edge or face as the full one.
 
 use crate::clearance::{chord2, to_angle, FArc};
-use crate::cull::{pairs_where, split_pair, sum_box, PieceTree};
+use crate::cull::{pairs_where, piece_tree, split_pair, sum_box};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::pairs::{
@@ -24,7 +24,7 @@ use crate::pairs::{
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
 use crate::regions::{BlockingRegions, PartPieces};
 use crate::PlanError;
-use apart_kernel::Vec3;
+use apart_kernel::{Aabb, Bvh, Vec3};
 use apart_sphere::SphericalPolygon;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -72,7 +72,7 @@ pub struct DirectionQuery<'a> {
     info: Vec<Vec<PieceInfo>>,
     /// Each part's box tree over its pieces (`None` when its coordinates are too large
     /// for integer boxes: then every piece pair is visited).
-    trees: Vec<Option<PieceTree>>,
+    trees: Vec<Option<Bvh>>,
     /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`).
     cache: Vec<Vec<PairCache>>,
     pair_index: Vec<usize>,
@@ -97,10 +97,7 @@ impl<'a> DirectionQuery<'a> {
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
-        let trees = parts
-            .par_iter()
-            .map(|p| PieceTree::new(&p.pieces))
-            .collect();
+        let trees = parts.par_iter().map(|p| piece_tree(&p.pieces)).collect();
         let mut pair_index = vec![usize::MAX; n * n];
         let mut cache = Vec::new();
         for i in 0..n {
@@ -193,8 +190,8 @@ impl<'a> DirectionQuery<'a> {
     /// superset, from the parts' box trees; every pair without them), in increasing order.
     fn along_ray(&self, i: usize, j: usize, x: &Vec3) -> Vec<usize> {
         match x.as_small() {
-            Some(xs) => self.tree_pairs(i, j, &|lo, hi| {
-                ray_meets_int_box(lo.map(i128::from), hi.map(i128::from), xs)
+            Some(xs) => self.tree_pairs(i, j, &|sum| {
+                ray_meets_int_box(sum.min.map(i128::from), sum.max.map(i128::from), xs)
             }),
             None => (0..self.parts[i].pieces.len() * self.parts[j].pieces.len()).collect(),
         }
@@ -202,17 +199,12 @@ impl<'a> DirectionQuery<'a> {
 
     /// The piece pairs `k` of `{i, j}` under node pairs of the parts' box trees whose
     /// box of sums `keep` accepts, in increasing order (every pair without trees).
-    fn tree_pairs(
-        &self,
-        i: usize,
-        j: usize,
-        keep: &(dyn Fn([i64; 3], [i64; 3]) -> bool + Sync),
-    ) -> Vec<usize> {
+    fn tree_pairs(&self, i: usize, j: usize, keep: &(dyn Fn(&Aabb) -> bool + Sync)) -> Vec<usize> {
         let nb = self.parts[j].pieces.len();
         let (Some(ti), Some(tj)) = (&self.trees[i], &self.trees[j]) else {
             return (0..self.parts[i].pieces.len() * nb).collect();
         };
-        let mut out: Vec<usize> = pairs_where(ti, tj, &|lo, hi, _| keep(lo, hi), &|_, _| true)
+        let mut out: Vec<usize> = pairs_where(ti, tj, &|sum, _| keep(sum), &|_, _| true)
             .into_iter()
             .map(|(a, b)| a * nb + b)
             .collect();
@@ -445,7 +437,7 @@ impl<'a> DirectionQuery<'a> {
     /// The piece pairs of `{i, j}` whose boxes touch or overlap (a superset, from the
     /// parts' box trees; every pair without them): the only ones that can touch.
     fn touching_pairs(&self, i: usize, j: usize) -> Vec<usize> {
-        self.tree_pairs(i, j, &|lo, hi| (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]))
+        self.tree_pairs(i, j, &|sum| sum.contains(&[0; 3]))
     }
 
     /// Angular clearance (radians) at `d` of the moving set `moving` (global indices):
@@ -478,8 +470,8 @@ impl<'a> DirectionQuery<'a> {
                 let u = &units[usize::from(flip)];
                 if let (Some(tp), Some(tq)) = (&self.trees[p], &self.trees[q]) {
                     if let (Some(ra), Some(rb)) = (tp.root(), tq.root()) {
-                        let (lo, hi) = sum_box(tp, ra, tq, rb);
-                        heap.push(key(box_angle(lo, hi, u), p, q, flip, ra, rb));
+                        let s = sum_box(tp, ra, tq, rb);
+                        heap.push(key(box_angle(s.min, s.max, u), p, q, flip, ra, rb));
                     }
                     continue;
                 }
@@ -533,8 +525,8 @@ impl<'a> DirectionQuery<'a> {
             match split_pair(tp, na, tq, nb) {
                 Some(children) => {
                     for (ca, cb) in children {
-                        let (lo, hi) = sum_box(tp, ca, tq, cb);
-                        let bound = box_angle(lo, hi, &units[usize::from(flip)]);
+                        let s = sum_box(tp, ca, tq, cb);
+                        let bound = box_angle(s.min, s.max, &units[usize::from(flip)]);
                         if bound < slack(best) {
                             heap.push(key(bound, p, q, flip, ca, cb));
                         }
@@ -542,9 +534,9 @@ impl<'a> DirectionQuery<'a> {
                 }
                 None => {
                     let m = self.parts[q].pieces.len();
-                    for &a in tp.pieces(na) {
-                        for &b in tq.pieces(nb) {
-                            visit(p, q, flip, a * m + b, &mut best)?;
+                    for &a in tp.items(na) {
+                        for &b in tq.items(nb) {
+                            visit(p, q, flip, a as usize * m + b as usize, &mut best)?;
                         }
                     }
                 }

@@ -2,8 +2,8 @@
 //! provably lie inside a union already found adds nothing to a pair region, so its
 //! Minkowski sums are never made.
 //!
-//! Each part's pieces form a tree of boxes (integer bounds, widened outward, so every
-//! box holds its pieces). For two nodes, `box(B) ⊕ −box(A)` is a box holding every sum
+//! Each part's pieces form a tree of boxes (the kernel's [`Bvh`] of median splits over
+//! integer bounds widened outward, so every box holds its pieces). For two nodes, `box(B) ⊕ −box(A)` is a box holding every sum
 //! `b ⊕ −a` of their pieces, so its open projection holds theirs. When that projection
 //! lies in the open union `U` of polygons already kept, every polygon of the group
 //! does, and the union, and every blocking answer, stay the same without them.
@@ -21,41 +21,22 @@
 use crate::clearance::{chord2, FArc};
 use apart_kernel::fvec::dot;
 use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
-use apart_kernel::{Int, Sign, Vec3};
+use apart_kernel::{Aabb, Bvh, Int, Sign, Vec3};
 use apart_minkowski::{project, Projection};
 use apart_pieces::Polytope;
 use apart_sphere::region::RegionMap;
 use apart_sphere::{Arc, SphericalPolygon};
 use std::cmp::Ordering;
 
-/// Pieces per leaf of a [`PieceTree`]: one, so that every piece pair left after the
-/// groups gets the box test of its own sum before it is summed (on the 20k-triangle nut
-/// and washer that leaves 2,299 sums of 20,002).
+/// Pieces per leaf of a part's box tree ([`piece_tree`]): one, so that every piece pair
+/// left after the groups gets the box test of its own sum before it is summed (on the
+/// 20k-triangle nut and washer that leaves 2,299 sums of 20,002).
 const LEAF: usize = 1;
-
-/// A node of a [`PieceTree`]: a box holding pieces `order[start..start + len]`.
-#[derive(Clone, Debug)]
-struct Node {
-    lo: [i64; 3],
-    hi: [i64; 3],
-    start: usize,
-    len: usize,
-    /// Child nodes, or `None` for a leaf.
-    children: Option<(usize, usize)>,
-}
-
-/// A bounding-box tree over one part's pieces (median splits along the longest axis).
-#[derive(Clone, Debug)]
-pub(crate) struct PieceTree {
-    nodes: Vec<Node>,
-    /// Piece indices in tree order.
-    order: Vec<usize>,
-}
 
 /// Integer bounds holding a piece: its coordinates' floats, widened by 2 (a float of a
 /// coordinate below 2^62 is within 1 of it; the widening also gives every box volume).
 /// `None` when a coordinate does not fit.
-fn piece_box(p: &Polytope) -> Option<([i64; 3], [i64; 3])> {
+fn piece_box(p: &Polytope) -> Option<Aabb> {
     let den = to_f64(p.den());
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -74,17 +55,17 @@ fn piece_box(p: &Polytope) -> Option<([i64; 3], [i64; 3])> {
     {
         return None;
     }
-    Some((
-        lo.map(|x| x.floor() as i64 - 2),
-        hi.map(|x| x.ceil() as i64 + 2),
-    ))
+    Some(Aabb {
+        min: lo.map(|x| x.floor() as i64 - 2),
+        max: hi.map(|x| x.ceil() as i64 + 2),
+    })
 }
 
 /// The indices of the (at most) `k` pieces with the largest boxes.
 pub(crate) fn largest(pieces: &[Polytope], k: usize) -> Vec<usize> {
     let size = |p: &Polytope| {
-        piece_box(p).map_or(0i128, |(lo, hi)| {
-            (0..3).map(|d| hi[d] as i128 - lo[d] as i128).sum()
+        piece_box(p).map_or(0i128, |b| {
+            (0..3).map(|d| b.max[d] as i128 - b.min[d] as i128).sum()
         })
     };
     let mut order: Vec<(i128, usize)> = pieces
@@ -96,128 +77,76 @@ pub(crate) fn largest(pieces: &[Polytope], k: usize) -> Vec<usize> {
     order.into_iter().take(k).map(|(_, n)| n).collect()
 }
 
-impl PieceTree {
-    /// The tree of `pieces`, or `None` when some piece's coordinates are too large for
-    /// integer boxes (then nothing is culled).
-    pub(crate) fn new(pieces: &[Polytope]) -> Option<PieceTree> {
-        let boxes: Vec<([i64; 3], [i64; 3])> =
-            pieces.iter().map(piece_box).collect::<Option<_>>()?;
-        let mut tree = PieceTree {
-            nodes: Vec::new(),
-            order: (0..pieces.len()).collect(),
-        };
-        if !pieces.is_empty() {
-            tree.build(&boxes, 0, pieces.len());
-        }
-        Some(tree)
-    }
-
-    /// Builds the node of `order[start..start + len]`; returns its index.
-    fn build(&mut self, boxes: &[([i64; 3], [i64; 3])], start: usize, len: usize) -> usize {
-        let mut lo = [i64::MAX; 3];
-        let mut hi = [i64::MIN; 3];
-        for &p in &self.order[start..start + len] {
-            for k in 0..3 {
-                lo[k] = lo[k].min(boxes[p].0[k]);
-                hi[k] = hi[k].max(boxes[p].1[k]);
-            }
-        }
-        let id = self.nodes.len();
-        self.nodes.push(Node {
-            lo,
-            hi,
-            start,
-            len,
-            children: None,
-        });
-        if len > LEAF {
-            let axis = (0..3)
-                .max_by_key(|&k| hi[k] as i128 - lo[k] as i128)
-                .unwrap();
-            let centre = |p: usize| boxes[p].0[axis] as i128 + boxes[p].1[axis] as i128;
-            let half = len / 2;
-            self.order[start..start + len].select_nth_unstable_by_key(half, |&p| centre(p));
-            let a = self.build(boxes, start, half);
-            let b = self.build(boxes, start + half, len - half);
-            self.nodes[id].children = Some((a, b));
-        }
-        id
-    }
-
-    /// The pieces under node `n`.
-    pub(crate) fn pieces(&self, n: usize) -> &[usize] {
-        let node = &self.nodes[n];
-        &self.order[node.start..node.start + node.len]
-    }
-
-    /// The root node, or `None` for a tree of no pieces.
-    pub(crate) fn root(&self) -> Option<usize> {
-        (!self.nodes.is_empty()).then_some(0)
-    }
+/// A part's box tree over its pieces ([`piece_box`]): the kernel's hierarchy of median
+/// splits along the longest axis, one piece per leaf. `None` when some piece's
+/// coordinates are too large for integer boxes (then nothing is culled).
+pub(crate) fn piece_tree(pieces: &[Polytope]) -> Option<Bvh> {
+    let boxes: Vec<Aabb> = pieces.iter().map(piece_box).collect::<Option<_>>()?;
+    Some(Bvh::by_median_splits_with_leaf(boxes, LEAF))
 }
 
 /// The box `[lo_b − hi_a, hi_b − lo_a]` holding every `b ⊕ −a` of the pieces under nodes
 /// `na` of `moving` and `nb` of `fixed`.
-pub(crate) fn sum_box(
-    moving: &PieceTree,
-    na: usize,
-    fixed: &PieceTree,
-    nb: usize,
-) -> ([i64; 3], [i64; 3]) {
-    let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
-    (
-        std::array::from_fn(|k| b.lo[k] - a.hi[k]),
-        std::array::from_fn(|k| b.hi[k] - a.lo[k]),
-    )
+pub(crate) fn sum_box(moving: &Bvh, na: usize, fixed: &Bvh, nb: usize) -> Aabb {
+    let (a, b) = (moving.node_box(na), fixed.node_box(nb));
+    Aabb {
+        min: std::array::from_fn(|k| b.min[k] - a.max[k]),
+        max: std::array::from_fn(|k| b.max[k] - a.min[k]),
+    }
 }
 
-/// The node pairs to visit after `(na, nb)`: the larger node split (both trees' leaves
-/// give none).
+/// The node pairs to visit after `(na, nb)`, in the order of the walk: the larger node
+/// (by pieces, `moving`'s on a tie) split, its children in the tree's order (upper half
+/// first). Both trees' leaves give none.
 pub(crate) fn split_pair(
-    moving: &PieceTree,
+    moving: &Bvh,
     na: usize,
-    fixed: &PieceTree,
+    fixed: &Bvh,
     nb: usize,
 ) -> Option<[(usize, usize); 2]> {
-    let (a, b) = (&moving.nodes[na], &fixed.nodes[nb]);
-    match (a.children, b.children) {
+    match (moving.children(na), fixed.children(nb)) {
         (None, None) => None,
-        (Some((a0, a1)), None) => Some([(a0, nb), (a1, nb)]),
-        (None, Some((b0, b1))) => Some([(na, b0), (na, b1)]),
-        (Some((a0, a1)), Some((b0, b1))) => Some(if a.len >= b.len {
-            [(a0, nb), (a1, nb)]
-        } else {
-            [(na, b0), (na, b1)]
-        }),
+        (Some([a0, a1]), None) => Some([(a0, nb), (a1, nb)]),
+        (None, Some([b0, b1])) => Some([(na, b0), (na, b1)]),
+        (Some([a0, a1]), Some([b0, b1])) => {
+            Some(if moving.items(na).len() >= fixed.items(nb).len() {
+                [(a0, nb), (a1, nb)]
+            } else {
+                [(na, b0), (na, b1)]
+            })
+        }
     }
 }
 
 /// Every piece pair `(a, b)` (`a` of `moving`, `b` of `fixed`) under a chain of node
-/// pairs that `keep` accepts and for which `leaf(a, b)` holds: `keep(lo, hi, pairs)`
-/// gets the box of the node pair's sums ([`sum_box`]) and how many piece pairs lie under
-/// it, and returns whether to descend. Depth first from the roots, splitting the larger
-/// node, the second child first; the top of the walk runs in parallel, and the pairs
-/// come in the order of the sequential walk.
+/// pairs that `keep` accepts and for which `leaf(a, b)` holds: `keep(sum, pairs)` gets
+/// the box of the node pair's sums ([`sum_box`]) and how many piece pairs lie under it,
+/// and returns whether to descend. Depth first from the roots in the order of
+/// [`split_pair`]; the top of the walk runs in parallel, and the pairs come in the
+/// order of the sequential walk.
 pub(crate) fn pairs_where(
-    moving: &PieceTree,
-    fixed: &PieceTree,
-    keep: &(dyn Fn([i64; 3], [i64; 3], usize) -> bool + Sync),
+    moving: &Bvh,
+    fixed: &Bvh,
+    keep: &(dyn Fn(&Aabb, usize) -> bool + Sync),
     leaf: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Vec<(usize, usize)> {
     /// Depth of node pairs down to which the walk forks.
     const PARALLEL_DEPTH: u32 = 8;
     fn walk(
-        t: (&PieceTree, &PieceTree),
+        t: (&Bvh, &Bvh),
         na: usize,
         nb: usize,
         depth: u32,
-        keep: &(dyn Fn([i64; 3], [i64; 3], usize) -> bool + Sync),
+        keep: &(dyn Fn(&Aabb, usize) -> bool + Sync),
         leaf: &(dyn Fn(usize, usize) -> bool + Sync),
         out: &mut Vec<(usize, usize)>,
     ) {
         let (moving, fixed) = t;
-        let (lo, hi) = sum_box(moving, na, fixed, nb);
-        if !keep(lo, hi, moving.nodes[na].len * fixed.nodes[nb].len) {
+        let (under_a, under_b) = (moving.items(na), fixed.items(nb));
+        if !keep(
+            &sum_box(moving, na, fixed, nb),
+            under_a.len() * under_b.len(),
+        ) {
             return;
         }
         match split_pair(moving, na, fixed, nb) {
@@ -225,12 +154,12 @@ pub(crate) fn pairs_where(
                 let (mut first, second) = rayon::join(
                     || {
                         let mut v = Vec::new();
-                        walk(t, y.0, y.1, depth + 1, keep, leaf, &mut v);
+                        walk(t, x.0, x.1, depth + 1, keep, leaf, &mut v);
                         v
                     },
                     || {
                         let mut v = Vec::new();
-                        walk(t, x.0, x.1, depth + 1, keep, leaf, &mut v);
+                        walk(t, y.0, y.1, depth + 1, keep, leaf, &mut v);
                         v
                     },
                 );
@@ -238,14 +167,14 @@ pub(crate) fn pairs_where(
                 out.extend(first);
             }
             Some([x, y]) => {
-                walk(t, y.0, y.1, depth + 1, keep, leaf, out);
                 walk(t, x.0, x.1, depth + 1, keep, leaf, out);
+                walk(t, y.0, y.1, depth + 1, keep, leaf, out);
             }
             None => {
-                for &pa in moving.pieces(na) {
-                    for &pb in fixed.pieces(nb) {
-                        if leaf(pa, pb) {
-                            out.push((pa, pb));
+                for &pa in under_a {
+                    for &pb in under_b {
+                        if leaf(pa as usize, pb as usize) {
+                            out.push((pa as usize, pb as usize));
                         }
                     }
                 }
@@ -421,26 +350,23 @@ fn exact_arc_meets_open(arc: &Arc, p: &SphericalPolygon) -> bool {
 /// `cover`: the pairs whose sums must still be made. Traversal of the two trees from
 /// their roots, splitting the larger node.
 pub(crate) fn uncovered_pairs(
-    moving: &PieceTree,
-    fixed: &PieceTree,
+    moving: &Bvh,
+    fixed: &Bvh,
     cover: &Cover,
     need: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Vec<(usize, usize)> {
     pairs_where(
         moving,
         fixed,
-        &|lo, hi, _| {
-            let holds_origin = (0..3).all(|k| lo[k] <= 0 && 0 <= hi[k]);
-            holds_origin || !box_projection_covered(lo, hi, cover)
-        },
+        &|sum, _| sum.contains(&[0; 3]) || !box_projection_covered(sum, cover),
         need,
     )
 }
 
-/// True when the open projection of the box `[lo, hi]` (not holding the origin) lies in
-/// the cover.
-fn box_projection_covered(lo: [i64; 3], hi: [i64; 3], cover: &Cover) -> bool {
-    let Ok(b) = Polytope::cuboid(lo, hi) else {
+/// True when the open projection of the box `b` (not holding the origin) lies in the
+/// cover.
+fn box_projection_covered(b: &Aabb, cover: &Cover) -> bool {
+    let Ok(b) = Polytope::cuboid(b.min, b.max) else {
         return false;
     };
     match project(&b) {

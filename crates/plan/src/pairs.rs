@@ -22,7 +22,7 @@
 
 use crate::PlanError;
 use apart_kernel::int::{self, cmp_fractions};
-use apart_kernel::{Int, Vec3};
+use apart_kernel::{Aabb, Int, Vec3};
 use apart_minkowski::{project, sum_prepared, Projection, Summand};
 use apart_pieces::interference::{below_along, facet_axes};
 use apart_pieces::Polytope;
@@ -32,11 +32,11 @@ use std::sync::OnceLock;
 
 /// A piece with the data the exact culls need.
 pub(crate) struct PieceInfo {
-    lo: [Int; 3],
-    hi: [Int; 3],
-    /// `lo` and `hi` as machine integers when the piece is on the grid itself
-    /// (denominator 1) and every bound is below 2^61: the ray–box test's fast path.
-    small: Option<([i64; 3], [i64; 3])>,
+    /// The box of the piece's integer vertices (the piece's box times its denominator).
+    bounds: Aabb<Int>,
+    /// `bounds` in machine integers when the piece is on the grid itself (denominator 1)
+    /// and every bound is below 2^61: the ray–box test's fast path.
+    small: Option<Aabb>,
     fixed: OnceLock<Summand>,
     reflected: OnceLock<Summand>,
 }
@@ -50,14 +50,14 @@ impl PieceInfo {
                 .map(|v| int::to_i64(&v).filter(|v| v.unsigned_abs() < 1 << 61))
         };
         let small = match (*p.den() == Int::ONE, fits(&lo), fits(&hi)) {
-            (true, [Some(a), Some(b), Some(c)], [Some(d), Some(e), Some(f)]) => {
-                Some(([a, b, c], [d, e, f]))
-            }
+            (true, [Some(a), Some(b), Some(c)], [Some(d), Some(e), Some(f)]) => Some(Aabb {
+                min: [a, b, c],
+                max: [d, e, f],
+            }),
             _ => None,
         };
         PieceInfo {
-            lo,
-            hi,
+            bounds: Aabb { min: lo, max: hi },
             small,
             fixed: OnceLock::new(),
             reflected: OnceLock::new(),
@@ -88,10 +88,10 @@ pub(crate) fn ray_meets_box(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, 
 /// [`ray_meets_box`] for pieces on the grid (denominator 1) with bounds below 2^61 and a
 /// direction below 2^62: box bounds below 2^62, products of fractions below 2^124, all
 /// exact in `i128`.
-fn ray_meets_small_box(a: &([i64; 3], [i64; 3]), b: &([i64; 3], [i64; 3]), x: &[i64; 3]) -> bool {
+fn ray_meets_small_box(a: &Aabb, b: &Aabb, x: &[i64; 3]) -> bool {
     ray_meets_int_box(
-        std::array::from_fn(|k| b.0[k] as i128 - a.1[k] as i128),
-        std::array::from_fn(|k| b.1[k] as i128 - a.0[k] as i128),
+        std::array::from_fn(|k| b.min[k] as i128 - a.max[k] as i128),
+        std::array::from_fn(|k| b.max[k] as i128 - a.min[k] as i128),
         x,
     )
 }
@@ -135,8 +135,8 @@ fn ray_meets_box_exact(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, x: &V
     let mut lower: (Int, Int) = (Int::ZERO, Int::ONE);
     let mut upper: Option<(Int, Int)> = None;
     for k in 0..3 {
-        let lo = &ib.lo[k] * da - &ia.hi[k] * db;
-        let hi = &ib.hi[k] * da - &ia.lo[k] * db;
+        let lo = &ib.bounds.min[k] * da - &ia.bounds.max[k] * db;
+        let hi = &ib.bounds.max[k] * da - &ia.bounds.min[k] * db;
         let xk = x.get(k);
         let (l, u, den) = match xk.cmp(&Int::ZERO) {
             Ordering::Equal => {
@@ -191,26 +191,27 @@ pub(crate) enum Sep {
 /// oriented from `a` to `b`.
 pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -> Vec<Axis> {
     let (da, db) = (a.den(), b.den());
+    let (ia, ib) = (&ia.bounds, &ib.bounds);
     let mut out = Vec::new();
     for k in 0..3 {
         let mut e = [0i64; 3];
         // a below b along +e_k: hi_a <= lo_b.
-        match cmp_fractions(&ia.hi[k], da, &ib.lo[k], db) {
+        match cmp_fractions(&ia.max[k], da, &ib.min[k], db) {
             Ordering::Less | Ordering::Equal => {
                 e[k] = 1;
                 out.push(Axis {
                     n: Vec3::from_i64(e),
-                    strict: cmp_fractions(&ia.hi[k], da, &ib.lo[k], db) == Ordering::Less,
+                    strict: cmp_fractions(&ia.max[k], da, &ib.min[k], db) == Ordering::Less,
                 });
             }
             Ordering::Greater => {}
         }
-        match cmp_fractions(&ib.hi[k], db, &ia.lo[k], da) {
+        match cmp_fractions(&ib.max[k], db, &ia.min[k], da) {
             Ordering::Less | Ordering::Equal => {
                 e[k] = -1;
                 out.push(Axis {
                     n: Vec3::from_i64(e),
-                    strict: cmp_fractions(&ib.hi[k], db, &ia.lo[k], da) == Ordering::Less,
+                    strict: cmp_fractions(&ib.max[k], db, &ia.min[k], da) == Ordering::Less,
                 });
             }
             Ordering::Greater => {}
@@ -637,7 +638,7 @@ mod tests {
             assert!(ia.small.is_some() && ib.small.is_some() && x.as_small().is_some());
             let fast = ray_meets_box(&ia, &Int::ONE, &ib, &Int::ONE, &x);
             let exact = ray_meets_box_exact(&ia, &Int::ONE, &ib, &Int::ONE, &x);
-            assert_eq!(fast, exact, "{:?} {:?} {x:?}", ia.lo, ib.hi);
+            assert_eq!(fast, exact, "{:?} {:?} {x:?}", ia.bounds.min, ib.bounds.max);
             met[fast as usize] += 1;
         }
         assert!(met[0] > 1000 && met[1] > 1000, "{met:?}");

@@ -6,12 +6,12 @@
 //! simplified to the arcs and points where the blocked status changes before any
 //! overlay of several pairs.
 
-use crate::cull::{largest, uncovered_pairs, Cover, PieceTree};
+use crate::cull::{largest, piece_tree, uncovered_pairs, Cover};
 use crate::pairs::{axes, below_along_any, contact_polygon, Axis, PairPolygon, PieceInfo};
 use crate::progress::{phases, Progress};
 use crate::PlanError;
 use apart_kernel::fvec::dot;
-use apart_kernel::Vec3;
+use apart_kernel::{Bvh, Vec3};
 use apart_minkowski::{project, sum_prepared, Projection};
 use apart_pieces::Polytope;
 use apart_sphere::overlay::{cell_statuses, PointStatus, SideLabel};
@@ -205,10 +205,7 @@ impl BlockingRegions {
             .par_iter()
             .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
             .collect();
-        let trees: Vec<Option<PieceTree>> = parts
-            .par_iter()
-            .map(|p| PieceTree::new(&p.pieces))
-            .collect();
+        let trees: Vec<Option<Bvh>> = parts.par_iter().map(|p| piece_tree(&p.pieces)).collect();
         // Pairs of parts in batches of at most PAIR_BATCH piece pairs (a bigger pair
         // alone), each pair's piece pairs in parallel: only a batch's piece-pair data is
         // alive at once, and what is kept is each pair's pruned polygons and union.
@@ -366,7 +363,7 @@ impl BlockingRegions {
 fn pair_region(
     parts: &[PartPieces],
     info: &[Vec<PieceInfo>],
-    trees: &[Option<PieceTree>],
+    trees: &[Option<Bvh>],
     i: usize,
     j: usize,
     stats: &mut RegionStats,
