@@ -657,14 +657,21 @@ fn distance(p: &SphericalPolygon, x: &Vec3) -> f64 {
 
 /// The floating-point bounds of a piece (true coordinates).
 fn float_box(x: &apart_pieces::Polytope) -> ([f64; 3], [f64; 3]) {
-    let den = apart_kernel::int::to_f64(x.den());
+    // Each coordinate divided once: `approx` is only proportional for big vectors, and
+    // decomposed pieces have denominators of hundreds of bits.
+    let coords = |v: &Vec3| -> [f64; 3] {
+        [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), x.den().clone()).to_f64())
+    };
+    let points: Vec<[f64; 3]> = match x.shadow() {
+        Some(s) => s.points.clone(),
+        None => x.vertices().iter().map(coords).collect(),
+    };
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for v in x.vertices() {
-        let c = v.approx();
+    for c in points {
         for t in 0..3 {
-            lo[t] = lo[t].min(c[t] / den);
-            hi[t] = hi[t].max(c[t] / den);
+            lo[t] = lo[t].min(c[t]);
+            hi[t] = hi[t].max(c[t]);
         }
     }
     (lo, hi)
@@ -878,6 +885,21 @@ mod tests {
                 continue;
             }
             let bound = axes_bound(&ax, &a, &b, &d);
+            // The same boxes stored with a denominator of 96 bits give the same bound.
+            let k = apart_kernel::Int::from(3).pow(60);
+            let big = |p: &Polytope| {
+                let pts: Vec<Vec3> = p.vertices().iter().map(|v| v.scale(&k)).collect();
+                Polytope::hull_of_points(&pts).unwrap().with_den(k.clone())
+            };
+            let (ab, bb) = (big(&a), big(&b));
+            let axb = crate::pairs::axes(
+                &ab,
+                &crate::pairs::PieceInfo::new(&ab),
+                &bb,
+                &crate::pairs::PieceInfo::new(&bb),
+            );
+            let again = axes_bound(&axb, &ab, &bb, &d);
+            assert!((again - bound).abs() <= 1e-9, "{again} vs {bound}");
             let u = d.unit_f64();
             let (lo, hi) = (
                 std::array::from_fn(|c| blo[c] - ahi[c]),
