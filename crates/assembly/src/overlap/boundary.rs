@@ -8,7 +8,10 @@
 //! 2. its edges, split at every crossing with the other's faces: the midpoint of each
 //!    piece between consecutive crossings;
 //! 3. the centroid of every face whose three vertices lie on the other's boundary;
-//! 4. coincident faces with the same outward normal and a common area.
+//! 4. coincident faces with the same outward normal and a common area;
+//! 5. faces of the two that cross: just inside both, next to the midpoint of the
+//!    segment they share (an overlap that reaches no vertex and crosses no edge, e.g.
+//!    two tetrahedra each with an edge on the other's boundary, is found here).
 //!
 //! Each hit is turned into a point strictly inside both solids and verified by exact
 //! point location. What it can miss: a face of one solid whose vertices and edges all
@@ -35,6 +38,72 @@ pub(crate) fn overlap(a: &Mesh, b: &Mesh) -> Option<HPoint> {
     one_way(&la, &lb)
         .or_else(|| one_way(&lb, &la))
         .or_else(|| coincident(&la, &lb))
+        .or_else(|| crossing_faces(&la, &lb))
+}
+
+/// Faces of A and B that cross (not coplanar): just inside both, next to the midpoint
+/// of the segment where they meet. This finds overlaps that reach no vertex and cross
+/// no edge (an edge of each lying on the other's boundary while their faces cross).
+fn crossing_faces(la: &Locator, lb: &Locator) -> Option<HPoint> {
+    let (a, b) = (la.mesh(), lb.mesh());
+    let bbox_b = b.bbox()?;
+    (0..a.triangles.len()).into_par_iter().find_map_first(|t| {
+        let ta = a.corners(t);
+        let tbox = Aabb::of(ta);
+        if !tbox.overlaps(&bbox_b) {
+            return None;
+        }
+        let na = normal(ta[0], ta[1], ta[2]);
+        let mut found = None;
+        lb.bvh().query(&tbox, |u| {
+            if found.is_some() {
+                return;
+            }
+            let tb = b.corners(u as usize);
+            if tb
+                .iter()
+                .all(|v| orient3d(ta[0], ta[1], ta[2], v) == Sign::Zero)
+            {
+                return; // coplanar: `coincident` decides
+            }
+            // The points where either triangle's edges meet the other: the ends of the
+            // segment the two triangles share.
+            let mut pts: Vec<[Rational; 3]> = Vec::new();
+            for (s, o) in [(ta, tb), (tb, ta)] {
+                for k in 0..3 {
+                    let (p, q) = (s[k], s[(k + 1) % 3]);
+                    for tm in segment_triangle_params(p, q, o[0], o[1], o[2]) {
+                        pts.push([0, 1, 2].map(|c| &rat(p[c]) + &(&rat(q[c] - p[c]) * &tm)));
+                    }
+                }
+            }
+            if pts.len() < 2 {
+                return;
+            }
+            let (lo, hi) = (pts.iter().min().unwrap(), pts.iter().max().unwrap());
+            if lo == hi {
+                return; // the triangles only touch at a point
+            }
+            let half = Rational::new(Int::ONE, Int::from(2));
+            let m = [0, 1, 2].map(|c| &(&lo[c] + &hi[c]) * &half);
+            // Inward along both faces: the sum of their unit outward normals, on an
+            // integer grid fine enough (any direction into the wedge works; the point
+            // found is checked exactly).
+            let nb = normal(tb[0], tb[1], tb[2]);
+            let unit = |n: &[i128; 3]| {
+                let f = n.map(|x| x as f64);
+                let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+                f.map(|x| x / l)
+            };
+            let (ua, ub) = (unit(&na), unit(&nb));
+            let dir: [i128; 3] =
+                [0, 1, 2].map(|c| ((ua[c] + ub[c]) * (1u64 << 40) as f64).round() as i128);
+            if dir != [0; 3] {
+                found = below_both(la, lb, &m, dir);
+            }
+        });
+        found
+    })
 }
 
 fn rat(v: i64) -> Rational {
