@@ -335,13 +335,8 @@ mod tests {
         // Two rows of boxes of different sizes and offsets, overlapping by various
         // depths (and some only touching or apart): the pruned parallel search finds
         // the largest depth any pair has, as every pair measured in turn says.
-        let mut seed = 7u64;
-        let mut next = |m: i64| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as i64 % m
-        };
+        let mut g = apart_testkit::solids::Lcg(7);
+        let mut next = |m: i64| g.below(m as u64) as i64;
         for _ in 0..20 {
             let row = |next: &mut dyn FnMut(i64) -> i64, z: i64| -> Vec<Polytope> {
                 (0..30)

@@ -602,10 +602,7 @@ fn axes_bound(
     }
     let margin = 1e-9 * scale;
     let h = h + margin;
-    let points = |p: &apart_pieces::Polytope| -> Option<Vec<[f64; 3]>> {
-        p.shadow().map(|s| s.points.clone())
-    };
-    let (pa, pb) = (points(a), points(b));
+    let (pa, pb) = (a.shadow().map(|s| &s.points), b.shadow().map(|s| &s.points));
     axes.iter()
         .map(|ax| {
             let n = ax.n.unit_f64();
@@ -613,7 +610,7 @@ fn axes_bound(
             let s = fvec::norm(fvec::cross(u, n));
             // The closed hemisphere n̂ · y >= 0.
             let hemisphere = (s.atan2(c) - FRAC_PI_2 - 1e-9).max(0.0);
-            let gap = match (&pa, &pb) {
+            let gap = match (pa, pb) {
                 (Some(pa), Some(pb)) if ax.strict => {
                     let top_a = pa
                         .iter()
@@ -662,9 +659,13 @@ fn float_box(x: &apart_pieces::Polytope) -> ([f64; 3], [f64; 3]) {
     let coords = |v: &Vec3| -> [f64; 3] {
         [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), x.den().clone()).to_f64())
     };
-    let points: Vec<[f64; 3]> = match x.shadow() {
-        Some(s) => s.points.clone(),
-        None => x.vertices().iter().map(coords).collect(),
+    let owned: Vec<[f64; 3]>;
+    let points: &[[f64; 3]] = match x.shadow() {
+        Some(s) => &s.points,
+        None => {
+            owned = x.vertices().iter().map(coords).collect();
+            &owned
+        }
     };
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -797,15 +798,10 @@ mod tests {
     use apart_kernel::fvec;
     use apart_pieces::Polytope;
 
-    /// A seeded generator of integers in `[-m, m]`.
+    /// A seeded generator of integers in `[-m, m]` (testkit's generator).
     fn rng(seed: u64) -> impl FnMut(i64) -> i64 {
-        let mut s = seed;
-        move |m| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 33) as i64 % (2 * m + 1) - m
-        }
+        let mut g = apart_testkit::solids::Lcg(seed);
+        move |m| g.range(-m, m + 1)
     }
 
     /// The angle from unit `u` to the direction of `y` (radians).
