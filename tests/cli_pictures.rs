@@ -152,3 +152,48 @@ fn place_pictures_name_the_fixed_parts() {
     assert!(text.contains(">cube</text>") && text.contains(">cube_2</text>"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_interlocked_sequence_still_answers_and_draws_its_blocked_motion_space() {
+    // The rings cannot be split: the answer is "no" (exit code 2) with the JSON plan, and
+    // the sphere picture shows the interlocked subassembly instead of failing on a
+    // missing step 1. Asking for a step the plan cannot have stays a usage error.
+    let dir = scratch("interlocked");
+    let svg = dir.join("rings.svg");
+    let o = apart(&[
+        "sequence",
+        &example("linked-rings"),
+        "--json",
+        "--svg",
+        &path(&svg),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let answer: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        answer["steps"].as_array().map(Vec::len),
+        Some(0),
+        "{answer}"
+    );
+    assert_eq!(announced(&o), vec![path(&svg)]);
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawn.contains("interlocked"), "the title says why");
+    assert!(
+        drawn.contains("ring_a") && drawn.contains("ring_b"),
+        "parts named"
+    );
+
+    let o = apart(&[
+        "sequence",
+        &example("linked-rings"),
+        "--svg",
+        &path(&svg),
+        "--step",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("--step 2: the plan has 0 steps"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -12,8 +12,8 @@ use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
 use apart::draw::{
-    assembly_png, disassembly_glb, disassembly_html, step_motion_space_png, step_motion_space_svg,
-    step_pngs, SphereSvgOptions, View,
+    assembly_png, disassembly_glb, disassembly_html, motion_space_png, motion_space_svg,
+    step_motion_space_png, step_motion_space_svg, step_pngs, SphereSvgOptions, View,
 };
 use apart::plan::sequence::{Choice, Keys};
 use apart::plan::{
@@ -277,26 +277,50 @@ fn pictures(
     plan: &Sequence,
 ) -> anyhow::Result<()> {
     if args.svg.is_some() || args.png.is_some() {
-        let step = plan.steps.get(args.step.wrapping_sub(1)).ok_or_else(|| {
-            anyhow::anyhow!(
+        let names = regions.names();
+        let base = SphereSvgOptions {
+            projection: args.projection.into(),
+            ..Default::default()
+        };
+        match (
+            plan.steps.get(args.step.wrapping_sub(1)),
+            plan.stuck.first(),
+        ) {
+            (Some(step), _) => {
+                // One motion space for both pictures, cut at the equator (the planner's is not).
+                let ms = MotionSpace::build_split_at_equator(regions, &step.subassembly);
+                if let Some(p) = &args.svg {
+                    output::write_file(p, step_motion_space_svg(&ms, names, step, &base))?;
+                }
+                if let Some(p) = &args.png {
+                    output::write_file(p, step_motion_space_png(&ms, names, step, &base))?;
+                }
+            }
+            // No step at all: the whole assembly is interlocked. Its motion space, blocked
+            // everywhere, is the picture of that answer.
+            (None, Some(stuck)) if plan.steps.is_empty() && args.step == 1 => {
+                let ms = MotionSpace::build_split_at_equator(regions, stuck);
+                let opts = SphereSvgOptions {
+                    title: format!(
+                        "{}: interlocked, no subset of {{{}}} can move",
+                        asm.name,
+                        names_of(regions.names(), stuck).join(", ")
+                    ),
+                    ..base
+                };
+                if let Some(p) = &args.svg {
+                    output::write_file(p, motion_space_svg(&ms, names, &[], &opts))?;
+                }
+                if let Some(p) = &args.png {
+                    output::write_file(p, motion_space_png(&ms, names, &[], &opts))?;
+                }
+            }
+            _ => anyhow::bail!(
                 "--step {}: the plan has {} step{}",
                 args.step,
                 plan.steps.len(),
                 if plan.steps.len() == 1 { "" } else { "s" }
-            )
-        })?;
-        let opts = SphereSvgOptions {
-            projection: args.projection.into(),
-            ..Default::default()
-        };
-        // One motion space for both pictures, cut at the equator (the planner's is not).
-        let ms = MotionSpace::build_split_at_equator(regions, &step.subassembly);
-        let names = regions.names();
-        if let Some(p) = &args.svg {
-            output::write_file(p, step_motion_space_svg(&ms, names, step, &opts))?;
-        }
-        if let Some(p) = &args.png {
-            output::write_file(p, step_motion_space_png(&ms, names, step, &opts))?;
+            ),
         }
     }
     if let Some(p) = &args.glb {
@@ -321,7 +345,11 @@ fn pictures(
 }
 
 fn names(plan: &Sequence, set: &[usize]) -> Vec<String> {
-    set.iter().map(|&k| plan.names[k].clone()).collect()
+    names_of(&plan.names, set)
+}
+
+fn names_of(all: &[String], set: &[usize]) -> Vec<String> {
+    set.iter().map(|&k| all[k].clone()).collect()
 }
 
 fn tolerance_units(t: &Option<Tolerance>, step_unit: f64) -> Option<Option<f64>> {
