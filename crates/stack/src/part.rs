@@ -14,9 +14,6 @@ pub enum StackError {
     /// The part has no pieces.
     #[error("the part has no convex pieces")]
     NoPieces,
-    /// The mesh could not be decomposed into convex pieces.
-    #[error("convex decomposition failed: {0}")]
-    Decompose(String),
     /// The objective is not a convex quadratic bounded below.
     #[error("objective: {0}")]
     Objective(#[from] ObjectiveError),
@@ -56,20 +53,6 @@ impl PartModel {
             centroid,
             volume,
         })
-    }
-
-    /// A part from a closed mesh, decomposed exactly into convex pieces.
-    pub fn from_mesh(
-        name: &str,
-        points: Vec<Vec3>,
-        triangles: Vec<[u32; 3]>,
-    ) -> Result<PartModel, StackError> {
-        let d =
-            apart_decompose::decompose(&points, &triangles, &apart_decompose::Options::default())
-                .map_err(|e| StackError::Decompose(e.to_string()))?;
-        let mut part = PartModel::from_pieces(name, d.pieces)?;
-        part.mesh = Some((points, triangles));
-        Ok(part)
     }
 
     /// The exact centre of gravity (uniform density).

@@ -1,5 +1,6 @@
 //! The sheet-metal parts of `apart_testkit::sheet_metal` as placement models: the cube
-//! as one convex piece (the hull of its corners), the others decomposed exactly. Shared
+//! as one convex piece (the hull of its corners), the others decomposed exactly (here, as
+//! the loader does for the CLI: apart-stack itself never decomposes). Shared
 //! by the stacking tests, the benchmark and the part generator of apart-stack, and by
 //! apart-draw's pictures of stacks (included by path: the models need apart-stack,
 //! which apart-testkit must not depend on).
@@ -19,14 +20,17 @@ pub fn model(part: SheetPart) -> PartModel {
         .map(|&p| Vec3::from_i64(p))
         .collect();
     let triangles = part.mesh.triangles;
-    if part.convex {
-        let hull = Polytope::hull_of_points(&points).expect("a convex solid");
-        let mut model = PartModel::from_pieces(part.name, vec![hull]).expect("one piece");
-        model.mesh = Some((points, triangles));
-        model
+    let pieces = if part.convex {
+        vec![Polytope::hull_of_points(&points).expect("a convex solid")]
     } else {
-        PartModel::from_mesh(part.name, points, triangles).expect("the part decomposes")
-    }
+        // Decomposed as the loader decomposes a non-convex part: placement never does.
+        apart_decompose::decompose(&points, &triangles, &apart_decompose::Options::default())
+            .expect("the part decomposes")
+            .pieces
+    };
+    let mut model = PartModel::from_pieces(part.name, pieces).expect("pieces");
+    model.mesh = Some((points, triangles));
+    model
 }
 
 /// A unit-aligned cube `[0, size]³`.
