@@ -5,7 +5,7 @@ use crate::Global;
 use apart::assembly::{Assembly, Loaded, Tolerance};
 use apart::kernel::Vec3;
 use apart::mesh::repair::RepairReport;
-use apart::plan::{DirectionQuery, PartPieces, PlanError};
+use apart::plan::{DirectionQuery, Part, PlanError};
 use serde::Serialize;
 
 /// Length units of input files.
@@ -257,16 +257,7 @@ pub fn holds_without_tolerance(
             sides[usize::from(!moving.contains(&k))].extend(pieces.iter().cloned());
         }
         let [a, b] = sides;
-        let two = [
-            PartPieces {
-                name: "moving".into(),
-                pieces: a,
-            },
-            PartPieces {
-                name: "rest".into(),
-                pieces: b,
-            },
-        ];
+        let two = [Part::from_pieces("moving", a), Part::from_pieces("rest", b)];
         let query = match DirectionQuery::new(&two) {
             Ok(q) => q,
             Err(PlanError::Overlap { .. }) => continue,

@@ -10,7 +10,7 @@ mod oracle;
 
 use apart::assembly::{load, LoadOptions, Loaded, Tolerance};
 use apart::kernel::Vec3;
-use apart::plan::{partition, parts_of, CellKind, Options, PartPieces, Partitioning};
+use apart::plan::{partition, parts_of, CellKind, Options, Part, Partitioning};
 use apart_testkit::curved::{self, NamedSoup};
 use apart_testkit::defects;
 use apart_testkit::Scratch;
@@ -35,7 +35,7 @@ fn load_with(dir: &std::path::Path, tolerance: Tolerance) -> Loaded {
 
 /// True when the parts in `moving` translate along `d` without meeting the others'
 /// interiors, decided by the oracle over every piece pair.
-fn oracle_free(parts: &[PartPieces], moving: &[usize], d: &Vec3) -> bool {
+fn oracle_free(parts: &[Part], moving: &[usize], d: &Vec3) -> bool {
     for (i, pi) in parts.iter().enumerate() {
         if !moving.contains(&i) {
             continue;
@@ -60,9 +60,9 @@ fn oracle_free(parts: &[PartPieces], moving: &[usize], d: &Vec3) -> bool {
 /// face solutions under a tolerance: the sliding and isolated directions on the rim of a
 /// widened cone have components of hundreds of bits, too slow for the oracle's rational
 /// simplex in a test).
-fn partition_checked(loaded: &Loaded) -> (Vec<PartPieces>, Partitioning) {
+fn partition_checked(loaded: &Loaded) -> (Vec<Part>, Partitioning) {
     assert!(loaded.is_valid(), "{:#?}", loaded.problems);
-    let parts = parts_of(&loaded.assembly).unwrap();
+    let parts = parts_of(&loaded.assembly).unwrap().to_vec();
     let p = partition(&loaded.assembly, &Options::default()).unwrap();
     let all = loaded.assembly.tolerance.is_none();
     for s in p
@@ -347,7 +347,7 @@ fn a_bolted_joint_of_five_differently_tessellated_parts_comes_apart_along_its_ax
         .map(|s| {
             assert_eq!(s.moving.len(), 1, "one part at a time");
             assert!(s.unit[2] > 0.999, "{:?}", s.unit);
-            let rest: Vec<PartPieces> = s.subassembly.iter().map(|&k| parts[k].clone()).collect();
+            let rest: Vec<Part> = s.subassembly.iter().map(|&k| parts[k].clone()).collect();
             let local = s
                 .subassembly
                 .iter()

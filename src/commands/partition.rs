@@ -724,7 +724,7 @@ pub fn parse_direction(text: &str) -> anyhow::Result<Vec3> {
 fn direction(
     global: &Global,
     loaded: &Loaded,
-    parts: &[apart::plan::PartPieces],
+    parts: &[apart::plan::Part],
     text: &str,
     load_seconds: f64,
 ) -> anyhow::Result<ExitCode> {

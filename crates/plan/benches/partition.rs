@@ -8,9 +8,7 @@ mod common;
 #[path = "../../decompose/tests/common/shapes.rs"]
 mod shapes;
 
-use apart_plan::{
-    partition_pieces, sequence, BlockingRegions, Options, PartPieces, SequenceOptions,
-};
+use apart_plan::{partition_pieces, sequence, BlockingRegions, Options, Part, SequenceOptions};
 use std::time::Instant;
 
 /// Resets the process's peak resident set size (Linux), so each case reports its own.
@@ -29,7 +27,7 @@ fn peak_mib() -> f64 {
 
 /// A row of `n` parts laid like two courses of bricks: part i is a lower brick
 /// [2i, 2i+2] and an upper brick [2i+1, 2i+3] (in x), so neighbours interlock.
-fn brick_row(n: i64) -> Vec<PartPieces> {
+fn brick_row(n: i64) -> Vec<Part> {
     (0..n)
         .map(|i| {
             common::part(
@@ -44,7 +42,7 @@ fn brick_row(n: i64) -> Vec<PartPieces> {
 }
 
 /// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2).
-fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<PartPieces> {
+fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Part> {
     let mut s = seed;
     let mut next = |m: i64| {
         s = s
@@ -82,7 +80,7 @@ fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<PartPieces> {
 /// Two rings (64 segments, 16-gon section, 2,048 triangles each, decomposed exactly)
 /// stacked around a cone of 158 triangles (paper 000, fig. 2). Returns the parts and
 /// the decomposition time.
-fn ring_and_cone() -> (Vec<PartPieces>, f64) {
+fn ring_and_cone() -> (Vec<Part>, f64) {
     use apart_kernel::Vec3;
     let ring = shapes::Ring::new(64);
     let r = ring.radius;
@@ -136,7 +134,7 @@ struct Row {
     solutions: usize,
 }
 
-fn run(name: &str, parts: &[PartPieces], reps: usize) -> Row {
+fn run(name: &str, parts: &[Part], reps: usize) -> Row {
     let pool = |k| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(k)
@@ -182,7 +180,7 @@ fn run(name: &str, parts: &[PartPieces], reps: usize) -> Row {
 }
 
 /// A 5 x 5 x 2 block of unit cubes (50 parts) on a base plate with a lid on top.
-fn cube_block() -> Vec<PartPieces> {
+fn cube_block() -> Vec<Part> {
     let mut parts = vec![common::part(
         "base",
         vec![common::cuboid([-1, -1, -1], [6, 6, 0])],
@@ -209,7 +207,7 @@ fn cube_block() -> Vec<PartPieces> {
 fn sequences(quick: bool) {
     println!("\n| assembly (sequence) | parts | steps | complete | pair regions ms | steps ms | share of regions |");
     println!("|---|---|---|---|---|---|---|");
-    let mut cases: Vec<(String, Vec<PartPieces>)> = Vec::new();
+    let mut cases: Vec<(String, Vec<Part>)> = Vec::new();
     for seed in [1u64, 2, 3] {
         if quick && seed > 1 {
             break;

@@ -7,7 +7,7 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(16);
-    let parts: Vec<apart_plan::PartPieces> = (0..n)
+    let parts: Vec<apart_plan::Part> = (0..n)
         .map(|i| {
             common::part(
                 &format!("b{i}"),

@@ -22,7 +22,7 @@ use crate::pairs::{
     Sep,
 };
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
-use crate::regions::{BlockingRegions, PartPieces};
+use crate::regions::{BlockingRegions, Part};
 use crate::PlanError;
 use apart_kernel::{Aabb, Bvh, Vec3};
 use apart_sphere::SphericalPolygon;
@@ -68,7 +68,7 @@ struct PairCache {
 /// Per-direction queries on an assembly's convex pieces, caching every piece pair's
 /// separating axes and projection between queries.
 pub struct DirectionQuery<'a> {
-    parts: &'a [PartPieces],
+    parts: &'a [Part],
     info: Vec<Vec<PieceInfo>>,
     /// Each part's box tree over its pieces (`None` when its coordinates are too large
     /// for integer boxes: then every piece pair is visited).
@@ -83,7 +83,7 @@ pub struct DirectionQuery<'a> {
 
 impl<'a> DirectionQuery<'a> {
     /// Prepares the pieces (bounds only; everything else on demand).
-    pub fn new(parts: &'a [PartPieces]) -> Result<DirectionQuery<'a>, PlanError> {
+    pub fn new(parts: &'a [Part]) -> Result<DirectionQuery<'a>, PlanError> {
         for (k, p) in parts.iter().enumerate() {
             if p.pieces.is_empty() {
                 return Err(PlanError::NoPieces {
@@ -742,14 +742,14 @@ fn box_angle_f64(lo: [f64; 3], hi: [f64; 3], u: &[f64; 3]) -> f64 {
 
 /// The exact blocking graph, minimal moving sets and cell kind at `d`, from per-piece-
 /// pair tests only (no arrangement of the whole motion space).
-pub fn dbg_along(parts: &[PartPieces], d: &Vec3) -> Result<DirectionAnswer, PlanError> {
+pub fn dbg_along(parts: &[Part], d: &Vec3) -> Result<DirectionAnswer, PlanError> {
     DirectionQuery::new(parts)?.answer(d)
 }
 
 /// `partition` with `first`: tries [`DirectionQuery::first_solution`] and falls back to
 /// the full computation ([`crate::partition_subset`]) when no candidate separates. The
 /// fast path's statistics count only the sums it computed.
-pub fn partition_first(parts: &[PartPieces]) -> Result<Partitioning, PlanError> {
+pub fn partition_first(parts: &[Part]) -> Result<Partitioning, PlanError> {
     let t = Instant::now();
     let q = DirectionQuery::new(parts)?;
     if let Some(s) = q.first_solution()? {

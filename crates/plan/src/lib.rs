@@ -29,11 +29,11 @@
 //! ```
 //! use apart_kernel::Vec3;
 //! use apart_pieces::Polytope;
-//! use apart_plan::{partition_pieces, Options, PartPieces, CellKind};
+//! use apart_plan::{partition_pieces, Options, Part, CellKind};
 //! // Two unit cubes, one on top of the other.
 //! let cube = |z: i64| {
 //!     let pts: Vec<Vec3> = (0..8).map(|i| Vec3::new(i & 1, i >> 1 & 1, z + (i >> 2))).collect();
-//!     PartPieces { name: format!("cube{z}"), pieces: vec![Polytope::hull_of_points(&pts).unwrap()] }
+//!     Part::from_pieces(format!("cube{z}"), vec![Polytope::hull_of_points(&pts).unwrap()])
 //! };
 //! let result = partition_pieces(&[cube(0), cube(1)], &Options::default()).unwrap();
 //! assert!(!result.interlocked);
@@ -65,7 +65,7 @@ pub use partition::{
 };
 pub use progress::{Progress, ProgressCallback};
 pub use regions::parts_of;
-pub use regions::{BlockingRegions, PartPieces};
+pub use regions::{BlockingRegions, Part};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{
     sequence, sequence_with, KeepSolutions, Sequence, SequenceOptions, Step, Tolerance,

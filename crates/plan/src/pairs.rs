@@ -584,16 +584,16 @@ pub(crate) fn internal(names: (&str, &str), e: String) -> PlanError {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::regions::PartPieces;
+    use crate::regions::Part;
     use apart_testkit::curved;
 
-    fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<PartPieces> {
+    fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<Part> {
         let dir = std::env::temp_dir().join(format!("apart-pairs-{}-{name}", std::process::id()));
         curved::write_off_dir(parts, &dir).unwrap();
         let loaded = apart_assembly::load(&dir, &Default::default()).unwrap();
         let _ = std::fs::remove_dir_all(&dir);
         assert!(loaded.is_valid(), "{:?}", loaded.problems);
-        crate::parts_of(&loaded.assembly).unwrap()
+        crate::parts_of(&loaded.assembly).unwrap().to_vec()
     }
 
     fn normals(p: &SphericalPolygon) -> Vec<[String; 3]> {
@@ -649,7 +649,7 @@ mod tests {
     #[test]
     fn contact_cones_and_axes_agree_with_full_sums() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-        let mut cases: Vec<Vec<PartPieces>> = Vec::new();
+        let mut cases: Vec<Vec<Part>> = Vec::new();
         for name in [
             "peg-in-the-hole",
             "dovetail-and-cap",
@@ -657,7 +657,7 @@ mod tests {
             "split-star-5",
         ] {
             let loaded = apart_assembly::load(&dir.join(name), &Default::default()).unwrap();
-            cases.push(crate::parts_of(&loaded.assembly).unwrap());
+            cases.push(crate::parts_of(&loaded.assembly).unwrap().to_vec());
         }
         cases.push(generated("plug", &curved::plug_and_socket(20 * 16 - 8)));
         cases.push(generated("pin", &curved::pin_in_hole(12, 12, 0.0)));

@@ -5,7 +5,7 @@ use crate::clearance::{deep_direction, FArc};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::progress::{phases, Progress};
-use crate::regions::{BlockingRegions, PartPieces};
+use crate::regions::{BlockingRegions, Part};
 use crate::PlanError;
 use apart_kernel::Vec3;
 use apart_sphere::{EdgeId, FaceId, HalfEdge};
@@ -161,7 +161,7 @@ pub fn partition(
 }
 
 /// Partitions an assembly given as convex pieces per part.
-pub fn partition_pieces(parts: &[PartPieces], opts: &Options) -> Result<Partitioning, PlanError> {
+pub fn partition_pieces(parts: &[Part], opts: &Options) -> Result<Partitioning, PlanError> {
     partition_pieces_with(parts, opts, &Progress::new())
 }
 
@@ -170,7 +170,7 @@ pub fn partition_pieces(parts: &[PartPieces], opts: &Options) -> Result<Partitio
 /// pair regions are computed, the answer has no solution
 /// ([`Partitioning::stopped_before_solutions`]).
 pub fn partition_pieces_with(
-    parts: &[PartPieces],
+    parts: &[Part],
     opts: &Options,
     progress: &Progress,
 ) -> Result<Partitioning, PlanError> {

@@ -20,37 +20,26 @@ use apart_sphere::{Arrangement, BitSet, InputArc, InputPoint, SphericalPolygon};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// A part as the planners see it: a name and convex pieces whose union is the part.
-#[derive(Clone, Debug)]
-pub struct PartPieces {
-    /// Part name.
-    pub name: String,
-    /// Convex pieces with pairwise disjoint interiors.
-    pub pieces: Vec<Polytope>,
-}
+pub use apart_assembly::Part;
 
-/// The parts of an assembly as convex pieces, as the loader gave them (declared pieces,
-/// the part itself when convex, or its exact convex decomposition: the planners never
-/// decompose). [`PlanError::NoPieces`] for a part without pieces, as an assembly built
-/// by hand rather than by `apart_assembly::load` may have.
-pub fn parts_of(assembly: &apart_assembly::Assembly) -> Result<Vec<PartPieces>, PlanError> {
-    assembly
+/// The parts of an assembly, checked to have convex pieces, as the loader gave them
+/// (declared pieces, the part itself when convex, or its exact convex decomposition:
+/// the planners never decompose, and take the assembly's parts as they are, their
+/// `name` and `pieces`). [`PlanError::NoPieces`] for a part without pieces, as an
+/// assembly built by hand rather than by `apart_assembly::load` may have.
+pub fn parts_of(assembly: &apart_assembly::Assembly) -> Result<&[Part], PlanError> {
+    if let Some((k, p)) = assembly
         .parts
         .iter()
         .enumerate()
-        .map(|(k, p)| {
-            if p.pieces.is_empty() {
-                return Err(PlanError::NoPieces {
-                    part: k,
-                    name: p.name.clone(),
-                });
-            }
-            Ok(PartPieces {
-                name: p.name.clone(),
-                pieces: p.pieces.clone(),
-            })
-        })
-        .collect()
+        .find(|(_, p)| p.pieces.is_empty())
+    {
+        return Err(PlanError::NoPieces {
+            part: k,
+            name: p.name.clone(),
+        });
+    }
+    Ok(&assembly.parts)
 }
 
 /// The blocked region of one unordered pair of parts.
@@ -172,7 +161,7 @@ impl BlockingRegions {
     /// hemisphere `{n·x > 0}` in the union, the pair changes neither the union nor any
     /// blocking answer (its open polygon lies in that hemisphere), so it is not summed.
     /// The remaining pairs are summed in full.
-    pub fn compute(parts: &[PartPieces]) -> Result<BlockingRegions, PlanError> {
+    pub fn compute(parts: &[Part]) -> Result<BlockingRegions, PlanError> {
         BlockingRegions::compute_with(parts, &Progress::new())
     }
 
@@ -181,10 +170,7 @@ impl BlockingRegions {
     /// before each pair, and between the culling rounds and sum chunks of a pair with
     /// many piece pairs. Stopped, it returns [`PlanError::Stopped`] (regions of only
     /// some pairs would answer no question correctly).
-    pub fn compute_with(
-        parts: &[PartPieces],
-        progress: &Progress,
-    ) -> Result<BlockingRegions, PlanError> {
+    pub fn compute_with(parts: &[Part], progress: &Progress) -> Result<BlockingRegions, PlanError> {
         let n = parts.len();
         for (k, p) in parts.iter().enumerate() {
             if p.pieces.is_empty() {
@@ -361,7 +347,7 @@ impl BlockingRegions {
 /// already covers, then the pruned polygons' union (timings added to `stats`). The stop
 /// flag is checked between culling rounds and between chunks of sums.
 fn pair_region(
-    parts: &[PartPieces],
+    parts: &[Part],
     info: &[Vec<PieceInfo>],
     trees: &[Option<Bvh>],
     i: usize,

@@ -8,7 +8,7 @@ use apart_assembly::{load, LoadOptions};
 use apart_kernel::Vec3;
 use apart_plan::{
     dbg_along, dbg_at, partition_first, parts_of, BlockingRegions, CellKind, DirectionQuery,
-    MotionSpace, PartPieces,
+    MotionSpace, Part,
 };
 use apart_testkit::curved;
 use apart_testkit::Scratch;
@@ -33,20 +33,20 @@ fn example_names() -> Vec<String> {
     names
 }
 
-fn load_parts(dir: &Path) -> Vec<PartPieces> {
+fn load_parts(dir: &Path) -> Vec<Part> {
     try_load(dir).unwrap_or_else(|| panic!("{dir:?} is not a valid assembly"))
 }
 
 /// The parts of a valid assembly (`None` for the examples of other commands, such as
 /// the overlapping sheet-metal parts of `stack`).
-fn try_load(dir: &Path) -> Option<Vec<PartPieces>> {
+fn try_load(dir: &Path) -> Option<Vec<Part>> {
     let loaded = load(dir, &LoadOptions::default()).unwrap();
     loaded
         .is_valid()
-        .then(|| parts_of(&loaded.assembly).unwrap())
+        .then(|| parts_of(&loaded.assembly).unwrap().to_vec())
 }
 
-fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<PartPieces> {
+fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<Part> {
     let dir = Scratch::new(&format!("along-{name}"));
     curved::write_off_dir(parts, &dir).unwrap();
     load_parts(&dir)
@@ -79,7 +79,7 @@ fn directions(ms: &MotionSpace) -> Vec<Vec3> {
 
 /// `dbg_along` agrees with the full computation (blocking graph from the pair regions,
 /// cell kind from the overlay) and with the LP oracle at every test direction.
-fn check_against_full(name: &str, parts: &[PartPieces]) {
+fn check_against_full(name: &str, parts: &[Part]) {
     let regions = BlockingRegions::compute(parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
     let ms = MotionSpace::build(&regions, &all);
@@ -179,7 +179,7 @@ fn curved_assemblies_agree_and_have_their_known_answers() {
 
 /// The first solution separates (oracle), its set is a minimal moving set there, and its
 /// kind is the cell the full motion space puts the direction in.
-fn check_first(name: &str, parts: &[PartPieces]) {
+fn check_first(name: &str, parts: &[Part]) {
     let r = partition_first(parts).unwrap();
     let regions = BlockingRegions::compute(parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
@@ -227,7 +227,7 @@ fn check_first(name: &str, parts: &[PartPieces]) {
 /// The angular clearance at `d` of `moving` by brute force: the smallest angle from `d`
 /// to the closed projection of `b ⊕ −a` over every piece `a` of a moving part and `b`
 /// of a fixed one (floating point).
-fn exhaustive_clearance(parts: &[PartPieces], moving: &[usize], d: &Vec3) -> f64 {
+fn exhaustive_clearance(parts: &[Part], moving: &[usize], d: &Vec3) -> f64 {
     use apart_kernel::fvec;
     use apart_minkowski::{minkowski_difference, project, Projection};
     let u = d.unit_f64();

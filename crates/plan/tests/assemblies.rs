@@ -5,7 +5,7 @@ mod common;
 use apart_kernel::Vec3;
 use apart_plan::{dbg_at, partition_pieces, BlockingRegions, CellKind, Options, Solution};
 
-fn solutions_of(parts: &[apart_plan::PartPieces]) -> Vec<Solution> {
+fn solutions_of(parts: &[apart_plan::Part]) -> Vec<Solution> {
     let r = partition_pieces(parts, &Options::default()).unwrap();
     assert_eq!(r.interlocked, r.solutions.is_empty());
     r.solutions

@@ -8,7 +8,7 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_plan::{BlockingRegions, MotionSpace, PartPieces};
+use apart_plan::{BlockingRegions, MotionSpace, Part};
 // A small deterministic generator (the tests must not depend on a random seed's luck).
 use apart_testkit::solids::Lcg;
 use common::oracle::Oracle;
@@ -17,7 +17,7 @@ use common::{cuboid, part};
 /// Two parts of `n` unit cubes each on the cells of a lattice of spacing 2 (cubes never
 /// touch), the cells of the two parts drawn at random from one box of cells, so the
 /// parts interleave; `shift` moves the second part's cells.
-fn interleaved(seed: u64, n: usize, cells: i64, shift: [i64; 3]) -> Vec<PartPieces> {
+fn interleaved(seed: u64, n: usize, cells: i64, shift: [i64; 3]) -> Vec<Part> {
     let mut rng = Lcg(seed);
     let mut used = std::collections::HashSet::new();
     let mut parts = Vec::new();
@@ -56,7 +56,7 @@ fn directions(r: i64) -> Vec<Vec3> {
     out
 }
 
-fn check(parts: &[PartPieces]) {
+fn check(parts: &[Part]) {
     let regions = BlockingRegions::compute(parts).unwrap();
     assert!(
         regions.stats.culled > 0,

@@ -4,14 +4,14 @@
 mod common;
 
 use apart_plan::{
-    dbg_at, partition_pieces, BlockingRegions, CellKind, Options, PartPieces, Partitioning,
+    dbg_at, partition_pieces, BlockingRegions, CellKind, Options, Part, Partitioning,
 };
 use proptest::prelude::*;
 
 const DIMS: [usize; 3] = [3, 3, 2];
 
 /// Each part as its voxels (declared unit-cube pieces) and as one welded mesh decomposed.
-fn both_ways(owners: &[usize], k: usize) -> Option<(Vec<PartPieces>, Vec<PartPieces>)> {
+fn both_ways(owners: &[usize], k: usize) -> Option<(Vec<Part>, Vec<Part>)> {
     let mut boxes = Vec::new();
     let mut meshes = Vec::new();
     for part in 0..k {

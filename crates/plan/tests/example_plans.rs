@@ -10,29 +10,29 @@ mod common;
 use apart_assembly::{load, LoadOptions};
 use apart_kernel::Vec3;
 use apart_plan::{
-    partition_pieces, parts_of, sequence, BlockingRegions, CellKind, Options, PartPieces, Sequence,
+    partition_pieces, parts_of, sequence, BlockingRegions, CellKind, Options, Part, Sequence,
     SequenceOptions, Step,
 };
 use common::check_plan;
 use std::path::PathBuf;
 
-fn example(name: &str) -> Vec<PartPieces> {
+fn example(name: &str) -> Vec<Part> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
         .join(name);
     let loaded = load(&dir, &LoadOptions::default()).unwrap();
     assert!(loaded.is_valid(), "{name}: {:?}", loaded.problems);
-    parts_of(&loaded.assembly).unwrap()
+    parts_of(&loaded.assembly).unwrap().to_vec()
 }
 
-fn index(parts: &[PartPieces], name: &str) -> usize {
+fn index(parts: &[Part], name: &str) -> usize {
     parts
         .iter()
         .position(|p| p.name == name)
         .unwrap_or_else(|| panic!("no part {name}"))
 }
 
-fn plan(parts: &[PartPieces], opts: &SequenceOptions) -> Sequence {
+fn plan(parts: &[Part], opts: &SequenceOptions) -> Sequence {
     let regions = BlockingRegions::compute(parts).unwrap();
     let p = sequence(&regions, opts);
     check_plan(parts, &p);

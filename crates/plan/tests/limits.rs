@@ -6,7 +6,7 @@
 
 mod common;
 
-use apart_plan::{partition_subset, BlockingRegions, CellKind, Options, PartPieces, Partitioning};
+use apart_plan::{partition_subset, BlockingRegions, CellKind, Options, Part, Partitioning};
 use common::lattice;
 use std::collections::HashMap;
 
@@ -18,7 +18,7 @@ fn kind(c: CellKind) -> usize {
     }
 }
 
-fn run(parts: &[PartPieces], opts: &Options) -> Partitioning {
+fn run(parts: &[Part], opts: &Options) -> Partitioning {
     let regions = BlockingRegions::compute(parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
     partition_subset(&regions, &all, opts).0
@@ -33,7 +33,7 @@ fn tally(p: &Partitioning) -> HashMap<Vec<usize>, [usize; 3]> {
 }
 
 /// Checks the listing bounded to `k` per set and kind; returns the full count.
-fn check_bounded(parts: &[PartPieces], k: usize) -> usize {
+fn check_bounded(parts: &[Part], k: usize) -> usize {
     let full = run(parts, &Options::default());
     let bounded = run(
         parts,

@@ -13,11 +13,11 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
-use apart_plan::{dbg_at, partition_subset, BlockingRegions, CellKind, Options, PartPieces};
+use apart_plan::{dbg_at, partition_subset, BlockingRegions, CellKind, Options, Part};
 use common::oracle::Oracle;
 use proptest::prelude::*;
 
-fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseError> {
+fn check(parts: &[Part], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseError> {
     let oracle = Oracle::new(parts);
     let regions = BlockingRegions::compute(parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
@@ -91,7 +91,7 @@ fn check(parts: &[PartPieces], random_dirs: &[[i64; 3]]) -> Result<(), TestCaseE
 
 /// Random voxel assemblies: a small grid of unit-scaled cells, each cell a box piece of a
 /// random part (touching everywhere, many coplanar faces, shared edges and vertices).
-fn voxel_assembly() -> impl Strategy<Value = Vec<PartPieces>> {
+fn voxel_assembly() -> impl Strategy<Value = Vec<Part>> {
     (2usize..=4, prop::collection::vec(0usize..6, 12), 1i64..=3)
         .prop_map(|(k, owners, scale)| {
             let mut parts: Vec<Vec<Polytope>> = vec![Vec::new(); k];
@@ -117,7 +117,7 @@ fn voxel_assembly() -> impl Strategy<Value = Vec<PartPieces>> {
 
 /// Random convex pieces in separate cells of a grid (cells of size 4 touching along
 /// planes, pieces reaching cell boundaries often).
-fn polytope_assembly() -> impl Strategy<Value = Vec<PartPieces>> {
+fn polytope_assembly() -> impl Strategy<Value = Vec<Part>> {
     let piece = prop::collection::vec(prop::array::uniform3(0i64..=4), 4..7);
     (prop::collection::vec((0usize..3, piece), 2..5)).prop_filter_map("flat pieces", |cells| {
         let mut parts: Vec<Vec<Polytope>> = vec![Vec::new(); 3];
@@ -129,7 +129,7 @@ fn polytope_assembly() -> impl Strategy<Value = Vec<PartPieces>> {
                 .collect();
             parts[owner].push(Polytope::hull_of_points(&v).ok()?);
         }
-        let parts: Vec<PartPieces> = parts
+        let parts: Vec<Part> = parts
             .into_iter()
             .enumerate()
             .filter(|(_, p)| !p.is_empty())

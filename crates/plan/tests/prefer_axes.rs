@@ -11,7 +11,7 @@ use apart_assembly::{load, LoadOptions};
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use apart_plan::sequence::{Choice, Criterion, Keys};
-use apart_plan::{parts_of, sequence, BlockingRegions, PartPieces, SequenceOptions, Step};
+use apart_plan::{parts_of, sequence, BlockingRegions, Part, SequenceOptions, Step};
 use common::oracle::Oracle;
 use common::{check_plan, cuboid, hull, part};
 use std::path::PathBuf;
@@ -51,7 +51,7 @@ fn free_axes(oracle: &Oracle, step: &Step) -> Vec<Vec3> {
 
 /// What a plan made with `prefer_axes` must satisfy; returns how many steps had a free
 /// axis.
-fn check_axes(parts: &[PartPieces], opts: &SequenceOptions) -> usize {
+fn check_axes(parts: &[Part], opts: &SequenceOptions) -> usize {
     let regions = BlockingRegions::compute(parts).unwrap();
     let plan = sequence(&regions, opts);
     check_plan(parts, &plan);
@@ -77,7 +77,7 @@ fn check_axes(parts: &[PartPieces], opts: &SequenceOptions) -> usize {
 
 /// The explanation agrees with the step, and the runner-up is a real candidate that
 /// loses on the key it names.
-fn check_choice(parts: &[PartPieces], oracle: &Oracle, opts: &SequenceOptions, step: &Step) {
+fn check_choice(parts: &[Part], oracle: &Oracle, opts: &SequenceOptions, step: &Step) {
     let Choice {
         keys,
         candidates,
@@ -144,13 +144,13 @@ fn check_choice(parts: &[PartPieces], oracle: &Oracle, opts: &SequenceOptions, s
     }
 }
 
-fn example(name: &str) -> Vec<PartPieces> {
+fn example(name: &str) -> Vec<Part> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
         .join(name);
     let loaded = load(&dir, &LoadOptions::default()).unwrap();
     assert!(loaded.is_valid(), "{name}: {:?}", loaded.problems);
-    parts_of(&loaded.assembly).unwrap()
+    parts_of(&loaded.assembly).unwrap().to_vec()
 }
 
 #[test]
@@ -271,7 +271,7 @@ fn generated_stacks_of_boxes_and_wedges_move_along_axes_whenever_one_is_free() {
         let k = 3 + rng.below(5) as usize;
         let mut pieces = Vec::new();
         guillotine(&mut rng, [0, 0, 0], [6, 6, 6], k, &mut pieces);
-        let parts: Vec<PartPieces> = pieces
+        let parts: Vec<Part> = pieces
             .into_iter()
             .enumerate()
             .map(|(i, p)| part(&format!("p{i}"), vec![p]))

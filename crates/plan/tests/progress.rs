@@ -9,7 +9,7 @@ mod common;
 use apart_plan::progress::phases;
 use apart_plan::{
     partition_pieces_with, partition_subset, partition_subset_with, sequence, sequence_with,
-    BlockingRegions, CellKind, Options, PartPieces, PlanError, Progress, Sequence, SequenceOptions,
+    BlockingRegions, CellKind, Options, Part, PlanError, Progress, Sequence, SequenceOptions,
     Solution,
 };
 use common::oracle::Oracle;
@@ -82,7 +82,7 @@ fn check_counts(log: &[(&'static str, usize, usize)]) -> Vec<&'static str> {
 /// Replays a plan's steps: each splits a subassembly still open (`check_plan` verifies
 /// each with the oracle); the open subassemblies left, singletons aside, are exactly the
 /// stuck, unsplit and pending ones, and the parts are all accounted for.
-fn check_partial_plan(parts: &[PartPieces], plan: &Sequence) {
+fn check_partial_plan(parts: &[Part], plan: &Sequence) {
     check_plan(parts, plan);
     let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
     for step in &plan.steps {

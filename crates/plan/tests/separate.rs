@@ -7,7 +7,7 @@ use apart_plan::{separate, BlockingRegions};
 use common::oracle::Oracle;
 use std::f64::consts::PI;
 
-fn sep(parts: &[apart_plan::PartPieces], a: usize, b: usize) -> apart_plan::Separation {
+fn sep(parts: &[apart_plan::Part], a: usize, b: usize) -> apart_plan::Separation {
     let regions = BlockingRegions::compute(parts).unwrap();
     let s = separate(&regions, a, b);
     // Every reported direction really separates (oracle).

@@ -3,13 +3,11 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_plan::{
-    sequence, BlockingRegions, CellKind, PartPieces, Sequence, SequenceOptions, Tolerance,
-};
+use apart_plan::{sequence, BlockingRegions, CellKind, Part, Sequence, SequenceOptions, Tolerance};
 use common::check_plan;
 use proptest::prelude::*;
 
-fn plan(parts: &[PartPieces], opts: &SequenceOptions) -> Sequence {
+fn plan(parts: &[Part], opts: &SequenceOptions) -> Sequence {
     let regions = BlockingRegions::compute(parts).unwrap();
     let p = sequence(&regions, opts);
     check_plan(parts, &p);
@@ -218,7 +216,7 @@ proptest! {
             let (x, y, z) = ((c % 3) as i64, ((c / 3) % 2) as i64, (c / 6) as i64);
             parts[o].push(common::cuboid([x, y, z], [x + 1, y + 1, z + 1]));
         }
-        let parts: Vec<PartPieces> =
+        let parts: Vec<Part> =
             parts.into_iter().enumerate().filter(|(_, p)| !p.is_empty()).map(|(i, p)| common::part(&format!("p{i}"), p)).collect();
         prop_assume!(parts.len() >= 2);
         let regions = BlockingRegions::compute(&parts).unwrap();

@@ -18,13 +18,13 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_plan::{
-    partition_subset, BlockingRegions, CellKind, DirectionQuery, Options, PartPieces, Solution,
+    partition_subset, BlockingRegions, CellKind, DirectionQuery, Options, Part, Solution,
 };
 use common::oracle::Oracle;
 use common::{cuboid, part};
 
 /// Two unit cubes: `a` = [0,1]³ and `b` = [0,1]³ + `shift`.
-fn two_cubes(shift: [i64; 3]) -> Vec<PartPieces> {
+fn two_cubes(shift: [i64; 3]) -> Vec<Part> {
     vec![
         part("a", vec![cuboid([0, 0, 0], [1, 1, 1])]),
         part(
@@ -64,7 +64,7 @@ fn around(d: &Vec3) -> Vec<Vec3> {
 /// The oracle's checks above, on every solution, every cell and `dirs`; `step` thins the
 /// directions around a cell (the oracle solves linear programs for pieces that are not
 /// boxes).
-fn check(name: &str, parts: &[PartPieces], dirs: &[Vec3], step: usize) -> Vec<Solution> {
+fn check(name: &str, parts: &[Part], dirs: &[Vec3], step: usize) -> Vec<Solution> {
     let oracle = Oracle::new(parts);
     let regions = BlockingRegions::compute(parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();

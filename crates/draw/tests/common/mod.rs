@@ -8,7 +8,7 @@ pub mod plan_common;
 use apart_assembly::{load, Assembly, LoadOptions, Part};
 use apart_draw::colors::Rgb;
 use apart_kernel::Grid;
-use apart_plan::{parts_of, sequence, BlockingRegions, PartPieces, Sequence, SequenceOptions};
+use apart_plan::{parts_of, sequence, BlockingRegions, Sequence, SequenceOptions};
 use resvg::tiny_skia::Pixmap;
 use std::path::PathBuf;
 
@@ -23,15 +23,12 @@ pub fn example(name: &str) -> Assembly {
 }
 
 /// An assembly of parts given only by convex pieces (no meshes), on the unit grid.
-pub fn assembly_of(name: &str, parts: Vec<PartPieces>) -> Assembly {
+pub fn assembly_of(name: &str, parts: Vec<Part>) -> Assembly {
     Assembly {
         name: name.into(),
         grid: Grid::unit(30),
         max_snap_displacement: 0.0,
-        parts: parts
-            .into_iter()
-            .map(|p| Part::from_pieces(p.name, p.pieces))
-            .collect(),
+        parts,
         tolerance: None,
     }
 }
@@ -39,7 +36,7 @@ pub fn assembly_of(name: &str, parts: Vec<PartPieces>) -> Assembly {
 /// A 20-part assembly: four rows of five stepped bricks (each brick a slab with a
 /// second slab on top, shifted by half a brick, so that neighbours in a row interlock),
 /// the rows side by side along y.
-pub fn brick_rows() -> Vec<PartPieces> {
+pub fn brick_rows() -> Vec<Part> {
     use plan_common::{cuboid, part};
     let mut parts = Vec::new();
     for row in 0..4i64 {

@@ -6,11 +6,11 @@ pub mod oracle;
 
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
-use apart_plan::{PartPieces, Sequence};
+use apart_plan::{Part, Sequence};
 
 /// Unit cubes on an `n × n × n` lattice spaced `1 + gap` (0: a touching block; 1:
 /// channels exactly one cube wide, so many sliding arcs and isolated directions).
-pub fn lattice(n: i64, gap: i64) -> Vec<PartPieces> {
+pub fn lattice(n: i64, gap: i64) -> Vec<Part> {
     let s = 1 + gap;
     let mut parts = Vec::new();
     for x in 0..n {
@@ -38,11 +38,8 @@ pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
     Polytope::cuboid(lo, hi).unwrap()
 }
 
-pub fn part(name: &str, pieces: Vec<Polytope>) -> PartPieces {
-    PartPieces {
-        name: name.to_string(),
-        pieces,
-    }
+pub fn part(name: &str, pieces: Vec<Polytope>) -> Part {
+    Part::from_pieces(name, pieces)
 }
 
 /// The Split Star (Coffin), decomposed into two square pyramids and an octahedron per
@@ -50,7 +47,7 @@ pub fn part(name: &str, pieces: Vec<Polytope>) -> PartPieces {
 /// (0,0,0) (0,0,2); green = red with z -> -z; blue = red under (x,y,z) -> (z,x,y);
 /// purple = blue with x -> -x; yellow = red under (x,y,z) -> (y,z,x); turquoise = yellow
 /// with y -> -y.
-pub fn split_star() -> Vec<PartPieces> {
+pub fn split_star() -> Vec<Part> {
     let red: Vec<Vec<[i64; 3]>> = vec![
         vec![[-1, -1, 1], [-2, 0, 2], [-2, 0, 0], [-1, 1, 1], [0, 0, 2]],
         vec![[1, -1, 1], [2, 0, 0], [2, 0, 2], [1, 1, 1], [0, 0, 2]],
@@ -93,7 +90,7 @@ pub fn split_star() -> Vec<PartPieces> {
 }
 
 /// Two unit cubes, `bottom` under `top`.
-pub fn stacked_cubes() -> Vec<PartPieces> {
+pub fn stacked_cubes() -> Vec<Part> {
     vec![
         part("bottom", vec![cuboid([0, 0, 0], [1, 1, 1])]),
         part("top", vec![cuboid([0, 0, 1], [1, 1, 2])]),
@@ -101,7 +98,7 @@ pub fn stacked_cubes() -> Vec<PartPieces> {
 }
 
 /// Four unit cubes in a row along x, each touching the next (paper 003, fig. 2).
-pub fn cubes_in_a_row(n: i64) -> Vec<PartPieces> {
+pub fn cubes_in_a_row(n: i64) -> Vec<Part> {
     (0..n)
         .map(|i| part(&format!("c{i}"), vec![cuboid([i, 0, 0], [i + 1, 1, 1])]))
         .collect()
@@ -109,7 +106,7 @@ pub fn cubes_in_a_row(n: i64) -> Vec<PartPieces> {
 
 /// A dovetail: a slot part (base, two overhanging sides, an end wall at x = -1..0) and a
 /// trapezoidal tenon, wider at the bottom, sliding along x out of the open end x = 10.
-pub fn dovetail() -> Vec<PartPieces> {
+pub fn dovetail() -> Vec<Part> {
     let prism = |yz: &[[i64; 2]], x0: i64, x1: i64| -> Polytope {
         let pts: Vec<[i64; 3]> = yz
             .iter()
@@ -128,7 +125,7 @@ pub fn dovetail() -> Vec<PartPieces> {
 }
 
 /// A peg in a blind hole whose floor and four walls are separate pieces.
-pub fn peg_in_hole() -> Vec<PartPieces> {
+pub fn peg_in_hole() -> Vec<Part> {
     let block = vec![
         cuboid([-3, -3, 0], [3, 3, 1]),  // floor
         cuboid([-3, -3, 1], [-1, 3, 4]), // wall x-
@@ -141,7 +138,7 @@ pub fn peg_in_hole() -> Vec<PartPieces> {
 }
 
 /// Two square rings of four bars each, linked like chain links.
-pub fn linked_rings() -> Vec<PartPieces> {
+pub fn linked_rings() -> Vec<Part> {
     let a = vec![
         cuboid([0, 0, 0], [6, 1, 1]),
         cuboid([0, 0, 5], [6, 1, 6]),
@@ -195,7 +192,7 @@ pub fn cap_directions(u: &[f64; 3], r: f64) -> Vec<Vec3> {
 /// Checks every step: the moving side is free along the direction against the rest of
 /// its subassembly (oracle), it is a proper non-empty subset, the steps split exactly the
 /// subassemblies the tree produces, and a complete plan ends with single parts.
-pub fn check_plan(parts: &[PartPieces], plan: &Sequence) {
+pub fn check_plan(parts: &[Part], plan: &Sequence) {
     let oracle = oracle::Oracle::new(parts);
     let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
     for step in &plan.steps {

@@ -8,7 +8,7 @@
 
 use apart_kernel::{Int, Rational, Vec3};
 use apart_pieces::Polytope;
-use apart_plan::{Dbg, PartPieces};
+use apart_plan::{Dbg, Part};
 
 fn bounds(p: &Polytope) -> ([Int; 3], [Int; 3]) {
     let lo = [0, 1, 2].map(|k| p.vertices().iter().map(|v| v.get(k)).min().unwrap());
@@ -214,7 +214,7 @@ pub struct Oracle {
 }
 
 impl Oracle {
-    pub fn new(parts: &[PartPieces]) -> Oracle {
+    pub fn new(parts: &[Part]) -> Oracle {
         let n = parts.len();
         let pairs = (0..n)
             .map(|i| {
