@@ -329,7 +329,7 @@ fn a_bolted_joint_of_five_differently_tessellated_parts_comes_apart_along_its_ax
     let loaded = load_with(&dir, Tolerance::Auto);
     assert!(loaded.is_valid(), "{:#?}", loaded.problems);
     let parts = parts_of(&loaded.assembly).unwrap();
-    let regions = BlockingRegions::compute(&parts).unwrap();
+    let regions = BlockingRegions::compute(parts).unwrap();
     let base = parts.iter().position(|p| p.name == "bolt");
     let plan = sequence(
         &regions,

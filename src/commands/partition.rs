@@ -191,14 +191,14 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     }
     if let Some(d) = &args.direction {
         // One direction: per-piece-pair tests only, no motion-space arrangement.
-        return direction(global, &loaded, &parts, d, load_seconds);
+        return direction(global, &loaded, parts, d, load_seconds);
     }
     let pictures = args.svg.is_some() || args.png.is_some();
     if args.first && !pictures {
         // Likely directions first; the full computation only when none separates.
         let p = {
             let _phase = output::phase(global, "first solution");
-            partition_first(&parts)?
+            partition_first(parts)?
         };
         report(&p, &loaded, args, global, load_seconds, &None)?;
         return Ok(if p.interlocked {
@@ -209,7 +209,7 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     }
     let regions = {
         let (_phase, progress) = output::planner(global, "pair regions");
-        match BlockingRegions::compute_with(&parts, &progress) {
+        match BlockingRegions::compute_with(parts, &progress) {
             Ok(r) => Some(r),
             Err(PlanError::Stopped { .. }) => None,
             Err(e) => return Err(e.into()),

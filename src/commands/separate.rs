@@ -106,7 +106,7 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(a != b, "the two parts must differ");
     let regions = {
         let _phase = output::phase(global, "pair regions");
-        BlockingRegions::compute(&parts_of(asm)?)?
+        BlockingRegions::compute(parts_of(asm)?)?
     };
     let s = {
         let _phase = output::phase(global, "separation");

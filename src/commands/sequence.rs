@@ -190,7 +190,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let t = Instant::now();
     let regions = {
         let (_phase, progress) = output::planner(global, "pair regions");
-        match BlockingRegions::compute_with(&parts_of(asm)?, &progress) {
+        match BlockingRegions::compute_with(parts_of(asm)?, &progress) {
             Ok(r) => Some(r),
             Err(PlanError::Stopped { .. }) => None,
             Err(e) => return Err(e.into()),

@@ -26,7 +26,7 @@ fn main() {
         loaded.assembly
     };
     let a = &assembly;
-    let regions = BlockingRegions::compute(&parts_of(a).unwrap()).unwrap();
+    let regions = BlockingRegions::compute(parts_of(a).unwrap()).unwrap();
     // Every step keeps its solutions, for its sphere pictures.
     let opts = SequenceOptions {
         keep_solutions: KeepSolutions::EveryStep,

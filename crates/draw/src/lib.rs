@@ -32,7 +32,7 @@
 //! use apart_plan::SequenceOptions;
 //! let loaded = load(std::path::Path::new("examples/split-star-3"), &LoadOptions::default()).unwrap();
 //! let assembly = &loaded.assembly;
-//! let regions = BlockingRegions::compute(&parts_of(assembly).unwrap()).unwrap();
+//! let regions = BlockingRegions::compute(parts_of(assembly).unwrap()).unwrap();
 //! // The first step keeps its solutions, for its sphere picture.
 //! let opts = SequenceOptions { keep_solutions: KeepSolutions::Step(0), ..Default::default() };
 //! let plan = sequence(&regions, &opts);

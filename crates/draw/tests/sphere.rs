@@ -18,7 +18,7 @@ use resvg::tiny_skia::Pixmap;
 
 /// The shared regions and the default plan, every step keeping its solutions to draw.
 fn plan(a: &Assembly) -> (BlockingRegions, Sequence) {
-    let regions = BlockingRegions::compute(&apart_plan::parts_of(a).unwrap()).unwrap();
+    let regions = BlockingRegions::compute(apart_plan::parts_of(a).unwrap()).unwrap();
     let opts = SequenceOptions {
         keep_solutions: KeepSolutions::EveryStep,
         ..Default::default()

@@ -65,15 +65,15 @@ fn main() {
             .sum();
         reset_peak();
         let t = Instant::now();
-        let q = DirectionQuery::new(&pieces).unwrap();
+        let q = DirectionQuery::new(pieces).unwrap();
         let a = q.answer(&apart_kernel::Vec3::new(0, 0, 1)).unwrap();
         let one = t.elapsed().as_secs_f64();
         eprintln!("{case}: +z query work {:?}", q.stats());
         let t = Instant::now();
-        let f = partition_first(&pieces).unwrap();
+        let f = partition_first(pieces).unwrap();
         let first = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let regions = BlockingRegions::compute(&pieces).unwrap();
+        let regions = BlockingRegions::compute(pieces).unwrap();
         eprintln!("{case}: regions {:?}", regions.stats);
         let everything: Vec<usize> = (0..pieces.len()).collect();
         let full = partition_subset(&regions, &everything, &Options::default()).0;

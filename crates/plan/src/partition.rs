@@ -157,7 +157,7 @@ pub fn partition(
     assembly: &apart_assembly::Assembly,
     opts: &Options,
 ) -> Result<Partitioning, PlanError> {
-    partition_pieces(&crate::regions::parts_of(assembly)?, opts)
+    partition_pieces(crate::regions::parts_of(assembly)?, opts)
 }
 
 /// Partitions an assembly given as convex pieces per part.

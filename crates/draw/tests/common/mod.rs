@@ -56,7 +56,7 @@ pub fn brick_rows() -> Vec<Part> {
 
 /// The shared regions and the default plan of an assembly.
 pub fn plan(assembly: &Assembly) -> (BlockingRegions, Sequence) {
-    let regions = BlockingRegions::compute(&parts_of(assembly).unwrap()).unwrap();
+    let regions = BlockingRegions::compute(parts_of(assembly).unwrap()).unwrap();
     let plan = sequence(&regions, &SequenceOptions::default());
     (regions, plan)
 }
