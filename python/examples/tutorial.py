@@ -30,7 +30,8 @@ for s in motions:
 hinge = apart.load(examples / "hinge")
 plan = hinge.sequence(prefer_single=True)
 for step in plan:
-    print(f"  step {step.index + 1}: {', '.join(step.moving)} leave "
+    verb = "leaves" if len(step.moving) == 1 else "leave"
+    print(f"  step {step.index + 1}: {', '.join(step.moving)} {verb} "
           f"{', '.join(step.staying)} along {step.exact_direction}")
 
 

@@ -207,6 +207,7 @@ impl Assembly {
     /// Every solution (`apart partition --json`), the first one only, or one direction's
     /// blocking graph, as JSON text.
     #[pyo3(signature = (*, first, direction, max_solutions, max_per_set, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
     fn partition_json(
         &self,
         py: Python<'_>,
