@@ -233,7 +233,8 @@ impl Assembly {
         let limits = Limits {
             callback: progress,
             timeout,
-            stoppable: true,
+            // The first solution and one direction's graph watch no stop flag.
+            stoppable: !first && d.is_none(),
         };
         let (answer, stop) = run(py, limits, move |p| {
             answers::partition(&loaded, units.as_deref(), d, &opts, p)

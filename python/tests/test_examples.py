@@ -4,6 +4,8 @@ answers."""
 from __future__ import annotations
 
 import itertools
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -170,3 +172,21 @@ def test_results_read_well(star):
     d = p.to_dict()
     d["solutions"].clear()
     assert len(p.to_dict()["solutions"]) == 8  # to_dict is a copy
+
+
+def test_the_readme_example_prints_the_eight_motions():
+    readme = (EXAMPLES.parent / "README.md").read_text()
+    section = readme[readme.index("## Python"):]
+    code = section[section.index("```python\n") + 10:]
+    code = code[:code.index("```")]
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       cwd=EXAMPLES.parent, timeout=300)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert len(lines) == 8
+    seen = set()
+    for line in lines:
+        parts, direction = line.split(" move along ")
+        assert len(parts.split(", ")) == 3
+        seen.add(tuple(int(c) for c in direction.strip("()").split(", ")))
+    assert seen == set(itertools.product((1, -1), repeat=3))
