@@ -12,7 +12,7 @@ geometry is the Rust library's, called through the compiled module ``apart._apar
 ...     print(s.moving, s.exact_direction)
 """
 
-from ._core import UNITS, Assembly, load, separate
+from ._core import UNITS, Assembly, load, separate, stack
 from ._errors import (
     ApartError,
     InputError,
@@ -31,6 +31,8 @@ from ._results import (
     Separation,
     Sequence,
     Solution,
+    Placement,
+    StackPlan,
     Step,
 )
 
@@ -40,6 +42,7 @@ __all__ = [
     "Assembly",
     "load",
     "separate",
+    "stack",
     "UNITS",
     "ApartError",
     "InputError",
@@ -57,4 +60,6 @@ __all__ = [
     "Sequence",
     "Solution",
     "Step",
+    "Placement",
+    "StackPlan",
 ]

@@ -61,6 +61,25 @@ class Assembly:
     ) -> str:
         """Every direction along which part ``a`` leaves part ``b``, as JSON."""
 
+    def stack_json(
+        self,
+        part: str,
+        *,
+        count: int,
+        weight: float,
+        floor: Optional[Sequence[float]],
+        floor_z: float,
+        max_height: Optional[float],
+        dtheta: float,
+        bases: Optional[List[Tuple[int, int]]],
+        clearance: Optional[float],
+        max_candidates: int,
+        extrapolate: bool,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """A stack of copies of ``part`` on a floor (``apart stack --json``)."""
+
 def load(
     path: str,
     *,
@@ -74,8 +93,10 @@ def load(
     units: Optional[str],
     progress: Optional[ProgressCallback],
     timeout: Optional[float],
+    decompose_all: bool = False,
 ) -> Assembly:
-    """Loads a folder, a mesh file or an ``assembly.json`` manifest."""
+    """Loads a folder, a mesh file or an ``assembly.json`` manifest (``decompose_all``:
+    every non-convex part decomposed, also a single one)."""
 
 def from_meshes(
     name: str,

@@ -12,7 +12,8 @@ import numpy as np
 
 from . import _apart
 from ._errors import InputError
-from ._results import CheckReport, DirectionAnswer, Partition, Problem, Separation, Sequence
+from ._results import (CheckReport, DirectionAnswer, Partition, Problem, Separation, Sequence,
+                       StackPlan)
 
 ProgressArg = Union[None, bool, Callable[[str, int, int], Any]]
 PathLike = Union[str, "os.PathLike[str]"]
@@ -362,11 +363,89 @@ class Assembly:
                               timeout=_timeout(timeout)))
         return Separation(raw)
 
+    def stack(self, part: Optional[str] = None, count: int = 10, *, weight: float = 0.5,
+              floor: Optional[Seq[float]] = None, floor_z: float = 0.0,
+              max_height: Optional[float] = None, dtheta: float = 90.0,
+              bases: Optional[Seq[Tuple[float, float]]] = None,
+              clearance: Optional[float] = None, max_candidates: int = 500,
+              extrapolate: bool = True, progress: ProgressArg = None,
+              timeout: Optional[float] = None) -> StackPlan:
+        """Stacks ``count`` copies of ``part`` (the only part when None) on a floor
+        (``apart stack``): ``weight`` in [0, 1] of eq. (1), ``floor=(x0, y0, x1, y1)``
+        (default: a square sized for the count), ``floor_z``, ``max_height``,
+        ``dtheta`` (degrees, 0.1 to 360), ``bases`` as (phi, psi) quarter turns in
+        degrees, ``clearance`` between parts, ``max_candidates`` per part (1 to
+        100000), ``extrapolate`` obstacles between orientations."""
+        if part is None:
+            if len(self.parts) != 1:
+                raise InputError(f"{self.name!r} holds {len(self.parts)} parts; name the one to stack")
+            part = self.parts[0]
+        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
+            raise InputError(f"count must be an integer from 1 to 1000, not {count!r}")
+        if isinstance(max_candidates, bool) or not isinstance(max_candidates, int) or not 1 <= max_candidates <= 100000:
+            raise InputError(f"max_candidates must be an integer from 1 to 100000, not {max_candidates!r}")
+        weight, floor_z, dtheta = _number(weight, "weight"), _number(floor_z, "floor_z"), _number(dtheta, "dtheta")
+        if not 0 <= weight <= 1:
+            raise InputError(f"weight must be in [0, 1], not {weight!r}")
+        if not 0.1 <= dtheta <= 360:
+            raise InputError(f"dtheta must be from 0.1 to 360 degrees, not {dtheta!r}")
+        f = None
+        if floor is not None:
+            f = [_number(x, "floor") for x in floor]
+            if len(f) != 4 or not (f[0] < f[2] and f[1] < f[3]):
+                raise InputError(f"floor must be (x0, y0, x1, y1) with x0 < x1 and y0 < y1, not {floor!r}")
+        if max_height is not None and not _number(max_height, "max_height") > 0:
+            raise InputError(f"max_height must be a positive length, not {max_height!r}")
+        if clearance is not None and not _number(clearance, "clearance") >= 0:
+            raise InputError(f"clearance must be 0 or more, not {clearance!r}")
+        quarters = None
+        if bases is not None:
+            quarters = []
+            for b in bases:
+                phi, psi = (_number(x, "bases") for x in b)
+                if phi % 90 or psi % 90:
+                    raise InputError(f"bases: angles must be multiples of 90 degrees, not {b!r}")
+                quarters.append((int(phi // 90) % 4, int(psi // 90) % 4))
+        raw = json.loads(_run(self._inner.stack_json, progress, part=str(part), count=count,
+                              weight=weight, floor=f, floor_z=floor_z,
+                              max_height=None if max_height is None else float(max_height),
+                              dtheta=dtheta, bases=quarters,
+                              clearance=None if clearance is None else float(clearance),
+                              max_candidates=max_candidates, extrapolate=bool(extrapolate),
+                              timeout=_timeout(timeout)))
+        return StackPlan(raw)
+
     def __repr__(self) -> str:
         state = "valid" if self.valid else "invalid"
         parts = self.parts
         shown = ", ".join(repr(p) for p in parts[:6]) + (", ..." if len(parts) > 6 else "")
         return f"<Assembly {self.name!r}: {len(parts)} parts ({shown}), {state}>"
+
+
+def _number(v: Any, what: str) -> float:
+    """A finite float, or InputError naming ``what``."""
+    if isinstance(v, bool):
+        raise InputError(f"{what} must be a number, not {v!r}")
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, not {v!r}") from None
+    if not np.isfinite(x):
+        raise InputError(f"{what} must be a finite number, not {v!r}")
+    return x
+
+
+def stack(part: Union[PathLike, Assembly], count: int = 10, *, part_name: Optional[str] = None,
+          strict: bool = False, grid_bits: Optional[int] = None, **options: Any) -> StackPlan:
+    """Stacks ``count`` copies of a part on a floor (``apart stack PART``): ``part`` is a
+    mesh file (or folder, with ``part_name``) or an :class:`Assembly`; the options are
+    :meth:`Assembly.stack`'s."""
+    if not isinstance(part, Assembly):
+        opts = _load_options(None, None, grid_bits, strict, False, False)
+        inner = _apart.load(os.fspath(part), allow_outside=False, progress=None, timeout=None,
+                            decompose_all=True, **opts)
+        part = Assembly._wrap(inner)
+    return part.stack(part_name, count, **options)
 
 
 def separate(assembly: Assembly, a: str, b: str, **options: Any) -> Separation:

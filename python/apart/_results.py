@@ -4,6 +4,7 @@ the command line's ``--json`` output, and gives it back with ``to_dict()``."""
 from __future__ import annotations
 
 import copy
+from fractions import Fraction
 from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 import numpy as np
@@ -423,3 +424,76 @@ class Separation(_Facts):
                 f"{len(self.regions)} regions, {len(self.sliding)} sliding arcs, "
                 f"{len(self.isolated)} isolated, best "
                 f"{_fmt_dir(self.best_exact_direction) if self.best_exact_direction else '-'}>")
+
+
+class Placement(_Answer):
+    """One part of a stack: where it went (translation, exact as fractions of input
+    units), its orientation and what it rests on."""
+
+    index: int
+    translation: np.ndarray
+    exact_translation: Tuple[Fraction, Fraction, Fraction]
+    rotation_deg: np.ndarray
+    cost: float
+    stage: int
+    contacts: List[Dict[str, Any]]
+
+    @classmethod
+    def _from(cls, d: Dict[str, Any]) -> "Placement":
+        p = cls()
+        p._raw = d
+        p.index = d["index"]
+        p.translation = _vec(d["translation"])
+        x, y, z = (Fraction(s) for s in d["exact_translation"])
+        p.exact_translation = (x, y, z)
+        p.rotation_deg = _vec(d["rotation_deg"])
+        p.cost = d["cost"]
+        p.stage = d["stage"]
+        p.contacts = d["contacts"]
+        return p
+
+    def __repr__(self) -> str:
+        t = ", ".join(f"{c:g}" for c in self.translation)
+        r = ", ".join(f"{c:g}" for c in self.rotation_deg)
+        return f"<Placement {self.index}: at ({t}), rotated ({r})°>"
+
+
+class StackPlan(_Answer):
+    """A stack of identical parts on a floor (``apart stack``): each placed by the exact
+    placement engine, stable, grippable from above and lowerable along -z. Iterating
+    gives the placements in order."""
+
+    status: str
+    part: str
+    count: int
+    complete: bool
+    placements: List[Placement]
+    stack_height: float
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self._raw = raw
+        self.status = raw["status"]
+        self.part = raw["part"]
+        self.count = raw["count"]
+        self.complete = raw["complete"]
+        self.placements = [Placement._from(p) for p in raw["placements"]]
+        self.stack_height = raw["stack_height"]
+
+    @property
+    def stopped(self) -> Optional[Dict[str, Any]]:
+        """Why and when a partial stack stopped (None when it ran to its end)."""
+        return self._raw.get("stopped")
+
+    def __iter__(self) -> Iterator[Placement]:
+        return iter(self.placements)
+
+    def __len__(self) -> int:
+        return len(self.placements)
+
+    def __getitem__(self, k: int) -> Placement:
+        return self.placements[k]
+
+    def __repr__(self) -> str:
+        state = "complete" if self.complete else f"incomplete ({self.status})"
+        return (f"<StackPlan of {self.part!r}: {len(self.placements)} of {self.count} "
+                f"placed, height {self.stack_height:g}, {state}>")

@@ -566,3 +566,134 @@ pub fn separate(
     });
     Ok(Some(with_facts(v, loaded, units)))
 }
+
+/// The stacker's options, in input units (checked by the Python side for their ranges).
+pub struct StackArgs {
+    /// The part to stack (index in the assembly).
+    pub part: usize,
+    /// Parts to place.
+    pub count: usize,
+    /// Weight of eq. (1), in [0, 1].
+    pub weight: f64,
+    /// Floor region x0, y0, x1, y1 (`None`: a square around the origin sized for the
+    /// count, as the command line chooses it).
+    pub floor: Option<[f64; 4]>,
+    /// Height of the floor.
+    pub floor_z: f64,
+    /// Highest top of the stack (`None`: the part's height times the count).
+    pub max_height: Option<f64>,
+    /// Step of the rotations about z, in degrees.
+    pub dtheta: f64,
+    /// Base orientations as quarter turns about x and y (`None`: the library's).
+    pub bases: Option<Vec<(u8, u8)>>,
+    /// Clearance between parts.
+    pub clearance: Option<f64>,
+    /// Candidates examined per part at most.
+    pub max_candidates: usize,
+    /// Reuse obstacles between orientations.
+    pub extrapolate: bool,
+}
+
+/// An exact rational of input units from a float (`what` names it in the error).
+fn grid_value(v: f64, h: f64, what: &str) -> Result<apart_kernel::Rational, String> {
+    apart_kernel::Rational::from_f64(v / h)
+        .ok_or_else(|| format!("{what} {v} is not a finite number"))
+}
+
+/// A stack of identical parts on a floor (`apart stack --json`). A run stopped by the
+/// flag has `"status": "stopped"`.
+pub fn stack(loaded: &Loaded, args: &StackArgs, progress: &Progress) -> Result<Value, String> {
+    use apart_kernel::Rational;
+    use apart_stack::orientation::{Base, Orientation};
+    use apart_stack::planner::{stack_with, StackOptions};
+    use apart_stack::stability::ContactWith;
+    let asm = &loaded.assembly;
+    let h = asm.grid.step();
+    let p = &asm.parts[args.part];
+    let mut part = apart_stack::part::PartModel::from_pieces(&p.name, p.pieces.clone())
+        .map_err(|e| format!("part \"{}\": {e}", p.name))?;
+    part.mesh = p.mesh.as_ref().map(|m| {
+        (
+            m.vertices.iter().map(|&v| Vec3::from(v)).collect(),
+            m.triangles.clone(),
+        )
+    });
+    let extent = part.orient(&Orientation::IDENTITY).extent;
+    let size = |i: usize| (&extent.max[i] - &extent.min[i]).to_f64() * h;
+    let floor = args.floor.unwrap_or_else(|| {
+        let side = (args.count as f64).sqrt().ceil() * size(0).max(size(1)) * 1.25;
+        let half = side / 2.0;
+        [-half, -half, half, half]
+    });
+    let weight = Rational::from_f64(args.weight).ok_or("weight is not a finite number")?;
+    let max_height = match args.max_height {
+        Some(m) => grid_value(m, h, "max_height")?,
+        None => {
+            let height = &extent.max[2] - &extent.min[2];
+            &height * &Rational::from(args.count as i64)
+        }
+    };
+    let mut opts = StackOptions::new(
+        args.count,
+        weight,
+        [
+            grid_value(floor[0], h, "floor")?,
+            grid_value(floor[1], h, "floor")?,
+            grid_value(floor[2], h, "floor")?,
+            grid_value(floor[3], h, "floor")?,
+        ],
+        max_height,
+    );
+    opts.floor_z = grid_value(args.floor_z, h, "floor_z")?;
+    opts.dtheta_deg = args.dtheta;
+    if let Some(bases) = &args.bases {
+        opts.bases = bases.iter().map(|&(phi, psi)| Base { phi, psi }).collect();
+    }
+    opts.clearance = args
+        .clearance
+        .map(|c| grid_value(c, h, "clearance"))
+        .transpose()?;
+    opts.max_candidates = args.max_candidates;
+    opts.extrapolate = args.extrapolate;
+    let plan = stack_with(&part, &opts, progress).map_err(|e| e.to_string())?;
+    let units = |v: &Rational| v.to_f64() * h;
+    let step = Rational::from_f64(h).ok_or("the grid step is not finite")?;
+    let exact = |v: &Rational| (v * &step).to_string();
+    let placements: Vec<Value> = plan
+        .placements
+        .iter()
+        .map(|q| {
+            let t = &q.orientation.theta;
+            json!({
+                "index": q.index,
+                "translation": q.translation.clone().map(|v| units(&v)),
+                "exact_translation": q.translation.clone().map(|v| exact(&v)),
+                "rotation_deg": q.orientation.degrees(),
+                "exact_rotation": [format!("{}/{}", t.a, t.c), format!("{}/{}", t.b, t.c)],
+                "cost": q.cost.to_f64() * h * h,
+                "stage": q.stage,
+                "examined": q.examined,
+                "contacts": q.contacts.iter().map(|c| json!({
+                    "with": match c.with {
+                        ContactWith::Floor => json!("floor"),
+                        ContactWith::Part(k) => json!(k),
+                    },
+                    "supports": c.supports,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    Ok(json!({
+        "status": if plan.stopped { "stopped" } else { "done" },
+        "part": p.name,
+        "count": args.count,
+        "complete": plan.complete,
+        "placements": placements,
+        "stack_height": units(&plan.stack_height),
+        "grid_step": h,
+        "unstable": plan.stats.unstable,
+        "not_lowerable": plan.stats.not_lowerable,
+        "orientations": plan.stats.orientations,
+        "seconds": plan.stats.seconds,
+    }))
+}

@@ -39,6 +39,7 @@ struct LoadArgs {
     one_part_per_file: bool,
     allow_outside: bool,
     verify: bool,
+    decompose_all: bool,
 }
 
 impl LoadArgs {
@@ -57,7 +58,11 @@ impl LoadArgs {
             progress: Some(Arc::new(move |s: apart_assembly::Progress| {
                 p.report(stage_label(s.stage), s.done, s.total);
             })),
-            decompose: Decompose::WhenNeeded,
+            decompose: if self.decompose_all {
+                Decompose::Always
+            } else {
+                Decompose::WhenNeeded
+            },
             verify: self.verify,
             tolerance,
             repair: !self.strict,
@@ -80,7 +85,7 @@ fn stage_label(s: apart_assembly::Stage) -> &'static str {
 
 /// Loads a folder, a mesh file or an `assembly.json` manifest.
 #[pyfunction]
-#[pyo3(signature = (path, *, grid_bits, tolerance, tolerance_auto, strict, one_part_per_file, allow_outside, verify, units, progress, timeout))]
+#[pyo3(signature = (path, *, grid_bits, tolerance, tolerance_auto, strict, one_part_per_file, allow_outside, verify, units, progress, timeout, decompose_all=false))]
 #[allow(clippy::too_many_arguments)]
 fn load(
     py: Python<'_>,
@@ -95,6 +100,7 @@ fn load(
     units: Option<String>,
     progress: Option<Py<PyAny>>,
     timeout: Option<f64>,
+    decompose_all: bool,
 ) -> PyResult<Assembly> {
     let args = LoadArgs {
         grid_bits,
@@ -104,6 +110,7 @@ fn load(
         one_part_per_file,
         allow_outside,
         verify,
+        decompose_all,
     };
     let limits = Limits {
         callback: progress,
@@ -153,6 +160,7 @@ fn from_meshes(
         one_part_per_file,
         allow_outside: false,
         verify,
+        decompose_all: false,
     };
     let limits = Limits {
         callback: progress,
@@ -340,6 +348,60 @@ impl Assembly {
             // Separation has no partial answer: a stop ends it with no result.
             (_, stop) => Err(errors::stopped(py, stop)),
         }
+    }
+
+    /// A stack of copies of part `part` on a floor (`apart stack --json`), as JSON
+    /// text; the options are in input units, their ranges checked by the caller.
+    #[pyo3(signature = (part, *, count, weight, floor, floor_z, max_height, dtheta, bases, clearance, max_candidates, extrapolate, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn stack_json(
+        &self,
+        py: Python<'_>,
+        part: String,
+        count: usize,
+        weight: f64,
+        floor: Option<[f64; 4]>,
+        floor_z: f64,
+        max_height: Option<f64>,
+        dtheta: f64,
+        bases: Option<Vec<(u8, u8)>>,
+        clearance: Option<f64>,
+        max_candidates: usize,
+        extrapolate: bool,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let k = errors::part_index(py, &self.loaded.assembly, &part)?;
+        if self.loaded.assembly.parts[k].pieces.is_empty() {
+            return Err(errors::value_error(
+                py,
+                format!("part \"{part}\" has no convex pieces: load it with apart.stack(path) or apart.load(path) with two parts or more"),
+            ));
+        }
+        let args = answers::StackArgs {
+            part: k,
+            count,
+            weight,
+            floor,
+            floor_z,
+            max_height,
+            dtheta,
+            bases,
+            clearance,
+            max_candidates,
+            extrapolate,
+        };
+        let loaded = self.loaded.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| answers::stack(&loaded, &args, p))?;
+        let mut answer = answer.map_err(|m| errors::value_error(py, m))?;
+        work::mark(&mut answer, &stop);
+        Ok(answer.to_string())
     }
 }
 
