@@ -1,0 +1,116 @@
+"""The compiled half of apart (Rust, pyo3): loading and planning, answers as JSON text
+with the command line's ``--json`` fields. Use the package ``apart`` instead: it checks
+arguments and wraps the answers in typed objects."""
+
+from typing import Callable, List, Optional, Sequence, Tuple
+
+ProgressCallback = Callable[[str, int, int], object]
+
+#: The default bits of a snapped coordinate.
+DEFAULT_GRID_BITS: int
+#: The bits of a snapped coordinate the grid supports (lowest, highest).
+GRID_BITS_RANGE: Tuple[int, int]
+
+class Assembly:
+    """A loaded assembly (parts snapped to one grid, every problem found)."""
+
+    @property
+    def name(self) -> str:
+        """The assembly's name."""
+    @property
+    def names(self) -> List[str]:
+        """The part names, in order."""
+    @property
+    def valid(self) -> bool:
+        """True when no problem found while loading is an error."""
+    def check_json(self) -> str:
+        """The check report (``apart check --json``)."""
+    def require_valid(self) -> None:
+        """Raises ``InvalidAssemblyError`` when loading found errors."""
+    def partition_json(
+        self,
+        *,
+        first: bool,
+        direction: Optional[Sequence[float]],
+        max_solutions: Optional[int],
+        max_per_set: Optional[int],
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """Every solution, the first, or one direction's blocking graph, as JSON."""
+    def sequence_json(
+        self,
+        *,
+        base: Optional[str],
+        prefer_single: bool,
+        prefer_connected: bool,
+        prefer_axes: bool,
+        max_depth: Optional[int],
+        growth: bool,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """A disassembly plan, as JSON."""
+    def separate_json(
+        self,
+        a: str,
+        b: str,
+        *,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """Every direction along which part ``a`` leaves part ``b``, as JSON."""
+
+    def stack_json(
+        self,
+        part: str,
+        *,
+        count: int,
+        weight: float,
+        floor: Optional[Sequence[float]],
+        floor_z: float,
+        max_height: Optional[float],
+        dtheta: float,
+        bases: Optional[List[Tuple[int, int]]],
+        clearance: Optional[float],
+        max_candidates: int,
+        extrapolate: bool,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """A stack of copies of ``part`` on a floor (``apart stack --json``)."""
+
+def load(
+    path: str,
+    *,
+    grid_bits: int,
+    tolerance: Optional[float],
+    tolerance_auto: bool,
+    strict: bool,
+    one_part_per_file: bool,
+    allow_outside: bool,
+    verify: bool,
+    units: Optional[str],
+    progress: Optional[ProgressCallback],
+    timeout: Optional[float],
+    decompose_all: bool = False,
+) -> Assembly:
+    """Loads a folder, a mesh file or an ``assembly.json`` manifest (``decompose_all``:
+    every non-convex part decomposed, also a single one)."""
+
+def from_meshes(
+    name: str,
+    parts: List[Tuple[str, bytes, bytes]],
+    *,
+    grid_bits: int,
+    tolerance: Optional[float],
+    tolerance_auto: bool,
+    strict: bool,
+    one_part_per_file: bool,
+    verify: bool,
+    units: Optional[str],
+    progress: Optional[ProgressCallback],
+    timeout: Optional[float],
+) -> Assembly:
+    """An assembly of triangle meshes: per part its name, little-endian float64
+    vertices (n x 3) and int64 faces (m x 3) as bytes."""

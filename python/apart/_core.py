@@ -1,0 +1,453 @@
+"""Loading and planning: the Python face of the compiled module ``apart._apart``."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import sys
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence as Seq, Tuple, Union
+
+import numpy as np
+
+from . import _apart
+from ._errors import InputError
+from ._results import (CheckReport, DirectionAnswer, Partition, Problem, Separation, Sequence,
+                       StackPlan)
+
+ProgressArg = Union[None, bool, Callable[[str, int, int], Any]]
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: Length units of input files, in metres (as the command line's ``--units``).
+UNITS: Dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 1e-3, "um": 1e-6, "in": 0.0254,
+                           "ft": 0.3048}
+
+
+def _tolerance(tolerance: Union[None, float, str], units: Optional[str]) -> Tuple[Optional[float], bool]:
+    """(eps in input units, auto) from ``tolerance``: a positive length in input units,
+    ``"auto"``, or a length with a unit (``"5um"``), which needs ``units``."""
+    if tolerance is None:
+        return None, False
+    if isinstance(tolerance, bool):
+        raise InputError(f"tolerance must be a length or 'auto', not {tolerance!r}")
+    if isinstance(tolerance, (int, float)):
+        v = float(tolerance)
+        if not (np.isfinite(v) and v > 0):
+            raise InputError(f"tolerance must be a finite, positive length, not {tolerance!r}")
+        return v, False
+    if not isinstance(tolerance, str):
+        raise InputError(f"tolerance must be a length or 'auto', not {tolerance!r}")
+    t = tolerance.strip()
+    if t.lower() == "auto":
+        return None, True
+    m = re.fullmatch(r"([-+0-9.eE]+)\s*([a-zµ]*)", t)
+    if not m:
+        raise InputError(f"tolerance {tolerance!r} is neither 'auto' nor a length such as 1e-6 or '5um'")
+    try:
+        v = float(m.group(1))
+    except ValueError:
+        raise InputError(f"tolerance {tolerance!r} is neither 'auto' nor a length such as 1e-6 or '5um'") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InputError(f"tolerance must be a finite, positive length, not {tolerance!r}")
+    unit = m.group(2).replace("µm", "um")
+    if not unit:
+        return v, False
+    if unit not in UNITS:
+        raise InputError(f"tolerance {tolerance!r}: unknown unit {unit!r} (m, cm, mm, um, in, ft)")
+    if units is None:
+        raise InputError(f"tolerance {tolerance!r} names a unit: say which unit the input files use with units=")
+    return v * UNITS[unit] / UNITS[units], False
+
+
+def _load_options(tolerance: Union[None, float, str], units: Optional[str],
+                  grid_bits: Optional[int], strict: bool, one_part_per_file: bool,
+                  verify: bool) -> Dict[str, Any]:
+    if units is not None and units not in UNITS:
+        raise InputError(f"units {units!r} is none of {', '.join(UNITS)}")
+    lo, hi = _apart.GRID_BITS_RANGE
+    bits = _apart.DEFAULT_GRID_BITS if grid_bits is None else grid_bits
+    if isinstance(bits, bool) or not isinstance(bits, int) or not lo <= bits <= hi:
+        raise InputError(f"grid_bits must be an integer from {lo} to {hi}, not {grid_bits!r}")
+    eps, auto = _tolerance(tolerance, units)
+    return dict(grid_bits=bits, tolerance=eps, tolerance_auto=auto, strict=bool(strict),
+                one_part_per_file=bool(one_part_per_file), verify=bool(verify), units=units)
+
+
+def _timeout(timeout: Optional[float]) -> Optional[float]:
+    if timeout is None:
+        return None
+    t = float(timeout)
+    if not (np.isfinite(t) and t > 0):
+        raise InputError(f"timeout must be a positive number of seconds, not {timeout!r}")
+    return t
+
+
+class _TqdmBars:
+    """A tqdm bar per phase, driven by the (phase, done, total) reports."""
+
+    def __init__(self) -> None:
+        from tqdm.auto import tqdm
+
+        self._tqdm = tqdm
+        self._bar: Any = None
+        self._phase: Optional[str] = None
+
+    def __call__(self, phase: str, done: int, total: int) -> None:
+        if phase != self._phase:
+            self.close()
+            self._phase = phase
+            self._bar = self._tqdm(total=total, desc=phase, leave=False)
+        self._bar.total = total
+        self._bar.n = done
+        self._bar.refresh()
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+
+
+def _run(call: Callable[..., Any], progress: ProgressArg, **kwargs: Any) -> Any:
+    """Calls the compiled ``call`` with the progress callback ``progress`` asks for."""
+    if progress is None or progress is False:
+        return call(progress=None, **kwargs)
+    if progress is True:
+        try:
+            bars = _TqdmBars()
+        except ImportError:
+            print("apart: progress=True shows a bar when tqdm is installed (pip install tqdm)",
+                  file=sys.stderr)
+            return call(progress=None, **kwargs)
+        try:
+            return call(progress=bars, **kwargs)
+        finally:
+            bars.close()
+    if not callable(progress):
+        raise InputError(f"progress must be a callable, True or None, not {progress!r}")
+    return call(progress=progress, **kwargs)
+
+
+def load(path: PathLike, *, strict: bool = False, one_part_per_file: bool = False,
+         tolerance: Union[None, float, str] = None, units: Optional[str] = None,
+         grid_bits: Optional[int] = None, allow_outside: bool = False,
+         verify: bool = False, progress: ProgressArg = None,
+         timeout: Optional[float] = None) -> "Assembly":
+    """Loads an assembly: a folder of mesh files (one part per file), one mesh file
+    with several objects, or an ``assembly.json`` manifest. The options are the
+    command line's: ``strict`` repairs nothing, ``one_part_per_file`` keeps a file
+    holding several solids as one part, ``tolerance`` (a length in input units, a
+    length with a unit such as ``"5um"`` together with ``units``, or ``"auto"``) makes
+    every convex piece that much smaller, ``grid_bits`` sets the snapping grid,
+    ``allow_outside`` reads files outside the assembly's folder, ``verify`` checks
+    every convex decomposition exactly.
+
+    Problems with parts do not raise: they are in ``Assembly.problems`` (and
+    ``check()``); planning an invalid assembly raises :class:`InvalidAssemblyError`.
+    A path that cannot be loaded at all raises :class:`InputError` with ``file`` set.
+    """
+    opts = _load_options(tolerance, units, grid_bits, strict, one_part_per_file, verify)
+    fspath = os.fspath(path)
+    inner = _run(_apart.load, progress, path=fspath, allow_outside=bool(allow_outside),
+                 timeout=_timeout(timeout), **opts)
+    return Assembly._wrap(inner)
+
+
+MeshLike = Any
+
+
+def _trimesh_parts(obj: Any, name: Optional[str]) -> Optional[List[Tuple[str, Any, Any]]]:
+    """The parts of a trimesh ``Trimesh`` or ``Scene`` (None for anything else)."""
+    mod = type(obj).__module__
+    if not mod.startswith("trimesh"):
+        return None
+    import trimesh
+
+    if isinstance(obj, trimesh.Scene):
+        parts = []
+        for node in obj.graph.nodes_geometry:
+            transform, geom_name = obj.graph[node]
+            geom = obj.geometry[geom_name]
+            if not isinstance(geom, trimesh.Trimesh):
+                continue
+            verts = trimesh.transformations.transform_points(geom.vertices, transform)
+            parts.append((str(node), verts, geom.faces))
+        return parts
+    if isinstance(obj, trimesh.Trimesh):
+        part = name or obj.metadata.get("name") or "part"
+        return [(str(part), obj.vertices, obj.faces)]
+    return None
+
+
+def _as_parts(meshes: Any) -> List[Tuple[str, Any, Any]]:
+    """(name, vertices, faces) of every part of ``meshes``: a sequence of
+    (name, vertices, faces) tuples or trimesh objects, a dict of name to mesh, or one
+    trimesh ``Scene``."""
+    one = _trimesh_parts(meshes, None)
+    if one is not None:
+        return one
+    if isinstance(meshes, dict):
+        items: Iterable[Any] = [(k, v) for k, v in meshes.items()]
+    else:
+        try:
+            items = list(meshes)
+        except TypeError:
+            raise InputError(f"meshes must be a list of (name, vertices, faces), not {type(meshes).__name__}") from None
+    parts: List[Tuple[str, Any, Any]] = []
+    for k, item in enumerate(items):
+        tm = _trimesh_parts(item, None)
+        if tm is not None:
+            if len(tm) == 1 and tm[0][0] == "part":
+                tm = [(f"part{k + 1}", tm[0][1], tm[0][2])]
+            parts.extend(tm)
+            continue
+        if isinstance(item, tuple) and len(item) == 2:
+            nm, mesh = item
+            tm = _trimesh_parts(mesh, str(nm))
+            if tm is not None:
+                if len(tm) == 1:
+                    tm = [(str(nm), tm[0][1], tm[0][2])]
+                parts.extend(tm)
+                continue
+            if isinstance(mesh, tuple) and len(mesh) == 2:
+                parts.append((nm, mesh[0], mesh[1]))
+                continue
+        if not (isinstance(item, (tuple, list)) and len(item) == 3):
+            raise InputError(f"meshes[{k}] must be (name, vertices, faces) or a trimesh object, not {type(item).__name__}")
+        parts.append((item[0], item[1], item[2]))
+    return parts
+
+
+def _arrays(name: Any, vertices: Any, faces: Any) -> Tuple[str, bytes, bytes]:
+    """One part's arrays, checked, as little-endian bytes."""
+    if not isinstance(name, str) or not name:
+        raise InputError(f"a part name must be a non-empty string, not {name!r}")
+    try:
+        v = np.asarray(vertices, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f'part "{name}": vertices are not numbers ({e})', part=name,
+                         element="vertices") from None
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise InputError(f'part "{name}": vertices must be an n x 3 array, not of shape {v.shape}',
+                         part=name, element="vertices")
+    f_in = np.asarray(faces)
+    if f_in.dtype.kind == "f":
+        if not np.all(np.isfinite(f_in)) or not np.all(f_in == np.round(f_in)):
+            raise InputError(f'part "{name}": face indices must be integers', part=name, element="faces")
+    elif f_in.dtype.kind not in "iu":
+        raise InputError(f'part "{name}": face indices must be integers, not {f_in.dtype}',
+                         part=name, element="faces")
+    f = f_in.astype(np.int64)
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise InputError(f'part "{name}": faces must be an m x 3 array of vertex indices, not of shape {f.shape}',
+                         part=name, element="faces")
+    return (name, np.ascontiguousarray(v, dtype="<f8").tobytes(),
+            np.ascontiguousarray(f, dtype="<i8").tobytes())
+
+
+class Assembly:
+    """An assembly: named parts in their assembled pose, snapped to one grid, with every
+    problem found while loading. Make one with :func:`load`, :meth:`from_meshes` or
+    :meth:`from_trimesh`."""
+
+    _inner: Any
+
+    def __init__(self) -> None:
+        raise TypeError("use apart.load(path), Assembly.from_meshes(...) or Assembly.from_trimesh(...)")
+
+    @classmethod
+    def _wrap(cls, inner: Any) -> "Assembly":
+        a = cls.__new__(cls)
+        a._inner = inner
+        return a
+
+    @classmethod
+    def from_meshes(cls, meshes: Any, *, name: str = "assembly", strict: bool = False,
+                    one_part_per_file: bool = False,
+                    tolerance: Union[None, float, str] = None, units: Optional[str] = None,
+                    grid_bits: Optional[int] = None, verify: bool = False,
+                    progress: ProgressArg = None, timeout: Optional[float] = None) -> "Assembly":
+        """An assembly of triangle meshes: a list of ``(name, vertices, faces)`` with
+        ``vertices`` an n x 3 float array and ``faces`` an m x 3 integer array of vertex
+        indices (or a dict of name to ``(vertices, faces)``); trimesh ``Trimesh`` and
+        ``Scene`` objects are accepted as items or as the whole input. Each mesh is a
+        part, loaded as the library loads a file (repaired unless ``strict``)."""
+        opts = _load_options(tolerance, units, grid_bits, strict, one_part_per_file, verify)
+        parts = [_arrays(*p) for p in _as_parts(meshes)]
+        if not parts:
+            raise InputError("no meshes given")
+        inner = _run(_apart.from_meshes, progress, name=str(name), parts=parts,
+                     timeout=_timeout(timeout), **opts)
+        return cls._wrap(inner)
+
+    @classmethod
+    def from_trimesh(cls, obj: Any, **options: Any) -> "Assembly":
+        """An assembly of a trimesh ``Scene`` (each geometry node a part, named by its
+        node, its transform applied) or of ``Trimesh`` objects (a list, or a dict of
+        name to mesh). Options as :meth:`from_meshes`."""
+        return cls.from_meshes(obj, **options)
+
+    @property
+    def name(self) -> str:
+        """The assembly's name."""
+        return self._inner.name
+
+    @property
+    def parts(self) -> List[str]:
+        """The part names, in order."""
+        return list(self._inner.names)
+
+    @property
+    def valid(self) -> bool:
+        """True when loading found no error."""
+        return self._inner.valid
+
+    @property
+    def problems(self) -> List[Problem]:
+        """Every problem found while loading."""
+        return self.check().problems
+
+    def check(self) -> CheckReport:
+        """The parts, the grid and every problem found while loading (``apart check``)."""
+        return CheckReport(json.loads(self._inner.check_json()))
+
+    def partition(self, first: bool = False, direction: Optional[Seq[float]] = None, *,
+                  max_solutions: Optional[int] = None, max_per_set: Optional[int] = None,
+                  progress: ProgressArg = None,
+                  timeout: Optional[float] = None) -> Union[Partition, DirectionAnswer]:
+        """Every direction and minimal subset of parts that separates the assembly by one
+        translation (``apart partition``); ``first=True`` stops at the first solution;
+        ``direction=(x, y, z)`` answers one direction's blocking graph instead
+        (a :class:`DirectionAnswer`). ``max_solutions`` and ``max_per_set`` bound the
+        listing (every solution is still counted). ``progress`` is a callable
+        ``(phase, done, total)`` or True for a tqdm bar; ``timeout`` (seconds) stops
+        with the partial answer."""
+        d = None
+        if direction is not None:
+            try:
+                arr = np.asarray(direction, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise InputError(f"direction must be three numbers, not {direction!r}") from None
+            if arr.shape != (3,):
+                raise InputError(f"direction must be three numbers, not {direction!r}")
+            d = [float(x) for x in arr]
+        for label, v in (("max_solutions", max_solutions), ("max_per_set", max_per_set)):
+            if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < 1):
+                raise InputError(f"{label} must be an integer of 1 or more, not {v!r}")
+        raw = json.loads(_run(self._inner.partition_json, progress, first=bool(first),
+                              direction=d, max_solutions=max_solutions,
+                              max_per_set=max_per_set, timeout=_timeout(timeout)))
+        return DirectionAnswer(raw) if d is not None else Partition(raw)
+
+    def sequence(self, base: Optional[str] = None, *, prefer_single: bool = False,
+                 prefer_connected: bool = False, prefer_axes: bool = False,
+                 max_depth: Optional[int] = None, growth: bool = False,
+                 progress: ProgressArg = None, timeout: Optional[float] = None) -> Sequence:
+        """A complete disassembly plan by recursive two-handed partitioning
+        (``apart sequence``): ``base`` never moves; the ``prefer_*`` options rank the
+        steps as the command line's flags do; ``max_depth`` leaves subassemblies below
+        whole; ``growth`` computes each step's largest uniform growth. Iterate the
+        result for its steps."""
+        if max_depth is not None and (isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < 1):
+            raise InputError(f"max_depth must be an integer of 1 or more, not {max_depth!r}")
+        raw = json.loads(_run(self._inner.sequence_json, progress, base=base,
+                              prefer_single=bool(prefer_single),
+                              prefer_connected=bool(prefer_connected),
+                              prefer_axes=bool(prefer_axes), max_depth=max_depth,
+                              growth=bool(growth), timeout=_timeout(timeout)))
+        return Sequence(raw)
+
+    def separate(self, a: str, b: str, *, progress: ProgressArg = None,
+                 timeout: Optional[float] = None) -> Separation:
+        """Every direction along which part ``a`` leaves part ``b`` (``apart separate``)."""
+        raw = json.loads(_run(self._inner.separate_json, progress, a=str(a), b=str(b),
+                              timeout=_timeout(timeout)))
+        return Separation(raw)
+
+    def stack(self, part: Optional[str] = None, count: int = 10, *, weight: float = 0.5,
+              floor: Optional[Seq[float]] = None, floor_z: float = 0.0,
+              max_height: Optional[float] = None, dtheta: float = 90.0,
+              bases: Optional[Seq[Tuple[float, float]]] = None,
+              clearance: Optional[float] = None, max_candidates: int = 500,
+              extrapolate: bool = True, progress: ProgressArg = None,
+              timeout: Optional[float] = None) -> StackPlan:
+        """Stacks ``count`` copies of ``part`` (the only part when None) on a floor
+        (``apart stack``): ``weight`` in [0, 1] of eq. (1), ``floor=(x0, y0, x1, y1)``
+        (default: a square sized for the count), ``floor_z``, ``max_height``,
+        ``dtheta`` (degrees, 0.1 to 360), ``bases`` as (phi, psi) quarter turns in
+        degrees, ``clearance`` between parts, ``max_candidates`` per part (1 to
+        100000), ``extrapolate`` obstacles between orientations."""
+        if part is None:
+            if len(self.parts) != 1:
+                raise InputError(f"{self.name!r} holds {len(self.parts)} parts; name the one to stack")
+            part = self.parts[0]
+        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
+            raise InputError(f"count must be an integer from 1 to 1000, not {count!r}")
+        if isinstance(max_candidates, bool) or not isinstance(max_candidates, int) or not 1 <= max_candidates <= 100000:
+            raise InputError(f"max_candidates must be an integer from 1 to 100000, not {max_candidates!r}")
+        weight, floor_z, dtheta = _number(weight, "weight"), _number(floor_z, "floor_z"), _number(dtheta, "dtheta")
+        if not 0 <= weight <= 1:
+            raise InputError(f"weight must be in [0, 1], not {weight!r}")
+        if not 0.1 <= dtheta <= 360:
+            raise InputError(f"dtheta must be from 0.1 to 360 degrees, not {dtheta!r}")
+        f = None
+        if floor is not None:
+            f = [_number(x, "floor") for x in floor]
+            if len(f) != 4 or not (f[0] < f[2] and f[1] < f[3]):
+                raise InputError(f"floor must be (x0, y0, x1, y1) with x0 < x1 and y0 < y1, not {floor!r}")
+        if max_height is not None and not _number(max_height, "max_height") > 0:
+            raise InputError(f"max_height must be a positive length, not {max_height!r}")
+        if clearance is not None and not _number(clearance, "clearance") >= 0:
+            raise InputError(f"clearance must be 0 or more, not {clearance!r}")
+        quarters = None
+        if bases is not None:
+            quarters = []
+            for b in bases:
+                phi, psi = (_number(x, "bases") for x in b)
+                if phi % 90 or psi % 90:
+                    raise InputError(f"bases: angles must be multiples of 90 degrees, not {b!r}")
+                quarters.append((int(phi // 90) % 4, int(psi // 90) % 4))
+        raw = json.loads(_run(self._inner.stack_json, progress, part=str(part), count=count,
+                              weight=weight, floor=f, floor_z=floor_z,
+                              max_height=None if max_height is None else float(max_height),
+                              dtheta=dtheta, bases=quarters,
+                              clearance=None if clearance is None else float(clearance),
+                              max_candidates=max_candidates, extrapolate=bool(extrapolate),
+                              timeout=_timeout(timeout)))
+        return StackPlan(raw)
+
+    def __repr__(self) -> str:
+        state = "valid" if self.valid else "invalid"
+        parts = self.parts
+        shown = ", ".join(repr(p) for p in parts[:6]) + (", ..." if len(parts) > 6 else "")
+        return f"<Assembly {self.name!r}: {len(parts)} parts ({shown}), {state}>"
+
+
+def _number(v: Any, what: str) -> float:
+    """A finite float, or InputError naming ``what``."""
+    if isinstance(v, bool):
+        raise InputError(f"{what} must be a number, not {v!r}")
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, not {v!r}") from None
+    if not np.isfinite(x):
+        raise InputError(f"{what} must be a finite number, not {v!r}")
+    return x
+
+
+def stack(part: Union[PathLike, Assembly], count: int = 10, *, part_name: Optional[str] = None,
+          strict: bool = False, grid_bits: Optional[int] = None, **options: Any) -> StackPlan:
+    """Stacks ``count`` copies of a part on a floor (``apart stack PART``): ``part`` is a
+    mesh file (or folder, with ``part_name``) or an :class:`Assembly`; the options are
+    :meth:`Assembly.stack`'s."""
+    if not isinstance(part, Assembly):
+        opts = _load_options(None, None, grid_bits, strict, False, False)
+        inner = _apart.load(os.fspath(part), allow_outside=False, progress=None, timeout=None,
+                            decompose_all=True, **opts)
+        part = Assembly._wrap(inner)
+    return part.stack(part_name, count, **options)
+
+
+def separate(assembly: Assembly, a: str, b: str, **options: Any) -> Separation:
+    """Every direction along which part ``a`` of ``assembly`` leaves part ``b``."""
+    return assembly.separate(a, b, **options)

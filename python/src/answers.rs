@@ -1,0 +1,699 @@
+//! The answers as JSON values, field for field as the command line's `--json` prints
+//! them (`apart check`, `partition`, `sequence`, `separate`), so that the Python
+//! objects and the command line say the same thing. Every solution is listed (the
+//! command line lists at most 20 moving sets with 5 solutions of each kind).
+
+use apart_assembly::Loaded;
+use apart_kernel::{Grid, Vec3};
+use apart_mesh::Problem;
+use apart_plan::progress::Progress;
+use apart_plan::{
+    dbg_along, partition_first, partition_subset_with, parts_of, separate as separate_parts,
+    BlockingRegions, CellKind, DirectionQuery, Options, PartPieces, Partitioning, PlanError,
+    SequenceOptions,
+};
+use serde_json::{json, Value};
+use std::collections::HashMap;
+
+/// Every problem, as the command line's JSON lists them.
+pub fn problems(problems: &[Problem]) -> Value {
+    serde_json::to_value(problems).unwrap_or(Value::Null)
+}
+
+/// Unit, tolerance, repairs and files not read: the facts every answer states.
+fn input_facts(loaded: &Loaded, units: Option<&str>) -> serde_json::Map<String, Value> {
+    let asm = &loaded.assembly;
+    let repairs: Vec<Value> = loaded
+        .repairs
+        .iter()
+        .map(|r| {
+            let mut v = serde_json::to_value(&r.report).unwrap_or_else(|_| json!({}));
+            let file = (!r.file.as_os_str().is_empty()).then(|| r.file.clone());
+            v["file"] = json!(file);
+            v["parts"] = json!(r.parts);
+            v
+        })
+        .collect();
+    let skipped: Vec<Value> = loaded
+        .skipped
+        .iter()
+        .map(|s| json!({"file": s.path, "reason": s.reason}))
+        .collect();
+    let tolerance = asm.tolerance.as_ref().map(|t| {
+        json!({
+            "eps": t.eps,
+            "exact": t.exact.to_string(),
+            "auto": t.auto,
+            "deepest_overlap": t.deepest_overlap,
+            "accepted_overlaps": t.accepted_overlaps,
+            "vanished_pieces": t.vanished_pieces,
+            "max_shift": t.max_shift,
+        })
+    });
+    let mut m = serde_json::Map::new();
+    m.insert("units".into(), json!(units));
+    m.insert("tolerance".into(), json!(tolerance));
+    m.insert("repairs".into(), json!(repairs));
+    m.insert("skipped_files".into(), json!(skipped));
+    m
+}
+
+/// `value` (an object) with the input facts added.
+fn with_facts(mut value: Value, loaded: &Loaded, units: Option<&str>) -> Value {
+    if let Value::Object(m) = &mut value {
+        m.extend(input_facts(loaded, units));
+    }
+    value
+}
+
+/// The check report.
+pub fn check(loaded: &Loaded, units: Option<&str>) -> Value {
+    let a = &loaded.assembly;
+    let g = &a.grid;
+    let parts: Vec<Value> = a
+        .parts
+        .iter()
+        .map(|p| {
+            let known = p.volume_known();
+            let v = p.volume_units(g);
+            let source = (!p.source.as_os_str().is_empty()).then(|| p.source.clone());
+            json!({
+                "name": p.name,
+                "source": source,
+                "vertices": p.info.as_ref().map(|i| i.vertices),
+                "faces": p.info.as_ref().map(|i| i.faces),
+                "triangles": p.info.as_ref().map(|i| i.triangles),
+                "volume": known.then(|| v.to_string()),
+                "volume_decimal": known.then(|| v.to_f64()),
+                "convex": p.convex,
+                "reflex_edges": p.reflex_edges,
+                "pieces": p.pieces.len(),
+                "declared_pieces": p.declared_pieces,
+                "decomposed": p.decomposed,
+                "piece_sources": p.piece_sources,
+                "bbox": p.bbox.map(|b| json!({
+                    "min": b.min.map(|q| g.to_units(q)),
+                    "max": b.max.map(|q| g.to_units(q)),
+                })),
+            })
+        })
+        .collect();
+    with_facts(
+        json!({
+            "assembly": a.name,
+            "valid": loaded.is_valid(),
+            "grid": {
+                "exp": g.exp,
+                "step": g.step(),
+                "bits": g.bits,
+                "max_snap_displacement": a.max_snap_displacement,
+            },
+            "parts": parts,
+            "problems": problems(&loaded.problems),
+        }),
+        loaded,
+        units,
+    )
+}
+
+/// Snaps a direction like the command line's `--direction X,Y,Z`: to a primitive
+/// integer vector on a grid of 30 bits.
+pub fn snap_direction(v: [f64; 3]) -> Result<Vec3, String> {
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("direction {v:?} has a non-finite number"));
+    }
+    let g = Grid::choose(v.iter().copied(), 30).map_err(|e| e.to_string())?;
+    let d = Vec3::new(g.snap(v[0]), g.snap(v[1]), g.snap(v[2])).primitive();
+    if d.is_zero() {
+        return Err(format!("direction {v:?} is zero"));
+    }
+    Ok(d)
+}
+
+/// A motion: moving parts, the subassembly they leave (`None`: all), the direction.
+type Motion<'a> = (&'a [usize], Option<&'a [usize]>, &'a Vec3);
+
+/// Under a tolerance, whether each motion also holds for the parts as given (their
+/// unshrunk pieces, exact per-piece-pair tests), as the command line decides it;
+/// `None` without a tolerance.
+fn holds_without_tolerance(
+    loaded: &Loaded,
+    motions: &[Motion],
+) -> Result<Option<Vec<bool>>, PlanError> {
+    let asm = &loaded.assembly;
+    if asm.tolerance.is_none() {
+        return Ok(None);
+    }
+    let mut out = vec![false; motions.len()];
+    type Group<'a> = (&'a [usize], Option<&'a [usize]>, Vec<usize>);
+    let mut groups: Vec<Group> = Vec::new();
+    for (k, (moving, among, _)) in motions.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|(m, a, _)| m == moving && a == among)
+        {
+            Some((_, _, ks)) => ks.push(k),
+            None => groups.push((moving, *among, vec![k])),
+        }
+    }
+    for (moving, among, ks) in groups {
+        let mut sides = [Vec::new(), Vec::new()];
+        for (k, p) in asm.parts.iter().enumerate() {
+            if among.is_some_and(|a| !a.contains(&k)) {
+                continue;
+            }
+            let pieces = if p.unshrunk_pieces.is_empty() {
+                &p.pieces
+            } else {
+                &p.unshrunk_pieces
+            };
+            sides[usize::from(!moving.contains(&k))].extend(pieces.iter().cloned());
+        }
+        let [a, b] = sides;
+        let two = [
+            PartPieces {
+                name: "moving".into(),
+                pieces: a,
+            },
+            PartPieces {
+                name: "rest".into(),
+                pieces: b,
+            },
+        ];
+        let query = match DirectionQuery::new(&two) {
+            Ok(q) => q,
+            Err(PlanError::Overlap { .. }) => continue,
+            Err(e) => return Err(e),
+        };
+        for k in ks {
+            out[k] = match query.hits(0, 1, motions[k].2) {
+                Ok(hit) => !hit,
+                Err(PlanError::Overlap { .. }) => false,
+                Err(e) => return Err(e),
+            };
+        }
+    }
+    Ok(Some(out))
+}
+
+/// Names of a set of part indices.
+fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
+    set.iter().map(|&k| names[k].clone()).collect()
+}
+
+/// Partitioning: one direction's blocking graph (`direction`), the first solution, or
+/// every solution. A run stopped by the flag has `"status": "stopped"`.
+pub fn partition(
+    loaded: &Loaded,
+    units: Option<&str>,
+    direction: Option<Vec3>,
+    opts: &Options,
+    progress: &Progress,
+) -> Result<Value, PlanError> {
+    let asm = &loaded.assembly;
+    let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
+    if names.len() < 2 {
+        let p = Partitioning {
+            names,
+            interlocked: false,
+            solutions: Vec::new(),
+            truncated: false,
+            sets: Vec::new(),
+            stats: Default::default(),
+            stopped: false,
+        };
+        let mut v = partition_json(loaded, units, &p, 0.0)?;
+        v["nothing_to_separate"] = true.into();
+        return Ok(v);
+    }
+    let parts = parts_of(asm)?;
+    if let Some(d) = direction {
+        return direction_json(loaded, units, &parts, &d);
+    }
+    let t = std::time::Instant::now();
+    if opts.first {
+        // Likely directions first; the full computation only when none separates.
+        let p = partition_first(&parts)?;
+        return partition_json(loaded, units, &p, t.elapsed().as_secs_f64());
+    }
+    let p = match BlockingRegions::compute_with(&parts, progress) {
+        Ok(regions) => {
+            let all: Vec<usize> = (0..parts.len()).collect();
+            partition_subset_with(&regions, &all, opts, progress).0
+        }
+        Err(PlanError::Stopped { .. }) => {
+            let pieces = parts.iter().map(|p| p.pieces.len()).sum();
+            Partitioning::stopped_before_solutions(names, pieces)
+        }
+        Err(e) => return Err(e),
+    };
+    partition_json(loaded, units, &p, t.elapsed().as_secs_f64())
+}
+
+/// The answer of a partitioning, every solution listed.
+fn partition_json(
+    loaded: &Loaded,
+    units: Option<&str>,
+    p: &Partitioning,
+    seconds: f64,
+) -> Result<Value, PlanError> {
+    let motions: Vec<Motion> = p
+        .solutions
+        .iter()
+        .map(|s| (s.moving.as_slice(), None, &s.direction))
+        .collect();
+    let holds = holds_without_tolerance(loaded, &motions)?;
+    let solutions: Vec<Value> = p
+        .solutions
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let mut v = json!({
+                "cell": s.cell.name(),
+                "direction": s.unit,
+                "exact_direction": s.direction.to_strings(),
+                "moving": names_of(&p.names, &s.moving),
+                "clearance_deg": s.clearance_deg,
+            });
+            if let Some(h) = &holds {
+                v["holds_without_tolerance"] = h[i].into();
+            }
+            v
+        })
+        .collect();
+    // Moving sets in the order of their best (first listed) solution, with the counts
+    // of every solution the planner found.
+    let counts: HashMap<&[usize], [usize; 3]> = p
+        .sets
+        .iter()
+        .map(|s| (s.moving.as_slice(), s.counts))
+        .collect();
+    let mut order: Vec<&[usize]> = Vec::new();
+    let mut best: HashMap<&[usize], Option<f64>> = HashMap::new();
+    let mut listed: HashMap<&[usize], usize> = HashMap::new();
+    for s in &p.solutions {
+        let key = s.moving.as_slice();
+        if !best.contains_key(key) {
+            order.push(key);
+            best.insert(key, None);
+        }
+        *listed.entry(key).or_default() += 1;
+        if s.cell == CellKind::Face {
+            let b = best.get_mut(key).expect("inserted above");
+            *b = Some(b.map_or(s.clearance_deg, |c: f64| c.max(s.clearance_deg)));
+        }
+    }
+    let groups: Vec<Value> = order
+        .iter()
+        .map(|&m| {
+            let c = counts.get(m).copied().unwrap_or([0; 3]);
+            json!({
+                "moving": names_of(&p.names, m),
+                "solutions": c.iter().sum::<usize>(),
+                "faces": c[0],
+                "edges": c[1],
+                "vertices": c[2],
+                "best_clearance_deg": best[m],
+                "listed": listed[m],
+            })
+        })
+        .collect();
+    let s = &p.stats;
+    let v = json!({
+        "status": if p.stopped { "stopped" } else { "done" },
+        "complete": !p.stopped,
+        "interlocked": p.interlocked,
+        "nothing_to_separate": false,
+        "parts": p.names,
+        "solution_count": p.solution_count(),
+        "moving_set_count": p.sets.len(),
+        "truncated": p.truncated,
+        "groups": groups,
+        "solutions": solutions,
+        "stats": {
+            "pieces": s.pieces,
+            "sums": s.sums,
+            "arcs": s.arcs,
+            "vertices": s.vertices,
+            "edges": s.edges,
+            "faces": s.faces,
+            "seconds": {
+                "total": seconds,
+                "sums": s.seconds.sums,
+                "projection": s.seconds.projection,
+                "unions": s.seconds.unions,
+                "overlay": s.seconds.overlay,
+                "graphs": s.seconds.graphs,
+            },
+        },
+    });
+    Ok(with_facts(v, loaded, units))
+}
+
+/// One direction's blocking graph and the minimal sets that move along it.
+fn direction_json(
+    loaded: &Loaded,
+    units: Option<&str>,
+    parts: &[PartPieces],
+    d: &Vec3,
+) -> Result<Value, PlanError> {
+    let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
+    let answer = dbg_along(parts, d)?;
+    let blocks: Vec<[String; 2]> = answer
+        .dbg
+        .arcs()
+        .iter()
+        .map(|&(a, b)| [names[a].clone(), names[b].clone()])
+        .collect();
+    let motions: Vec<Motion> = answer
+        .moving
+        .iter()
+        .map(|m| (m.as_slice(), None, d))
+        .collect();
+    let holds = holds_without_tolerance(loaded, &motions)?;
+    let mut v = json!({
+        "direction": d.unit_f64(),
+        "exact_direction": d.to_strings(),
+        "cell": answer.cell.name(),
+        "blocks": blocks,
+        "moving": answer.moving.iter().map(|m| names_of(&names, m)).collect::<Vec<_>>(),
+    });
+    if let Some(h) = holds {
+        v["holds_without_tolerance"] = json!(h);
+    }
+    Ok(with_facts(v, loaded, units))
+}
+
+/// A disassembly plan. A run stopped by the flag has `"status": "stopped"`.
+pub fn sequence(
+    loaded: &Loaded,
+    units: Option<&str>,
+    opts: &SequenceOptions,
+    progress: &Progress,
+) -> Result<Value, PlanError> {
+    let asm = &loaded.assembly;
+    let t = std::time::Instant::now();
+    let plan = if asm.parts.len() < 2 {
+        apart_plan::Sequence {
+            names: asm.parts.iter().map(|p| p.name.clone()).collect(),
+            steps: Vec::new(),
+            stuck: Vec::new(),
+            unsplit: Vec::new(),
+            pending: Vec::new(),
+            stopped: false,
+            step_seconds: 0.0,
+        }
+    } else {
+        match BlockingRegions::compute_with(&parts_of(asm)?, progress) {
+            Ok(regions) => apart_plan::sequence_with(&regions, opts, progress),
+            Err(PlanError::Stopped { .. }) => apart_plan::Sequence::stopped_before_steps(
+                asm.parts.iter().map(|p| p.name.clone()).collect(),
+            ),
+            Err(e) => return Err(e),
+        }
+    };
+    let regions_and_steps = t.elapsed().as_secs_f64();
+    let motions: Vec<Motion> = plan
+        .steps
+        .iter()
+        .map(|s| {
+            (
+                s.moving.as_slice(),
+                Some(s.subassembly.as_slice()),
+                &s.direction,
+            )
+        })
+        .collect();
+    let holds = holds_without_tolerance(loaded, &motions)?;
+    let step_unit = asm.grid.step();
+    let names = |set: &[usize]| names_of(&plan.names, set);
+    let keys = |k: &apart_plan::sequence::Keys| {
+        json!({
+            "connected": k.connected,
+            "single": k.single,
+            "axis": k.axis,
+            "cell": k.cell.name(),
+            "clearance_deg": k.clearance_deg,
+            "parts": k.parts,
+        })
+    };
+    let steps: Vec<Value> = plan
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            use apart_plan::sequence::Criterion as C;
+            let runner_up = s.choice.runner_up.as_ref().map(|r| {
+                let mut v = keys(&r.keys);
+                v["moving"] = json!(names(&r.moving));
+                v["exact_direction"] = json!(r.direction.to_strings());
+                v["lost_on"] = json!(match r.lost_on {
+                    C::Connected => "connected",
+                    C::Single => "single",
+                    C::Axis => "axis",
+                    C::Cell => "cell",
+                    C::Clearance => "clearance",
+                    C::FewerParts => "fewer_parts",
+                    C::Order => "order",
+                });
+                v
+            });
+            let mut choice = keys(&s.choice.keys);
+            choice["candidates"] = s.choice.candidates.into();
+            choice["runner_up"] = json!(runner_up);
+            let mut v = json!({
+                "subassembly": names(&s.subassembly),
+                "moving": names(&s.moving),
+                "direction": s.unit,
+                "exact_direction": s.direction.to_strings(),
+                "cell": s.cell.name(),
+                "clearance_deg": s.clearance_deg,
+                "depth": s.depth,
+                "choice": choice,
+            });
+            if let Some(t) = s.tolerance {
+                v["growth"] = match t {
+                    apart_plan::Tolerance::Finite(x) => json!(x * step_unit),
+                    apart_plan::Tolerance::Unbounded => Value::Null,
+                };
+            }
+            if let Some(h) = &holds {
+                v["holds_without_tolerance"] = h[k].into();
+            }
+            v
+        })
+        .collect();
+    let v = json!({
+        "status": if plan.stopped { "stopped" } else { "done" },
+        "interlocked": !plan.stuck.is_empty(),
+        "complete": plan.complete(),
+        "nothing_to_separate": plan.names.len() < 2,
+        "parts": plan.names,
+        "steps": steps,
+        "stuck": plan.stuck.iter().map(|s| names(s)).collect::<Vec<_>>(),
+        "unsplit": plan.unsplit.iter().map(|s| names(s)).collect::<Vec<_>>(),
+        "not_yet_split": plan.pending.iter().map(|s| names(s)).collect::<Vec<_>>(),
+        "seconds": {"total": regions_and_steps, "steps": plan.step_seconds},
+    });
+    Ok(with_facts(v, loaded, units))
+}
+
+/// An exact spherical arc.
+fn arc_json(a: &apart_sphere::Arc) -> Value {
+    json!({
+        "normal": a.normal.to_strings(),
+        "start": a.start.to_strings(),
+        "end": a.end.to_strings(),
+    })
+}
+
+/// Every direction along which part `a` leaves part `b`; `None` when the stop flag
+/// ended the run before it had the pair regions.
+pub fn separate(
+    loaded: &Loaded,
+    units: Option<&str>,
+    a: usize,
+    b: usize,
+    progress: &Progress,
+) -> Result<Option<Value>, PlanError> {
+    let asm = &loaded.assembly;
+    let regions = match BlockingRegions::compute_with(&parts_of(asm)?, progress) {
+        Ok(r) => r,
+        Err(PlanError::Stopped { .. }) => return Ok(None),
+        Err(e) => return Err(e),
+    };
+    let s = separate_parts(&regions, a, b);
+    let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
+    let best = s.best();
+    let pair = [a, b];
+    let holds = match &best {
+        Some((d, _)) => holds_without_tolerance(loaded, &[(&[a], Some(&pair), d)])?.map(|h| h[0]),
+        None => None,
+    };
+    let best = best.map(|(d, c)| {
+        let mut v = json!({
+            "direction": d.unit_f64(),
+            "exact_direction": d.to_strings(),
+            "clearance_deg": c,
+        });
+        if let Some(h) = holds {
+            v["holds_without_tolerance"] = h.into();
+        }
+        v
+    });
+    let regions: Vec<Value> = s
+        .faces
+        .iter()
+        .map(|f| {
+            json!({
+                "area_fraction": f.area / (4.0 * std::f64::consts::PI),
+                "direction": f.direction.unit_f64(),
+                "exact_direction": f.direction.to_strings(),
+                "clearance_deg": f.clearance_deg,
+                "loops": f.loops.iter().map(|lp| lp.iter().map(arc_json).collect::<Vec<_>>()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let v = json!({
+        "moving": asm.parts[a].name,
+        "fixed": asm.parts[b].name,
+        "separable": separable,
+        "area_fraction": s.area_fraction(),
+        "best": best,
+        "regions": regions,
+        "sliding": s.sliding.iter().map(arc_json).collect::<Vec<_>>(),
+        "isolated": s.isolated.iter().map(|d| d.to_strings()).collect::<Vec<_>>(),
+    });
+    Ok(Some(with_facts(v, loaded, units)))
+}
+
+/// The stacker's options, in input units (checked by the Python side for their ranges).
+pub struct StackArgs {
+    /// The part to stack (index in the assembly).
+    pub part: usize,
+    /// Parts to place.
+    pub count: usize,
+    /// Weight of eq. (1), in [0, 1].
+    pub weight: f64,
+    /// Floor region x0, y0, x1, y1 (`None`: a square around the origin sized for the
+    /// count, as the command line chooses it).
+    pub floor: Option<[f64; 4]>,
+    /// Height of the floor.
+    pub floor_z: f64,
+    /// Highest top of the stack (`None`: the part's height times the count).
+    pub max_height: Option<f64>,
+    /// Step of the rotations about z, in degrees.
+    pub dtheta: f64,
+    /// Base orientations as quarter turns about x and y (`None`: the library's).
+    pub bases: Option<Vec<(u8, u8)>>,
+    /// Clearance between parts.
+    pub clearance: Option<f64>,
+    /// Candidates examined per part at most.
+    pub max_candidates: usize,
+    /// Reuse obstacles between orientations.
+    pub extrapolate: bool,
+}
+
+/// An exact rational of input units from a float (`what` names it in the error).
+fn grid_value(v: f64, h: f64, what: &str) -> Result<apart_kernel::Rational, String> {
+    apart_kernel::Rational::from_f64(v / h)
+        .ok_or_else(|| format!("{what} {v} is not a finite number"))
+}
+
+/// A stack of identical parts on a floor (`apart stack --json`). A run stopped by the
+/// flag has `"status": "stopped"`.
+pub fn stack(loaded: &Loaded, args: &StackArgs, progress: &Progress) -> Result<Value, String> {
+    use apart_kernel::Rational;
+    use apart_stack::orientation::{Base, Orientation};
+    use apart_stack::planner::{stack_with, StackOptions};
+    use apart_stack::stability::ContactWith;
+    let asm = &loaded.assembly;
+    let h = asm.grid.step();
+    let p = &asm.parts[args.part];
+    let mut part = apart_stack::part::PartModel::from_pieces(&p.name, p.pieces.clone())
+        .map_err(|e| format!("part \"{}\": {e}", p.name))?;
+    part.mesh = p.mesh.as_ref().map(|m| {
+        (
+            m.vertices.iter().map(|&v| Vec3::from(v)).collect(),
+            m.triangles.clone(),
+        )
+    });
+    let extent = part.orient(&Orientation::IDENTITY).extent;
+    let size = |i: usize| (&extent.max[i] - &extent.min[i]).to_f64() * h;
+    let floor = args.floor.unwrap_or_else(|| {
+        let side = (args.count as f64).sqrt().ceil() * size(0).max(size(1)) * 1.25;
+        let half = side / 2.0;
+        [-half, -half, half, half]
+    });
+    let weight = Rational::from_f64(args.weight).ok_or("weight is not a finite number")?;
+    let max_height = match args.max_height {
+        Some(m) => grid_value(m, h, "max_height")?,
+        None => {
+            let height = &extent.max[2] - &extent.min[2];
+            &height * &Rational::from(args.count as i64)
+        }
+    };
+    let mut opts = StackOptions::new(
+        args.count,
+        weight,
+        [
+            grid_value(floor[0], h, "floor")?,
+            grid_value(floor[1], h, "floor")?,
+            grid_value(floor[2], h, "floor")?,
+            grid_value(floor[3], h, "floor")?,
+        ],
+        max_height,
+    );
+    opts.floor_z = grid_value(args.floor_z, h, "floor_z")?;
+    opts.dtheta_deg = args.dtheta;
+    if let Some(bases) = &args.bases {
+        opts.bases = bases.iter().map(|&(phi, psi)| Base { phi, psi }).collect();
+    }
+    opts.clearance = args
+        .clearance
+        .map(|c| grid_value(c, h, "clearance"))
+        .transpose()?;
+    opts.max_candidates = args.max_candidates;
+    opts.extrapolate = args.extrapolate;
+    let plan = stack_with(&part, &opts, progress).map_err(|e| e.to_string())?;
+    let units = |v: &Rational| v.to_f64() * h;
+    let step = Rational::from_f64(h).ok_or("the grid step is not finite")?;
+    let exact = |v: &Rational| (v * &step).to_string();
+    let placements: Vec<Value> = plan
+        .placements
+        .iter()
+        .map(|q| {
+            let t = &q.orientation.theta;
+            json!({
+                "index": q.index,
+                "translation": q.translation.clone().map(|v| units(&v)),
+                "exact_translation": q.translation.clone().map(|v| exact(&v)),
+                "rotation_deg": q.orientation.degrees(),
+                "exact_rotation": [format!("{}/{}", t.a, t.c), format!("{}/{}", t.b, t.c)],
+                "cost": q.cost.to_f64() * h * h,
+                "stage": q.stage,
+                "examined": q.examined,
+                "contacts": q.contacts.iter().map(|c| json!({
+                    "with": match c.with {
+                        ContactWith::Floor => json!("floor"),
+                        ContactWith::Part(k) => json!(k),
+                    },
+                    "supports": c.supports,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    Ok(json!({
+        "status": if plan.stopped { "stopped" } else { "done" },
+        "part": p.name,
+        "count": args.count,
+        "complete": plan.complete,
+        "placements": placements,
+        "stack_height": units(&plan.stack_height),
+        "grid_step": h,
+        "unstable": plan.stats.unstable,
+        "not_lowerable": plan.stats.not_lowerable,
+        "orientations": plan.stats.orientations,
+        "seconds": plan.stats.seconds,
+    }))
+}

@@ -1,0 +1,423 @@
+//! `apart._apart`: the compiled half of the Python package `apart`.
+//!
+//! It holds no geometry: it loads assemblies with apart-assembly, plans with apart-plan,
+//! and hands every answer to Python as JSON text with the fields of the command line's
+//! `--json` output (the pure-Python package wraps them in typed objects). Long work
+//! runs on a worker thread with the GIL released ([`work::run`]): progress goes to a
+//! Python callback, and Ctrl-C, a stop asked by the callback or a timeout raise the
+//! planners' stop flag. Errors become the exceptions of `apart._errors`; a panic is
+//! caught at the boundary and becomes `apart.InternalError`.
+
+mod answers;
+mod errors;
+mod memory;
+mod work;
+
+use apart_assembly::{Decompose, LoadOptions, Loaded, Tolerance};
+use errors::{input_error, load_error};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+use std::path::PathBuf;
+use std::sync::Arc;
+use work::{run, Limits};
+
+/// A loaded assembly: parts snapped to one grid, every problem found while loading, and
+/// whether the parts came from arrays (no files) rather than from files.
+#[pyclass(module = "apart._apart", name = "Assembly")]
+pub struct Assembly {
+    loaded: Arc<Loaded>,
+    units: Option<String>,
+}
+
+/// The loader's options, as Python gives them.
+#[derive(Clone, Copy)]
+struct LoadArgs {
+    grid_bits: u32,
+    tolerance: Option<f64>,
+    tolerance_auto: bool,
+    strict: bool,
+    one_part_per_file: bool,
+    allow_outside: bool,
+    verify: bool,
+    decompose_all: bool,
+}
+
+impl LoadArgs {
+    /// The library's options, with loading stages reported to `progress`.
+    fn options(self, progress: &apart_kernel::progress::Progress) -> LoadOptions {
+        let p = progress.clone();
+        let tolerance = match (self.tolerance_auto, self.tolerance) {
+            (true, _) => Tolerance::Auto,
+            (false, Some(v)) => Tolerance::Fixed(v),
+            (false, None) => Tolerance::None,
+        };
+        // The loader's other options keep their defaults (also any added later).
+        #[allow(clippy::needless_update)]
+        LoadOptions {
+            grid_bits: self.grid_bits,
+            progress: Some(Arc::new(move |s: apart_assembly::Progress| {
+                p.report(stage_label(s.stage), s.done, s.total);
+            })),
+            decompose: if self.decompose_all {
+                Decompose::Always
+            } else {
+                Decompose::WhenNeeded
+            },
+            verify: self.verify,
+            tolerance,
+            repair: !self.strict,
+            split_bodies: !self.one_part_per_file,
+            allow_outside: self.allow_outside,
+            ..LoadOptions::default()
+        }
+    }
+}
+
+/// The phase name of a loading stage.
+fn stage_label(s: apart_assembly::Stage) -> &'static str {
+    match s {
+        apart_assembly::Stage::Reading => "loading: reading files",
+        apart_assembly::Stage::Validating => "loading: validating parts",
+        apart_assembly::Stage::Decomposing => "loading: convex decomposition",
+        apart_assembly::Stage::Overlaps => "loading: overlaps between parts",
+    }
+}
+
+/// Loads a folder, a mesh file or an `assembly.json` manifest.
+#[pyfunction]
+#[pyo3(signature = (path, *, grid_bits, tolerance, tolerance_auto, strict, one_part_per_file, allow_outside, verify, units, progress, timeout, decompose_all=false))]
+#[allow(clippy::too_many_arguments)]
+fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    grid_bits: u32,
+    tolerance: Option<f64>,
+    tolerance_auto: bool,
+    strict: bool,
+    one_part_per_file: bool,
+    allow_outside: bool,
+    verify: bool,
+    units: Option<String>,
+    progress: Option<Py<PyAny>>,
+    timeout: Option<f64>,
+    decompose_all: bool,
+) -> PyResult<Assembly> {
+    let args = LoadArgs {
+        grid_bits,
+        tolerance,
+        tolerance_auto,
+        strict,
+        one_part_per_file,
+        allow_outside,
+        verify,
+        decompose_all,
+    };
+    let limits = Limits {
+        callback: progress,
+        timeout,
+        stoppable: false,
+    };
+    let (loaded, _) = run(py, limits, move |p| {
+        apart_assembly::load(&path, &args.options(p)).map_err(|e| (e.to_string(), path))
+    })?;
+    let loaded = loaded.map_err(|(message, path)| load_error(py, message, Some(path)))?;
+    Ok(Assembly {
+        loaded: Arc::new(loaded),
+        units,
+    })
+}
+
+/// Builds an assembly from triangle meshes given as little-endian bytes: per part its
+/// name, `n x 3` float64 vertices and `m x 3` int64 faces.
+#[pyfunction]
+#[pyo3(signature = (name, parts, *, grid_bits, tolerance, tolerance_auto, strict, one_part_per_file, verify, units, progress, timeout))]
+#[allow(clippy::too_many_arguments)]
+fn from_meshes(
+    py: Python<'_>,
+    name: String,
+    parts: Vec<(String, Bound<'_, PyBytes>, Bound<'_, PyBytes>)>,
+    grid_bits: u32,
+    tolerance: Option<f64>,
+    tolerance_auto: bool,
+    strict: bool,
+    one_part_per_file: bool,
+    verify: bool,
+    units: Option<String>,
+    progress: Option<Py<PyAny>>,
+    timeout: Option<f64>,
+) -> PyResult<Assembly> {
+    let mut meshes = Vec::with_capacity(parts.len());
+    for (part, v, f) in &parts {
+        meshes.push(memory::mesh(part, v.as_bytes(), f.as_bytes()).map_err(
+            |(element, message)| input_error(py, message, None, Some(part.clone()), element),
+        )?);
+    }
+    let args = LoadArgs {
+        grid_bits,
+        tolerance,
+        tolerance_auto,
+        strict,
+        one_part_per_file,
+        allow_outside: false,
+        verify,
+        decompose_all: false,
+    };
+    let limits = Limits {
+        callback: progress,
+        timeout,
+        stoppable: false,
+    };
+    let (loaded, _) = run(py, limits, move |p| {
+        memory::load(&name, &meshes, &args.options(p))
+    })?;
+    let loaded = loaded.map_err(|message| load_error(py, message, None))?;
+    Ok(Assembly {
+        loaded: Arc::new(loaded),
+        units,
+    })
+}
+
+#[pymethods]
+impl Assembly {
+    /// The assembly's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.loaded.assembly.name.clone()
+    }
+
+    /// The part names, in order.
+    #[getter]
+    fn names(&self) -> Vec<String> {
+        self.loaded
+            .assembly
+            .parts
+            .iter()
+            .map(|p| p.name.clone())
+            .collect()
+    }
+
+    /// True when no problem found while loading is an error.
+    #[getter]
+    fn valid(&self) -> bool {
+        self.loaded.is_valid()
+    }
+
+    /// The check report (`apart check --json`), as JSON text.
+    fn check_json(&self) -> String {
+        answers::check(&self.loaded, self.units.as_deref()).to_string()
+    }
+
+    /// Raises `InvalidAssemblyError` when loading found errors.
+    fn require_valid(&self, py: Python<'_>) -> PyResult<()> {
+        errors::require_valid(py, &self.loaded)
+    }
+
+    /// Every solution (`apart partition --json`), the first one only, or one direction's
+    /// blocking graph, as JSON text.
+    #[pyo3(signature = (*, first, direction, max_solutions, max_per_set, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn partition_json(
+        &self,
+        py: Python<'_>,
+        first: bool,
+        direction: Option<[f64; 3]>,
+        max_solutions: Option<usize>,
+        max_per_set: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let loaded = self.loaded.clone();
+        let units = self.units.clone();
+        let d = match direction {
+            Some(d) => Some(answers::snap_direction(d).map_err(|m| errors::value_error(py, m))?),
+            None => None,
+        };
+        let opts = apart_plan::Options {
+            first,
+            max_solutions,
+            max_per_set,
+        };
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            // The first solution and one direction's graph watch no stop flag.
+            stoppable: !first && d.is_none(),
+        };
+        let (answer, stop) = run(py, limits, move |p| {
+            answers::partition(&loaded, units.as_deref(), d, &opts, p)
+        })?;
+        let mut answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        work::mark(&mut answer, &stop);
+        Ok(answer.to_string())
+    }
+
+    /// A disassembly plan (`apart sequence --json`), as JSON text.
+    #[pyo3(signature = (*, base, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn sequence_json(
+        &self,
+        py: Python<'_>,
+        base: Option<String>,
+        prefer_single: bool,
+        prefer_connected: bool,
+        prefer_axes: bool,
+        max_depth: Option<usize>,
+        growth: bool,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let base = match base {
+            Some(name) => Some(errors::part_index(py, &self.loaded.assembly, &name)?),
+            None => None,
+        };
+        if max_depth == Some(0) {
+            return Err(errors::value_error(
+                py,
+                "max_depth must be 1 or more".into(),
+            ));
+        }
+        let opts = apart_plan::SequenceOptions {
+            prefer_single,
+            prefer_connected,
+            prefer_axes,
+            base,
+            max_depth,
+            tolerance: growth,
+            keep_solutions: apart_plan::KeepSolutions::Nothing,
+        };
+        let loaded = self.loaded.clone();
+        let units = self.units.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| {
+            answers::sequence(&loaded, units.as_deref(), &opts, p)
+        })?;
+        let mut answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        work::mark(&mut answer, &stop);
+        Ok(answer.to_string())
+    }
+
+    /// Every direction along which part `a` leaves part `b` (`apart separate --json`),
+    /// as JSON text.
+    #[pyo3(signature = (a, b, *, progress, timeout))]
+    fn separate_json(
+        &self,
+        py: Python<'_>,
+        a: String,
+        b: String,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let asm = &self.loaded.assembly;
+        if asm.parts.len() < 2 {
+            return Err(errors::value_error(
+                py,
+                format!(
+                    "separate needs two parts, and \"{}\" has only {}",
+                    asm.name,
+                    asm.parts.len()
+                ),
+            ));
+        }
+        let (ia, ib) = (
+            errors::part_index(py, asm, &a)?,
+            errors::part_index(py, asm, &b)?,
+        );
+        if ia == ib {
+            return Err(errors::value_error(py, "the two parts must differ".into()));
+        }
+        let loaded = self.loaded.clone();
+        let units = self.units.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| {
+            answers::separate(&loaded, units.as_deref(), ia, ib, p)
+        })?;
+        let answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        match (answer, stop) {
+            (Some(answer), None) => Ok(answer.to_string()),
+            // Separation has no partial answer: a stop ends it with no result.
+            (_, stop) => Err(errors::stopped(py, stop)),
+        }
+    }
+
+    /// A stack of copies of part `part` on a floor (`apart stack --json`), as JSON
+    /// text; the options are in input units, their ranges checked by the caller.
+    #[pyo3(signature = (part, *, count, weight, floor, floor_z, max_height, dtheta, bases, clearance, max_candidates, extrapolate, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn stack_json(
+        &self,
+        py: Python<'_>,
+        part: String,
+        count: usize,
+        weight: f64,
+        floor: Option<[f64; 4]>,
+        floor_z: f64,
+        max_height: Option<f64>,
+        dtheta: f64,
+        bases: Option<Vec<(u8, u8)>>,
+        clearance: Option<f64>,
+        max_candidates: usize,
+        extrapolate: bool,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let k = errors::part_index(py, &self.loaded.assembly, &part)?;
+        if self.loaded.assembly.parts[k].pieces.is_empty() {
+            return Err(errors::value_error(
+                py,
+                format!("part \"{part}\" has no convex pieces: load it with apart.stack(path) or apart.load(path) with two parts or more"),
+            ));
+        }
+        let args = answers::StackArgs {
+            part: k,
+            count,
+            weight,
+            floor,
+            floor_z,
+            max_height,
+            dtheta,
+            bases,
+            clearance,
+            max_candidates,
+            extrapolate,
+        };
+        let loaded = self.loaded.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| answers::stack(&loaded, &args, p))?;
+        let mut answer = answer.map_err(|m| errors::value_error(py, m))?;
+        work::mark(&mut answer, &stop);
+        Ok(answer.to_string())
+    }
+}
+
+/// The compiled module.
+#[pymodule]
+fn _apart(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // Third-party mesh parsers' panics are caught and become errors; their default
+    // message on standard error would only repeat it.
+    apart_formats::quiet_parser_panics();
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(from_meshes, m)?)?;
+    m.add_class::<Assembly>()?;
+    m.add("DEFAULT_GRID_BITS", apart_kernel::grid::DEFAULT_BITS)?;
+    m.add(
+        "GRID_BITS_RANGE",
+        (apart_kernel::grid::MIN_BITS, apart_kernel::grid::MAX_BITS),
+    )?;
+    Ok(())
+}
