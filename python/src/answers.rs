@@ -9,8 +9,7 @@ use apart_mesh::Problem;
 use apart_plan::progress::Progress;
 use apart_plan::{
     dbg_along, partition_first, partition_subset_with, parts_of, separate as separate_parts,
-    BlockingRegions, CellKind, DirectionQuery, Options, PartPieces, Partitioning, PlanError,
-    SequenceOptions,
+    BlockingRegions, CellKind, Options, Part, Partitioning, PlanError, SequenceOptions,
 };
 use serde_json::{json, Value};
 use std::collections::HashMap;
@@ -130,70 +129,14 @@ pub fn snap_direction(v: [f64; 3]) -> Result<Vec3, String> {
     Ok(d)
 }
 
-/// A motion: moving parts, the subassembly they leave (`None`: all), the direction.
-type Motion<'a> = (&'a [usize], Option<&'a [usize]>, &'a Vec3);
+use apart_plan::along::Motion;
 
-/// Under a tolerance, whether each motion also holds for the parts as given (their
-/// unshrunk pieces, exact per-piece-pair tests), as the command line decides it;
-/// `None` without a tolerance.
+/// Whether each motion also holds for the parts as given (the library's check).
 fn holds_without_tolerance(
     loaded: &Loaded,
     motions: &[Motion],
 ) -> Result<Option<Vec<bool>>, PlanError> {
-    let asm = &loaded.assembly;
-    if asm.tolerance.is_none() {
-        return Ok(None);
-    }
-    let mut out = vec![false; motions.len()];
-    type Group<'a> = (&'a [usize], Option<&'a [usize]>, Vec<usize>);
-    let mut groups: Vec<Group> = Vec::new();
-    for (k, (moving, among, _)) in motions.iter().enumerate() {
-        match groups
-            .iter_mut()
-            .find(|(m, a, _)| m == moving && a == among)
-        {
-            Some((_, _, ks)) => ks.push(k),
-            None => groups.push((moving, *among, vec![k])),
-        }
-    }
-    for (moving, among, ks) in groups {
-        let mut sides = [Vec::new(), Vec::new()];
-        for (k, p) in asm.parts.iter().enumerate() {
-            if among.is_some_and(|a| !a.contains(&k)) {
-                continue;
-            }
-            let pieces = if p.unshrunk_pieces.is_empty() {
-                &p.pieces
-            } else {
-                &p.unshrunk_pieces
-            };
-            sides[usize::from(!moving.contains(&k))].extend(pieces.iter().cloned());
-        }
-        let [a, b] = sides;
-        let two = [
-            PartPieces {
-                name: "moving".into(),
-                pieces: a,
-            },
-            PartPieces {
-                name: "rest".into(),
-                pieces: b,
-            },
-        ];
-        let query = match DirectionQuery::new(&two) {
-            Ok(q) => q,
-            Err(PlanError::Overlap { .. }) => continue,
-            Err(e) => return Err(e),
-        };
-        for k in ks {
-            out[k] = match query.hits(0, 1, motions[k].2) {
-                Ok(hit) => !hit,
-                Err(PlanError::Overlap { .. }) => false,
-                Err(e) => return Err(e),
-            };
-        }
-    }
-    Ok(Some(out))
+    apart_plan::along::holds_without_tolerance(&loaded.assembly, motions)
 }
 
 /// Names of a set of part indices.
@@ -228,15 +171,15 @@ pub fn partition(
     }
     let parts = parts_of(asm)?;
     if let Some(d) = direction {
-        return direction_json(loaded, units, &parts, &d);
+        return direction_json(loaded, units, parts, &d);
     }
     let t = std::time::Instant::now();
     if opts.first {
         // Likely directions first; the full computation only when none separates.
-        let p = partition_first(&parts)?;
+        let p = partition_first(parts)?;
         return partition_json(loaded, units, &p, t.elapsed().as_secs_f64());
     }
-    let p = match BlockingRegions::compute_with(&parts, progress) {
+    let p = match BlockingRegions::compute_with(parts, progress) {
         Ok(regions) => {
             let all: Vec<usize> = (0..parts.len()).collect();
             partition_subset_with(&regions, &all, opts, progress).0
@@ -354,7 +297,7 @@ fn partition_json(
 fn direction_json(
     loaded: &Loaded,
     units: Option<&str>,
-    parts: &[PartPieces],
+    parts: &[Part],
     d: &Vec3,
 ) -> Result<Value, PlanError> {
     let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
@@ -404,7 +347,7 @@ pub fn sequence(
             step_seconds: 0.0,
         }
     } else {
-        match BlockingRegions::compute_with(&parts_of(asm)?, progress) {
+        match BlockingRegions::compute_with(parts_of(asm)?, progress) {
             Ok(regions) => apart_plan::sequence_with(&regions, opts, progress),
             Err(PlanError::Stopped { .. }) => apart_plan::Sequence::stopped_before_steps(
                 asm.parts.iter().map(|p| p.name.clone()).collect(),
@@ -517,7 +460,7 @@ pub fn separate(
     progress: &Progress,
 ) -> Result<Option<Value>, PlanError> {
     let asm = &loaded.assembly;
-    let regions = match BlockingRegions::compute_with(&parts_of(asm)?, progress) {
+    let regions = match BlockingRegions::compute_with(parts_of(asm)?, progress) {
         Ok(r) => r,
         Err(PlanError::Stopped { .. }) => return Ok(None),
         Err(e) => return Err(e),

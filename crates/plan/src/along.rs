@@ -792,6 +792,66 @@ pub fn partition_first(parts: &[Part]) -> Result<Partitioning, PlanError> {
     .0)
 }
 
+/// A motion found by a planner: a set of parts moving along a direction away from the
+/// other parts of a subassembly (`among`; `None`: the whole assembly).
+pub type Motion<'a> = (&'a [usize], Option<&'a [usize]>, &'a Vec3);
+
+/// For motions found under a tolerance: whether each also holds for the parts as given,
+/// decided exactly from the unshrunk pieces (the moving parts against the others of the
+/// subassembly, per-piece-pair tests). A motion that separates parts whose unshrunk
+/// pieces overlap never holds. `None` without a tolerance.
+pub fn holds_without_tolerance(
+    asm: &apart_assembly::Assembly,
+    motions: &[Motion],
+) -> Result<Option<Vec<bool>>, PlanError> {
+    if asm.tolerance.is_none() {
+        return Ok(None);
+    }
+    let mut out = vec![false; motions.len()];
+    type Group<'a> = (&'a [usize], Option<&'a [usize]>, Vec<usize>);
+    let mut groups: Vec<Group> = Vec::new();
+    for (k, (moving, among, _)) in motions.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|(m, a, _)| m == moving && a == among)
+        {
+            Some((_, _, ks)) => ks.push(k),
+            None => groups.push((moving, *among, vec![k])),
+        }
+    }
+    for (moving, among, ks) in groups {
+        // Two sides, each the union of its parts' unshrunk pieces.
+        let mut sides = [Vec::new(), Vec::new()];
+        for (k, p) in asm.parts.iter().enumerate() {
+            if among.is_some_and(|a| !a.contains(&k)) {
+                continue;
+            }
+            let pieces = if p.unshrunk_pieces.is_empty() {
+                &p.pieces
+            } else {
+                &p.unshrunk_pieces
+            };
+            sides[usize::from(!moving.contains(&k))].extend(pieces.iter().cloned());
+        }
+        let [a, b] = sides;
+        let two = [Part::from_pieces("moving", a), Part::from_pieces("rest", b)];
+        let query = match DirectionQuery::new(&two) {
+            Ok(q) => q,
+            Err(PlanError::Overlap { .. }) => continue,
+            Err(e) => return Err(e),
+        };
+        for k in ks {
+            // The moving side (part 0) moves along d unless it hits the rest (part 1).
+            out[k] = match query.hits(0, 1, motions[k].2) {
+                Ok(hit) => !hit,
+                Err(PlanError::Overlap { .. }) => false,
+                Err(e) => return Err(e),
+            };
+        }
+    }
+    Ok(Some(out))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
