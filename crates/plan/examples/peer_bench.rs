@@ -66,6 +66,65 @@ struct Run {
     stdout: String,
 }
 
+/// Repeated runs of one program on one input.
+#[derive(Default)]
+struct Series {
+    /// Wall seconds of the timed runs.
+    times: Vec<f64>,
+    /// Largest peak resident set measured, MiB.
+    mib: Option<f64>,
+    /// Standard output of the first run.
+    output: Option<String>,
+    /// Runs take more than a second: each is timed under the memory wrapper.
+    long: bool,
+    /// Why the runs stopped: a timeout or an error.
+    failed: Option<String>,
+}
+
+impl Series {
+    /// Runs of more than 30 s are not repeated.
+    fn done(&self, reps: usize) -> bool {
+        let wanted = if self.times.first().is_some_and(|&t| t > 30.0) {
+            1
+        } else {
+            reps
+        };
+        self.failed.is_some() || self.times.len() >= wanted
+    }
+
+    /// One more run. The first is a warm-up under `/usr/bin/time` for the peak memory;
+    /// it is also timed when the program takes more than a second (then the wrapper's
+    /// start-up does not matter and every run is wrapped).
+    fn step(&mut self, program: &Path, args: &[&std::ffi::OsStr], timeout: Duration, reps: usize) {
+        if self.done(reps) {
+            return;
+        }
+        let warm = self.output.is_none();
+        let r = run(program, args, timeout, warm || self.long);
+        match r.code {
+            None => {
+                self.failed = Some(format!("timeout ({:.0} s)", timeout.as_secs_f64()));
+                return;
+            }
+            Some(0 | 2) => {}
+            Some(c) => {
+                self.failed = Some(format!("exit code {c}"));
+                self.output = Some(r.stdout);
+                return;
+            }
+        }
+        self.mib = larger(self.mib, r.mib);
+        if warm {
+            self.long = r.seconds > 1.0;
+            self.output = Some(r.stdout);
+            if !self.long {
+                return;
+            }
+        }
+        self.times.push(r.seconds);
+    }
+}
+
 /// Runs `program args` to its end (or kills it at `timeout`), timing the whole process.
 /// With `memory`, the process runs under `/usr/bin/time -f %M`, which reports its peak
 /// resident set (the wrapper's own start-up then counts in the time: the caller
@@ -407,7 +466,7 @@ fn cases(apart: &Path, root: &Path, keep: &dyn Fn(&str) -> bool) -> Vec<Case> {
             out.push(decompose_folder(apart, &examples.join(ex), root, ex));
         }
     }
-    for (n, m) in [(4, 4), (8, 6), (16, 8)] {
+    for (n, m) in [(4, 4), (8, 6), (12, 6)] {
         let name = format!("stick-row-{n}x{m}");
         if keep(&name) {
             out.push(decomposed(apart, root, &name, &stick_row(n, m)));
@@ -651,7 +710,8 @@ fn coordinates_exact(dir: &Path) -> bool {
         f.extend(p["pieces"].as_array().cloned().unwrap_or_default());
         f
     });
-    for f in files {
+    // A part given by its pieces alone has no mesh (null).
+    for f in files.filter(|f| !f.is_null()) {
         let Some(text) = f
             .as_str()
             .and_then(|f| fs::read_to_string(dir.join(f)).ok())
@@ -841,7 +901,7 @@ fn cross_check(
             }
         }
         notes.push(format!(
-            "peer probed at {} of apart's {} face/edge directions{}",
+            "peer probed at the {} distinct directions of {} of apart's face/edge solutions{}",
             at.len(),
             probed.len(),
             if skipped > 0 {
@@ -982,46 +1042,29 @@ fn main() {
         let stats = &check["stats"];
         let parts = check["parts"].as_array().map_or(0, Vec::len);
         let pieces = stats["pieces"].as_u64().unwrap_or(0);
-        let (mut at, mut pt) = (Vec::new(), Vec::new());
-        let (mut am, mut pm) = (None::<f64>, None::<f64>);
-        let mut peer_json = Value::Null;
-        let mut peer_state = if peer.is_some() { "" } else { "not run" };
         let apart_args = os(&["partition", "--json", "--threads", "1"]);
         let peer_args = os(&[]);
-        // Runs of more than a second measure their memory too (the wrapper's start-up
-        // is then negligible); shorter programs get one more run for it at the end.
-        let (mut apart_long, mut peer_long) = (false, false);
-        for _ in 0..reps {
-            let r = run(&apart, &apart_args, timeout, apart_long);
-            at.push(r.seconds);
-            am = larger(am, r.mib);
-            apart_long = r.seconds > 1.0;
-            if let (Some(p), "") = (&peer, peer_state) {
-                let r = run(p, &peer_args, timeout, peer_long);
-                if r.code.is_none() {
-                    peer_state = "timeout";
-                } else if r.code != Some(0) {
-                    peer_state = "failed";
-                    peer_json = serde_json::from_str(&r.stdout).unwrap_or(Value::Null);
-                } else {
-                    pt.push(r.seconds);
-                    pm = larger(pm, r.mib);
-                    peer_long = r.seconds > 1.0;
-                    if peer_json.is_null() {
-                        peer_json = serde_json::from_str(&r.stdout).unwrap_or(Value::Null);
-                    }
-                }
+        let mut a = Series::default();
+        let mut p = Series::default();
+        if peer.is_none() {
+            p.failed = Some("not run".into());
+        }
+        while !(a.done(reps) && p.done(reps)) {
+            a.step(&apart, &apart_args, timeout, reps);
+            if let Some(peer) = &peer {
+                p.step(peer, &peer_args, timeout, reps);
             }
         }
-        if am.is_none() {
-            am = run(&apart, &apart_args, timeout, true).mib;
-        }
-        if let (Some(p), "", None) = (&peer, peer_state, pm) {
-            pm = run(p, &peer_args, timeout, true).mib;
-        }
-        let a_s = median(&mut at);
-        let p_s = (!pt.is_empty()).then(|| median(&mut pt));
-        let agree = match (&peer, peer_state, p_s) {
+        let a_s = median(&mut a.times);
+        let p_s = (!p.times.is_empty()).then(|| median(&mut p.times));
+        let (am, pm) = (a.mib, p.mib);
+        let peer_json: Value = p
+            .output
+            .as_deref()
+            .and_then(|o| serde_json::from_str(o).ok())
+            .unwrap_or(Value::Null);
+        let peer_state = p.failed.clone().unwrap_or_default();
+        let agree = match (&peer, peer_state.as_str(), p_s) {
             (Some(p), "", Some(_)) => {
                 let mut pj = peer_json.clone();
                 let listed = pj["vertex_solutions"].as_array().map_or(0, Vec::len) as u64;
@@ -1044,10 +1087,9 @@ fn main() {
                 if ok { "yes" } else { "**no**" }.to_string()
             }
             (Some(_), state, _) => {
-                let why = if state == "failed" {
-                    peer_json["error"].as_str().unwrap_or("error").to_string()
-                } else {
-                    format!("peer {state}")
+                let why = match peer_json["error"].as_str() {
+                    Some(e) => format!("peer: {e}"),
+                    None => format!("peer: {state}"),
                 };
                 format!("— ({why})")
             }
@@ -1067,7 +1109,7 @@ fn main() {
             pieces,
             fmt_s(a_s),
             p_s.map_or(
-                if peer_state == "timeout" {
+                if peer_state.starts_with("timeout") {
                     format!("> {:.0}", timeout.as_secs_f64())
                 } else {
                     "—".into()
@@ -1080,6 +1122,12 @@ fn main() {
             agree,
             if exact { "" } else { " (inexact coordinates)" }
         ));
+        eprintln!("{}", rows.last().expect("a row"));
+        if let Some((_, c)) = findings.last().filter(|(n, _)| *n == case.name) {
+            for line in c.problems.iter().chain(&c.notes) {
+                eprintln!("  {line}");
+            }
+        }
         let sec = &stats["seconds"];
         let ms = |k: &str| sec[k].as_f64().unwrap_or(f64::NAN) * 1e3;
         let pms = |k: &str| {
@@ -1112,7 +1160,7 @@ fn main() {
         ));
     }
     println!(
-        "Whole process, median of {reps} alternating runs; apart `partition DIR --json --threads 1`; peak = largest resident set.\n"
+        "Whole process, apart `partition DIR --json --threads 1` and the peer alternating: a warm-up run under `/usr/bin/time -f %M` for the peak resident set, then the median of {reps} runs (a program taking over 1 s is timed under the wrapper every run; over 30 s, once).\n"
     );
     println!("| input | parts | pieces | apart s | peer s | ratio | apart MiB | peer MiB | answers agree |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---|");
