@@ -33,7 +33,8 @@
 //! file is missing) only apart runs, with a note. Other settings: `APART_BIN` (default:
 //! the `apart` binary of this target folder), `PEER_BENCH_TIMEOUT` (seconds per run,
 //! default 600), `PEER_BENCH_CHECKS` (solutions probed and oracle-checked per input,
-//! default 300). Arguments keep only the inputs whose name contains one of them.
+//! default 300), `PEER_BENCH_ORACLE_SECONDS` (time for the oracle's checks per input,
+//! default 30). Arguments keep only the inputs whose name contains one of them.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -766,6 +767,7 @@ fn cross_check(
     peer_cmd: &Path,
     timeout: Duration,
     checks: usize,
+    oracle_budget: Duration,
 ) -> Check {
     let mut problems = Vec::new();
     let mut notes = Vec::new();
@@ -929,8 +931,15 @@ fn cross_check(
                 let rest: Vec<usize> = (0..parts.len()).filter(|i| !moving.contains(i)).collect();
                 moving.len() == s.len() && oracle.free(&moving, &rest, d)
             };
+            // Spread over the solutions and bounded in time (a moving ring of 64 pieces
+            // against 65 others is 4,160 linear programs per solution).
+            let started = Instant::now();
+            let in_time = || started.elapsed() < oracle_budget;
             let mut n = 0;
             for i in sample(apart.solutions.len(), checks) {
+                if !in_time() {
+                    break;
+                }
                 let (kind, d, s) = &apart.solutions[i];
                 if let Some(v) = vec3(*d) {
                     n += 1;
@@ -946,6 +955,9 @@ fn cross_check(
             }
             let pv: Vec<_> = peer_vertices.iter().collect();
             for i in sample(pv.len(), checks) {
+                if !in_time() {
+                    break;
+                }
                 let (d, s) = pv[i];
                 if let Some(v) = vec3(*d) {
                     n += 1;
@@ -975,7 +987,15 @@ fn cross_check(
                     ));
                 }
             }
-            notes.push(format!("oracle checked {n} solutions"));
+            let of = sample(apart.solutions.len(), checks).len() + sample(pv.len(), checks).len();
+            notes.push(format!(
+                "oracle checked {n} of {of} sampled solutions{}",
+                if in_time() {
+                    String::new()
+                } else {
+                    format!(" (stopped after {} s)", oracle_budget.as_secs())
+                }
+            ));
         }
     }
     Check { problems, notes }
@@ -1015,6 +1035,11 @@ fn main() {
     let checks: usize = env("PEER_BENCH_CHECKS")
         .and_then(|v| v.parse().ok())
         .unwrap_or(300);
+    let oracle_budget = Duration::from_secs_f64(
+        env("PEER_BENCH_ORACLE_SECONDS")
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(30.0),
+    );
     let root = env("PEER_BENCH_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| std::env::temp_dir().join("apart-peer-bench"));
@@ -1081,6 +1106,7 @@ fn main() {
                     p,
                     timeout,
                     checks,
+                    oracle_budget,
                 );
                 let ok = c.problems.is_empty() && !check.is_null();
                 findings.push((case.name.clone(), c));
