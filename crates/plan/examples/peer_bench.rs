@@ -14,9 +14,10 @@
 //! random boxes in parts (paper 003) and voxel puzzles of 6 to 13 parts on a 6×6×6 grid.
 //!
 //! For each input it runs `apart partition DIR --json --threads 1` and the peer as whole
-//! processes, alternating, `PEER_BENCH_REPS` times (default 3): the median wall time and
-//! the largest peak resident set (`wait4`'s `ru_maxrss`). Then it cross-checks the
-//! answers (`apart partition --all`):
+//! processes, alternating: a warm-up run under `/usr/bin/time -f %M` for the peak
+//! resident set, then `PEER_BENCH_REPS` timed runs (default 3) and their median wall
+//! time (a program taking over 1 s is timed under the wrapper every run, over 30 s only
+//! once). Then it cross-checks the answers (`apart partition --all`):
 //!
 //! - the moving sets (minimal movable subsets) of both are the same;
 //! - for each moving set, the best kind of cell where it moves (face, edge, vertex) is
