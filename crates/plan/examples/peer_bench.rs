@@ -42,7 +42,7 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
-use apart_plan::PartPieces;
+use apart_plan::Part;
 use apart_testkit::solids::{rectilinear, voxels, IntMesh, Lcg};
 use common::oracle::Oracle;
 use serde_json::{json, Value};
@@ -654,7 +654,7 @@ fn peer_answer(json: &Value) -> PeerAnswer {
 
 /// The pieces of every part, read back from the input's OFF files (integer coordinates),
 /// for the oracle; None when a coordinate is not an integer.
-fn load_parts(dir: &Path) -> Option<Vec<PartPieces>> {
+fn load_parts(dir: &Path) -> Option<Vec<Part>> {
     let m: Value =
         serde_json::from_str(&fs::read_to_string(dir.join("assembly.json")).ok()?).ok()?;
     let mut parts = Vec::new();
@@ -665,10 +665,7 @@ fn load_parts(dir: &Path) -> Option<Vec<PartPieces>> {
             let v: Vec<Vec3> = pts.into_iter().map(Vec3::from).collect();
             pieces.push(Polytope::hull_of_points(&v).ok()?);
         }
-        parts.push(PartPieces {
-            name: p["name"].as_str()?.to_string(),
-            pieces,
-        });
+        parts.push(Part::from_pieces(p["name"].as_str()?, pieces));
     }
     Some(parts)
 }
