@@ -226,8 +226,12 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         problems.extend(decompose_parts(&mut parts, opts));
     }
     // Relations between parts that snapping changed (needs the pieces, for the exact
-    // overlap test of the few pairs it asks about).
-    problems.extend(snapping::changed_relations(&parts, &raw_points, &grid));
+    // overlap test of the few pairs it asks about). When snapping moved no coordinate
+    // (integer inputs, or values already on the grid), no relation can have changed:
+    // the search, most of loading a small integer assembly, is skipped.
+    if max_snap_displacement > 0.0 {
+        problems.extend(snapping::changed_relations(&parts, &raw_points, &grid));
+    }
     drop(raw_points);
     let mut assembly = Assembly {
         name: plan.name,
