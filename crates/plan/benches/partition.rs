@@ -41,39 +41,16 @@ fn brick_row(n: i64) -> Vec<Part> {
         .collect()
 }
 
-/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2).
+/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2; apart-testkit's
+/// generator).
 fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Part> {
-    let mut s = seed;
-    let mut next = |m: i64| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 33) % m as u64) as i64
-    };
-    let side = 12 * (n as f64).cbrt().ceil() as i64 + 12;
-    let mut boxes: Vec<([i64; 3], [i64; 3])> = Vec::new();
-    while boxes.len() < n {
-        let lo = [next(side), next(side), next(side)];
-        let hi = [
-            lo[0] + 2 + next(8),
-            lo[1] + 2 + next(8),
-            lo[2] + 2 + next(8),
-        ];
-        let overlaps = boxes
-            .iter()
-            .any(|(a, b)| (0..3).all(|d| lo[d] < b[d] && a[d] < hi[d]));
-        if !overlaps {
-            boxes.push((lo, hi));
-        }
-    }
-    let mut parts: Vec<Vec<apart_pieces::Polytope>> = vec![Vec::new(); k];
-    for (i, (lo, hi)) in boxes.into_iter().enumerate() {
-        parts[i % k].push(common::cuboid(lo, hi));
-    }
-    parts
+    apart_testkit::solids::random_boxes(n, k, seed)
         .into_iter()
         .enumerate()
-        .map(|(i, p)| common::part(&format!("p{i}"), p))
+        .map(|(i, boxes)| {
+            let pieces = boxes.into_iter().map(|(lo, hi)| common::cuboid(lo, hi));
+            common::part(&format!("p{i}"), pieces.collect())
+        })
         .collect()
 }
 

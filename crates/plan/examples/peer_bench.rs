@@ -43,7 +43,7 @@ mod common;
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use apart_plan::Part;
-use apart_testkit::solids::{rectilinear, voxels, IntMesh, Lcg};
+use apart_testkit::solids::{random_boxes, rectilinear, voxels, IntMesh, Lcg};
 use common::oracle::Oracle;
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, BTreeSet};
@@ -365,39 +365,6 @@ fn log_cabin(layers: usize, w: usize) -> Vec<(String, IntMesh)> {
                 voxels(dims, &on),
             ));
         }
-    }
-    parts
-}
-
-/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2), the
-/// generator of apart-plan's partition bench.
-fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Vec<([i64; 3], [i64; 3])>> {
-    let mut s = seed;
-    let mut next = |m: i64| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 33) % m as u64) as i64
-    };
-    let side = 12 * (n as f64).cbrt().ceil() as i64 + 12;
-    let mut boxes: Vec<([i64; 3], [i64; 3])> = Vec::new();
-    while boxes.len() < n {
-        let lo = [next(side), next(side), next(side)];
-        let hi = [
-            lo[0] + 2 + next(8),
-            lo[1] + 2 + next(8),
-            lo[2] + 2 + next(8),
-        ];
-        let overlaps = boxes
-            .iter()
-            .any(|(a, b)| (0..3).all(|d| lo[d] < b[d] && a[d] < hi[d]));
-        if !overlaps {
-            boxes.push((lo, hi));
-        }
-    }
-    let mut parts = vec![Vec::new(); k];
-    for (i, b) in boxes.into_iter().enumerate() {
-        parts[i % k].push(b);
     }
     parts
 }

@@ -185,6 +185,34 @@ impl Lcg {
     }
 }
 
+/// `n` random disjoint integer boxes `(lo, hi)` linked into `k` parts, box `i` in part
+/// `i mod k` (paper 003, section 5.2: the random-boxes benchmark), from `seed`.
+pub fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Vec<([i64; 3], [i64; 3])>> {
+    let mut rng = Lcg(seed);
+    let mut next = |m: i64| rng.below(m as u64) as i64;
+    let side = 12 * (n as f64).cbrt().ceil() as i64 + 12;
+    let mut boxes: Vec<([i64; 3], [i64; 3])> = Vec::new();
+    while boxes.len() < n {
+        let lo = [next(side), next(side), next(side)];
+        let hi = [
+            lo[0] + 2 + next(8),
+            lo[1] + 2 + next(8),
+            lo[2] + 2 + next(8),
+        ];
+        let overlaps = boxes
+            .iter()
+            .any(|(a, b)| (0..3).all(|d| lo[d] < b[d] && a[d] < hi[d]));
+        if !overlaps {
+            boxes.push((lo, hi));
+        }
+    }
+    let mut parts = vec![Vec::new(); k];
+    for (i, b) in boxes.into_iter().enumerate() {
+        parts[i % k].push(b);
+    }
+    parts
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
