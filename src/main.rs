@@ -126,6 +126,11 @@ enum Command {
     /// Stack identical parts on a floor region (stable, grippable from above, lowered
     /// along -z); exit 2 when not every part could be placed.
     Stack(commands::stack::StackArgs),
+    /// Run partition, sequence or check on every assembly under a folder, in parallel
+    /// across assemblies, each in its own process with its own time and memory bound;
+    /// one JSON line per assembly (status, timings, counts), resumable; a summary table
+    /// at the end. Exit code 1 when an assembly's process failed.
+    Batch(commands::batch::BatchArgs),
 }
 
 fn main() -> ExitCode {
@@ -169,6 +174,7 @@ fn main() -> ExitCode {
         Command::Separate(args) => commands::separate::run(args, &cli.global),
         Command::Place(args) => commands::place::run(args, &cli.global),
         Command::Stack(args) => commands::stack::run(args, &cli.global),
+        Command::Batch(args) => commands::batch::run(args, &cli.global),
     };
     match result {
         Ok(code) => code,

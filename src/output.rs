@@ -199,6 +199,23 @@ pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
     (bar, hook)
 }
 
+/// A bar counting `total` items of `label` with the time left (`apart batch`), hidden
+/// off a terminal, with `--quiet` or with `--json`.
+pub fn counter(global: &Global, label: &'static str, total: u64) -> ProgressBar {
+    if !shows_progress(global) {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} {elapsed}, about {eta} left")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(label);
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+    bar
+}
+
 /// A phase of a run, from [`phase`] until dropped.
 pub struct Phase(Option<ProgressBar>);
 

@@ -1,0 +1,319 @@
+//! `apart batch`: one command over every assembly under a folder, in parallel across
+//! assemblies, one JSON line per assembly, resumable.
+//!
+//! Each assembly runs in a child process of this same binary (`apart partition DIR
+//! --json --threads 1 --timeout S --max-memory M`), so that its time and memory are
+//! bounded on their own and a crash or an exhausted budget ends that assembly only.
+
+use crate::{limits, output, Global};
+use clap::{Args, ValueEnum};
+use serde_json::{json, Value};
+use std::collections::{BTreeMap, HashSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// The command run on each assembly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BatchCommand {
+    /// `apart partition` (every solution, counted; 20 moving sets listed).
+    Partition,
+    /// `apart sequence` (a complete disassembly plan).
+    Sequence,
+    /// `apart check` (validation only).
+    Check,
+}
+
+impl BatchCommand {
+    fn name(self) -> &'static str {
+        match self {
+            BatchCommand::Partition => "partition",
+            BatchCommand::Sequence => "sequence",
+            BatchCommand::Check => "check",
+        }
+    }
+}
+
+/// Arguments of `apart batch`.
+#[derive(Args, Debug)]
+pub struct BatchArgs {
+    /// Folder holding the assemblies: every folder below it with an assembly.json or
+    /// with mesh files of its own is one assembly (its sub-folders are its parts'
+    /// pieces, not assemblies).
+    pub dir: PathBuf,
+    /// What to run on each assembly.
+    #[arg(long, value_enum, default_value_t = BatchCommand::Partition)]
+    pub command: BatchCommand,
+    /// The JSON lines file, one line per assembly; assemblies already in it are skipped
+    /// (a run can be resumed), new lines are appended.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Assemblies run at the same time (default: one per core).
+    #[arg(long, value_name = "N", value_parser = limits::threads, allow_negative_numbers = true)]
+    pub jobs: Option<usize>,
+    /// Time bound of one assembly, in seconds: past it the assembly's answer is its
+    /// partial answer (status "timeout").
+    #[arg(long, value_name = "SECONDS", default_value_t = 300.0, value_parser = limits::timeout, allow_negative_numbers = true)]
+    pub each_timeout: f64,
+    /// Memory bound of one assembly (4G, 500M, bytes): past it the assembly ends with
+    /// status "out of memory".
+    #[arg(long, value_name = "SIZE", default_value = "4G", value_parser = limits::memory_size)]
+    pub each_memory: u64,
+}
+
+/// The assemblies under `dir`, sorted: folders with an `assembly.json` or with mesh
+/// files of their own (not descending into them).
+pub fn assemblies_under(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let mut subdirs = Vec::new();
+        let mut is_assembly = false;
+        for e in std::fs::read_dir(&d)? {
+            let e = e?;
+            let p = e.path();
+            let hidden = e.file_name().to_string_lossy().starts_with('.');
+            let t = e.file_type()?;
+            if hidden {
+                continue;
+            }
+            if t.is_dir() {
+                subdirs.push(p);
+            } else if t.is_file()
+                && (e.file_name() == "assembly.json"
+                    || apart::formats::Format::from_path(&p).is_some())
+            {
+                is_assembly = true;
+            }
+        }
+        if is_assembly {
+            out.push(d);
+        } else {
+            stack.extend(subdirs);
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// The key of an assembly in the output: its path relative to the batch folder.
+fn key(dir: &Path, asm: &Path) -> String {
+    asm.strip_prefix(dir)
+        .ok()
+        .filter(|r| !r.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The assemblies a previous run already answered (their "assembly" keys).
+fn done_before(out: &Path) -> anyhow::Result<HashSet<String>> {
+    let text = match std::fs::read_to_string(out) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(HashSet::new()),
+        Err(e) => anyhow::bail!("cannot read {}: {e}", out.display()),
+    };
+    Ok(text
+        .lines()
+        .filter_map(|l| serde_json::from_str::<Value>(l).ok())
+        .filter_map(|v| v["assembly"].as_str().map(str::to_string))
+        .collect())
+}
+
+/// The child's arguments beside the command and the folder: the loading options of
+/// this run, and the bounds of one assembly.
+fn child_args(args: &BatchArgs, global: &Global) -> Vec<String> {
+    let mut a = vec![
+        "--json".to_string(),
+        "--quiet".into(),
+        "--threads".into(),
+        "1".into(),
+        "--timeout".into(),
+        args.each_timeout.to_string(),
+        "--max-memory".into(),
+        args.each_memory.to_string(),
+        "--grid-bits".into(),
+        global.grid_bits.to_string(),
+    ];
+    for (on, flag) in [
+        (global.verify, "--verify"),
+        (global.strict, "--strict"),
+        (global.one_part_per_file, "--one-part-per-file"),
+        (global.allow_outside, "--allow-outside"),
+    ] {
+        if on {
+            a.push(flag.into());
+        }
+    }
+    if let Some(t) = &global.tolerance {
+        a.extend(["--tolerance".into(), t.clone()]);
+    }
+    if let Some(u) = global.units {
+        let u = u.to_possible_value().expect("a unit has a name");
+        a.extend(["--units".into(), u.get_name().to_string()]);
+    }
+    a
+}
+
+/// One assembly's line: its key, status, exit code, wall time, the answer's own
+/// timings and counts, and its error message when it has no answer.
+fn run_one(exe: &Path, command: BatchCommand, asm: &Path, key: String, extra: &[String]) -> Value {
+    let t = Instant::now();
+    let out = Command::new(exe)
+        .arg(command.name())
+        .arg(asm)
+        .args(extra)
+        .stdin(Stdio::null())
+        .output();
+    let seconds = t.elapsed().as_secs_f64();
+    let out = match out {
+        Ok(o) => o,
+        Err(e) => {
+            return json!({"assembly": key, "status": "failed", "error": e.to_string(), "seconds": seconds})
+        }
+    };
+    let answer: Option<Value> = serde_json::from_slice(&out.stdout).ok();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let error_line = stderr
+        .lines()
+        .find(|l| l.starts_with("error"))
+        .or_else(|| stderr.lines().last())
+        .unwrap_or("")
+        .to_string();
+    let code = out.status.code();
+    let status = match (code, command) {
+        (Some(0), _) => "ok",
+        (Some(2), BatchCommand::Check) => "invalid input",
+        (Some(2), _) => "interlocked",
+        (Some(3), _) => "timeout",
+        (Some(1), _) if stderr.contains("out of memory budget") => "out of memory",
+        (Some(1), _) if stderr.contains("stopped after") => "timeout",
+        (Some(1), _) => "invalid input",
+        _ => "failed",
+    };
+    let mut line = json!({
+        "assembly": key,
+        "command": command.name(),
+        "status": status,
+        "exit_code": code,
+        "seconds": seconds,
+    });
+    if let Some(a) = &answer {
+        for k in [
+            "parts",
+            "solution_count",
+            "moving_set_count",
+            "interlocked",
+            "complete",
+            "steps",
+            "valid",
+            "tolerance",
+            "repairs",
+            "stats",
+        ] {
+            if let Some(v) = a.get(k) {
+                line[k] = match k {
+                    // A plan's steps in brief: who moves along what.
+                    "steps" => Value::from(v.as_array().map_or(0, Vec::len)),
+                    _ => v.clone(),
+                };
+            }
+        }
+        if status != "ok" && status != "interlocked" && !error_line.is_empty() {
+            line["error"] = error_line.into();
+        }
+    } else if !error_line.is_empty() {
+        line["error"] = error_line.into();
+    }
+    line
+}
+
+/// Runs `apart batch`.
+pub fn run(args: &BatchArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    if !args.dir.is_dir() {
+        anyhow::bail!("{} is not a folder", args.dir.display());
+    }
+    let all = assemblies_under(&args.dir)
+        .map_err(|e| anyhow::anyhow!("cannot list {}: {e}", args.dir.display()))?;
+    let before = done_before(&args.out)?;
+    let todo: Vec<(PathBuf, String)> = all
+        .iter()
+        .map(|a| (a.clone(), key(&args.dir, a)))
+        .filter(|(_, k)| !before.contains(k))
+        .collect();
+    let skipped = all.len() - todo.len();
+    let exe = std::env::current_exe()?;
+    let extra = child_args(args, global);
+    let mut file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&args.out)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", args.out.display()))?;
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .min(todo.len().max(1));
+    let bar = output::counter(global, "assemblies", todo.len() as u64);
+    let next = AtomicUsize::new(0);
+    let sink = Mutex::new((&mut file, Vec::<Value>::new()));
+    let t = Instant::now();
+    std::thread::scope(|s| {
+        for _ in 0..jobs {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some((asm, key)) = todo.get(k) else { break };
+                let line = run_one(&exe, args.command, asm, key.clone(), &extra);
+                let mut g = sink.lock().expect("no panic holds the lock");
+                // One whole line per write, so that an interrupted run leaves whole lines.
+                let _ = writeln!(g.0, "{line}").and_then(|()| g.0.flush());
+                g.1.push(line);
+                bar.inc(1);
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let (_, lines) = sink.into_inner().expect("no panic holds the lock");
+    let mut counts: BTreeMap<String, usize> = BTreeMap::new();
+    for l in &lines {
+        *counts
+            .entry(l["status"].as_str().unwrap_or("failed").to_string())
+            .or_default() += 1;
+    }
+    let total = t.elapsed().as_secs_f64();
+    if global.json {
+        output::json(&json!({
+            "folder": args.dir,
+            "command": args.command.name(),
+            "out": args.out,
+            "assemblies": all.len(),
+            "run": lines.len(),
+            "skipped_as_done": skipped,
+            "statuses": counts,
+            "seconds": total,
+        }))?;
+    } else {
+        output::line(format!(
+            "{} assemblies under {}: {} run, {} already in {} (skipped)",
+            all.len(),
+            args.dir.display(),
+            lines.len(),
+            skipped,
+            args.out.display()
+        ));
+        output::line("| status | assemblies |".to_string());
+        output::line("|---|---:|".to_string());
+        for (s, n) in &counts {
+            output::line(format!("| {s} | {n} |"));
+        }
+        output::line(format!("time: {total:.1} s with {jobs} at a time"));
+    }
+    let failed = lines.iter().any(|l| l["status"] == "failed");
+    Ok(if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    })
+}
