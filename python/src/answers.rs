@@ -156,15 +156,7 @@ pub fn partition(
     let asm = &loaded.assembly;
     let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
     if names.len() < 2 {
-        let p = Partitioning {
-            names,
-            interlocked: false,
-            solutions: Vec::new(),
-            truncated: false,
-            sets: Vec::new(),
-            stats: Default::default(),
-            stopped: false,
-        };
+        let p = Partitioning::nothing_to_separate(names);
         let mut v = partition_json(loaded, units, &p, 0.0)?;
         v["nothing_to_separate"] = true.into();
         return Ok(v);
@@ -356,17 +348,7 @@ pub fn sequence(
         }
     };
     let regions_and_steps = t.elapsed().as_secs_f64();
-    let motions: Vec<Motion> = plan
-        .steps
-        .iter()
-        .map(|s| {
-            (
-                s.moving.as_slice(),
-                Some(s.subassembly.as_slice()),
-                &s.direction,
-            )
-        })
-        .collect();
+    let motions = plan.motions();
     let holds = holds_without_tolerance(loaded, &motions)?;
     let step_unit = asm.grid.step();
     let names = |set: &[usize]| names_of(&plan.names, set);

@@ -269,15 +269,7 @@ fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::R
     let asm = &loaded.assembly;
     let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
     if global.json {
-        let p = Partitioning {
-            names: names.clone(),
-            interlocked: false,
-            solutions: Vec::new(),
-            truncated: false,
-            sets: Vec::new(),
-            stats: Default::default(),
-            stopped: false,
-        };
+        let p = Partitioning::nothing_to_separate(names.clone());
         let list = listing(&p, Some(DEFAULT_LIMIT));
         let mut json = to_json(
             &p,

@@ -7,7 +7,7 @@
 
 use crate::commands::load::{load_valid, part_index};
 use crate::commands::partition::Projection;
-use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
+use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
 use crate::limits::TimedOut;
 use crate::output;
 use crate::{limits, Global};
@@ -233,17 +233,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         pictures(args, asm, regions, &plan)?;
     }
     let step_unit = asm.grid.step();
-    let motions: Vec<Motion> = plan
-        .steps
-        .iter()
-        .map(|s| {
-            (
-                s.moving.as_slice(),
-                Some(s.subassembly.as_slice()),
-                &s.direction,
-            )
-        })
-        .collect();
+    let motions = plan.motions();
     let holds = {
         let _phase = output::phase(global, "checking the steps without the tolerance");
         holds_without_tolerance(asm, &motions)?

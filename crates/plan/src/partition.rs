@@ -133,6 +133,20 @@ impl Partitioning {
             .sum()
     }
 
+    /// The answer for an assembly of fewer than two parts: nothing to separate, no
+    /// solution, not interlocked, complete.
+    pub fn nothing_to_separate(names: Vec<String>) -> Partitioning {
+        Partitioning {
+            names,
+            interlocked: false,
+            solutions: Vec::new(),
+            truncated: false,
+            sets: Vec::new(),
+            stats: Stats::default(),
+            stopped: false,
+        }
+    }
+
     /// The answer of a run stopped before it found anything (while it computed the pair
     /// regions): no solution, not interlocked, [`Partitioning::stopped`].
     pub fn stopped_before_solutions(names: Vec<String>, pieces: usize) -> Partitioning {

@@ -126,6 +126,21 @@ pub struct Sequence {
 }
 
 impl Sequence {
+    /// Every step as a motion (its moving set, the subassembly it leaves, its
+    /// direction), as [`crate::along::holds_without_tolerance`] takes them.
+    pub fn motions(&self) -> Vec<crate::along::Motion<'_>> {
+        self.steps
+            .iter()
+            .map(|s| {
+                (
+                    s.moving.as_slice(),
+                    Some(s.subassembly.as_slice()),
+                    &s.direction,
+                )
+            })
+            .collect()
+    }
+
     /// True when every part ends up separate.
     pub fn complete(&self) -> bool {
         self.stuck.is_empty() && self.unsplit.is_empty() && self.pending.is_empty()
