@@ -100,8 +100,12 @@ def test_ray_cluster_gives_the_batch_lines(many):
         print(f"SKIPPED: ray cannot be imported here ({e}); the Ray test did not run")
         pytest.skip(f"ray is not installed: {e}")
     root, cli = many
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
-             ignore_reinit_error=True)
+    try:
+        ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
+                 ignore_reinit_error=True)
+    except Exception as e:  # pragma: no cover - the machine cannot start a local cluster
+        print(f"SKIPPED: a local Ray cluster cannot start here ({e}); the Ray test did not run")
+        pytest.skip(f"ray.init() failed: {e}")
     try:
         got: List[Dict[str, Any]] = list(apart.ray.run(root, "partition"))
         # Resumed: keys already answered are not run again.
