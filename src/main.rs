@@ -155,8 +155,11 @@ fn main() -> ExitCode {
         limits::start_watchdog(s);
     }
     if let Some(n) = cli.global.threads {
+        // The main thread is one of the N: it runs the work itself instead of handing
+        // it to a pool thread and waiting (with one thread, no thread is started).
         if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
+            .use_current_thread()
             .build_global()
         {
             output::fail(
