@@ -367,20 +367,11 @@ pub fn sequence(
         .iter()
         .enumerate()
         .map(|(k, s)| {
-            use apart_plan::sequence::Criterion as C;
             let runner_up = s.choice.runner_up.as_ref().map(|r| {
                 let mut v = keys(&r.keys);
                 v["moving"] = json!(names(&r.moving));
                 v["exact_direction"] = json!(r.direction.to_strings());
-                v["lost_on"] = json!(match r.lost_on {
-                    C::Connected => "connected",
-                    C::Single => "single",
-                    C::Axis => "axis",
-                    C::Cell => "cell",
-                    C::Clearance => "clearance",
-                    C::FewerParts => "fewer_parts",
-                    C::Order => "order",
-                });
+                v["lost_on"] = json!(r.lost_on.key());
                 v
             });
             let mut choice = keys(&s.choice.keys);

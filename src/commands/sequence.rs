@@ -361,7 +361,6 @@ fn keys_json(k: &Keys) -> KeysJson {
 }
 
 fn choice_json(plan: &Sequence, c: &Choice) -> ChoiceJson {
-    use apart::plan::sequence::Criterion as C;
     ChoiceJson {
         candidates: c.candidates,
         keys: keys_json(&c.keys),
@@ -369,15 +368,7 @@ fn choice_json(plan: &Sequence, c: &Choice) -> ChoiceJson {
             moving: names(plan, &r.moving),
             exact_direction: r.direction.to_strings(),
             keys: keys_json(&r.keys),
-            lost_on: match r.lost_on {
-                C::Connected => "connected",
-                C::Single => "single",
-                C::Axis => "axis",
-                C::Cell => "cell",
-                C::Clearance => "clearance",
-                C::FewerParts => "fewer_parts",
-                C::Order => "order",
-            },
+            lost_on: r.lost_on.key(),
         }),
     }
 }

@@ -150,18 +150,10 @@ impl Partitioning {
     /// The answer of a run stopped before it found anything (while it computed the pair
     /// regions): no solution, not interlocked, [`Partitioning::stopped`].
     pub fn stopped_before_solutions(names: Vec<String>, pieces: usize) -> Partitioning {
-        Partitioning {
-            names,
-            interlocked: false,
-            solutions: Vec::new(),
-            truncated: false,
-            sets: Vec::new(),
-            stats: Stats {
-                pieces,
-                ..Default::default()
-            },
-            stopped: true,
-        }
+        let mut p = Partitioning::nothing_to_separate(names);
+        p.stats.pieces = pieces;
+        p.stopped = true;
+        p
     }
 }
 

@@ -41,6 +41,19 @@ pub enum Criterion {
 }
 
 impl Criterion {
+    /// The criterion's key in JSON answers (`"lost_on"`): `"fewer_parts"` and the like.
+    pub fn key(self) -> &'static str {
+        match self {
+            Criterion::Connected => "connected",
+            Criterion::Single => "single",
+            Criterion::Axis => "axis",
+            Criterion::Cell => "cell",
+            Criterion::Clearance => "clearance",
+            Criterion::FewerParts => "fewer_parts",
+            Criterion::Order => "order",
+        }
+    }
+
     /// The criterion in words: "the axis preference (--prefer-axes)".
     pub fn describe(self) -> &'static str {
         match self {
