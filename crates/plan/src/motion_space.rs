@@ -453,16 +453,29 @@ impl MotionSpace {
         };
         let arc = arr.half_edge_arc(h);
         let m = arc.interior_point();
+        // A path from `m` into `f` that leaves `f` crosses its boundary first: the edges
+        // of its cycles (structural ones too: the graph is connected, so they reach every
+        // isolated vertex) and their end points. A probe clear of those lies in `f` and
+        // is clear of every other edge and vertex of the motion space as well.
+        let mut edges: Vec<_> = arr
+            .face_cycles(f)
+            .iter()
+            .flat_map(|&c| arr.cycle_half_edges(c))
+            .map(|g| g.edge())
+            .filter(|&e| e != h.edge())
+            .collect();
+        edges.sort_unstable_by_key(|e| e.index());
+        edges.dedup();
+        let arcs: Vec<Arc> = edges.iter().map(|&e| arr.edge_arc(e)).collect();
         let mut k = apart_kernel::Int::from(16);
         loop {
             let x = m.scale(&k).add(&arc.normal).primitive();
             let probe = Arc::between(&m, &x).expect("distinct points");
-            let clear = arr.edge_ids().all(|e| {
-                e == h.edge() || !apart_sphere::arc::arcs_intersect(&probe, &arr.edge_arc(e))
-            }) && arr.vertices().iter().all(|v| {
-                probe
-                    .locate(&v.point)
-                    .is_none_or(|p| p == ArcPosition::Outside)
+            let clear = arcs.iter().all(|a| {
+                !apart_sphere::arc::arcs_intersect(&probe, a)
+                    && [&a.start, &a.end]
+                        .into_iter()
+                        .all(|v| probe.locate(v).is_none_or(|p| p == ArcPosition::Outside))
             });
             if clear {
                 return x;
