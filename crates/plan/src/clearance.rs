@@ -149,6 +149,39 @@ const DIRS: [(f64, f64); 8] = [
     ),
 ];
 
+/// The arcs and points of a boundary that can be nearest to some point within chord
+/// distance `reach` of `p`, when `p` is at squared chord distance `c2` from the nearest.
+///
+/// For `q` with `|q - p| <= reach`, the nearest boundary element is at most
+/// `sqrt(c2) + reach` from `q`, and an element at distance `t` from `p` is at least
+/// `t - reach` from `q` (distance to a set is 1-Lipschitz): elements farther than
+/// `sqrt(c2) + 2 reach` from `p` are never nearest to `q`. The margin keeps rounding
+/// from dropping an element that ties, so a clearance over the kept elements is the
+/// clearance over all of them, to the bit.
+struct Near {
+    arcs: Vec<FArc>,
+    points: Vec<V3>,
+}
+
+impl Near {
+    fn around(p: &V3, c2: f64, reach: f64, arcs: &[FArc], points: &[V3]) -> Near {
+        let r = c2.max(0.0).sqrt() + 2.0 * reach + 1e-9;
+        let r2 = r * r;
+        Near {
+            arcs: arcs
+                .iter()
+                .filter(|a| a.distance2(p) <= r2)
+                .copied()
+                .collect(),
+            points: points
+                .iter()
+                .filter(|q| chord2(p, q) <= r2)
+                .copied()
+                .collect(),
+        }
+    }
+}
+
 /// Moves `p` uphill in clearance; returns the point and its angular clearance. Every
 /// step is shorter than the current clearance, so the path never meets the boundary and
 /// `p` stays in the face.
@@ -157,6 +190,9 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
     let mut c = to_angle(c2);
     let mut step = 0.5 * c;
     let mut iterations = 0;
+    // The boundary that can be nearest to a point within `step` of `p` (see `Near`),
+    // found again only when `p` moves: a shorter step needs no more of it.
+    let mut near = Near::around(&p, c2, step, arcs, points);
     while step > 1e-7 * c.max(1e-9) && iterations < 120 {
         iterations += 1;
         let helper = if p[0].abs() < 0.9 {
@@ -174,7 +210,7 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
                 u[2] * co + w[2] * s,
             ];
             let q = normalize([p[0] + step * d[0], p[1] + step * d[1], p[2] + step * d[2]]);
-            let cq = clearance2(&q, arcs, points);
+            let cq = clearance2(&q, &near.arcs, &near.points);
             if cq > c2 && best.is_none_or(|(_, bc)| cq > bc) {
                 best = Some((q, cq));
             }
@@ -185,6 +221,7 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
                 c2 = cq;
                 c = to_angle(c2);
                 step = step.min(0.9 * c);
+                near = Near::around(&p, c2, step, arcs, points);
             }
             None => step *= 0.5,
         }
@@ -211,6 +248,10 @@ pub fn simple_direction(
         .map(|i| [i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1])
         .collect();
     offsets.sort_by_key(|o| o.iter().map(|x| x.abs()).sum::<i64>());
+    // Candidates lie within the cap of radius `target` around `p`, whose own squared
+    // chord clearance is at most that of the angle `target`.
+    let cap = 2.0 * (0.5 * target.min(std::f64::consts::PI)).sin();
+    let near = Near::around(p, cap * cap, cap, arcs, points);
     for k in 1..=64i64 {
         let c = p.map(|x| (x * k as f64).round() as i64);
         for o in &offsets {
@@ -222,7 +263,7 @@ pub fn simple_direction(
             if to_angle(chord2(&u, p)) >= 0.98 * target {
                 continue;
             }
-            let cl = clearance(&u, arcs, points);
+            let cl = clearance(&u, &near.arcs, &near.points);
             if cl >= fraction * target && ok(&d) {
                 return Some((d.primitive(), cl));
             }
