@@ -229,10 +229,14 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
     (p, c)
 }
 
+/// Candidates [`simple_direction`] lets the exact check reject before it gives up.
+const MAX_REJECTED: usize = 128;
+
 /// The simplest integer direction near the unit point `p` (smallest multiplier `k`, then
 /// `round(k p)` or a neighbour of it) that lies well inside the cap of radius `target` (radians,
 /// the clearance of `p`) around `p`, has a clearance of at least `fraction` of `target`,
-/// and that `ok` accepts; `None` when no small one qualifies. Staying inside the cap keeps
+/// and that `ok` accepts; `None` when no small one qualifies, or when `ok` rejected
+/// [`MAX_REJECTED`] candidates. Staying inside the cap keeps
 /// the direction in the region whose boundary `arcs` and `points` describe.
 pub fn simple_direction(
     p: &V3,
@@ -252,6 +256,7 @@ pub fn simple_direction(
     // chord clearance is at most that of the angle `target`.
     let cap = 2.0 * (0.5 * target.min(std::f64::consts::PI)).sin();
     let near = Near::around(p, cap * cap, cap, arcs, points);
+    let mut rejected = 0;
     for k in 1..=64i64 {
         let c = p.map(|x| (x * k as f64).round() as i64);
         for o in &offsets {
@@ -264,8 +269,17 @@ pub fn simple_direction(
                 continue;
             }
             let cl = clearance(&u, &near.arcs, &near.points);
-            if cl >= fraction * target && ok(&d) {
-                return Some((d.primitive(), cl));
+            if cl >= fraction * target {
+                if ok(&d) {
+                    return Some((d.primitive(), cl));
+                }
+                // Deep candidates that fail the exact check mostly lie in a part of the
+                // region where the check fails throughout (a smaller moving set is free
+                // there): give up after a few rather than test every one.
+                rejected += 1;
+                if rejected == MAX_REJECTED {
+                    return None;
+                }
             }
         }
     }
