@@ -591,6 +591,8 @@ class PlaceResult(_Answer):
 
     def __repr__(self) -> str:
         if not self.candidates:
-            return f"<PlaceResult {self.moving!r}: no position among {len(self.fixed)} fixed parts>"
-        return (f"<PlaceResult {self.moving!r}: {len(self.candidates)} positions among "
-                f"{len(self.fixed)} fixed parts, best {self.candidates[0]!r}>")
+            k = len(self.fixed)
+            return f"<PlaceResult {self.moving!r}: no position among {k} fixed part{'s' if k != 1 else ''}>"
+        n, k = len(self.candidates), len(self.fixed)
+        return (f"<PlaceResult {self.moving!r}: {n} position{'s' if n != 1 else ''} among "
+                f"{k} fixed part{'s' if k != 1 else ''}, best {self.candidates[0]!r}>")
