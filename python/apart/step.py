@@ -240,12 +240,14 @@ def _push_holes(v: np.ndarray, f: np.ndarray, curved: List[Any], margin: float) 
         if np.einsum("mi,mi->", normals, centre_radial) >= 0:
             continue  # convex (a pin): the chords lie inside the surface
         r = np.linalg.norm(radial, axis=2)
-        if np.any(r <= 0):
-            continue
-        u = radial / r[..., None]
-        cos = np.clip(np.stack([np.einsum("mi,mi->m", u[:, i], u[:, j])
-                                for i, j in ((0, 1), (1, 2), (0, 2))], axis=1), -1.0, 1.0)
-        span = float(np.arccos(cos).max())
+        # A cone's apex lies on the axis: it stays, and spans no angle (the triangles
+        # from it to pushed rim points still lie outside, the radius being linear).
+        on_axis = r <= 1e-12 * (1 + np.abs(rel).max())
+        u = radial / np.where(on_axis, 1.0, r)[..., None]
+        cos = np.stack([np.where(on_axis[:, i] | on_axis[:, j], 1.0,
+                                 np.einsum("mi,mi->m", u[:, i], u[:, j]))
+                        for i, j in ((0, 1), (1, 2), (0, 2))], axis=1)
+        span = float(np.arccos(np.clip(cos, -1.0, 1.0)).max())
         if span >= math.pi * 0.99:
             continue  # a triangle across the axis: nothing sensible to push
         factor = 1.0 / math.cos(span / 2)
@@ -270,6 +272,8 @@ def _push_holes(v: np.ndarray, f: np.ndarray, curved: List[Any], margin: float) 
             along = np.dot(rel, d) * d
             radial = rel - along
             r = float(np.linalg.norm(radial))
+            if r <= 1e-12 * (1 + float(np.linalg.norm(rel))):
+                continue  # a cone's apex
             x = o + along + radial * ((r * fac + margin) / r)
         v[i] = x
     return count

@@ -117,6 +117,28 @@ def test_a_pin_in_its_hole(tmp_path, pin_radius):
     assert (("pin",), (0, 0, 1)) in moves and (("pin",), (0, 0, -1)) in moves
 
 
+def test_a_drilled_hole_with_a_conical_tip_and_its_pin(tmp_path):
+    """A blind hole ending in a cone (to its apex) and a pin of the same shape seated in
+    it, turned against it: the cone's concave face is moved off the axis too (its apex
+    stays), so the two do not overlap, and the pin leaves along +z only."""
+    path = tmp_path / "drilled.step"
+    hole = bd.Cylinder(3, 5).moved(bd.Location((0, 0, 2.5))) + bd.Cone(0, 3, 3).moved(bd.Location((0, 0, -1.5)))
+    block = bd.Box(20, 20, 10) - hole
+    block.label = "block"
+    pin = (bd.Cylinder(3, 10).moved(bd.Location((0, 0, 5)))
+           + bd.Cone(0, 3, 3).moved(bd.Location((0, 0, -1.5)))).rotate(bd.Axis.Z, 17)
+    pin.label = "pin"
+    bd.export_step(bd.Compound(children=[block, pin], label="drilled"), str(path))
+    s = apart_step.read(path, chordal_tolerance=0.05)
+    assert s.concave_faces == 2  # the hole's cylinder and cone
+    assert all(closed(p.faces) for p in s.parts)
+    asm = apart.load(path, chordal_tolerance=0.05)
+    report = asm.check()
+    assert report.valid, report.problems
+    moves = {(x.moving, x.exact_direction) for x in asm.partition()}
+    assert moves == {(("pin",), (0, 0, 1)), (("block",), (0, 0, -1))}
+
+
 def test_planar_faces_keep_the_b_rep_vertices(tmp_path):
     path = tmp_path / "blocks.step"
     a = bd.Box(10, 20, 30)
