@@ -117,6 +117,22 @@ def test_a_pin_in_its_hole(tmp_path, pin_radius):
     assert (("pin",), (0, 0, 1)) in moves and (("pin",), (0, 0, -1)) in moves
 
 
+def test_a_pin_and_its_hole_moved_and_turned_together(tmp_path):
+    """The hole's axis is taken in the placed part (here along y, off the origin)."""
+    path = tmp_path / "moved.step"
+    loc = bd.Location((30, 5, -7), (90, 0, 0))
+    block = (bd.Box(20, 20, 10) - bd.Cylinder(3, 10)).moved(loc)
+    block.label = "block"
+    pin = bd.Cylinder(3, 16).rotate(bd.Axis.Z, 17).moved(bd.Location((0, 0, 3))).moved(loc)
+    pin.label = "pin"
+    bd.export_step(bd.Compound(children=[block, pin], label="moved"), str(path))
+    asm = apart.load(path, chordal_tolerance=0.05)
+    report = asm.check()
+    assert report.valid, report.problems
+    moves = {(x.moving, x.exact_direction) for x in asm.partition()}
+    assert (("pin",), (0, 1, 0)) in moves and (("pin",), (0, -1, 0)) in moves
+
+
 def test_a_drilled_hole_with_a_conical_tip_and_its_pin(tmp_path):
     """A blind hole ending in a cone (to its apex) and a pin of the same shape seated in
     it, turned against it: the cone's concave face is moved off the axis too (its apex
