@@ -2,7 +2,10 @@
 
 Load an assembly (:func:`load`, :meth:`Assembly.from_meshes`,
 :meth:`Assembly.from_trimesh`), then ask it: :meth:`Assembly.check`,
-:meth:`Assembly.partition`, :meth:`Assembly.sequence`, :func:`separate`. Answers are
+:meth:`Assembly.partition`, :meth:`Assembly.sequence`, :func:`separate`,
+:func:`place`, :func:`stack`; pictures with :meth:`Assembly.render`,
+:meth:`Sequence.to_glb` and :meth:`Sequence.to_html`. STEP assemblies load with
+``load("x.step")`` when the ``step`` extra is installed (:mod:`apart.step`). Answers are
 typed objects whose ``to_dict()`` is the command line's ``--json`` output. The
 geometry is the Rust library's, called through the compiled module ``apart._apart``.
 
@@ -12,7 +15,7 @@ geometry is the Rust library's, called through the compiled module ``apart._apar
 ...     print(s.moving, s.exact_direction)
 """
 
-from ._core import UNITS, Assembly, load, separate, stack
+from ._core import UNITS, Assembly, load, place, separate, stack
 from ._errors import (
     ApartError,
     InputError,
@@ -32,6 +35,8 @@ from ._results import (
     Sequence,
     Solution,
     Placement,
+    PlaceCandidate,
+    PlaceResult,
     StackPlan,
     Step,
 )
@@ -42,6 +47,7 @@ __all__ = [
     "Assembly",
     "load",
     "separate",
+    "place",
     "stack",
     "UNITS",
     "ApartError",
@@ -61,5 +67,7 @@ __all__ = [
     "Solution",
     "Step",
     "Placement",
+    "PlaceCandidate",
+    "PlaceResult",
     "StackPlan",
 ]

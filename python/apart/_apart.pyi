@@ -49,8 +49,34 @@ class Assembly:
         growth: bool,
         progress: Optional[ProgressCallback],
         timeout: Optional[float],
+    ) -> Tuple[str, Optional["Plan"]]:
+        """A disassembly plan, as JSON, with the plan for its pictures (None when
+        stopped)."""
+    def motion_space_picture(
+        self,
+        *,
+        svg: bool,
+        orthographic: bool,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> bytes:
+        """The motion-space sphere (``apart partition --svg``/``--png``), as bytes."""
+    def place_json(
+        self,
+        part: str,
+        *,
+        target: Sequence[float],
+        weight: Optional[float],
+        floor_point: Sequence[float],
+        region: Optional[Sequence[float]],
+        translations: Optional[Sequence[float]],
+        dtheta: float,
+        bases: Optional[List[Tuple[int, int]]],
+        clearance: Optional[float],
+        candidates: int,
+        timeout: Optional[float],
     ) -> str:
-        """A disassembly plan, as JSON."""
+        """Positions of ``part`` among the others (``apart place --json``)."""
     def separate_json(
         self,
         a: str,
@@ -79,6 +105,14 @@ class Assembly:
         timeout: Optional[float],
     ) -> str:
         """A stack of copies of ``part`` on a floor (``apart stack --json``)."""
+
+class Plan:
+    """A disassembly plan with its assembly, for its pictures."""
+
+    def glb(self) -> bytes:
+        """The animated GLB (``apart sequence --glb``)."""
+    def html(self) -> str:
+        """The self-contained HTML viewer (``apart sequence --html``)."""
 
 def load(
     path: str,

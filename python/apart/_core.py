@@ -12,8 +12,8 @@ import numpy as np
 
 from . import _apart
 from ._errors import InputError
-from ._results import (CheckReport, DirectionAnswer, Partition, Problem, Separation, Sequence,
-                       StackPlan)
+from ._results import (CheckReport, DirectionAnswer, Partition, PlaceResult, Problem,
+                       Separation, Sequence, StackPlan)
 
 ProgressArg = Union[None, bool, Callable[[str, int, int], Any]]
 PathLike = Union[str, "os.PathLike[str]"]
@@ -131,9 +131,14 @@ def load(path: PathLike, *, strict: bool = False, one_part_per_file: bool = Fals
          tolerance: Union[None, float, str] = None, units: Optional[str] = None,
          grid_bits: Optional[int] = None, allow_outside: bool = False,
          verify: bool = False, progress: ProgressArg = None,
-         timeout: Optional[float] = None) -> "Assembly":
+         timeout: Optional[float] = None, chordal_tolerance: Optional[float] = None,
+         angular_tolerance: Optional[float] = None) -> "Assembly":
     """Loads an assembly: a folder of mesh files (one part per file), one mesh file
-    with several objects, or an ``assembly.json`` manifest. The options are the
+    with several objects, an ``assembly.json`` manifest, or a STEP file (``.step``,
+    ``.stp``; needs ``pip install './python[step]'``): every solid instance of its
+    product tree, placed and named, tessellated with ``chordal_tolerance`` (a length
+    in ``units``, default millimetres; by default 1/1000 of the assembly's diagonal)
+    and ``angular_tolerance`` (radians, default 0.5), see :mod:`apart.step`. The other options are the
     command line's: ``strict`` repairs nothing, ``one_part_per_file`` keeps a file
     holding several solids as one part, ``tolerance`` (a length in input units, a
     length with a unit such as ``"5um"`` together with ``units``, or ``"auto"``) makes
@@ -145,8 +150,19 @@ def load(path: PathLike, *, strict: bool = False, one_part_per_file: bool = Fals
     ``check()``); planning an invalid assembly raises :class:`InvalidAssemblyError`.
     A path that cannot be loaded at all raises :class:`InputError` with ``file`` set.
     """
-    opts = _load_options(tolerance, units, grid_bits, strict, one_part_per_file, verify)
     fspath = os.fspath(path)
+    if os.path.splitext(fspath)[1].lower() in (".step", ".stp"):
+        from . import step
+
+        return step.load(fspath, chordal_tolerance=chordal_tolerance,
+                         angular_tolerance=(step.DEFAULT_ANGULAR_TOLERANCE
+                                            if angular_tolerance is None else angular_tolerance),
+                         units=units, strict=strict, tolerance=tolerance,
+                         grid_bits=grid_bits, verify=verify, progress=progress,
+                         timeout=timeout)
+    if chordal_tolerance is not None or angular_tolerance is not None:
+        raise InputError("chordal_tolerance and angular_tolerance apply to STEP files (.step, .stp) only")
+    opts = _load_options(tolerance, units, grid_bits, strict, one_part_per_file, verify)
     inner = _run(_apart.load, progress, path=fspath, allow_outside=bool(allow_outside),
                  timeout=_timeout(timeout), **opts)
     return Assembly._wrap(inner)
@@ -349,12 +365,87 @@ class Assembly:
         result for its steps."""
         if max_depth is not None and (isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < 1):
             raise InputError(f"max_depth must be an integer of 1 or more, not {max_depth!r}")
-        raw = json.loads(_run(self._inner.sequence_json, progress, base=base,
-                              prefer_single=bool(prefer_single),
-                              prefer_connected=bool(prefer_connected),
-                              prefer_axes=bool(prefer_axes), max_depth=max_depth,
-                              growth=bool(growth), timeout=_timeout(timeout)))
-        return Sequence(raw)
+        text, plan = _run(self._inner.sequence_json, progress, base=base,
+                          prefer_single=bool(prefer_single),
+                          prefer_connected=bool(prefer_connected),
+                          prefer_axes=bool(prefer_axes), max_depth=max_depth,
+                          growth=bool(growth), timeout=_timeout(timeout))
+        return Sequence(json.loads(text), plan)
+
+    def render(self, path: PathLike, *, format: Optional[str] = None,
+               projection: str = "equal-area", progress: ProgressArg = None,
+               timeout: Optional[float] = None) -> None:
+        """Writes the picture of the motion-space sphere (``apart partition --svg`` or
+        ``--png``): both hemispheres, the blocked regions shaded by how many pairs block
+        them, every solution marked. ``format`` is ``"svg"`` or ``"png"`` (default: from
+        the file's extension); ``projection`` is ``"equal-area"`` or ``"orthographic"``.
+        The file is the command line's, byte for byte."""
+        fspath = os.fspath(path)
+        fmt = (format or os.path.splitext(fspath)[1].lstrip(".")).lower()
+        if fmt not in ("svg", "png"):
+            raise InputError(f"render writes svg or png, not {fmt!r} (say format= or use a .svg/.png name)")
+        if projection not in ("equal-area", "orthographic"):
+            raise InputError(f"projection must be 'equal-area' or 'orthographic', not {projection!r}")
+        data = _run(self._inner.motion_space_picture, progress, svg=fmt == "svg",
+                    orthographic=projection == "orthographic", timeout=_timeout(timeout))
+        with open(fspath, "wb") as f:
+            f.write(data)
+
+    def place(self, part: str, *, target: Seq[float] = (0.0, 0.0, 0.0),
+              weight: Optional[float] = None, floor_point: Seq[float] = (0.0, 0.0, 0.0),
+              region: Optional[Seq[float]] = None, translations: Optional[Seq[float]] = None,
+              dtheta: float = 360.0, bases: Optional[Seq[Tuple[float, float]]] = None,
+              clearance: Optional[float] = None, candidates: int = 5,
+              timeout: Optional[float] = None) -> PlaceResult:
+        """Interference-free positions of ``part`` among the other (fixed) parts,
+        cheapest first (``apart place ASSEMBLY NAME``): the cost is the squared distance
+        of the translation to ``target``, or eq. (1) with ``weight`` in [0, 1] about
+        ``floor_point``; ``region=(x0, y0, z0, x1, y1, z1)`` bounds the whole placed
+        part (default: every part's box grown by the part's size), or
+        ``translations=`` bounds the translation itself; ``dtheta`` (degrees, 0.1 to
+        360; 360 keeps the part as given), ``bases`` as (phi, psi) quarter turns in
+        degrees, ``clearance`` from the fixed parts, ``candidates`` (1 to 1000) to list.
+        The part may be given where it overlaps the others."""
+        if isinstance(candidates, bool) or not isinstance(candidates, int) or not 1 <= candidates <= 1000:
+            raise InputError(f"candidates must be an integer from 1 to 1000, not {candidates!r}")
+        dtheta = _number(dtheta, "dtheta")
+        if not 0.1 <= dtheta <= 360:
+            raise InputError(f"dtheta must be from 0.1 to 360 degrees, not {dtheta!r}")
+        if weight is not None:
+            weight = _number(weight, "weight")
+            if not 0 <= weight <= 1:
+                raise InputError(f"weight must be in [0, 1], not {weight!r}")
+        if region is not None and translations is not None:
+            raise InputError("give region= or translations=, not both")
+
+        def numbers(v: Any, n: int, what: str) -> List[float]:
+            try:
+                out = [_number(x, what) for x in v]
+            except TypeError:
+                raise InputError(f"{what} must be {n} numbers, not {v!r}") from None
+            if len(out) != n:
+                raise InputError(f"{what} must be {n} numbers, not {v!r}")
+            return out
+
+        def box(v: Any, what: str) -> Optional[List[float]]:
+            if v is None:
+                return None
+            b = numbers(v, 6, what)
+            if not all(b[i] <= b[i + 3] for i in range(3)):
+                raise InputError(f"{what} {tuple(v)!r} is empty (a low corner above the high one)")
+            return b
+
+        if clearance is not None and not _number(clearance, "clearance") >= 0:
+            raise InputError(f"clearance must be 0 or more, not {clearance!r}")
+        raw = json.loads(self._inner.place_json(part=str(part),
+                              target=numbers(target, 3, "target"), weight=weight,
+                              floor_point=numbers(floor_point, 3, "floor_point"),
+                              region=box(region, "region"),
+                              translations=box(translations, "translations"),
+                              dtheta=dtheta, bases=_quarters(bases),
+                              clearance=None if clearance is None else float(clearance),
+                              candidates=candidates, timeout=_timeout(timeout)))
+        return PlaceResult(raw)
 
     def separate(self, a: str, b: str, *, progress: ProgressArg = None,
                  timeout: Optional[float] = None) -> Separation:
@@ -398,14 +489,7 @@ class Assembly:
             raise InputError(f"max_height must be a positive length, not {max_height!r}")
         if clearance is not None and not _number(clearance, "clearance") >= 0:
             raise InputError(f"clearance must be 0 or more, not {clearance!r}")
-        quarters = None
-        if bases is not None:
-            quarters = []
-            for b in bases:
-                phi, psi = (_number(x, "bases") for x in b)
-                if phi % 90 or psi % 90:
-                    raise InputError(f"bases: angles must be multiples of 90 degrees, not {b!r}")
-                quarters.append((int(phi // 90) % 4, int(psi // 90) % 4))
+        quarters = _quarters(bases)
         raw = json.loads(_run(self._inner.stack_json, progress, part=str(part), count=count,
                               weight=weight, floor=f, floor_z=floor_z,
                               max_height=None if max_height is None else float(max_height),
@@ -420,6 +504,19 @@ class Assembly:
         parts = self.parts
         shown = ", ".join(repr(p) for p in parts[:6]) + (", ..." if len(parts) > 6 else "")
         return f"<Assembly {self.name!r}: {len(parts)} parts ({shown}), {state}>"
+
+
+def _quarters(bases: Optional[Seq[Tuple[float, float]]]) -> Optional[List[Tuple[int, int]]]:
+    """Base orientations (phi, psi) in degrees as quarter turns."""
+    if bases is None:
+        return None
+    quarters = []
+    for b in bases:
+        phi, psi = (_number(x, "bases") for x in b)
+        if phi % 90 or psi % 90:
+            raise InputError(f"bases: angles must be multiples of 90 degrees, not {b!r}")
+        quarters.append((int(phi // 90) % 4, int(psi // 90) % 4))
+    return quarters
 
 
 def _number(v: Any, what: str) -> float:
@@ -446,6 +543,19 @@ def stack(part: Union[PathLike, Assembly], count: int = 10, *, part_name: Option
                             decompose_all=True, **opts)
         part = Assembly._wrap(inner)
     return part.stack(part_name, count, **options)
+
+
+def place(assembly: Union[PathLike, Assembly], part: str, *, strict: bool = False,
+          grid_bits: Optional[int] = None, **options: Any) -> PlaceResult:
+    """Interference-free positions of ``part`` among the other parts of ``assembly``
+    (an :class:`Assembly`, or a path loaded as ``apart place ASSEMBLY NAME`` loads it),
+    cheapest first; the options are :meth:`Assembly.place`'s."""
+    if not isinstance(assembly, Assembly):
+        opts = _load_options(None, None, grid_bits, strict, False, False)
+        inner = _apart.load(os.fspath(assembly), allow_outside=False, progress=None,
+                            timeout=None, decompose_all=True, **opts)
+        assembly = Assembly._wrap(inner)
+    return assembly.place(part, **options)
 
 
 def separate(assembly: Assembly, a: str, b: str, **options: Any) -> Separation:

@@ -4,10 +4,13 @@ the command line's ``--json`` output, and gives it back with ``to_dict()``."""
 from __future__ import annotations
 
 import copy
+import os
 from fractions import Fraction
 from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 import numpy as np
+
+from ._errors import ApartError
 
 ExactDirection = Tuple[int, int, int]
 
@@ -220,8 +223,9 @@ class Partition(_Facts):
     groups: List[MovingSet]
     solution_count: int
 
-    def __init__(self, raw: Dict[str, Any]) -> None:
+    def __init__(self, raw: Dict[str, Any], plan: Any = None) -> None:
         self._raw = raw
+        self._plan = plan
         self.status = raw["status"]
         self.complete = raw["complete"]
         self.interlocked = raw["interlocked"]
@@ -349,8 +353,9 @@ class Sequence(_Facts):
     unsplit: List[Tuple[str, ...]]
     not_yet_split: List[Tuple[str, ...]]
 
-    def __init__(self, raw: Dict[str, Any]) -> None:
+    def __init__(self, raw: Dict[str, Any], plan: Any = None) -> None:
         self._raw = raw
+        self._plan = plan
         self.status = raw["status"]
         self.complete = raw["complete"]
         self.interlocked = raw["interlocked"]
@@ -364,6 +369,27 @@ class Sequence(_Facts):
     def stopped(self) -> Optional[Dict[str, Any]]:
         """Why and when a partial plan stopped (None when it ran to its end)."""
         return self._raw.get("stopped")
+
+    def _drawable(self) -> Any:
+        if self._plan is None:
+            raise ApartError("a stopped or partial plan has no pictures (nor has it on the command line)")
+        return self._plan
+
+    def to_glb(self, path: "os.PathLike[str] | str") -> None:
+        """Writes the animated GLB of the disassembly (``apart sequence --glb``): every
+        part, each step's moving parts sliding out along its direction. The file is the
+        command line's, byte for byte."""
+        data = self._drawable().glb()
+        with open(os.fspath(path), "wb") as f:
+            f.write(data)
+
+    def to_html(self, path: "os.PathLike[str] | str") -> None:
+        """Writes the self-contained HTML viewer that plays the disassembly
+        (``apart sequence --html``; no network, no WebGL), byte for byte the command
+        line's."""
+        text = self._drawable().html()
+        with open(os.fspath(path), "wb") as f:
+            f.write(text.encode("utf-8"))
 
     def __iter__(self) -> Iterator[Step]:
         return iter(self.steps)
@@ -497,3 +523,76 @@ class StackPlan(_Answer):
         state = "complete" if self.complete else f"incomplete ({self.status})"
         return (f"<StackPlan of {self.part!r}: {len(self.placements)} of {self.count} "
                 f"placed, height {self.stack_height:g}, {state}>")
+
+
+class PlaceCandidate(_Answer):
+    """One interference-free position of the placed part: its translation (exact as
+    fractions of input units), its rotation and its cost."""
+
+    translation: np.ndarray
+    exact_translation: Tuple[Fraction, Fraction, Fraction]
+    rotation_deg: np.ndarray
+    exact_rotation: Tuple[str, str]
+    cost: float
+
+    @classmethod
+    def _from(cls, d: Dict[str, Any]) -> "PlaceCandidate":
+        c = cls()
+        c._raw = d
+        c.translation = _vec(d["translation"])
+        x, y, z = (Fraction(s) for s in d["exact_translation"])
+        c.exact_translation = (x, y, z)
+        c.rotation_deg = _vec(d["rotation_deg"])
+        c.exact_rotation = (d["exact_rotation"][0], d["exact_rotation"][1])
+        c.cost = d["cost"]
+        return c
+
+    def __repr__(self) -> str:
+        t = ", ".join(f"{c:g}" for c in self.translation)
+        r = ", ".join(f"{c:g}" for c in self.rotation_deg)
+        return f"<PlaceCandidate at ({t}), rotated ({r})°, cost {self.cost:g}>"
+
+
+class PlaceResult(_Answer):
+    """Interference-free positions of a part among fixed parts, cheapest first
+    (``apart place``). Iterating gives the candidates; ``best`` is the first (None when
+    the part fits nowhere in the region)."""
+
+    moving: str
+    fixed: Tuple[str, ...]
+    cost_kind: str
+    candidates: List[PlaceCandidate]
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self._raw = raw
+        self.moving = raw["moving"]
+        self.fixed = tuple(raw["fixed"])
+        self.cost_kind = raw["cost_kind"]
+        self.candidates = [PlaceCandidate._from(c) for c in raw["candidates"]]
+
+    @property
+    def found(self) -> bool:
+        """True when a position was found (the command line's exit code 0)."""
+        return bool(self.candidates)
+
+    @property
+    def best(self) -> Optional[PlaceCandidate]:
+        """The cheapest position, or None."""
+        return self.candidates[0] if self.candidates else None
+
+    def __iter__(self) -> Iterator[PlaceCandidate]:
+        return iter(self.candidates)
+
+    def __len__(self) -> int:
+        return len(self.candidates)
+
+    def __getitem__(self, k: int) -> PlaceCandidate:
+        return self.candidates[k]
+
+    def __repr__(self) -> str:
+        if not self.candidates:
+            k = len(self.fixed)
+            return f"<PlaceResult {self.moving!r}: no position among {k} fixed part{'s' if k != 1 else ''}>"
+        n, k = len(self.candidates), len(self.fixed)
+        return (f"<PlaceResult {self.moving!r}: {n} position{'s' if n != 1 else ''} among "
+                f"{k} fixed part{'s' if k != 1 else ''}, best {self.candidates[0]!r}>")

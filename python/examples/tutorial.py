@@ -6,10 +6,13 @@ Run from the repository's root after `pip install ./python`:
 
 It loads the Split Star (three parts translate together along one of the eight
 diagonal directions (±1, ±1, ±1), each an isolated direction with zero clearance),
-plans a disassembly of the hinge, and builds assemblies from numpy arrays.
+plans a disassembly of the hinge (and writes its HTML viewer), places a part, and builds
+assemblies from numpy arrays. A STEP assembly loads the same way, apart.load("x.step"),
+with `pip install './python[step]'`.
 """
 
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +36,14 @@ for step in plan:
     verb = "leaves" if len(step.moving) == 1 else "leave"
     print(f"  step {step.index + 1}: {', '.join(step.moving)} {verb} "
           f"{', '.join(step.staying)} along {step.exact_direction}")
+out = Path(tempfile.mkdtemp())
+plan.to_html(out / "hinge.html")      # the viewer `apart sequence --html` writes
+star.render(out / "split-star.svg")   # the motion-space sphere of `apart partition --svg`
+print(f"  pictures in {out}")
+
+# Where could the bolt go instead? Positions free of the other parts, nearest first.
+spot = apart.place(examples / "hinge", "bolt", target=(0, 0, 50), candidates=2)
+print(spot)
 
 
 # 3. Assemblies from arrays: two unit boxes side by side, then a box in a cup.

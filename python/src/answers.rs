@@ -319,13 +319,14 @@ fn direction_json(
     Ok(with_facts(v, loaded, units))
 }
 
-/// A disassembly plan. A run stopped by the flag has `"status": "stopped"`.
+/// A disassembly plan, and the plan itself (for its pictures). A run stopped by the
+/// flag has `"status": "stopped"`.
 pub fn sequence(
     loaded: &Loaded,
     units: Option<&str>,
     opts: &SequenceOptions,
     progress: &Progress,
-) -> Result<Value, PlanError> {
+) -> Result<(Value, apart_plan::Sequence), PlanError> {
     let asm = &loaded.assembly;
     let t = std::time::Instant::now();
     let plan = if asm.parts.len() < 2 {
@@ -411,7 +412,7 @@ pub fn sequence(
         "not_yet_split": plan.pending.iter().map(|s| names(s)).collect::<Vec<_>>(),
         "seconds": {"total": regions_and_steps, "steps": plan.step_seconds},
     });
-    Ok(with_facts(v, loaded, units))
+    Ok((with_facts(v, loaded, units), plan))
 }
 
 /// An exact spherical arc.
@@ -611,5 +612,175 @@ pub fn stack(loaded: &Loaded, args: &StackArgs, progress: &Progress) -> Result<V
         "not_lowerable": plan.stats.not_lowerable,
         "orientations": plan.stats.orientations,
         "seconds": plan.stats.seconds,
+    }))
+}
+
+/// The placement's options, in input units (checked by the Python side for their
+/// ranges), as `apart place` takes them.
+pub struct PlaceArgs {
+    /// The part to place (index in the assembly); every other part is fixed.
+    pub part: usize,
+    /// Desired translation (the cost |p − target|²), when `weight` is `None`.
+    pub target: [f64; 3],
+    /// Weight of eq. (1) instead of the distance to `target`.
+    pub weight: Option<f64>,
+    /// The floor point of eq. (1).
+    pub floor_point: [f64; 3],
+    /// Box the whole placed part must lie in (`None`: the command line's default).
+    pub region: Option<[f64; 6]>,
+    /// Box of allowed translations instead.
+    pub translations: Option<[f64; 6]>,
+    /// Step of the rotations about z, in degrees.
+    pub dtheta: f64,
+    /// Base orientations as quarter turns about x and y (`None`: the part as given).
+    pub bases: Option<Vec<(u8, u8)>>,
+    /// Clearance from the fixed parts.
+    pub clearance: Option<f64>,
+    /// Candidates to list.
+    pub candidates: usize,
+}
+
+/// The bounding box of every part's pieces grown by the new part's largest extent
+/// (`apart place`'s default region).
+fn default_region(
+    asm: &apart_assembly::Assembly,
+    part: &apart_stack::part::PartModel,
+) -> Result<apart_kernel::Aabb<apart_kernel::Rational>, String> {
+    use apart_kernel::Aabb;
+    let mut b: Option<Aabb<apart_kernel::Rational>> = None;
+    for p in &asm.parts {
+        for piece in &p.pieces {
+            let pb = Aabb::of_scaled(piece.vertices(), piece.den());
+            b = Some(match b {
+                None => pb,
+                Some(a) => a.union(&pb),
+            });
+        }
+    }
+    let b = b.ok_or("the assembly has no convex pieces")?;
+    let e = part
+        .orient(&apart_stack::orientation::Orientation::IDENTITY)
+        .extent;
+    let grow = (0..3)
+        .map(|i| &e.max[i] - &e.min[i])
+        .max()
+        .ok_or("no extent")?;
+    Ok(Aabb {
+        min: b.min.clone().map(|v| &v - &grow),
+        max: b.max.clone().map(|v| &v + &grow),
+    })
+}
+
+/// Interference-free positions of one part among the others, cheapest first
+/// (`apart place ASSEMBLY NAME --json`).
+pub fn place(loaded: &Loaded, args: &PlaceArgs) -> Result<Value, String> {
+    use apart_kernel::{Aabb, Rational};
+    use apart_stack::orientation::{orientations, Base};
+    use apart_stack::partial::{place, Cost, Moving, PlaceOptions, Region};
+    use apart_stack::scene::Scene;
+    let start = std::time::Instant::now();
+    let asm = &loaded.assembly;
+    let h = asm.grid.step();
+    let p = &asm.parts[args.part];
+    let mut part = apart_stack::part::PartModel::from_pieces(&p.name, p.pieces.clone())
+        .map_err(|e| format!("part \"{}\": {e}", p.name))?;
+    part.mesh = p.mesh.as_ref().map(|m| {
+        (
+            m.vertices.iter().map(|&v| Vec3::from(v)).collect(),
+            m.triangles.clone(),
+        )
+    });
+    let mut scene = Scene::new();
+    let mut fixed = Vec::new();
+    for (i, q) in asm.parts.iter().enumerate() {
+        if i != args.part {
+            scene.add_fixed_part(&q.pieces);
+            fixed.push(q.name.clone());
+        }
+    }
+    let g = |v: f64, what: &str| grid_value(v, h, what);
+    let boxed = |v: &[f64; 6], what: &str| -> Result<Aabb<Rational>, String> {
+        Ok(Aabb {
+            min: [g(v[0], what)?, g(v[1], what)?, g(v[2], what)?],
+            max: [g(v[3], what)?, g(v[4], what)?, g(v[5], what)?],
+        })
+    };
+    let region = if let Some(t) = &args.translations {
+        Region::Translations(boxed(t, "translations")?)
+    } else if let Some(r) = &args.region {
+        Region::Container(boxed(r, "region")?)
+    } else {
+        Region::Container(default_region(asm, &part)?)
+    };
+    let bases = match &args.bases {
+        None => vec![Base::IDENTITY],
+        Some(b) => b.iter().map(|&(phi, psi)| Base { phi, psi }).collect(),
+    };
+    let moving = Moving::new(part, &orientations(args.dtheta, &bases, 0.05), true);
+    let t = args.target;
+    let opts = PlaceOptions {
+        region,
+        cost: match args.weight {
+            None => Cost::Distance([g(t[0], "target")?, g(t[1], "target")?, g(t[2], "target")?]),
+            Some(w) => {
+                let f = args.floor_point;
+                Cost::Stacking {
+                    w: Rational::from_f64(w).ok_or("weight is not a finite number")?,
+                    floor: [
+                        g(f[0], "floor_point")?,
+                        g(f[1], "floor_point")?,
+                        g(f[2], "floor_point")?,
+                    ],
+                }
+            }
+        },
+        clearance: args.clearance.map(|c| g(c, "clearance")).transpose()?,
+        extrapolate: true,
+    };
+    let result = place(&scene, &moving, &opts, args.candidates).map_err(|e| e.to_string())?;
+    let seconds = start.elapsed().as_secs_f64();
+    let step = Rational::from_f64(h).ok_or("the grid step is not finite")?;
+    let exact = |v: &Rational| (v * &step).to_string();
+    let candidates: Vec<Value> = result
+        .candidates
+        .iter()
+        .map(|c| {
+            let o = &moving.orientations[c.orientation];
+            let th = &o.theta;
+            json!({
+                "translation": c.translation.clone().map(|v| v.to_f64() * h),
+                "exact_translation": c.translation.clone().map(|v| exact(&v)),
+                "rotation_deg": o.degrees(),
+                "exact_rotation": [format!("{}/{}", th.a, th.c), format!("{}/{}", th.b, th.c)],
+                "cost": c.cost.to_f64() * h * h,
+            })
+        })
+        .collect();
+    let (s, o) = (&result.stats, &result.obstacles);
+    Ok(json!({
+        "moving": p.name,
+        "fixed": fixed,
+        "cost_kind": if args.weight.is_some() { "stacking" } else { "distance" },
+        "weight": args.weight,
+        "target": args.target,
+        "grid_step": h,
+        "candidates": candidates,
+        "stats": {
+            "orientations_considered": s.orientations_considered,
+            "pairs_total": s.pairs_total,
+            "pairs_evaluated": s.pairs_evaluated,
+            "interference_tests": s.interference_tests,
+            "cells": s.cells,
+            "qps": s.qps,
+            "obstacles_fresh": o.fresh,
+            "obstacles_extrapolated": o.extrapolated,
+            "seconds": {
+                "total": seconds,
+                "detect": s.detect_seconds,
+                "cells": s.cells_seconds,
+                "obstacles": o.fresh_seconds,
+                "extrapolation": o.extrapolate_seconds,
+            },
+        },
     }))
 }

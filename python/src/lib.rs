@@ -11,6 +11,7 @@
 mod answers;
 mod errors;
 mod memory;
+mod pictures;
 mod work;
 
 use apart_assembly::{Decompose, LoadOptions, Loaded, Tolerance};
@@ -252,7 +253,9 @@ impl Assembly {
         Ok(answer.to_string())
     }
 
-    /// A disassembly plan (`apart sequence --json`), as JSON text.
+    /// A disassembly plan (`apart sequence --json`), as JSON text, with the plan for
+    /// its pictures (`None` when the run stopped: the command line draws no partial
+    /// plan either).
     #[pyo3(signature = (*, base, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout))]
     #[allow(clippy::too_many_arguments)]
     fn sequence_json(
@@ -266,7 +269,7 @@ impl Assembly {
         growth: bool,
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
-    ) -> PyResult<String> {
+    ) -> PyResult<(String, Option<Plan>)> {
         errors::require_valid(py, &self.loaded)?;
         let base = match base {
             Some(name) => Some(errors::part_index(py, &self.loaded.assembly, &name)?),
@@ -297,9 +300,13 @@ impl Assembly {
         let (answer, stop) = run(py, limits, move |p| {
             answers::sequence(&loaded, units.as_deref(), &opts, p)
         })?;
-        let mut answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        let (mut answer, plan) = answer.map_err(|e| errors::plan_error(py, e))?;
+        let plan = (!plan.stopped).then(|| Plan {
+            loaded: self.loaded.clone(),
+            plan: Arc::new(plan),
+        });
         work::mark(&mut answer, &stop);
-        Ok(answer.to_string())
+        Ok((answer.to_string(), plan))
     }
 
     /// Every direction along which part `a` leaves part `b` (`apart separate --json`),
@@ -346,6 +353,103 @@ impl Assembly {
         match (answer, stop) {
             (Some(answer), None) => Ok(answer.to_string()),
             // Separation has no partial answer: a stop ends it with no result.
+            (_, stop) => Err(errors::stopped(py, stop)),
+        }
+    }
+
+    /// Interference-free positions of part `part` among the others, cheapest first
+    /// (`apart place ASSEMBLY NAME --json`), as JSON text; the options are in input
+    /// units, their ranges checked by the caller.
+    #[pyo3(signature = (part, *, target, weight, floor_point, region, translations, dtheta, bases, clearance, candidates, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn place_json(
+        &self,
+        py: Python<'_>,
+        part: String,
+        target: [f64; 3],
+        weight: Option<f64>,
+        floor_point: [f64; 3],
+        region: Option<[f64; 6]>,
+        translations: Option<[f64; 6]>,
+        dtheta: f64,
+        bases: Option<Vec<(u8, u8)>>,
+        clearance: Option<f64>,
+        candidates: usize,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid_but(py, &self.loaded, Some(&part))?;
+        let k = errors::part_index(py, &self.loaded.assembly, &part)?;
+        let asm = &self.loaded.assembly;
+        if asm.parts.len() < 2 {
+            return Err(errors::value_error(
+                py,
+                format!("place needs a fixed part besides \"{part}\""),
+            ));
+        }
+        if let Some(p) = asm.parts.iter().find(|p| p.pieces.is_empty()) {
+            return Err(errors::value_error(
+                py,
+                format!("part \"{}\" has no convex pieces", p.name),
+            ));
+        }
+        let args = answers::PlaceArgs {
+            part: k,
+            target,
+            weight,
+            floor_point,
+            region,
+            translations,
+            dtheta,
+            bases,
+            clearance,
+            candidates,
+        };
+        let loaded = self.loaded.clone();
+        let limits = Limits {
+            callback: None,
+            timeout,
+            // The placement engine watches no stop flag.
+            stoppable: false,
+        };
+        let (answer, _) = run(py, limits, move |_| answers::place(&loaded, &args))?;
+        Ok(answer.map_err(|m| errors::value_error(py, m))?.to_string())
+    }
+
+    /// The motion-space sphere with every solution marked (`apart partition --svg` or
+    /// `--png`), as bytes.
+    #[pyo3(signature = (*, svg, orthographic, progress, timeout))]
+    fn motion_space_picture<'py>(
+        &self,
+        py: Python<'py>,
+        svg: bool,
+        orthographic: bool,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        errors::require_valid(py, &self.loaded)?;
+        let asm = &self.loaded.assembly;
+        if asm.parts.len() < 2 {
+            return Err(errors::value_error(
+                py,
+                format!(
+                    "\"{}\" has {} part: a motion space needs two parts or more",
+                    asm.name,
+                    asm.parts.len()
+                ),
+            ));
+        }
+        let loaded = self.loaded.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| {
+            pictures::motion_space(&loaded, svg, orthographic, p)
+        })?;
+        match (answer.map_err(|e| errors::plan_error(py, e))?, stop) {
+            (Some(bytes), None) => Ok(PyBytes::new(py, &bytes)),
+            // A picture of a partial answer is not drawn (nor by the command line).
             (_, stop) => Err(errors::stopped(py, stop)),
         }
     }
@@ -405,6 +509,29 @@ impl Assembly {
     }
 }
 
+/// A disassembly plan with its assembly: what the sequence pictures are drawn from.
+#[pyclass(module = "apart._apart", name = "Plan", frozen)]
+pub struct Plan {
+    loaded: Arc<Loaded>,
+    plan: Arc<apart_plan::Sequence>,
+}
+
+#[pymethods]
+impl Plan {
+    /// The animated GLB of the disassembly (`apart sequence --glb`), as bytes.
+    fn glb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let (loaded, plan) = (self.loaded.clone(), self.plan.clone());
+        let bytes = py.detach(move || apart_draw::disassembly_glb(&loaded.assembly, &plan));
+        Ok(PyBytes::new(py, &bytes))
+    }
+
+    /// The self-contained HTML viewer of the disassembly (`apart sequence --html`).
+    fn html(&self, py: Python<'_>) -> String {
+        let (loaded, plan) = (self.loaded.clone(), self.plan.clone());
+        py.detach(move || apart_draw::disassembly_html(&loaded.assembly, &plan))
+    }
+}
+
 /// The compiled module.
 #[pymodule]
 fn _apart(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -414,6 +541,7 @@ fn _apart(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(from_meshes, m)?)?;
     m.add_class::<Assembly>()?;
+    m.add_class::<Plan>()?;
     m.add("DEFAULT_GRID_BITS", apart_kernel::grid::DEFAULT_BITS)?;
     m.add(
         "GRID_BITS_RANGE",

@@ -292,9 +292,13 @@ fn not_a_mesh(p: &Path, gltf: bool) -> Option<String> {
         Some("json") => {
             "a JSON file not named assembly.json (only assembly.json is read as a manifest)".into()
         }
+        Some(e @ ("step" | "stp")) => format!(
+            "a CAD file (.{e}), not a mesh: convert it with `python -m apart.step FILE OUTDIR` \
+             (pip install './python[step]'), or export its parts as {formats}"
+        ),
         Some(
-            e @ ("step" | "stp" | "iges" | "igs" | "sat" | "x_t" | "x_b" | "3dm" | "sldprt"
-            | "sldasm" | "ipt" | "iam" | "f3d" | "catpart" | "prt" | "brep" | "fcstd"),
+            e @ ("iges" | "igs" | "sat" | "x_t" | "x_b" | "3dm" | "sldprt" | "sldasm" | "ipt"
+            | "iam" | "f3d" | "catpart" | "prt" | "brep" | "fcstd"),
         ) => {
             format!("a CAD file (.{e}), not a mesh: export the part as {formats}")
         }

@@ -195,6 +195,19 @@ pub enum ReadError {
         /// folder", "a symbolic link leads to ...".
         why: String,
     },
+    /// A STEP file (`.step`, `.stp`): a CAD B-rep, which apart does not read itself.
+    /// The message says how to convert it with the Python package.
+    #[error(
+        "{} is a STEP file (a CAD model, not a mesh), which the command line does not read: \
+         convert it with the Python package (pip install './python[step]'), \
+         `python -m apart.step {} OUTDIR`, then run apart on OUTDIR (or use apart.load in Python)",
+        crate::escape::path(path),
+        crate::escape::path(path)
+    )]
+    Step {
+        /// The file.
+        path: PathBuf,
+    },
     /// The extension names no supported format.
     #[error(
         "unsupported file extension of {} (supported: .off, .obj, .stl, .ply, .gltf, .glb)",
@@ -254,10 +267,24 @@ pub fn read_file(path: &Path) -> Result<Vec<RawObject>, ReadError> {
     read_file_with(path, &ReadOptions::default())
 }
 
+/// True when `path` has the extension of a STEP file (`.step`, `.stp`, any case).
+pub fn is_step(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
+}
+
 /// [`read_file`] with explicit options.
 pub fn read_file_with(path: &Path, options: &ReadOptions) -> Result<Vec<RawObject>, ReadError> {
-    let format = Format::from_path(path).ok_or_else(|| ReadError::Unsupported {
-        path: path.to_path_buf(),
+    let format = Format::from_path(path).ok_or_else(|| {
+        if is_step(path) {
+            ReadError::Step {
+                path: path.to_path_buf(),
+            }
+        } else {
+            ReadError::Unsupported {
+                path: path.to_path_buf(),
+            }
+        }
     })?;
     let bytes = read_regular(path)?;
     // The folder, named "." rather than "" for a bare file name (messages show it).
@@ -354,6 +381,32 @@ mod tests {
         assert_eq!(Format::from_path(Path::new("x.glb")), Some(Format::Gltf));
         assert_eq!(Format::from_path(Path::new("x.step")), None);
         assert_eq!(Format::from_path(Path::new("noext")), None);
+    }
+
+    #[test]
+    fn a_step_file_is_refused_with_how_to_convert_it() {
+        let dir = std::env::temp_dir().join(format!("apart-formats-step-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for name in ["gearbox.step", "pin.STP"] {
+            let path = dir.join(name);
+            std::fs::write(&path, "ISO-10303-21;").unwrap();
+            let e = read_file(&path).unwrap_err();
+            assert!(matches!(e, ReadError::Step { .. }), "{e:?}");
+            let m = e.to_string();
+            assert!(m.contains(name) && m.contains("is a STEP file"), "{m}");
+            assert!(
+                m.contains("python -m apart.step") && m.contains("[step]"),
+                "{m}"
+            );
+        }
+        // Other unknown extensions keep the plain message.
+        let other = dir.join("part.iges");
+        std::fs::write(&other, "").unwrap();
+        assert!(matches!(
+            read_file(&other),
+            Err(ReadError::Unsupported { .. })
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
