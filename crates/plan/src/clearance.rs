@@ -246,6 +246,19 @@ pub fn simple_direction(
     points: &[V3],
     ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
 ) -> Option<(apart_kernel::Vec3, f64)> {
+    simple_direction_within(p, target, fraction, arcs, points, ok, MAX_REJECTED)
+}
+
+/// [`simple_direction`], giving up after `max_rejected` candidates that `ok` rejects.
+fn simple_direction_within(
+    p: &V3,
+    target: f64,
+    fraction: f64,
+    arcs: &[FArc],
+    points: &[V3],
+    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
+    max_rejected: usize,
+) -> Option<(apart_kernel::Vec3, f64)> {
     // round(k p) first, then its 26 neighbours (nearest first): the exact rounding may lie
     // on an arc of the motion space, a neighbour usually does not.
     let mut offsets: Vec<[i64; 3]> = (0..27)
@@ -277,13 +290,55 @@ pub fn simple_direction(
                 // region where the check fails throughout (a smaller moving set is free
                 // there): give up after a few rather than test every one.
                 rejected += 1;
-                if rejected == MAX_REJECTED {
+                if rejected >= max_rejected {
                     return None;
                 }
             }
         }
     }
     None
+}
+
+/// Where the climbs of [`deep_direction`] start: next to the boundary.
+fn starts(arcs: &[FArc], points: &[V3]) -> Vec<V3> {
+    let mut starts: Vec<V3> = starting_points(arcs, points, 8)
+        .into_iter()
+        .take(2)
+        .map(|(p, _)| p)
+        .collect();
+    if arcs.is_empty() {
+        // Only isolated points bound the region: start opposite the first one.
+        starts.push(points[0].map(|x| -x));
+    }
+    starts
+}
+
+/// The end of the highest clearance climb from `starts`, with its clearance.
+fn deepest_climb(starts: Vec<V3>, arcs: &[FArc], points: &[V3]) -> Option<(V3, f64)> {
+    let mut best: Option<(V3, f64)> = None;
+    for p in starts {
+        let (q, c) = climb(p, arcs, points);
+        if best.is_none_or(|(_, bc)| c > bc) {
+            best = Some((q, c));
+        }
+    }
+    best
+}
+
+/// The first steps of [`deep_direction`] on a boundary with arcs (the climbs, then
+/// [`simple_direction`]), giving up after `max_rejected` candidates that `ok` rejects
+/// and without the fallbacks: what `deep_direction` would return when it finds its
+/// direction that soon, else `None`.
+pub fn quick_direction(
+    arcs: &[FArc],
+    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
+    max_rejected: usize,
+) -> Option<(apart_kernel::Vec3, f64)> {
+    if arcs.is_empty() {
+        return None;
+    }
+    let (p, c) = deepest_climb(starts(arcs, &[]), arcs, &[])?;
+    simple_direction_within(&p, c, 0.9, arcs, &[], ok, max_rejected)
 }
 
 /// A direction deep inside the region bounded by `arcs` (region on their left) and
@@ -305,23 +360,8 @@ pub fn deep_direction(
             .find(|d| ok(d))
             .map(|d| (d, std::f64::consts::PI));
     }
-    let mut starts: Vec<V3> = starting_points(arcs, points, 8)
-        .into_iter()
-        .take(2)
-        .map(|(p, _)| p)
-        .collect();
-    if arcs.is_empty() {
-        // Only isolated points bound the region: start opposite the first one.
-        starts.push(points[0].map(|x| -x));
-    }
-    let mut best: Option<(V3, f64)> = None;
-    for p in starts {
-        let (q, c) = climb(p, arcs, points);
-        if best.is_none_or(|(_, bc)| c > bc) {
-            best = Some((q, c));
-        }
-    }
-    let (p, c) = best?;
+    let starts = starts(arcs, points);
+    let (p, c) = deepest_climb(starts, arcs, points)?;
     if let Some(found) = simple_direction(&p, c, 0.9, arcs, points, ok) {
         return Some(found);
     }

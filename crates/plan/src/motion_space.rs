@@ -359,6 +359,35 @@ impl MotionSpace {
         })
     }
 
+    /// True when the local set `set` (sorted, distinct) is a minimal moving set in a cell
+    /// of status `status`: it can move, and its own blocking graph is strongly connected
+    /// (no smaller set inside it can).
+    pub fn is_minimal_moving_set(&self, status: &MapSet, set: &[usize]) -> bool {
+        if !self.can_move(status, set) {
+            return false;
+        }
+        if set.len() == 1 {
+            return true;
+        }
+        // Every member reaches the first one and is reached from it inside the set.
+        let reach = |forward: bool| -> bool {
+            let mut seen = vec![false; set.len()];
+            seen[0] = true;
+            let mut todo = vec![0usize];
+            while let Some(x) = todo.pop() {
+                for (y, done) in seen.iter_mut().enumerate() {
+                    let (a, b) = if forward { (x, y) } else { (y, x) };
+                    if !*done && status.get(self.map_of(set[a], set[b])) {
+                        *done = true;
+                        todo.push(y);
+                    }
+                }
+            }
+            seen.iter().all(|&s| s)
+        };
+        reach(true) && reach(false)
+    }
+
     /// The local parts that can move alone in a cell of status `status` (no blocked pair
     /// leaves them), in one pass over the status.
     pub fn free_alone(&self, status: &MapSet) -> BitSet {

@@ -43,7 +43,10 @@ pub struct Solution {
     /// An exact integer direction of the solution where `moving` is a minimal moving set:
     /// the vertex itself, an interior point of the edge, or a simple direction deep
     /// inside the region (it may lie on an arc where only other parts' blocking changes,
-    /// as the diagonal does for the corner cube of a block).
+    /// as the diagonal does for the corner cube of a block). Where a smaller set is also
+    /// free in part of the region, the direction is found deep inside the faces around
+    /// the region's first face where `moving` is minimal, unless a simple one near the
+    /// region's deepest point is minimal too.
     pub direction: Vec3,
     /// The same direction as a unit vector.
     pub unit: [f64; 3],
@@ -682,24 +685,83 @@ pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -
     crate::clearance::to_angle(c2)
 }
 
+/// Candidates the exact check may reject in a region where a smaller set is free
+/// somewhere before the search turns to the faces where the set is minimal.
+const QUICK_REJECTED: usize = 16;
+
+/// The boundary of the faces around the seed of `r` where its set is a minimal moving
+/// set (joined across real edges), when some face of the region lies outside them;
+/// `None` when the set is minimal on the whole region, whose boundary is then the same.
+fn minimal_zone(ms: &MotionSpace, r: &FreeRegion) -> Option<Vec<HalfEdge>> {
+    let arr = ms.arrangement();
+    let st = ms.statuses();
+    let mut zone: HashMap<usize, bool> = HashMap::default();
+    let mut inside = |f: FaceId| {
+        *zone
+            .entry(f.index())
+            .or_insert_with(|| ms.is_minimal_moving_set(&st.faces[f.index()], &r.moving))
+    };
+    let mut seen = vec![false; arr.faces().len()];
+    seen[r.seed.index()] = true;
+    let mut todo = vec![r.seed];
+    let mut boundary = Vec::new();
+    let mut smaller = false;
+    while let Some(g) = todo.pop() {
+        for &c in arr.face_cycles(g) {
+            for h in arr.cycle_half_edges(c) {
+                if arr.edge(h.edge()).structural {
+                    continue;
+                }
+                let other = arr.face(h.twin());
+                if seen[other.index()] {
+                    continue;
+                }
+                if inside(other) {
+                    seen[other.index()] = true;
+                    todo.push(other);
+                } else {
+                    smaller |= ms.can_move(&st.faces[other.index()], &r.moving);
+                    boundary.push(h);
+                }
+            }
+        }
+    }
+    smaller.then_some(boundary)
+}
+
 /// A direction deep inside a free region with its clearance (radians): the angular
 /// distance to the region's boundary, the directions where the moving set is blocked.
 /// The direction is verified exactly (inside a face, the set a minimal moving set there); the fallback is
 /// an exact point of the seed face found without floating point.
 fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion) -> (Vec3, f64) {
     let arr = ms.arrangement();
-    let arcs: Vec<FArc> = r
-        .boundary
-        .iter()
-        .map(|&h| {
-            let arc = arr.half_edge_arc(h);
-            FArc::new(
-                arc.start.unit_f64(),
-                arc.end.unit_f64(),
-                arc.normal.unit_f64(),
-            )
-        })
-        .collect();
+    let farc = |&h: &HalfEdge| {
+        let arc = arr.half_edge_arc(h);
+        FArc::new(
+            arc.start.unit_f64(),
+            arc.end.unit_f64(),
+            arc.normal.unit_f64(),
+        )
+    };
+    let arcs: Vec<FArc> = r.boundary.iter().map(farc).collect();
+    // Where a smaller set is free too, the set is free but not minimal, and a direction
+    // there is no solution of it: the search keeps to the faces around the seed where
+    // the set is minimal, and the clearance is measured to the region's boundary.
+    // (A direction found within a few rejections is kept: the search over the whole
+    // region finds it first.)
+    if let Some(zone) = minimal_zone(ms, r) {
+        let verify = |d: &Vec3| -> bool {
+            !d.is_zero() && is_minimal_moving_set(regions, ms.parts(), &r.moving, d)
+        };
+        if let Some(found) = crate::clearance::quick_direction(&arcs, &verify, QUICK_REJECTED) {
+            return found;
+        }
+        let zone: Vec<FArc> = zone.iter().map(farc).collect();
+        if let Some((d, _)) = deep_direction(&zone, &[], &verify) {
+            let c = crate::clearance::clearance(&d.unit_f64(), &arcs, &[]);
+            return (d, c);
+        }
+    }
     // The set must be a minimal moving set at the reported direction (it is free in the
     // whole region, but minimal only where no smaller subset of it is free). The direction
     // may lie on an arc where only other parts' blocking changes (the diagonal for a
