@@ -325,10 +325,9 @@ fn deepest_climb(starts: Vec<V3>, arcs: &[FArc], points: &[V3]) -> Option<(V3, f
     best
 }
 
-/// The first steps of [`deep_direction`] on a boundary with arcs (the climbs, then
-/// [`simple_direction`]), giving up after `max_rejected` candidates that `ok` rejects
-/// and without the fallbacks: what `deep_direction` would return when it finds its
-/// direction that soon, else `None`.
+/// [`deep_direction`] on a boundary with arcs, with a [`simple_direction`] that gives up
+/// after `max_rejected` candidates that `ok` rejects (then the climb's end rounded, as
+/// there), else `None`.
 pub fn quick_direction(
     arcs: &[FArc],
     ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
@@ -338,7 +337,7 @@ pub fn quick_direction(
         return None;
     }
     let (p, c) = deepest_climb(starts(arcs, &[]), arcs, &[])?;
-    simple_direction_within(&p, c, 0.9, arcs, &[], ok, max_rejected)
+    simple_direction_within(&p, c, 0.9, arcs, &[], ok, max_rejected).or_else(|| rounded(&p, c, ok))
 }
 
 /// A direction deep inside the region bounded by `arcs` (region on their left) and
@@ -365,6 +364,17 @@ pub fn deep_direction(
     if let Some(found) = simple_direction(&p, c, 0.9, arcs, points, ok) {
         return Some(found);
     }
+    rounded(&p, c, ok)
+}
+
+/// The unit point `p` rounded to 20, 30 or 40 bits, the first that `ok` accepts, with
+/// the clearance `c` of `p`.
+fn rounded(
+    p: &V3,
+    c: f64,
+    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
+) -> Option<(apart_kernel::Vec3, f64)> {
+    use apart_kernel::Vec3;
     for bits in [20, 30, 40] {
         let scale = (1u64 << bits) as f64;
         let d = Vec3::new(
