@@ -41,17 +41,9 @@ fn brick_row(n: i64) -> Vec<Part> {
         .collect()
 }
 
-/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2; apart-testkit's
-/// generator).
+/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2).
 fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Part> {
-    apart_testkit::solids::random_boxes(n, k, seed)
-        .into_iter()
-        .enumerate()
-        .map(|(i, boxes)| {
-            let pieces = boxes.into_iter().map(|(lo, hi)| common::cuboid(lo, hi));
-            common::part(&format!("p{i}"), pieces.collect())
-        })
-        .collect()
+    common::random_box_parts(n, k, seed)
 }
 
 /// Two rings (64 segments, 16-gon section, 2,048 triangles each, decomposed exactly)

@@ -4,26 +4,14 @@
 
 mod common;
 
-use apart_plan::{BlockingRegions, MotionSpace, Part};
-
-/// Paper 003's random boxes in `k` parts, as parts of box pieces.
-fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Part> {
-    apart_testkit::solids::random_boxes(n, k, seed)
-        .into_iter()
-        .enumerate()
-        .map(|(i, boxes)| {
-            let pieces = boxes.into_iter().map(|(lo, hi)| common::cuboid(lo, hi));
-            common::part(&format!("p{i}"), pieces.collect())
-        })
-        .collect()
-}
+use apart_plan::{BlockingRegions, MotionSpace};
 
 #[test]
 fn one_set_agrees_with_the_enumeration() {
     let mut cells = 0;
     let mut minimal = 0;
     for (n, k, seed) in [(8, 4, 3), (12, 5, 11), (16, 6, 29)] {
-        let parts = random_boxes(n, k, seed);
+        let parts = common::random_box_parts(n, k, seed);
         let regions = BlockingRegions::compute(&parts).unwrap();
         let all: Vec<usize> = (0..parts.len()).collect();
         let ms = MotionSpace::build(&regions, &all);

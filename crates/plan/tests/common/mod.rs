@@ -42,6 +42,19 @@ pub fn part(name: &str, pieces: Vec<Polytope>) -> Part {
     Part::from_pieces(name, pieces)
 }
 
+/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2; apart-testkit's
+/// generator), as parts of box pieces named `p0`, `p1`, ...
+pub fn random_box_parts(n: usize, k: usize, seed: u64) -> Vec<Part> {
+    apart_testkit::solids::random_boxes(n, k, seed)
+        .into_iter()
+        .enumerate()
+        .map(|(i, boxes)| {
+            let pieces = boxes.into_iter().map(|(lo, hi)| cuboid(lo, hi));
+            part(&format!("p{i}"), pieces.collect())
+        })
+        .collect()
+}
+
 /// The Split Star (Coffin), decomposed into two square pyramids and an octahedron per
 /// part, in the frame of the issue: red has vertices (±2,0,0) (±2,0,2) (±1,±1,1)
 /// (0,0,0) (0,0,2); green = red with z -> -z; blue = red under (x,y,z) -> (z,x,y);
