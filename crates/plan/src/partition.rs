@@ -621,28 +621,23 @@ fn free_regions(ms: &MotionSpace, first: bool, progress: &Progress) -> (Vec<Free
             let mut boundary = Vec::new();
             let mut todo = vec![f];
             while let Some(g) = todo.pop() {
-                for &c in arr.face_cycles(g) {
-                    for h in arr.cycle_half_edges(c) {
-                        if arr.edge(h.edge()).structural {
-                            continue;
+                for h in arr.real_half_edges(g) {
+                    let other = arr.face(h.twin());
+                    let (w, b) = (other.index() / 64, 1u64 << (other.index() % 64));
+                    let free = seen[id][w] & b != 0
+                        || match m[..] {
+                            // One part alone: the face's parts free alone, found once.
+                            [a] => alone[other.index()]
+                                .get_or_insert_with(|| ms.free_alone(&st.faces[other.index()]))
+                                .get(a),
+                            _ => ms.can_move(&st.faces[other.index()], &m),
+                        };
+                    if free {
+                        if mark(&mut seen, id, other) {
+                            todo.push(other);
                         }
-                        let other = arr.face(h.twin());
-                        let (w, b) = (other.index() / 64, 1u64 << (other.index() % 64));
-                        let free = seen[id][w] & b != 0
-                            || match m[..] {
-                                // One part alone: the face's parts free alone, found once.
-                                [a] => alone[other.index()]
-                                    .get_or_insert_with(|| ms.free_alone(&st.faces[other.index()]))
-                                    .get(a),
-                                _ => ms.can_move(&st.faces[other.index()], &m),
-                            };
-                        if free {
-                            if mark(&mut seen, id, other) {
-                                todo.push(other);
-                            }
-                        } else {
-                            boundary.push(h);
-                        }
+                    } else {
+                        boundary.push(h);
                     }
                 }
             }
@@ -707,22 +702,17 @@ fn minimal_zone(ms: &MotionSpace, r: &FreeRegion) -> Option<Vec<HalfEdge>> {
     let mut boundary = Vec::new();
     let mut smaller = false;
     while let Some(g) = todo.pop() {
-        for &c in arr.face_cycles(g) {
-            for h in arr.cycle_half_edges(c) {
-                if arr.edge(h.edge()).structural {
-                    continue;
-                }
-                let other = arr.face(h.twin());
-                if seen[other.index()] {
-                    continue;
-                }
-                if inside(other) {
-                    seen[other.index()] = true;
-                    todo.push(other);
-                } else {
-                    smaller |= ms.can_move(&st.faces[other.index()], &r.moving);
-                    boundary.push(h);
-                }
+        for h in arr.real_half_edges(g) {
+            let other = arr.face(h.twin());
+            if seen[other.index()] {
+                continue;
+            }
+            if inside(other) {
+                seen[other.index()] = true;
+                todo.push(other);
+            } else {
+                smaller |= ms.can_move(&st.faces[other.index()], &r.moving);
+                boundary.push(h);
             }
         }
     }

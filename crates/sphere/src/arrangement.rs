@@ -302,6 +302,15 @@ impl<L, P> Arrangement<L, P> {
         self.half_edge_arc(e.forward())
     }
 
+    /// The real half-edges around face `f` (face on their left), cycle by cycle:
+    /// structural ones are left out.
+    pub fn real_half_edges(&self, f: FaceId) -> impl Iterator<Item = HalfEdge> + '_ {
+        self.face_cycles(f)
+            .iter()
+            .flat_map(|&c| self.cycle_half_edges(c))
+            .filter(|h| !self.edge(h.edge()).structural)
+    }
+
     /// The real boundary of face `f` as closed loops of real half-edges (face on the
     /// left), one loop per boundary component: structural edges are ignored, so a face
     /// with holes has several loops.
