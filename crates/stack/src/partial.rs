@@ -19,8 +19,8 @@ use crate::free_space::{subtract, Cell, Split, SplitStats};
 use crate::obstacle::{Obstacle, ObstacleShape};
 use crate::orientation::{Base, Orientation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
-use crate::qp::lexmin;
 pub use crate::qp::Objective;
+use crate::qp::{lexmin, lexmin_box};
 use crate::scene::Scene;
 
 /// A newly found interfering pair: its placed obstacle and (fixed piece, moving piece).
@@ -216,6 +216,9 @@ pub struct PlaceStats {
     pub subtractions: (u64, u64),
     /// Candidates yielded.
     pub candidates: u64,
+    /// Cells dropped by the stacking planner's support test before being solved or
+    /// split (no position in them can be stable).
+    pub unsupported: u64,
 }
 
 /// Counters and timings of obstacle construction.
@@ -302,6 +305,8 @@ impl ObstacleCache {
 
 struct Slot {
     cell: Cell,
+    /// The support test ([`Placer::unsupported`]) has been applied to the cell.
+    checked: bool,
     /// Obstacles `0..verified` do not contain the cell's optimum in their interior.
     verified: usize,
     alive: bool,
@@ -359,6 +364,28 @@ pub(crate) struct Placer<'a> {
     split_stats: SplitStats,
     /// Counters of this placer.
     pub(crate) stats: PlaceStats,
+    /// Drop cells in which no position can be stable (stacking only).
+    support: Option<SupportFilter>,
+}
+
+/// The stacking planner's necessary condition of stability, applied to whole cells
+/// before they are solved or split: a cell is dropped when no translation in it can be
+/// stable, so that none of the candidates its pieces would yield (all of them in the
+/// cell, all rejected by the planner as unstable) costs any work.
+///
+/// Sound for the planner's stability test (`stability::stable`): a translation `p` is
+/// stable only if the centre of gravity projects strictly inside the convex hull of the
+/// supporting contact points. Those are vertices on the floor (only when the part's
+/// lowest point is at `floor_z`) and points of fixed pieces touching the part, whose
+/// boxes therefore meet the part's box at `p`. For `p` in a cell with box `C`, the part's
+/// box lies in `extent ⊕ C`; with no floor contact possible, the hull lies in the xy box
+/// `U` of the fixed pieces whose boxes meet `extent ⊕ C`, so the centre of gravity must
+/// lie in the open box `int U`. When the box of the centre's projections over `C`
+/// misses `int U` (or no fixed piece is in reach), every position of the cell is unstable.
+#[derive(Clone, Debug)]
+pub(crate) struct SupportFilter {
+    /// Height of the floor.
+    pub(crate) floor_z: Rational,
 }
 
 impl<'a> Placer<'a> {
@@ -380,6 +407,7 @@ impl<'a> Placer<'a> {
             yielded: HashSet::default(),
             split_stats: SplitStats::default(),
             stats: PlaceStats::default(),
+            support: None,
         };
         for (o, part) in moving.oriented.iter().enumerate() {
             let omega = opts.region.omega(part);
@@ -390,7 +418,7 @@ impl<'a> Placer<'a> {
             let objective = opts.cost.objective(part);
             let cell = Cell::of_box(&omega);
             placer.stats.qps += 1;
-            let Some(p) = lexmin(&cell.constraints, &objective) else {
+            let Some(p) = cell.lexmin(&objective) else {
                 placer.states.push(None);
                 continue;
             };
@@ -429,6 +457,7 @@ impl<'a> Placer<'a> {
         };
         st.slots.push(Slot {
             cell,
+            checked: false,
             verified: 0,
             alive: true,
             point,
@@ -456,15 +485,77 @@ impl<'a> Placer<'a> {
         Ok(None)
     }
 
+    /// Drops cells in which no position can be stable ([`SupportFilter`]).
+    pub(crate) fn with_support_filter(mut self, filter: SupportFilter) -> Placer<'a> {
+        self.support = Some(filter);
+        self
+    }
+
+    /// True when no translation in `cell` can be stable for the part in orientation `o`
+    /// ([`SupportFilter`]).
+    fn unsupported(&self, o: usize, cell: &Cell, filter: &SupportFilter) -> bool {
+        let e = &self.moving.oriented[o].extent;
+        let c = &cell.bbox;
+        // The floor is reachable: the part's lowest point can be at floor_z.
+        if &c.min[2] + &e.min[2] <= filter.floor_z {
+            return false;
+        }
+        let reach = Aabb {
+            min: rational::add(&c.min, &e.min),
+            max: rational::add(&c.max, &e.max),
+        };
+        let cg = &self.moving.oriented[o].centroid;
+        // The centre's projections over the cell: [lo, hi] per axis.
+        let lo = [0, 1].map(|i| &c.min[i] + &cg[i]);
+        let hi = [0, 1].map(|i| &c.max[i] + &cg[i]);
+        // Unstable throughout when every reachable piece lies on one side of the centre's
+        // box (on or beyond its side, along x or y): a possible side is struck off by the
+        // first piece that reaches past it.
+        // [x: pieces all at or left of lo, all at or right of hi; y: the same]
+        let mut open = [true; 4];
+        let mut near = Vec::new();
+        self.scene.near(&reach.enclosing_f64(), &mut near);
+        for k in near {
+            let b = &self.scene.pieces()[k].bbox;
+            let kills = [
+                b.max[0] > lo[0],
+                b.min[0] < hi[0],
+                b.max[1] > lo[1],
+                b.min[1] < hi[1],
+            ];
+            if (0..4).all(|j| !open[j] || !kills[j]) || !b.overlaps(&reach) {
+                continue;
+            }
+            for j in 0..4 {
+                open[j] &= !kills[j];
+            }
+            if open.iter().all(|o| !o) {
+                return false;
+            }
+        }
+        // Also when no piece is in reach at all: nothing to rest on.
+        true
+    }
+
     fn step(&mut self, st: &mut OrientState, e: &Entry) -> Result<Step, StackError> {
         if !st.slots[e.cell].alive {
             return Ok(Step::Continue);
+        }
+        if !st.slots[e.cell].checked {
+            st.slots[e.cell].checked = true;
+            if let Some(f) = &self.support {
+                if self.unsupported(e.o, &st.slots[e.cell].cell, f) {
+                    st.slots[e.cell].alive = false;
+                    self.stats.unsupported += 1;
+                    return Ok(Step::Continue);
+                }
+            }
         }
         let Some(point) = st.slots[e.cell].point.clone() else {
             // Solve the cell now and queue it under its own cost.
             let t0 = Instant::now();
             self.stats.qps += 1;
-            let p = lexmin(&st.slots[e.cell].cell.constraints, &st.objective);
+            let p = st.slots[e.cell].cell.lexmin(&st.objective);
             self.stats.cells_seconds += t0.elapsed().as_secs_f64();
             match p {
                 None => st.slots[e.cell].alive = false,
@@ -516,7 +607,7 @@ impl<'a> Placer<'a> {
                         let mut key = (e.cost.clone(), e.tie.clone());
                         if let Some(h) = cut {
                             self.stats.qps += 1;
-                            match lexmin(std::slice::from_ref(&h), &st.objective) {
+                            match half_space_lexmin(&h, &st.objective) {
                                 Some(b) => {
                                     let b = (st.objective.value(&b), st.objective.tie(&b));
                                     if b > key {
@@ -637,6 +728,26 @@ impl<'a> Placer<'a> {
         }
         Ok(out)
     }
+}
+
+/// The lexicographic minimizer of `obj` over one half-space ([`lexmin`]; in closed form
+/// for an axis-aligned half-space and a diagonal objective, the same point).
+fn half_space_lexmin(h: &apart_kernel::BigPlane, obj: &Objective) -> Option<[Rational; 3]> {
+    let axis: Vec<usize> = (0..3).filter(|&i| !h.n[i].is_zero()).collect();
+    if let [i] = axis[..] {
+        let v = Rational::new(h.c.clone(), h.n[i].clone());
+        let mut lo = [None, None, None];
+        let mut hi = [None, None, None];
+        if h.n[i] > apart_kernel::Int::ZERO {
+            hi[i] = Some(&v);
+        } else {
+            lo[i] = Some(&v);
+        }
+        if let Some(p) = lexmin_box(lo, hi, obj) {
+            return p;
+        }
+    }
+    lexmin(std::slice::from_ref(h), obj)
 }
 
 /// The boxes of an orientation's obstacles, for finding those that may contain a point:
@@ -769,7 +880,7 @@ pub fn best_full(
     let obj = opts.cost.objective(part);
     let best = cells
         .iter()
-        .filter_map(|c| lexmin(&c.constraints, &obj))
+        .filter_map(|c| c.lexmin(&obj))
         .map(|p| (obj.value(&p), obj.tie(&p), p))
         .min_by(|x, y| (&x.0, &x.1).cmp(&(&y.0, &y.1)));
     Ok(best.map(|(cost, tie, translation)| Candidate {
