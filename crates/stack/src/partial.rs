@@ -4,10 +4,10 @@
 //! For each orientation the free space starts as the permissible region Ω (one cell).
 //! A candidate is the lexicographic minimizer of the cost in a cell. Popped from one
 //! priority queue over every orientation and cell (cheapest first), a candidate is
-//! tested for interference with every fixed piece (BVH broad phase, exact separating
-//! axes); the obstacles of the pairs that interfere are added to that orientation's
-//! obstacle list and subtracted from its cells lazily (a cell is brought up to date when
-//! it is popped), and the queue goes on. A candidate without interference is yielded:
+//! tested for interference with the fixed pieces (BVH broad phase, exact separating
+//! axes, pairs of the largest pieces first); the obstacle of the first pair that
+//! interferes is added to that orientation's obstacle list and subtracted from its cells
+//! lazily (a cell is brought up to date when it is popped), and the queue goes on. A candidate without interference is yielded:
 //! it is free, and no free configuration is cheaper, because every queued cost is a lower
 //! bound of its cell (obstacles only remove positions). This is the two-stage priority
 //! queue of §V-C with every free-space cell's optimum kept as a candidate (§VI-A.4):
@@ -366,6 +366,15 @@ pub(crate) struct Placer<'a> {
     pub(crate) stats: PlaceStats,
     /// Drop cells in which no position can be stable (stacking only).
     support: Option<SupportFilter>,
+    /// For each orientation, the moving pieces by decreasing box volume.
+    largest_first: Vec<Vec<usize>>,
+    /// The box volume of each fixed piece (as a double: it only orders detection).
+    scene_volume: Vec<f64>,
+}
+
+/// The volume of a box, as a double (an order of detection, never a decision).
+fn box_volume(b: &Aabb<Rational>) -> f64 {
+    (0..3).map(|i| (&b.max[i] - &b.min[i]).to_f64()).product()
 }
 
 /// The stacking planner's necessary condition of stability, applied to whole cells
@@ -408,6 +417,17 @@ impl<'a> Placer<'a> {
             split_stats: SplitStats::default(),
             stats: PlaceStats::default(),
             support: None,
+            largest_first: moving
+                .oriented
+                .iter()
+                .map(|part| {
+                    let v: Vec<f64> = part.boxes.iter().map(box_volume).collect();
+                    let mut order: Vec<usize> = (0..v.len()).collect();
+                    order.sort_by(|&x, &y| v[y].total_cmp(&v[x]));
+                    order
+                })
+                .collect(),
+            scene_volume: scene.pieces().iter().map(|p| box_volume(&p.bbox)).collect(),
         };
         for (o, part) in moving.oriented.iter().enumerate() {
             let omega = opts.region.omega(part);
@@ -663,8 +683,16 @@ impl<'a> Placer<'a> {
         Ok(Step::Continue)
     }
 
-    /// The pairs (fixed piece, moving piece) interfering at `p` (or closer than the
-    /// clearance) not yet among the orientation's obstacles, with their placed obstacles.
+    /// A pair (fixed piece, moving piece) interfering at `p` (or closer than the
+    /// clearance) not yet among the orientation's obstacles, with its placed obstacle;
+    /// empty when there is none (`p` is free).
+    ///
+    /// One pair, not all: the candidate leaves the first obstacle (the cell is split by
+    /// it), and where it lands the other pairs interfering at `p` often no longer do, so
+    /// their obstacles would only cut the free space into more cells. Pairs of the largest
+    /// pieces come first (moving piece, then fixed piece, by box volume): their obstacles
+    /// cover the most, so fewer are needed. Complex stack: 139,671 -> 6,616 pairs
+    /// evaluated, 508k -> 61k cells.
     fn detect(
         &mut self,
         o: usize,
@@ -676,7 +704,8 @@ impl<'a> Placer<'a> {
         let clearance = self.opts.clearance.as_ref().filter(|c| !c.is_zero());
         let mut out = Vec::new();
         let mut near = Vec::new();
-        for (a, b) in part.boxes.iter().enumerate() {
+        for &a in &self.largest_first[o] {
+            let b = &part.boxes[a];
             let mut fb = b.translated(pq).enclosing_f64();
             if let Some(c) = clearance {
                 let c = c.to_f64() * (1.0 + 1e-6);
@@ -689,6 +718,8 @@ impl<'a> Placer<'a> {
             }
             near.clear();
             self.scene.near(&fb, &mut near);
+            let volume = &self.scene_volume;
+            near.sort_by(|&x, &y| volume[y].total_cmp(&volume[x]));
             for &k in &near {
                 if st.added.contains(&(k, a)) {
                     continue;
@@ -723,6 +754,8 @@ impl<'a> Placer<'a> {
                         self.opts.extrapolate,
                     )?;
                     out.push((shape.placed(&sp.translation, clearance), (k, a)));
+                    // One pair is enough to move on (see `detect`).
+                    return Ok(out);
                 }
             }
         }
