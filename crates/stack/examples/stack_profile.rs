@@ -1,5 +1,6 @@
 //! One stacking run with every counter printed, for profiling (`perf record`):
-//! `cargo run --release -p apart-stack --example stack_profile -- complex 15 90`.
+//! `cargo run --release -p apart-stack --example stack_profile -- complex 15 90`
+//! (part, count, angle step; a fourth argument `fresh` turns extrapolation off).
 
 #[path = "../tests/common/parts.rs"]
 mod parts;
@@ -34,6 +35,7 @@ fn main() {
         height,
     );
     opts.dtheta_deg = dtheta;
+    opts.extrapolate = args.get(4).is_none_or(|s| s != "fresh");
     let plan = stack(&part, &opts).unwrap();
     println!("{:#?}", plan.stats);
     println!("height {} complete {}", plan.stack_height, plan.complete);

@@ -35,7 +35,9 @@ pub struct Template {
     theta0: ZRotation,
     pairs: Vec<(u32, u32)>,
     cycles: Vec<Vec<u32>>,
-    events: Vec<(Vec3, Vec3)>,
+    /// Each event's quadratic in `tan(δ/2)` (it depends on the reference only), with
+    /// identically zero ones (never an event) dropped.
+    quadratics: Vec<[Int; 3]>,
 }
 
 impl Template {
@@ -48,8 +50,63 @@ impl Template {
         theta0: ZRotation,
         obstacle: &ObstacleShape,
     ) -> Option<Template> {
+        let quadratics = Template::event_quadratics(fixed, moving, theta0, false)?;
         let turned = rotate_z(moving, theta0);
         let pairs = provenance(obstacle, fixed, &turned)?;
+        Some(Template {
+            fixed: fixed.clone(),
+            moving: moving.clone(),
+            theta0,
+            pairs,
+            cycles: obstacle.cycles.clone(),
+            quadratics,
+        })
+    }
+
+    /// The events of a template without the obstacle's structure: enough for
+    /// [`Template::valid_at`] and the interval, at a fraction of the cost; `None` when
+    /// the reference angle is critical (an event quadratic vanishes at `δ = 0`: such a template is valid at the reference
+    /// only, where the obstacle is known). Complete it
+    /// with [`Template::trace`] before extrapolating.
+    pub(crate) fn untraced(
+        fixed: &Polytope,
+        moving: &Polytope,
+        theta0: ZRotation,
+    ) -> Option<Template> {
+        let quadratics = Template::event_quadratics(fixed, moving, theta0, true)?;
+        Some(Template {
+            fixed: fixed.clone(),
+            moving: moving.clone(),
+            theta0,
+            pairs: Vec::new(),
+            cycles: Vec::new(),
+            quadratics,
+        })
+    }
+
+    /// Completes an [`Template::untraced`] template with the structure of its obstacle
+    /// (the obstacle at the reference); false if it cannot be traced.
+    pub(crate) fn trace(&mut self, obstacle: &ObstacleShape) -> bool {
+        let turned = rotate_z(&self.moving, self.theta0);
+        match provenance(obstacle, &self.fixed, &turned) {
+            Some(pairs) => {
+                self.pairs = pairs;
+                self.cycles = obstacle.cycles.clone();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The event quadratics (see [`Template::valid_at`]), sorted and without duplicates
+    /// or identically zero ones; with `useful_only`, `None` when one vanishes at the
+    /// reference.
+    fn event_quadratics(
+        fixed: &Polytope,
+        moving: &Polytope,
+        theta0: ZRotation,
+        useful_only: bool,
+    ) -> Option<Vec<[Int; 3]>> {
         let mut events = Vec::new();
         for f in fixed.facets() {
             for u in moving.edge_directions() {
@@ -76,14 +133,28 @@ impl Template {
                 events.push((m.clone(), fa.normal.clone()));
             }
         }
-        Some(Template {
-            fixed: fixed.clone(),
-            moving: moving.clone(),
-            theta0,
-            pairs,
-            cycles: obstacle.cycles.clone(),
-            events,
-        })
+        // Each moving direction turned once (events share them).
+        let mut turned_dirs: Vec<(&Vec3, Vec3)> = Vec::new();
+        let mut quadratics: Vec<[Int; 3]> = Vec::with_capacity(events.len());
+        for (m, v) in &events {
+            let k = match turned_dirs.iter().position(|(u, _)| *u == v) {
+                Some(k) => k,
+                None => {
+                    turned_dirs.push((v, theta0.apply_scaled(v)));
+                    turned_dirs.len() - 1
+                }
+            };
+            let q = Template::quadratic_turned(m, &turned_dirs[k].1);
+            if q.iter().any(|c| *c != Int::ZERO) {
+                if useful_only && q[2] == Int::ZERO {
+                    return None;
+                }
+                quadratics.push(q);
+            }
+        }
+        quadratics.sort();
+        quadratics.dedup();
+        Some(quadratics)
     }
 
     /// Exactly: is the obstacle's structure the same at `theta` as at the reference
@@ -98,15 +169,22 @@ impl Template {
         }
         // t1 = tan(δ/2) = sin δ / (1 + cos δ) = b / (c + a).
         let (p, qd) = (Int::from(d.b), Int::from(d.c + d.a));
-        self.events.iter().all(|(m, v)| {
-            let [a2, a1, a0] = self.quadratic(m, v);
-            root_free(&a2, &a1, &a0, &p, &qd)
-        })
+        self.quadratics
+            .iter()
+            .all(|[a2, a1, a0]| root_free(a2, a1, a0, &p, &qd))
     }
 
-    /// Coefficients `[t², t, 1]` of the event quadratic in `t = tan(δ/2)`, `δ = θ − θ0`.
-    fn quadratic(&self, m: &Vec3, v: &Vec3) -> [Int; 3] {
-        let v = self.theta0.apply_scaled(v);
+    /// Coefficients `[t², t, 1]` of the event quadratic in `t = tan(δ/2)`, `δ = θ − θ0`,
+    /// for the event `(m, v)` with `v` already turned by the reference rotation.
+    fn quadratic_turned(m: &Vec3, v: &Vec3) -> [Int; 3] {
+        if let (Some(m), Some(v)) = (m.as_small(), v.as_small()) {
+            // Machine integers (below 2^62): every product and sum fits in i128.
+            let [m, v] = [m, v].map(|c| c.map(i128::from));
+            let alpha = m[0] * v[0] + m[1] * v[1];
+            let beta = m[1] * v[0] - m[0] * v[1];
+            let gamma = m[2] * v[2];
+            return [gamma - alpha, 2 * beta, alpha + gamma].map(Int::from);
+        }
         let (m, v) = (m.to_ints(), v.to_ints());
         let alpha = &m[0] * &v[0] + &m[1] * &v[1];
         let beta = &m[1] * &v[0] - &m[0] * &v[1];
@@ -159,8 +237,8 @@ impl Template {
     pub(crate) fn critical_angles_deg(&self) -> Vec<f64> {
         let t0 = self.theta0.angle_deg();
         let mut out = Vec::new();
-        for (m, v) in &self.events {
-            let [a2, a1, a0] = self.quadratic(m, v).map(|c| apart_kernel::int::to_f64(&c));
+        for q in &self.quadratics {
+            let [a2, a1, a0] = q.clone().map(|c| apart_kernel::int::to_f64(&c));
             if a2 == 0.0 && a1 == 0.0 {
                 continue; // constant: never an event (or always, identically zero)
             }

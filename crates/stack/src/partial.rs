@@ -17,7 +17,7 @@
 use crate::extrapolate::Template;
 use crate::free_space::{subtract, Cell, Split, SplitStats};
 use crate::obstacle::{Obstacle, ObstacleShape};
-use crate::orientation::{Base, Orientation};
+use crate::orientation::{Base, Orientation, ZRotation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
 pub use crate::qp::Objective;
 use crate::qp::{lexmin, lexmin_box};
@@ -243,10 +243,27 @@ pub struct ObstacleStats {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ObstacleCache {
     exact: HashMap<(usize, usize, usize), Arc<ObstacleShape>>,
-    templates: HashMap<(usize, Base, usize), Template>,
+    /// The latest templates of each (fixed shape, base, moving piece), newest first:
+    /// several, one per constant-topology interval met (orientations are visited in cost
+    /// order, not by angle, and a template made at a critical angle is valid there only).
+    /// Each with its constant-topology interval in degrees (floating point: it only
+    /// picks the templates worth the exact check).
+    /// An untraced template keeps the obstacle it is traced from when first used.
+    templates: HashMap<(usize, Base, usize), Vec<TemplateSlot>>,
+    /// Fresh obstacles not yet made templates, by the same key: a template is built
+    /// only when another orientation asks for the same pair (most pairs are met in
+    /// one orientation only, and a template costs more than the obstacle).
+    seeds: HashMap<(usize, Base, usize), Vec<(ZRotation, Arc<ObstacleShape>)>>,
     /// Counters.
     pub(crate) stats: ObstacleStats,
 }
+
+/// A template, its interval (degrees, floating point), and until it is first used the
+/// obstacle to trace it from.
+type TemplateSlot = ((f64, f64), Template, Option<Arc<ObstacleShape>>);
+
+/// Templates kept per (fixed shape, base, moving piece).
+const MAX_TEMPLATES: usize = 4;
 
 impl ObstacleCache {
     /// An empty cache.
@@ -272,9 +289,40 @@ impl ObstacleCache {
         let fixed = &scene.shapes()[s];
         let key = (s, orient.base, a);
         if extrapolate {
-            if let Some(t) = self.templates.get(&key) {
+            let deg = orient.theta.angle_deg();
+            let inside = |&(lo, hi): &(f64, f64)| {
+                // θ or θ ± 360° within the interval, with a margin for rounding.
+                [deg - 360.0, deg, deg + 360.0]
+                    .iter()
+                    .any(|d| lo - 1e-6 <= *d && *d <= hi + 1e-6)
+            };
+            // Seeds become templates now that a second orientation needs the pair.
+            let t0 = Instant::now();
+            let base = &moving.base_pieces[&orient.base][a];
+            for (theta0, shape) in self.seeds.remove(&key).into_iter().flatten() {
+                // A template made at a critical angle is valid there only: not kept.
+                if let Some(t) = Template::untraced(fixed, base, theta0) {
+                    let (lo, hi) = t.interval_deg();
+                    if hi - lo > 1e-6 {
+                        let list = self.templates.entry(key).or_default();
+                        list.insert(0, ((lo, hi), t, Some(shape)));
+                        list.truncate(MAX_TEMPLATES);
+                    }
+                }
+            }
+            self.stats.extrapolate_seconds += t0.elapsed().as_secs_f64();
+            let near = self.templates.get_mut(&key).into_iter().flatten();
+            for (interval, t, source) in near.filter(|(i, _, _)| inside(i)) {
                 let t0 = Instant::now();
-                let ok = t.valid_at(orient.theta);
+                let mut ok = t.valid_at(orient.theta);
+                if ok {
+                    if let Some(obstacle) = source.take() {
+                        ok = t.trace(&obstacle);
+                        if !ok {
+                            *interval = (f64::INFINITY, f64::NEG_INFINITY); // never again
+                        }
+                    }
+                }
                 let shape = ok.then(|| t.extrapolate(orient.theta));
                 self.stats.extrapolate_seconds += t0.elapsed().as_secs_f64();
                 if let Some(shape) = shape {
@@ -291,13 +339,13 @@ impl ObstacleCache {
             .map_err(|e| StackError::Internal(format!("Minkowski sum: {e}")))?;
         self.stats.fresh_seconds += t0.elapsed().as_secs_f64();
         self.stats.fresh += 1;
-        if extrapolate {
-            let base = &moving.base_pieces[&orient.base][a];
-            if let Some(t) = Template::new(fixed, base, orient.theta, &shape) {
-                self.templates.insert(key, t);
-            }
-        }
         let shape = Arc::new(shape);
+        if extrapolate {
+            self.seeds
+                .entry(key)
+                .or_default()
+                .push((orient.theta, shape.clone()));
+        }
         self.exact.insert((s, o, a), shape.clone());
         Ok(shape)
     }

@@ -430,4 +430,42 @@ mod tests {
         }
         assert!(pruned_total > 0, "the filter never applied");
     }
+
+    /// Extrapolated obstacles are the fresh ones: plans with and without extrapolation
+    /// agree exactly (same cells, same pairs), at 30° and 15° steps, where templates
+    /// apply.
+    #[test]
+    fn extrapolation_changes_no_plan() {
+        let part = PartModel::from_pieces(
+            "channel",
+            vec![
+                cuboid([0, 0, 0], [6, 3, 1]),
+                cuboid([0, 0, 1], [1, 3, 3]),
+                cuboid([5, 0, 1], [6, 3, 3]),
+            ],
+        )
+        .unwrap();
+        let mut extrapolated = 0;
+        for step in [30.0, 15.0] {
+            let mut opts = StackOptions::new(5, qfrac(1, 2), [q(-9), q(-9), q(9), q(9)], q(20));
+            opts.dtheta_deg = step;
+            let with = plan(&part, &opts, &Progress::new(), true).unwrap();
+            opts.extrapolate = false;
+            let without = plan(&part, &opts, &Progress::new(), true).unwrap();
+            let key = |p: &StackPlan| {
+                p.placements
+                    .iter()
+                    .map(|x| (x.orientation_index, x.translation.clone(), x.cost.clone()))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(key(&with), key(&without), "step {step}");
+            assert_eq!(with.stats.place.cells, without.stats.place.cells);
+            assert_eq!(
+                with.stats.obstacles.extrapolated + with.stats.obstacles.fresh,
+                without.stats.obstacles.fresh
+            );
+            extrapolated += with.stats.obstacles.extrapolated;
+        }
+        assert!(extrapolated > 0, "no obstacle was extrapolated");
+    }
 }
