@@ -249,14 +249,17 @@ pub(crate) struct ObstacleCache {
     /// Each with its constant-topology interval in degrees (floating point: it only
     /// picks the templates worth the exact check).
     /// An untraced template keeps the obstacle it is traced from when first used.
-    templates: HashMap<(usize, Base, usize), Vec<TemplateSlot>>,
+    templates: HashMap<TemplateKey, Vec<TemplateSlot>>,
     /// Fresh obstacles not yet made templates, by the same key: a template is built
     /// only when another orientation asks for the same pair (most pairs are met in
     /// one orientation only, and a template costs more than the obstacle).
-    seeds: HashMap<(usize, Base, usize), Vec<(ZRotation, Arc<ObstacleShape>)>>,
+    seeds: HashMap<TemplateKey, Vec<(ZRotation, Arc<ObstacleShape>)>>,
     /// Counters.
     pub(crate) stats: ObstacleStats,
 }
+
+/// (fixed shape, base orientation, moving piece).
+type TemplateKey = (usize, Base, usize);
 
 /// A template, its interval (degrees, floating point), and until it is first used the
 /// obstacle to trace it from.
