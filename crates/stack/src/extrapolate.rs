@@ -85,10 +85,10 @@ impl Template {
     }
 
     /// Completes an [`Template::untraced`] template with the structure of its obstacle
-    /// (the obstacle at the reference); false if it cannot be traced.
-    pub(crate) fn trace(&mut self, obstacle: &ObstacleShape) -> bool {
-        let turned = rotate_z(&self.moving, self.theta0);
-        match provenance(obstacle, &self.fixed, &turned) {
+    /// (the obstacle at the reference, `fixed ⊕ (−turned)` with `turned` the moving
+    /// piece turned to the reference); false if it cannot be traced.
+    pub(crate) fn trace(&mut self, obstacle: &ObstacleShape, turned: &Polytope) -> bool {
+        match provenance(obstacle, &self.fixed, turned) {
             Some(pairs) => {
                 self.pairs = pairs;
                 self.cycles = obstacle.cycles.clone();

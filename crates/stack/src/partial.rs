@@ -17,7 +17,7 @@
 use crate::extrapolate::Template;
 use crate::free_space::{subtract, Cell, Split, SplitStats};
 use crate::obstacle::{Obstacle, ObstacleShape};
-use crate::orientation::{Base, Orientation, ZRotation};
+use crate::orientation::{Base, Orientation};
 use crate::part::{distinct_orientations, OrientedPart, PartModel, StackError};
 pub use crate::qp::Objective;
 use crate::qp::{lexmin, lexmin_box};
@@ -253,7 +253,7 @@ pub(crate) struct ObstacleCache {
     /// Fresh obstacles not yet made templates, by the same key: a template is built
     /// only when another orientation asks for the same pair (most pairs are met in
     /// one orientation only, and a template costs more than the obstacle).
-    seeds: HashMap<TemplateKey, Vec<(ZRotation, Arc<ObstacleShape>)>>,
+    seeds: HashMap<TemplateKey, Vec<(usize, Arc<ObstacleShape>)>>,
     /// Counters.
     pub(crate) stats: ObstacleStats,
 }
@@ -263,7 +263,7 @@ type TemplateKey = (usize, Base, usize);
 
 /// A template, its interval (degrees, floating point), and until it is first used the
 /// obstacle to trace it from.
-type TemplateSlot = ((f64, f64), Template, Option<Arc<ObstacleShape>>);
+type TemplateSlot = ((f64, f64), Template, Option<(usize, Arc<ObstacleShape>)>);
 
 /// Templates kept per (fixed shape, base, moving piece).
 const MAX_TEMPLATES: usize = 4;
@@ -302,13 +302,14 @@ impl ObstacleCache {
             // Seeds become templates now that a second orientation needs the pair.
             let t0 = Instant::now();
             let base = &moving.base_pieces[&orient.base][a];
-            for (theta0, shape) in self.seeds.remove(&key).into_iter().flatten() {
+            for (o0, shape) in self.seeds.remove(&key).into_iter().flatten() {
                 // A template made at a critical angle is valid there only: not kept.
+                let theta0 = moving.orientations[o0].theta;
                 if let Some(t) = Template::untraced(fixed, base, theta0) {
                     let (lo, hi) = t.interval_deg();
                     if hi - lo > 1e-6 {
                         let list = self.templates.entry(key).or_default();
-                        list.insert(0, ((lo, hi), t, Some(shape)));
+                        list.insert(0, ((lo, hi), t, Some((o0, shape))));
                         list.truncate(MAX_TEMPLATES);
                     }
                 }
@@ -319,8 +320,8 @@ impl ObstacleCache {
                 let t0 = Instant::now();
                 let mut ok = t.valid_at(orient.theta);
                 if ok {
-                    if let Some(obstacle) = source.take() {
-                        ok = t.trace(&obstacle);
+                    if let Some((o0, obstacle)) = source.take() {
+                        ok = t.trace(&obstacle, &moving.oriented[o0].pieces[a]);
                         if !ok {
                             *interval = (f64::INFINITY, f64::NEG_INFINITY); // never again
                         }
@@ -344,10 +345,7 @@ impl ObstacleCache {
         self.stats.fresh += 1;
         let shape = Arc::new(shape);
         if extrapolate {
-            self.seeds
-                .entry(key)
-                .or_default()
-                .push((orient.theta, shape.clone()));
+            self.seeds.entry(key).or_default().push((o, shape.clone()));
         }
         self.exact.insert((s, o, a), shape.clone());
         Ok(shape)
