@@ -87,7 +87,8 @@ fn micro() {
     println!();
 }
 
-fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<String>) {
+/// The options of a bench run: `n` parts on a square floor about `sqrt(n)` parts wide.
+fn bench_options(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64) -> StackOptions {
     let e = part.orient(&Orientation::IDENTITY).extent;
     let size = (0..2)
         .map(|i| (&e.max[i] - &e.min[i]).to_f64())
@@ -102,14 +103,19 @@ fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<
         height,
     );
     opts.dtheta_deg = dtheta;
+    opts
+}
+
+fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<String>) {
+    let opts = bench_options(part, n, w, dtheta);
     let plan = stack(part, &opts).unwrap();
     let s = &plan.stats;
     let pct = 100.0 * s.place.pairs_evaluated as f64 / s.place.pairs_total.max(1) as f64;
     let fresh = s.obstacles.fresh_seconds / s.obstacles.fresh.max(1) as f64;
     let tried = s.obstacles.extrapolated + s.obstacles.extrapolation_misses;
-    let extra = s.obstacles.extrapolate_seconds / tried.max(1) as f64;
+    let extra = s.obstacles.extrapolate_seconds;
     println!(
-        "| {} ({} pieces) | {n} | {}/{} | {} | {:.3} | {} / {} ({pct:.3}%) | {} ({:.1} µs) | {} of {} tried ({:.1} µs per try) | {:.2} |",
+        "| {} ({} pieces) | {n} | {}/{} | {} | {:.3} | {} / {} ({pct:.3}%) | {} ({:.1} µs) | {} of {} tried ({:.1} ms with templates) | {:.2} |",
         part.name,
         part.pieces.len(),
         w.0,
@@ -122,11 +128,11 @@ fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<
         fresh * 1e6,
         s.obstacles.extrapolated,
         tried,
-        extra * 1e6,
+        extra * 1e3,
         s.seconds
     );
     phases.push(format!(
-        "| {} ({n}, w = {}/{}) | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {:.2} |",
+        "| {} ({n}, w = {}/{}, {dtheta}°) | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {:.2} |",
         part.name,
         w.0,
         w.1,
@@ -135,9 +141,55 @@ fn run(part: &PartModel, n: usize, w: (i64, i64), dtheta: f64, phases: &mut Vec<
         s.stability_seconds,
         s.lowering_seconds,
         s.unstable,
+        s.place.unsupported,
         s.place.cells,
         s.seconds
     ));
+}
+
+/// Stacking runs with and without extrapolation: the obstacle time of each (fresh
+/// construction, plus templates and extrapolation) and their ratio. The plans are the
+/// same (extrapolated obstacles are the fresh ones).
+fn extrapolation_run(part: &PartModel, n: usize, dtheta: f64) {
+    // Alternating runs, the least obstacle time of three each (the machine is shared).
+    let mut opts = bench_options(part, n, (1, 2), dtheta);
+    let mut runs = Vec::new();
+    for _ in 0..3 {
+        for extrapolate in [true, false] {
+            opts.extrapolate = extrapolate;
+            runs.push((extrapolate, stack(part, &opts).unwrap()));
+        }
+    }
+    let obstacle_time = |p: &apart_stack::planner::StackPlan| {
+        p.stats.obstacles.fresh_seconds + p.stats.obstacles.extrapolate_seconds
+    };
+    let best = |e: bool| {
+        runs.iter()
+            .filter(|r| r.0 == e)
+            .map(|r| &r.1)
+            .min_by(|x, y| obstacle_time(x).total_cmp(&obstacle_time(y)))
+            .expect("three runs")
+    };
+    let (with, without) = (best(true), best(false));
+    let (a, b) = (&with.stats.obstacles, &without.stats.obstacles);
+    let t_with = obstacle_time(with);
+    let t_without = obstacle_time(without);
+    println!(
+        "| {} ({n}) | {dtheta}° | {} | {} fresh + {} extrapolated ({} misses) | {:.1} ms | {} fresh | {:.1} ms | {:.2}x | {:.1} / {:.1} µs | {:.2} / {:.2} |",
+        part.name,
+        with.stats.orientations,
+        a.fresh,
+        a.extrapolated,
+        a.extrapolation_misses,
+        t_with * 1e3,
+        b.fresh,
+        t_without * 1e3,
+        t_without / t_with.max(1e-9),
+        1e6 * a.extrapolate_seconds / a.extrapolated.max(1) as f64,
+        1e6 * b.fresh_seconds / b.fresh.max(1) as f64,
+        with.stats.seconds,
+        without.stats.seconds,
+    );
 }
 
 fn q(v: i64) -> Rational {
@@ -156,7 +208,7 @@ fn main() {
     );
     micro();
     println!("## Stacking runs (Δθ = 90°)\n");
-    println!("| part | n | w | orientations | stack height | piece pairs evaluated / total | fresh obstacles (mean) | extrapolated (mean) | seconds |");
+    println!("| part | n | w | orientations | stack height | piece pairs evaluated / total | fresh obstacles (mean) | extrapolated | seconds |");
     println!("|---|---:|---|---:|---:|---:|---:|---:|---:|");
     let mut phases = Vec::new();
     for w in [(0, 1), (1, 2), (1, 1)] {
@@ -167,10 +219,25 @@ fn main() {
     if !quick {
         run(&complex_part(), 15, (1, 2), 90.0, &mut phases);
     }
+    println!("\n## Stacking runs with finer steps\n");
+    println!("| part | n | w | orientations | stack height | piece pairs evaluated / total | fresh obstacles (mean) | extrapolated | seconds |");
+    println!("|---|---:|---|---:|---:|---:|---:|---:|---:|");
+    for step in [30.0, 15.0] {
+        run(&channel(), 15, (1, 2), step, &mut phases);
+        run(&triangle_part(), 15, (1, 2), step, &mut phases);
+        run(&complex_part(), 3, (1, 2), step, &mut phases);
+    }
     println!("\n## Where the time goes (seconds)\n");
-    println!("| run | interference detection | cells and QPs | stability | lowering check | unstable candidates | cells | total |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| run | interference detection | cells and QPs | stability | lowering check | unstable candidates | cells dropped unsupported | cells | total |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for p in phases {
         println!("{p}");
+    }
+    println!("\n## Extrapolation against fresh construction (same plans)\n");
+    println!("| part | step | orientations | obstacles, extrapolating | obstacle time | obstacles, fresh only | obstacle time | speed-up | per extrapolated / per fresh obstacle | run seconds with / without |");
+    println!("|---|---:|---:|---|---:|---|---:|---:|---:|---:|");
+    for step in [30.0, 15.0] {
+        extrapolation_run(&triangle_part(), 15, step);
+        extrapolation_run(&complex_part(), 3, step);
     }
 }

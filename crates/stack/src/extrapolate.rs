@@ -35,7 +35,17 @@ pub struct Template {
     theta0: ZRotation,
     pairs: Vec<(u32, u32)>,
     cycles: Vec<Vec<u32>>,
-    events: Vec<(Vec3, Vec3)>,
+    /// Each event's quadratic in `tan(δ/2)` (it depends on the reference only), with
+    /// identically zero ones (never an event) dropped.
+    quadratics: Quadratics,
+}
+
+/// The event quadratics: machine integers when every coefficient is below 2^62
+/// (boxes and small turns: the usual case), else arbitrary precision.
+#[derive(Clone, Debug)]
+enum Quadratics {
+    Small(Vec<[i64; 3]>),
+    Big(Vec<[Int; 3]>),
 }
 
 impl Template {
@@ -48,8 +58,63 @@ impl Template {
         theta0: ZRotation,
         obstacle: &ObstacleShape,
     ) -> Option<Template> {
+        let quadratics = Template::event_quadratics(fixed, moving, theta0, false)?;
         let turned = rotate_z(moving, theta0);
         let pairs = provenance(obstacle, fixed, &turned)?;
+        Some(Template {
+            fixed: fixed.clone(),
+            moving: moving.clone(),
+            theta0,
+            pairs,
+            cycles: obstacle.cycles.clone(),
+            quadratics,
+        })
+    }
+
+    /// The events of a template without the obstacle's structure: enough for
+    /// [`Template::valid_at`] and the interval, at a fraction of the cost; `None` when
+    /// the reference angle is critical (an event quadratic vanishes at `δ = 0`: such a template is valid at the reference
+    /// only, where the obstacle is known). Complete it
+    /// with [`Template::trace`] before extrapolating.
+    pub(crate) fn untraced(
+        fixed: &Polytope,
+        moving: &Polytope,
+        theta0: ZRotation,
+    ) -> Option<Template> {
+        let quadratics = Template::event_quadratics(fixed, moving, theta0, true)?;
+        Some(Template {
+            fixed: fixed.clone(),
+            moving: moving.clone(),
+            theta0,
+            pairs: Vec::new(),
+            cycles: Vec::new(),
+            quadratics,
+        })
+    }
+
+    /// Completes an [`Template::untraced`] template with the structure of its obstacle
+    /// (the obstacle at the reference, `fixed ⊕ (−turned)` with `turned` the moving
+    /// piece turned to the reference); false if it cannot be traced.
+    pub(crate) fn trace(&mut self, obstacle: &ObstacleShape, turned: &Polytope) -> bool {
+        match provenance(obstacle, &self.fixed, turned) {
+            Some(pairs) => {
+                self.pairs = pairs;
+                self.cycles = obstacle.cycles.clone();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The event quadratics (see [`Template::valid_at`]), sorted and without duplicates
+    /// or identically zero ones; with `useful_only`, `None` when one vanishes at the
+    /// reference.
+    fn event_quadratics(
+        fixed: &Polytope,
+        moving: &Polytope,
+        theta0: ZRotation,
+        useful_only: bool,
+    ) -> Option<Quadratics> {
         let mut events = Vec::new();
         for f in fixed.facets() {
             for u in moving.edge_directions() {
@@ -76,14 +141,54 @@ impl Template {
                 events.push((m.clone(), fa.normal.clone()));
             }
         }
-        Some(Template {
-            fixed: fixed.clone(),
-            moving: moving.clone(),
-            theta0,
-            pairs,
-            cycles: obstacle.cycles.clone(),
-            events,
-        })
+        // Each moving direction turned once (events share them).
+        let mut turned_dirs: Vec<(&Vec3, Vec3)> = Vec::new();
+        let mut small: Option<Vec<[i64; 3]>> = Some(Vec::with_capacity(events.len()));
+        let mut quadratics: Vec<[Int; 3]> = Vec::new();
+        for (m, v) in &events {
+            let k = match turned_dirs.iter().position(|(u, _)| *u == v) {
+                Some(k) => k,
+                None => {
+                    turned_dirs.push((v, theta0.apply_scaled(v)));
+                    turned_dirs.len() - 1
+                }
+            };
+            let v = &turned_dirs[k].1;
+            if let Some(list) = &mut small {
+                let q = Template::quadratic_small(m, v);
+                match q {
+                    Some(q) => {
+                        if q != [0, 0, 0] {
+                            if useful_only && q[2] == 0 {
+                                return None;
+                            }
+                            list.push(q);
+                        }
+                        continue;
+                    }
+                    None => {
+                        // Too large: every quadratic in arbitrary precision from here on.
+                        quadratics = list.iter().map(|q| q.map(Int::from)).collect();
+                        small = None;
+                    }
+                }
+            }
+            let q = Template::quadratic_turned(m, v);
+            if q.iter().any(|c| *c != Int::ZERO) {
+                if useful_only && q[2] == Int::ZERO {
+                    return None;
+                }
+                quadratics.push(q);
+            }
+        }
+        if let Some(mut list) = small {
+            list.sort_unstable();
+            list.dedup();
+            return Some(Quadratics::Small(list));
+        }
+        quadratics.sort();
+        quadratics.dedup();
+        Some(Quadratics::Big(quadratics))
     }
 
     /// Exactly: is the obstacle's structure the same at `theta` as at the reference
@@ -97,16 +202,59 @@ impl Template {
             return false;
         }
         // t1 = tan(δ/2) = sin δ / (1 + cos δ) = b / (c + a).
-        let (p, qd) = (Int::from(d.b), Int::from(d.c + d.a));
-        self.events.iter().all(|(m, v)| {
-            let [a2, a1, a0] = self.quadratic(m, v);
-            root_free(&a2, &a1, &a0, &p, &qd)
-        })
+        let (p, qd) = (d.b, d.c + d.a);
+        match &self.quadratics {
+            // |a| < 2^62 and |p|, |q| < 2^31 (see `root_free_i128`).
+            Quadratics::Small(list)
+                if p.unsigned_abs() < 1 << 31 && qd.unsigned_abs() < 1 << 31 =>
+            {
+                let (p, qd) = (i128::from(p), i128::from(qd));
+                list.iter().all(|q| {
+                    let [a2, a1, a0] = q.map(i128::from);
+                    root_free_i128(a2, a1, a0, p, qd)
+                })
+            }
+            Quadratics::Small(list) => {
+                let (p, qd) = (Int::from(p), Int::from(qd));
+                list.iter().all(|q| {
+                    let [a2, a1, a0] = q.map(Int::from);
+                    root_free(&a2, &a1, &a0, &p, &qd)
+                })
+            }
+            Quadratics::Big(list) => {
+                let (p, qd) = (Int::from(p), Int::from(qd));
+                list.iter()
+                    .all(|[a2, a1, a0]| root_free(a2, a1, a0, &p, &qd))
+            }
+        }
     }
 
-    /// Coefficients `[t², t, 1]` of the event quadratic in `t = tan(δ/2)`, `δ = θ − θ0`.
-    fn quadratic(&self, m: &Vec3, v: &Vec3) -> [Int; 3] {
-        let v = self.theta0.apply_scaled(v);
+    /// [`Template::quadratic_turned`] in machine integers, when the vectors are small and
+    /// every coefficient is below 2^62 in magnitude.
+    fn quadratic_small(m: &Vec3, v: &Vec3) -> Option<[i64; 3]> {
+        let (m, v) = (m.as_small()?, v.as_small()?);
+        let [m, v] = [m, v].map(|c| c.map(i128::from));
+        let alpha = m[0] * v[0] + m[1] * v[1];
+        let beta = m[1] * v[0] - m[0] * v[1];
+        let gamma = m[2] * v[2];
+        let q = [gamma - alpha, 2 * beta, alpha + gamma];
+        if q.iter().any(|c| c.unsigned_abs() >= 1 << 62) {
+            return None;
+        }
+        Some(q.map(|c| c as i64))
+    }
+
+    /// Coefficients `[t², t, 1]` of the event quadratic in `t = tan(δ/2)`, `δ = θ − θ0`,
+    /// for the event `(m, v)` with `v` already turned by the reference rotation.
+    fn quadratic_turned(m: &Vec3, v: &Vec3) -> [Int; 3] {
+        if let (Some(m), Some(v)) = (m.as_small(), v.as_small()) {
+            // Machine integers (below 2^62): every product and sum fits in i128.
+            let [m, v] = [m, v].map(|c| c.map(i128::from));
+            let alpha = m[0] * v[0] + m[1] * v[1];
+            let beta = m[1] * v[0] - m[0] * v[1];
+            let gamma = m[2] * v[2];
+            return [gamma - alpha, 2 * beta, alpha + gamma].map(Int::from);
+        }
         let (m, v) = (m.to_ints(), v.to_ints());
         let alpha = &m[0] * &v[0] + &m[1] * &v[1];
         let beta = &m[1] * &v[0] - &m[0] * &v[1];
@@ -159,8 +307,14 @@ impl Template {
     pub(crate) fn critical_angles_deg(&self) -> Vec<f64> {
         let t0 = self.theta0.angle_deg();
         let mut out = Vec::new();
-        for (m, v) in &self.events {
-            let [a2, a1, a0] = self.quadratic(m, v).map(|c| apart_kernel::int::to_f64(&c));
+        let as_f64: Vec<[f64; 3]> = match &self.quadratics {
+            Quadratics::Small(list) => list.iter().map(|q| q.map(|c| c as f64)).collect(),
+            Quadratics::Big(list) => list
+                .iter()
+                .map(|q| q.clone().map(|c| apart_kernel::int::to_f64(&c)))
+                .collect(),
+        };
+        for [a2, a1, a0] in as_f64 {
             if a2 == 0.0 && a1 == 0.0 {
                 continue; // constant: never an event (or always, identically zero)
             }
@@ -273,9 +427,80 @@ fn root_free(a2: &Int, a1: &Int, a0: &Int, p: &Int, q: &Int) -> bool {
     sv == s0
 }
 
+/// [`root_free`] in `i128`, for `|a_i| < 2^62` and `|p|, |q| < 2^31`: `a p q` is under
+/// 2^124 in magnitude, so the sum of three under 2^126, and `4 a2 a0 − a1²` under 2^127.
+fn root_free_i128(a2: i128, a1: i128, a0: i128, p: i128, q: i128) -> bool {
+    let sign = |v: i128| v.cmp(&0);
+    if a2 == 0 && a1 == 0 && a0 == 0 {
+        return true;
+    }
+    use std::cmp::Ordering::{Equal, Greater};
+    let s0 = sign(a0);
+    let s1 = sign(a2 * p * p + a1 * p * q + a0 * q * q);
+    if s0 == Equal || s1 == Equal || s0 != s1 {
+        return false;
+    }
+    if a2 == 0 {
+        return true;
+    }
+    let (lo_p, hi_p) = if p < 0 { (p, 0) } else { (0, p) };
+    // t* = −a1 / (2 a2) strictly between lo_p/q and hi_p/q (q > 0)?
+    let l = -(a1 * q);
+    let gt = |x: i128| {
+        if a2 > 0 {
+            l > 2 * a2 * x
+        } else {
+            l < 2 * a2 * x
+        }
+    };
+    let lt = |x: i128| {
+        if a2 > 0 {
+            l < 2 * a2 * x
+        } else {
+            l > 2 * a2 * x
+        }
+    };
+    if !(gt(lo_p) && lt(hi_p)) {
+        return true;
+    }
+    let disc = 4 * a2 * a0 - a1 * a1;
+    let sv = match (sign(disc), sign(a2)) {
+        (Equal, _) => Equal,
+        (x, Greater) => x,
+        (x, _) => x.reverse(),
+    };
+    sv == s0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The machine-integer root test agrees with the arbitrary-precision one.
+    #[test]
+    fn root_free_in_i128_matches() {
+        let mut state: u64 = 0x1234_5678_9abc_def1;
+        let mut next = |m: i64| -> i64 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % (2 * m as u64 + 1)) as i64 - m
+        };
+        for k in 0..20000 {
+            let big = if k % 2 == 0 { 6 } else { i64::MAX / 4 };
+            let a = [next(big), next(big), next(big)];
+            let (p, q) = (next(1 << 30), next(1 << 30).abs().max(1));
+            let fast = root_free_i128(a[0].into(), a[1].into(), a[2].into(), p.into(), q.into());
+            let slow = root_free(
+                &Int::from(a[0]),
+                &Int::from(a[1]),
+                &Int::from(a[2]),
+                &Int::from(p),
+                &Int::from(q),
+            );
+            assert_eq!(fast, slow, "{a:?} {p} {q}");
+        }
+    }
 
     #[test]
     fn quadratic_roots_on_intervals() {

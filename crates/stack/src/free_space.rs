@@ -12,7 +12,7 @@
 //! cells the obstacle does not reach. Every decision is an exact linear program.
 
 use crate::obstacle::Obstacle;
-use crate::qp::min_linear;
+use crate::qp::{lexmin, lexmin_box, min_linear, min_linear_box, Objective};
 use apart_kernel::{Aabb, BigPlane, HPoint, Int, Rational, Sign};
 
 /// A closed convex cell `{p : every constraint}`.
@@ -22,6 +22,10 @@ pub(crate) struct Cell {
     pub(crate) constraints: Vec<BigPlane>,
     /// A box containing the cell (Ω's box tightened by axis-aligned constraints).
     pub(crate) bbox: Aabb<Rational>,
+    /// Every constraint is axis-aligned: the cell is exactly `bbox` (obstacles of box
+    /// pieces in quarter-turn orientations), and its quadratic and linear programs have
+    /// closed forms.
+    pub(crate) is_box: bool,
 }
 
 /// The result of subtracting an obstacle from a cell.
@@ -54,13 +58,46 @@ impl Cell {
         Cell {
             constraints: b.halfspaces(),
             bbox: b.clone(),
+            is_box: true,
         }
+    }
+
+    /// The lexicographic minimizer of `obj` over the cell ([`lexmin`]; in closed form
+    /// for a box cell and a diagonal objective, the same point).
+    pub(crate) fn lexmin(&self, obj: &Objective) -> Option<[Rational; 3]> {
+        if self.is_box {
+            let b = &self.bbox;
+            if let Some(p) = lexmin_box(
+                [0, 1, 2].map(|i| Some(&b.min[i])),
+                [0, 1, 2].map(|i| Some(&b.max[i])),
+                obj,
+            ) {
+                return p;
+            }
+        }
+        lexmin(&self.constraints, obj)
+    }
+
+    /// The minimum of `n · p` over the cell and a point attaining it ([`min_linear`];
+    /// a corner of a box cell).
+    pub(crate) fn min_linear(
+        &self,
+        n: &[Int; 3],
+        lower: &Rational,
+    ) -> Option<(Rational, [Rational; 3])> {
+        if self.is_box {
+            return min_linear_box(&self.bbox, n);
+        }
+        min_linear(&self.constraints, n, lower)
     }
 
     /// Adds a half-space (see [`add_constraint`]), tightening the box when it is
     /// axis-aligned.
     pub(crate) fn add(&mut self, h: BigPlane) {
         let axis = (0..3).filter(|&i| h.n[i] != Int::ZERO).collect::<Vec<_>>();
+        if axis.len() != 1 {
+            self.is_box = false;
+        }
         if let [i] = axis[..] {
             let v = Rational::new(h.c.clone(), h.n[i].clone());
             if h.n[i] > Int::ZERO {
@@ -177,7 +214,7 @@ pub(crate) fn subtract(
         let below = witnesses.iter().any(|w| h.side(w) == Sign::Negative);
         if !below {
             stats.linear_programs += 1;
-            let Some((vmin, arg)) = min_linear(&rest.constraints, &h.n, &lower(h)) else {
+            let Some((vmin, arg)) = rest.min_linear(&h.n, &lower(h)) else {
                 // The rest is empty: only possible for an empty input cell.
                 return if pieces.is_empty() {
                     Split::Unchanged
@@ -198,8 +235,9 @@ pub(crate) fn subtract(
         let f = h.flipped();
         let beyond = witnesses.iter().any(|w| h.side(w) != Sign::Negative) || {
             stats.linear_programs += 1;
-            let (neg_max, arg) =
-                min_linear(&rest.constraints, &f.n, &lower(&f)).expect("the rest is not empty");
+            let (neg_max, arg) = rest
+                .min_linear(&f.n, &lower(&f))
+                .expect("the rest is not empty");
             witnesses.push(HPoint::from_rationals(&arg));
             -&neg_max >= Rational::from_int(h.c.clone())
         };
@@ -220,7 +258,6 @@ pub(crate) fn subtract(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::qp::{lexmin, Objective};
     use crate::testing::q;
 
     fn cube(lo: i64, hi: i64) -> Aabb<Rational> {

@@ -6,8 +6,8 @@
 //! make a moving piece `a` overlap a fixed piece `b` form the convex c-space obstacle
 //! `conv{b − a} = b ⊕ (−a)` ([`obstacle`]); the free space is a union of convex cells of
 //! linear inequalities (module `free_space`); a convex quadratic cost is minimized
-//! exactly in each cell (module `qp`). Only the obstacles of pairs found interfering at the current
-//! candidate are built (partial c-space, [`partial`]), over all orientations at once
+//! exactly in each cell (module `qp`). Only the obstacle of one pair found interfering at the
+//! current candidate is built at a time (partial c-space, [`partial`]), over all orientations at once
 //! with one priority queue; obstacles are extrapolated between orientations about z
 //! inside constant-topology intervals ([`extrapolate`]). The stacking planner
 //! ([`planner`]) adds identical parts one by one with the cost of paper 004 eq. (1),

@@ -350,6 +350,91 @@ pub(crate) fn lexmin(constraints: &[BigPlane], obj: &Objective) -> Option<[Ratio
     seidel(&cons, &mut Vec::with_capacity(4), obj)
 }
 
+/// The lexicographic minimizer of `(F, G)` over the box `lo <= p <= hi` (a missing
+/// bound is unbounded on that side), in closed form when `H` is diagonal; `None` when
+/// `H` is not diagonal (callers then solve the constraints in general).
+/// `Some(None)`: the box is empty.
+///
+/// Both `F` and `G` are then sums of one-variable functions, so the lexicographic
+/// minimizer is found coordinate by coordinate: with `h_ii > 0` the clamped vertex of
+/// the parabola, with `h_ii = 0` the bound `g_i` points to (a validated objective has
+/// `g_i = 0` there, but a bounded side is used either way) or, for `g_i = 0`, the anchor
+/// clamped (the tie-breaker). This is the unique answer [`lexmin`] computes for the same
+/// box written as half-spaces.
+pub(crate) fn lexmin_box(
+    lo: [Option<&Rational>; 3],
+    hi: [Option<&Rational>; 3],
+    obj: &Objective,
+) -> Option<Option<[Rational; 3]>> {
+    let h = &obj.h;
+    if !(h[0][1].is_zero()
+        && h[0][2].is_zero()
+        && h[1][2].is_zero()
+        && h[1][0].is_zero()
+        && h[2][0].is_zero()
+        && h[2][1].is_zero())
+    {
+        return None;
+    }
+    let mut p = [Rational::zero(), Rational::zero(), Rational::zero()];
+    for i in 0..3 {
+        if let (Some(l), Some(u)) = (lo[i], hi[i]) {
+            if l > u {
+                return Some(None);
+            }
+        }
+        let free = if h[i][i].sign() == Sign::Positive {
+            // −g / 2h
+            -&(&obj.g[i] / &(&Rational::from(2) * &h[i][i]))
+        } else {
+            match obj.g[i].sign() {
+                Sign::Positive => match lo[i] {
+                    Some(l) => l.clone(),
+                    None => return None,
+                },
+                Sign::Negative => match hi[i] {
+                    Some(u) => u.clone(),
+                    None => return None,
+                },
+                Sign::Zero => obj.anchor[i].clone(),
+            }
+        };
+        let mut v = free;
+        if let Some(l) = lo[i] {
+            if v < *l {
+                v = l.clone();
+            }
+        }
+        if let Some(u) = hi[i] {
+            if v > *u {
+                v = u.clone();
+            }
+        }
+        p[i] = v;
+    }
+    Some(Some(p))
+}
+
+/// The minimum of `n · p` over the box `[lo, hi]` and a corner attaining it; `None`
+/// when the box is empty.
+pub(crate) fn min_linear_box(
+    b: &apart_kernel::Aabb<Rational>,
+    n: &[apart_kernel::Int; 3],
+) -> Option<(Rational, [Rational; 3])> {
+    if (0..3).any(|i| b.min[i] > b.max[i]) {
+        return None;
+    }
+    let p = [0, 1, 2].map(|i| {
+        if n[i] < apart_kernel::Int::ZERO {
+            b.max[i].clone()
+        } else {
+            b.min[i].clone()
+        }
+    });
+    let nq = n.clone().map(Rational::from_int);
+    Some((rational::dot(&nq, &p), p))
+}
+
 /// Certified guided solve: the float guide's active set, the exact point on it, exact
 /// feasibility, and multipliers `λ >= 0` with `Σ λ_i n_i = r(p)` (for the quadratic,
 /// `r = −∇F(p)`; for a linear objective `c · p`, `r = −c`).
@@ -507,6 +592,66 @@ mod tests {
         c.push(BigPlane::reduced([1, 1, 0].map(Int::from), Int::from(1)));
         let (v, _) = min_linear(&c, &[-1, -2, 0].map(Int::from), &q(-10)).unwrap();
         assert_eq!(v, q(-2)); // max x + 2y on the triangle is 2 at (0, 1)
+    }
+
+    /// The closed forms for boxes agree with the general solvers on the same box written
+    /// as half-spaces: random boxes (some flat or empty), diagonal objectives with zero
+    /// weights (ties to the anchor), single half-spaces.
+    #[test]
+    fn box_closed_forms_match_the_solvers() {
+        let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |m: i64| -> i64 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % (2 * m as u64 + 1)) as i64 - m
+        };
+        for _ in 0..400 {
+            let lo = [0; 3].map(|_| qfrac(next(8), 2));
+            let hi = [0, 1, 2].map(|i| &lo[i] + &qfrac(next(8) + 6, 3));
+            let b = Aabb {
+                min: lo.clone(),
+                max: hi.clone(),
+            };
+            let w = [0; 3].map(|_| q(next(2).max(0)));
+            let obj = Objective::diagonal(&w, &[0; 3].map(|_| qfrac(next(20), 3)), &q(0));
+            let got = lexmin_box(
+                [0, 1, 2].map(|i| Some(&lo[i])),
+                [0, 1, 2].map(|i| Some(&hi[i])),
+                &obj,
+            )
+            .unwrap();
+            assert_eq!(got, lexmin(&b.halfspaces(), &obj), "{b:?} {obj:?}");
+            let n = [0; 3].map(|_| Int::from(next(3)));
+            let lower = &b.min_dot(&n) - &q(1);
+            let fast = min_linear_box(&b, &n).map(|(v, _)| v);
+            let slow = min_linear(&b.halfspaces(), &n, &lower).map(|(v, _)| v);
+            assert_eq!(fast, slow);
+            // One axis-aligned half-space x_i <= v or x_i >= v.
+            let i = next(1).unsigned_abs() as usize;
+            let (lo1, hi1) = if next(1) >= 0 {
+                (
+                    [None, None, None],
+                    [0, 1, 2].map(|k| (k == i).then_some(&hi[i])),
+                )
+            } else {
+                (
+                    [0, 1, 2].map(|k| (k == i).then_some(&lo[i])),
+                    [None, None, None],
+                )
+            };
+            let mut nrm = [Int::ZERO, Int::ZERO, Int::ZERO];
+            let h = if hi1[i].is_some() {
+                nrm[i] = hi[i].denom();
+                BigPlane::reduced(nrm, hi[i].numer())
+            } else {
+                nrm[i] = -lo[i].denom();
+                BigPlane::reduced(nrm, -lo[i].numer())
+            };
+            if let Some(fast) = lexmin_box(lo1, hi1, &obj) {
+                assert_eq!(fast, lexmin(std::slice::from_ref(&h), &obj));
+            }
+        }
     }
 
     #[test]
