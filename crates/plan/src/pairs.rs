@@ -292,8 +292,22 @@ pub(crate) fn full_polygon(
     }
 }
 
-/// The hull of the vertices `face` of `p` and their neighbours.
-fn face_neighbourhood(p: &Polytope, face: &[u32]) -> Option<Polytope> {
+/// Pieces with at most this many vertices are summed whole in [`contact_polygon`]: the
+/// sum of two small pieces (prepared once per piece) costs less than a hull of a
+/// neighbourhood, and has the same tangent cone at the origin.
+const SMALL_PIECE: usize = 8;
+
+/// [`face_neighbourhood`], or the whole piece (`Some(None)`) when it is small.
+fn neighbourhood(p: &Polytope, face: &[u32]) -> Option<Option<Polytope>> {
+    if p.vertices().len() <= SMALL_PIECE && !face.is_empty() {
+        return Some(None);
+    }
+    face_neighbourhood(p, face)
+}
+
+/// The hull of the vertices `face` of `p` and their neighbours: `Some(None)` when that
+/// is all of `p`.
+fn face_neighbourhood(p: &Polytope, face: &[u32]) -> Option<Option<Polytope>> {
     if face.is_empty() {
         return None;
     }
@@ -314,11 +328,11 @@ fn face_neighbourhood(p: &Polytope, face: &[u32]) -> Option<Polytope> {
         .map(|k| p.vertices()[k].clone())
         .collect();
     if pts.len() == p.vertices().len() {
-        return Some(p.clone());
+        return Some(None);
     }
     Polytope::hull_of_points(&pts)
         .ok()
-        .map(|h| h.with_den(p.den().clone()))
+        .map(|h| Some(h.with_den(p.den().clone())))
 }
 
 /// The support face of `p` along `n` as a boundary cycle (a facet's cycle, an edge's two
@@ -508,9 +522,14 @@ fn centroid_in_relative_interior(p: &Polytope, n: &Vec3, pts: &[Vec3], dp: &Int)
 /// faces' boundaries and the small sum of the face neighbourhoods gives the cone (of a
 /// facet with many vertices, only the edges that reach the other face: every common
 /// point lies on one of them, and the tangent cones there are kept).
+///
+/// A neighbourhood that is the whole piece is summed through the piece's prepared
+/// summand in `ia` or `ib` (made once per piece, shared by all its pairs).
 pub(crate) fn contact_polygon(
     a: &Polytope,
+    ia: &PieceInfo,
     b: &Polytope,
+    ib: &PieceInfo,
     n: &Vec3,
 ) -> Option<Result<PairPolygon, String>> {
     let (ida, idb) = (support_face(a, n), support_face(b, &n.neg()));
@@ -538,9 +557,13 @@ pub(crate) fn contact_polygon(
     } else {
         idb
     };
-    let a2 = face_neighbourhood(a, &ida)?;
-    let b2 = face_neighbourhood(b, &idb)?;
-    let m = match sum_prepared(&Summand::new(b2), &Summand::new(a2.reflected())) {
+    let a2 = neighbourhood(a, &ida)?.map(|a2| Summand::new(a2.reflected()));
+    let b2 = neighbourhood(b, &idb)?.map(Summand::new);
+    let (sa, sb) = (
+        a2.as_ref().unwrap_or_else(|| ia.reflected(a)),
+        b2.as_ref().unwrap_or_else(|| ib.fixed(b)),
+    );
+    let m = match sum_prepared(sb, sa) {
         Ok(m) => m,
         Err(e) => return Some(Err(format!("Minkowski sum: {e}"))),
     };
@@ -564,7 +587,7 @@ pub(crate) fn pair_polygon(
     axes: &[Axis],
 ) -> Result<(PairPolygon, bool), String> {
     if let Some(t) = axes.iter().find(|x| !x.strict) {
-        if let Some(r) = contact_polygon(a, b, &t.n) {
+        if let Some(r) = contact_polygon(a, ia, b, ib, &t.n) {
             return r.map(|p| (p, false));
         }
     }
@@ -693,7 +716,7 @@ mod tests {
                             let Some(n) = touching_normal(&ax) else {
                                 continue;
                             };
-                            match contact_polygon(a, b, n) {
+                            match contact_polygon(a, &ia, b, &ib, n) {
                                 Some(Ok(PairPolygon::Polygon(p, true))) => {
                                     assert!(contact);
                                     assert_eq!(normals(&p), normals(&full));

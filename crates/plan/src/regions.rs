@@ -394,7 +394,7 @@ fn pair_region(
             let Some(n) = crate::pairs::touching_normal(&ax) else {
                 return (!ax.iter().any(|x| x.strict)).then_some(Ok((k, First::Near(ax))));
             };
-            match contact_polygon(&pi[a], &pj[b], n) {
+            match contact_polygon(&pi[a], &info[i][a], &pj[b], &info[j][b], n) {
                 None => Some(Ok((k, First::Near(ax)))),
                 Some(Ok(PairPolygon::Polygon(p, touch))) => Some(Ok((k, First::Cone((p, touch))))),
                 Some(Ok(PairPolygon::Overlap)) => Some(Err(overlap(a, b))),
