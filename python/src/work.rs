@@ -137,6 +137,9 @@ where
     if let Some(e) = raised {
         return Err(e);
     }
+    // A Ctrl-C that came with the last reports, after the loop's last look, is still a
+    // Ctrl-C during the call.
+    py.check_signals()?;
     match result {
         Ok(r) => Ok((r, stop)),
         Err(panic) => {
