@@ -4,6 +4,7 @@ the GIL released while the library works."""
 from __future__ import annotations
 
 import _thread
+import signal
 import threading
 import time
 
@@ -95,7 +96,17 @@ def test_timeout_ends_with_the_partial_answer(tray):
         tray.partition(timeout=0)
 
 
-def test_ctrl_c_interrupts(tray):
+@pytest.fixture
+def python_handles_sigint():
+    # A process started in the background by a shell (as CI may start the tests)
+    # inherits SIGINT ignored, and then Python installs no handler and ignores a Ctrl-C:
+    # the test installs Python's own handler, what an interactive session has.
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
+def test_ctrl_c_interrupts(tray, python_handles_sigint):
     # interrupt_main() is what a Ctrl-C does: it sets the signal the waiting thread checks.
     def ctrl_c(phase, done, total):
         _thread.interrupt_main()
