@@ -229,28 +229,17 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
     (p, c)
 }
 
-/// Candidates [`simple_direction`] lets the exact check reject before it gives up.
+/// Candidates [`deep_direction`]'s [`simple_direction`] lets the exact check reject
+/// before it gives up.
 const MAX_REJECTED: usize = 128;
 
 /// The simplest integer direction near the unit point `p` (smallest multiplier `k`, then
 /// `round(k p)` or a neighbour of it) that lies well inside the cap of radius `target` (radians,
 /// the clearance of `p`) around `p`, has a clearance of at least `fraction` of `target`,
 /// and that `ok` accepts; `None` when no small one qualifies, or when `ok` rejected
-/// [`MAX_REJECTED`] candidates. Staying inside the cap keeps
+/// `max_rejected` candidates. Staying inside the cap keeps
 /// the direction in the region whose boundary `arcs` and `points` describe.
 pub fn simple_direction(
-    p: &V3,
-    target: f64,
-    fraction: f64,
-    arcs: &[FArc],
-    points: &[V3],
-    ok: &dyn Fn(&apart_kernel::Vec3) -> bool,
-) -> Option<(apart_kernel::Vec3, f64)> {
-    simple_direction_within(p, target, fraction, arcs, points, ok, MAX_REJECTED)
-}
-
-/// [`simple_direction`], giving up after `max_rejected` candidates that `ok` rejects.
-fn simple_direction_within(
     p: &V3,
     target: f64,
     fraction: f64,
@@ -337,7 +326,7 @@ pub fn quick_direction(
         return None;
     }
     let (p, c) = deepest_climb(starts(arcs, &[]), arcs, &[])?;
-    simple_direction_within(&p, c, 0.9, arcs, &[], ok, max_rejected).or_else(|| rounded(&p, c, ok))
+    simple_direction(&p, c, 0.9, arcs, &[], ok, max_rejected).or_else(|| rounded(&p, c, ok))
 }
 
 /// A direction deep inside the region bounded by `arcs` (region on their left) and
@@ -361,7 +350,7 @@ pub fn deep_direction(
     }
     let starts = starts(arcs, points);
     let (p, c) = deepest_climb(starts, arcs, points)?;
-    if let Some(found) = simple_direction(&p, c, 0.9, arcs, points, ok) {
+    if let Some(found) = simple_direction(&p, c, 0.9, arcs, points, ok, MAX_REJECTED) {
         return Some(found);
     }
     rounded(&p, c, ok)

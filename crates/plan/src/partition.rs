@@ -690,29 +690,28 @@ const QUICK_REJECTED: usize = 16;
 fn minimal_zone(ms: &MotionSpace, r: &FreeRegion) -> Option<Vec<HalfEdge>> {
     let arr = ms.arrangement();
     let st = ms.statuses();
-    let mut zone: HashMap<usize, bool> = HashMap::default();
-    let mut inside = |f: FaceId| {
-        *zone
-            .entry(f.index())
-            .or_insert_with(|| ms.is_minimal_moving_set(&st.faces[f.index()], &r.moving))
-    };
-    let mut seen = vec![false; arr.faces().len()];
-    seen[r.seed.index()] = true;
+    // Per face: whether the set is minimal there, once known (the seed: it is).
+    let mut minimal: Vec<Option<bool>> = vec![None; arr.faces().len()];
+    minimal[r.seed.index()] = Some(true);
     let mut todo = vec![r.seed];
     let mut boundary = Vec::new();
     let mut smaller = false;
     while let Some(g) = todo.pop() {
         for h in arr.real_half_edges(g) {
             let other = arr.face(h.twin());
-            if seen[other.index()] {
-                continue;
-            }
-            if inside(other) {
-                seen[other.index()] = true;
-                todo.push(other);
-            } else {
-                smaller |= ms.can_move(&st.faces[other.index()], &r.moving);
-                boundary.push(h);
+            let status = &st.faces[other.index()];
+            match minimal[other.index()] {
+                Some(true) => {}
+                Some(false) => boundary.push(h),
+                None if ms.is_minimal_moving_set(status, &r.moving) => {
+                    minimal[other.index()] = Some(true);
+                    todo.push(other);
+                }
+                None => {
+                    minimal[other.index()] = Some(false);
+                    smaller |= ms.can_move(status, &r.moving);
+                    boundary.push(h);
+                }
             }
         }
     }
@@ -739,10 +738,14 @@ fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion)
     // the set is minimal, and the clearance is measured to the region's boundary.
     // (A direction found within a few rejections is kept: the search over the whole
     // region finds it first.)
+    // The set must be a minimal moving set at the reported direction (it is free in the
+    // whole region, but minimal only where no smaller subset of it is free). The direction
+    // may lie on an arc where only other parts' blocking changes (the diagonal for a
+    // corner cube of a block): it is inside the set's free region all the same.
+    let verify = |d: &Vec3| -> bool {
+        !d.is_zero() && is_minimal_moving_set(regions, ms.parts(), &r.moving, d)
+    };
     if let Some(zone) = minimal_zone(ms, r) {
-        let verify = |d: &Vec3| -> bool {
-            !d.is_zero() && is_minimal_moving_set(regions, ms.parts(), &r.moving, d)
-        };
         if let Some(found) = crate::clearance::quick_direction(&arcs, &verify, QUICK_REJECTED) {
             return found;
         }
@@ -752,13 +755,6 @@ fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion)
             return (d, c);
         }
     }
-    // The set must be a minimal moving set at the reported direction (it is free in the
-    // whole region, but minimal only where no smaller subset of it is free). The direction
-    // may lie on an arc where only other parts' blocking changes (the diagonal for a
-    // corner cube of a block): it is inside the set's free region all the same.
-    let verify = |d: &Vec3| -> bool {
-        !d.is_zero() && is_minimal_moving_set(regions, ms.parts(), &r.moving, d)
-    };
     if let Some(found) = deep_direction(&arcs, &[], &verify) {
         return found;
     }
