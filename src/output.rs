@@ -3,7 +3,7 @@
 
 use crate::limits::TimedOut;
 use crate::Global;
-use apart::assembly::{Progress, ProgressFn};
+use apart::assembly::{LoadSeconds, Progress, ProgressFn};
 use apart::kernel::Aabb;
 use apart::kernel::Grid;
 use apart::mesh::Problem;
@@ -11,6 +11,23 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
+
+/// "load T ms (read a, validate b, ...)": the load's wall time and its stages (the
+/// stages that took under 0.05 ms are left out).
+pub fn load_time(total: f64, s: &LoadSeconds) -> String {
+    let stages: Vec<String> = [
+        ("read", s.read),
+        ("validate", s.validate),
+        ("decompose", s.decompose),
+        ("snapping", s.snapping),
+        ("overlaps", s.overlaps),
+    ]
+    .iter()
+    .filter(|(_, t)| *t >= 5e-5)
+    .map(|(name, t)| format!("{name} {:.1}", t * 1e3))
+    .collect();
+    format!("load {:.1} ms ({})", total * 1e3, stages.join(", "))
+}
 
 /// Prints one line on standard output; a closed pipe (`apart check x | head`) is not
 /// an error worth a panic, so write failures are ignored.

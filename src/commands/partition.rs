@@ -99,11 +99,34 @@ struct SolutionJson<'a> {
 #[derive(Serialize)]
 struct Seconds {
     load: f64,
+    /// The load's stages (see [`apart::assembly::LoadSeconds`]).
+    load_stages: LoadStages,
     sums: f64,
     projection: f64,
     unions: f64,
     overlay: f64,
     graphs: f64,
+}
+
+#[derive(Serialize)]
+struct LoadStages {
+    read: f64,
+    validate: f64,
+    decompose: f64,
+    snapping: f64,
+    overlaps: f64,
+}
+
+impl LoadStages {
+    fn of(s: &apart::assembly::LoadSeconds) -> LoadStages {
+        LoadStages {
+            read: s.read,
+            validate: s.validate,
+            decompose: s.decompose,
+            snapping: s.snapping,
+            overlaps: s.overlaps,
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -274,7 +297,7 @@ fn nothing_to_separate(loaded: &Loaded, global: &Global, load: f64) -> anyhow::R
         let mut json = to_json(
             &p,
             &list,
-            load,
+            (load, &loaded.seconds),
             InputFacts::of(loaded, global),
             &None,
             &None,
@@ -418,13 +441,22 @@ fn report(
         output::json(&to_json(
             p,
             &list,
-            load,
+            (load, &loaded.seconds),
             InputFacts::of(loaded, global),
             &holds,
             stop,
         ))?;
     } else {
-        print_text(p, &list, asm, args, global, load, &holds, stop);
+        print_text(
+            p,
+            &list,
+            asm,
+            args,
+            global,
+            output::load_time(load, &loaded.seconds),
+            &holds,
+            stop,
+        );
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
         }
@@ -493,7 +525,7 @@ impl Serialize for Listed<'_> {
 fn to_json<'a>(
     p: &'a Partitioning,
     list: &'a Listing,
-    load: f64,
+    (load, stages): (f64, &apart::assembly::LoadSeconds),
     input: InputFacts,
     holds: &'a Option<Vec<bool>>,
     stop: &Option<TimedOut>,
@@ -537,6 +569,7 @@ fn to_json<'a>(
             faces: s.faces,
             seconds: Seconds {
                 load,
+                load_stages: LoadStages::of(stages),
                 sums: s.seconds.sums,
                 projection: s.seconds.projection,
                 unions: s.seconds.unions,
@@ -558,7 +591,7 @@ fn print_text(
     asm: &apart::assembly::Assembly,
     args: &PartitionArgs,
     global: &Global,
-    load: f64,
+    load: String,
     holds: &Option<Vec<bool>>,
     stop: &Option<TimedOut>,
 ) {
@@ -681,8 +714,7 @@ fn print_text(
         let t = &s.seconds;
         output::line("");
         output::line(format_args!(
-            "time: load {:.1} ms, sums {:.1} ms, projection {:.1} ms, unions {:.1} ms, overlay {:.1} ms, graphs {:.1} ms",
-            load * 1e3,
+            "time: {load}, sums {:.1} ms, projection {:.1} ms, unions {:.1} ms, overlay {:.1} ms, graphs {:.1} ms",
             t.sums * 1e3,
             t.projection * 1e3,
             t.unions * 1e3,
@@ -783,8 +815,8 @@ fn direction(
         if !global.quiet {
             output::line("");
             output::line(format_args!(
-                "time: load {:.1} ms, direction {:.1} ms",
-                load_seconds * 1e3,
+                "time: {}, direction {:.1} ms",
+                output::load_time(load_seconds, &loaded.seconds),
                 direction_seconds * 1e3
             ));
         }

@@ -245,7 +245,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             &plan, args, step_unit, times, input, &holds, &stop,
         ))?;
     } else {
-        let times = (load, regions_s);
+        let times = (output::load_time(load, &loaded.seconds), regions_s);
         print_text(&plan, args, asm, global, step_unit, times, &holds, &stop);
         if let Some(t) = tolerance_statement(asm, global) {
             output::line(t);
@@ -505,7 +505,7 @@ fn print_text(
     asm: &apart::assembly::Assembly,
     global: &Global,
     step_unit: f64,
-    (load, regions): (f64, f64),
+    (load, regions): (String, f64),
     holds: &Option<Vec<bool>>,
     stop: &Option<TimedOut>,
 ) {
@@ -601,8 +601,7 @@ fn print_text(
     if !global.quiet {
         output::line("");
         output::line(format_args!(
-            "time: load {:.1} ms, pair regions {:.1} ms, steps {:.1} ms",
-            load * 1e3,
+            "time: {load}, pair regions {:.1} ms, steps {:.1} ms",
             regions * 1e3,
             plan.step_seconds * 1e3
         ));

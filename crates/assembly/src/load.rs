@@ -5,7 +5,7 @@
 use crate::error::LoadError;
 use crate::inputs::{self, Names, PartSpec, Root, SourceRef};
 use crate::model::Repairs;
-use crate::model::{Assembly, Loaded, Part};
+use crate::model::{Assembly, LoadSeconds, Loaded, Part};
 use crate::options::{Decompose, LoadOptions, Stage, Tracker};
 use crate::tolerance::{self, Tolerance};
 use crate::{overlap, pieces};
@@ -21,6 +21,7 @@ use apart_pieces::Polytope;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// Loads an assembly from a folder, a mesh file or a manifest (see the crate docs).
 /// Fails only when nothing can be loaded; every problem with parts, pieces or their
@@ -34,6 +35,14 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     let read_opts = ReadOptions::default().allow_outside(opts.allow_outside);
     let plan = inputs::plan(path, &read_opts)?;
     let mut problems = plan.problems.clone();
+    let mut seconds = LoadSeconds::default();
+    let mut clock = Instant::now();
+    let mut lap = || {
+        let now = Instant::now();
+        let s = now.duration_since(clock).as_secs_f64();
+        clock = now;
+        s
+    };
 
     // Read every file once; a file outside the assembly's folder or that is not a
     // regular file is never opened.
@@ -64,6 +73,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         })
         .collect();
     read.extend(plan.preloaded.into_iter().map(|(p, o)| (p, Ok(o))));
+    seconds.read = lap();
     // How often each object is used: the last use takes it instead of copying it.
     let mut uses: HashMap<(PathBuf, Option<usize>), usize> = HashMap::new();
     for s in plan
@@ -215,6 +225,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
             problems.extend(probs);
         }
     }
+    seconds.validate = lap();
     // A tolerance shrinks convex pieces, so every part needs its pieces.
     let decompose = match opts.decompose {
         _ if opts.tolerance != Tolerance::None => true,
@@ -225,6 +236,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     if decompose {
         problems.extend(decompose_parts(&mut parts, opts));
     }
+    seconds.decompose = lap();
     // Relations between parts that snapping changed (needs the pieces, for the exact
     // overlap test of the few pairs it asks about). When snapping moved no coordinate
     // (integer inputs, or values already on the grid), no relation can have changed:
@@ -233,6 +245,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         problems.extend(snapping::changed_relations(&parts, &raw_points, &grid));
     }
     drop(raw_points);
+    seconds.snapping = lap();
     let mut assembly = Assembly {
         name: plan.name,
         grid,
@@ -245,11 +258,13 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     } else {
         problems.extend(tolerance::apply(&mut assembly, opts.tolerance, opts));
     }
+    seconds.overlaps = lap();
     Ok(Loaded {
         assembly,
         problems,
         repairs,
         skipped: plan.skipped,
+        seconds,
     })
 }
 

@@ -134,6 +134,23 @@ pub struct Loaded {
     /// Entries of the assembly folder (and of its piece folders) that were not read;
     /// empty for a manifest or a single mesh file, which name what is read.
     pub skipped: Vec<Skipped>,
+    /// Wall time of each stage of loading.
+    pub seconds: LoadSeconds,
+}
+
+/// Wall time of each stage of [`crate::load`], in seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LoadSeconds {
+    /// Reading the files.
+    pub read: f64,
+    /// Snapping, repairing and validating the parts and given pieces.
+    pub validate: f64,
+    /// The automatic convex decompositions.
+    pub decompose: f64,
+    /// Finding relations between parts that snapping changed.
+    pub snapping: f64,
+    /// The overlap check between parts, or applying the tolerance.
+    pub overlaps: f64,
 }
 
 impl Loaded {

@@ -65,12 +65,35 @@ impl BitSet {
     }
 }
 
-/// A set of map indices as a sorted list: the blocking status of a cell when there are
-/// many maps (a motion space of `n` parts has `n (n − 1)` of them) and few cover any one
-/// cell, where a [`BitSet`] would take `n² / 8` bytes per cell.
-#[derive(Clone, PartialEq, Eq, Hash, Debug, Default)]
+/// Words of a [`MapSet`] held inline: maps below `64 * INLINE_WORDS` (the `n (n − 1)`
+/// maps of up to 20 parts) are bits in the set itself.
+const INLINE_WORDS: usize = 6;
+const INLINE_BITS: u32 = 64 * INLINE_WORDS as u32;
+
+/// A set of map indices: the blocking status of a cell. A motion space of `n` parts has
+/// `n (n − 1)` maps. Up to 20 parts the set is a bit array held inline (no allocation,
+/// 48 bytes, where a dense assembly's cells are covered by about half the maps); with a
+/// member of 384 or more it is a sorted list, since few of many maps cover any one cell
+/// and a [`BitSet`] would take `n² / 8` bytes per cell.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub struct MapSet {
-    members: Vec<u32>,
+    repr: Repr,
+}
+
+/// Canonical: `Sorted` exactly when some member is at least `INLINE_BITS`, so that the
+/// derived equality and hash are those of the sets.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+enum Repr {
+    Inline([u64; INLINE_WORDS]),
+    Sorted(Vec<u32>),
+}
+
+impl Default for MapSet {
+    fn default() -> MapSet {
+        MapSet {
+            repr: Repr::Inline([0; INLINE_WORDS]),
+        }
+    }
 }
 
 impl MapSet {
@@ -82,32 +105,84 @@ impl MapSet {
     /// The set of `members`, which must be strictly increasing.
     pub fn from_sorted(members: Vec<u32>) -> MapSet {
         debug_assert!(members.windows(2).all(|w| w[0] < w[1]), "not sorted");
-        MapSet { members }
+        match members.last() {
+            Some(&m) if m >= INLINE_BITS => MapSet {
+                repr: Repr::Sorted(members),
+            },
+            _ => {
+                let mut words = [0; INLINE_WORDS];
+                for m in members {
+                    words[m as usize / 64] |= 1 << (m % 64);
+                }
+                MapSet {
+                    repr: Repr::Inline(words),
+                }
+            }
+        }
     }
 
     /// Whether `i` is in the set.
     #[inline]
     pub fn get(&self, i: usize) -> bool {
-        self.members.binary_search(&(i as u32)).is_ok()
+        match &self.repr {
+            Repr::Inline(w) => i < INLINE_BITS as usize && w[i / 64] >> (i % 64) & 1 == 1,
+            Repr::Sorted(m) => m.binary_search(&(i as u32)).is_ok(),
+        }
     }
 
     /// Adds (`v = true`) or removes `i`.
     pub fn set(&mut self, i: usize, v: bool) {
         let i = u32::try_from(i).expect("map index below 2^32");
-        match (self.members.binary_search(&i), v) {
-            (Err(k), true) => self.members.insert(k, i),
-            (Ok(k), false) => {
-                self.members.remove(k);
+        match &mut self.repr {
+            Repr::Inline(w) if i < INLINE_BITS => {
+                let bit = 1u64 << (i % 64);
+                if v {
+                    w[i as usize / 64] |= bit;
+                } else {
+                    w[i as usize / 64] &= !bit;
+                }
             }
-            _ => {}
+            Repr::Inline(_) => {
+                if v {
+                    let mut members: Vec<u32> = self.iter().map(|m| m as u32).collect();
+                    members.push(i);
+                    self.repr = Repr::Sorted(members);
+                }
+            }
+            Repr::Sorted(m) => {
+                match (m.binary_search(&i), v) {
+                    (Err(k), true) => m.insert(k, i),
+                    (Ok(k), false) => {
+                        m.remove(k);
+                    }
+                    _ => {}
+                }
+                self.settle();
+            }
+        }
+    }
+
+    /// Back to the inline form when no member is large any more.
+    fn settle(&mut self) {
+        if let Repr::Sorted(m) = &mut self.repr {
+            if m.last().is_none_or(|&l| l < INLINE_BITS) {
+                let m = std::mem::take(m);
+                *self = MapSet::from_sorted(m);
+            }
         }
     }
 
     /// Sets each `(i, on)` of `changes`, sorted by `i`; of several changes of one `i`, the
-    /// last wins. One merge, linear in the set and the changes.
+    /// last wins. Linear in the set and the changes.
     pub fn merge(&mut self, changes: &[(u32, bool)]) {
-        let mut out = Vec::with_capacity(self.members.len() + changes.len());
-        let mut old = self.members.iter().copied().peekable();
+        let Repr::Sorted(members) = &self.repr else {
+            for &(i, on) in changes {
+                self.set(i as usize, on);
+            }
+            return;
+        };
+        let mut out = Vec::with_capacity(members.len() + changes.len());
+        let mut old = members.iter().copied().peekable();
         let mut k = 0;
         while k < changes.len() {
             let i = changes[k].0;
@@ -131,27 +206,49 @@ impl MapSet {
             k += 1;
         }
         out.extend(old);
-        self.members = out;
+        self.repr = Repr::Sorted(out);
+        self.settle();
+    }
+
+    /// True when the changes need no sorting to apply (the inline form sets bits one by
+    /// one in order).
+    pub(crate) fn is_inline(&self) -> bool {
+        matches!(self.repr, Repr::Inline(_))
     }
 
     /// True when no integer is in the set.
     pub fn is_empty(&self) -> bool {
-        self.members.is_empty()
+        match &self.repr {
+            Repr::Inline(w) => w.iter().all(|&x| x == 0),
+            Repr::Sorted(m) => m.is_empty(),
+        }
     }
 
     /// Number of members.
     pub fn count(&self) -> usize {
-        self.members.len()
+        match &self.repr {
+            Repr::Inline(w) => w.iter().map(|x| x.count_ones() as usize).sum(),
+            Repr::Sorted(m) => m.len(),
+        }
     }
 
     /// The members in increasing order.
     pub fn iter(&self) -> impl Iterator<Item = usize> + '_ {
-        self.members.iter().map(|&i| i as usize)
-    }
-
-    /// The members, increasing.
-    pub fn as_slice(&self) -> &[u32] {
-        &self.members
+        let (words, sorted): (&[u64], &[u32]) = match &self.repr {
+            Repr::Inline(w) => (w, &[]),
+            Repr::Sorted(m) => (&[], m),
+        };
+        let bits = words.iter().enumerate().flat_map(|(k, &w)| {
+            let mut w = w;
+            std::iter::from_fn(move || {
+                (w != 0).then(|| {
+                    let b = w.trailing_zeros() as usize;
+                    w &= w - 1;
+                    64 * k + b
+                })
+            })
+        });
+        bits.chain(sorted.iter().map(|&i| i as usize))
     }
 }
 
@@ -204,5 +301,64 @@ mod tests {
             x.set(0, true);
             x
         });
+    }
+
+    /// Random sets, changes and merges across the inline bound (a member of 384 or
+    /// more turns the set into a sorted list, and removing it turns it back) agree with
+    /// a `BTreeSet`, and equal sets compare and hash equal whatever their history.
+    #[test]
+    fn map_set_agrees_with_btree_across_the_inline_bound() {
+        use std::collections::BTreeSet;
+        use std::hash::{BuildHasher, RandomState};
+        let hasher = RandomState::new();
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |n: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % n
+        };
+        for _ in 0..200 {
+            let mut m = MapSet::new();
+            let mut r = BTreeSet::new();
+            for _ in 0..60 {
+                let i = if next(4) == 0 {
+                    380 + next(20)
+                } else {
+                    next(400)
+                } as u32;
+                let on = next(3) != 0;
+                if next(5) == 0 {
+                    let mut changes: Vec<(u32, bool)> = (0..next(6))
+                        .map(|_| (next(420) as u32, next(2) == 0))
+                        .collect();
+                    changes.sort_by_key(|c| c.0);
+                    for &(k, v) in &changes {
+                        if v {
+                            r.insert(k);
+                        } else {
+                            r.remove(&k);
+                        }
+                    }
+                    m.merge(&changes);
+                } else {
+                    m.set(i as usize, on);
+                    if on {
+                        r.insert(i);
+                    } else {
+                        r.remove(&i);
+                    }
+                }
+                let members: Vec<usize> = r.iter().map(|&k| k as usize).collect();
+                assert_eq!(m.iter().collect::<Vec<_>>(), members);
+                assert_eq!(m.count(), r.len());
+                assert_eq!(m.is_empty(), r.is_empty());
+                assert!(r.iter().all(|&k| m.get(k as usize)));
+                assert!(!m.get(1000));
+                let fresh = MapSet::from_sorted(r.iter().copied().collect());
+                assert_eq!(m, fresh);
+                assert_eq!(hasher.hash_one(&m), hasher.hash_one(&fresh));
+            }
+        }
     }
 }

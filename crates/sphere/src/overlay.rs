@@ -84,7 +84,7 @@ impl Status for MapSet {
         self.set(map, on);
     }
     fn assign_all(&mut self, changes: &mut [(u32, bool)]) {
-        if changes.len() <= 4 {
+        if changes.len() <= 4 || self.is_inline() {
             for &(m, on) in changes.iter() {
                 self.set(m as usize, on);
             }
