@@ -9,6 +9,7 @@ use apart_sphere::arrangement::BuildStats;
 use apart_sphere::overlay::{cell_statuses, CellStatuses, RegionArrangement};
 use apart_sphere::region::region_inputs_with_antipodes;
 use apart_sphere::{Arc, Arrangement, BitSet, EdgeId, FaceId, MapSet};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 
 /// The kind of a cell of the motion space.
@@ -81,6 +82,9 @@ pub struct OverlayEstimate {
     /// faces with their blocking statuses after.
     pub bytes: u64,
 }
+
+/// Edges of an arrangement from which the motion space derives its parts in parallel.
+const PAR_EDGES: usize = 1 << 14;
 
 /// Bytes per inserted arc while the arrangement is built (input arc, canonical copy,
 /// sort keys), measured on 200 to 1000 separated or touching cubes.
@@ -215,30 +219,41 @@ impl MotionSpace {
             }
             MapSet::from_sorted(s)
         });
-        let Cells {
-            vertex_is_cell,
-            edge_cell_of,
-            edge_cells,
-            vertex_edge_cell,
-        } = cells(&arr, &st);
-        let edge_arcs: Vec<Arc> = arr.edge_ids().map(|e| arr.edge_arc(e)).collect();
-        let real_arcs: Vec<Arc> = edge_arcs
-            .iter()
-            .zip(arr.edges())
-            .filter(|(_, e)| !e.structural)
-            .map(|(a, _)| a.clone())
-            .collect();
-        let real_ids: Vec<EdgeId> = arr
-            .edge_ids()
-            .filter(|&e| !arr.edge(e).structural)
-            .collect();
-        let edge_index = apart_sphere::index::ArcIndex::new(&real_arcs);
-        let vertex_at = arr
-            .vertices()
-            .iter()
-            .enumerate()
-            .map(|(v, x)| (x.point.clone(), v as u32))
-            .collect();
+        // The cells, and the arcs of the real edges with their index: independent, so
+        // side by side on a large arrangement.
+        let cells_of = || cells(&arr, &st);
+        let arcs_of = || {
+            let real_ids: Vec<EdgeId> = arr
+                .edge_ids()
+                .filter(|&e| !arr.edge(e).structural)
+                .collect();
+            let real_arcs: Vec<Arc> = real_ids
+                .par_iter()
+                .with_min_len(PAR_EDGES)
+                .map(|&e| arr.edge_arc(e))
+                .collect();
+            let edge_index = apart_sphere::index::ArcIndex::new(&real_arcs);
+            let vertex_at: HashMap<Vec3, u32> = arr
+                .vertices()
+                .iter()
+                .enumerate()
+                .map(|(v, x)| (x.point.clone(), v as u32))
+                .collect();
+            (real_ids, real_arcs, edge_index, vertex_at)
+        };
+        let (
+            Cells {
+                vertex_is_cell,
+                edge_cell_of,
+                edge_cells,
+                vertex_edge_cell,
+            },
+            (real_ids, real_arcs, edge_index, vertex_at),
+        ) = if arr.edges().len() >= PAR_EDGES {
+            rayon::join(cells_of, arcs_of)
+        } else {
+            (cells_of(), arcs_of())
+        };
         MotionSpace {
             parts,
             maps,

@@ -14,7 +14,12 @@ use crate::arrangement::{ArcLabel, Arrangement, EdgeId};
 use crate::bitset::{BitSet, MapSet};
 use crate::polygon::perpendicular;
 use apart_kernel::Vec3;
+use rayon::prelude::*;
 use std::collections::VecDeque;
+
+/// Cells per parallel task when the statuses of edges and vertices are derived (an
+/// arrangement of fewer cells stays on the calling thread).
+const CELLS_PER_TASK: usize = 1 << 14;
 
 /// A map's status around an arc: on its positive side (`normal · x > 0`), on the arc,
 /// and on its negative side.
@@ -54,7 +59,7 @@ pub type RegionArrangement = Arrangement<SideLabel, PointStatus>;
 
 /// The set of maps whose status is `true` at a cell: dense bits ([`BitSet`]) for few maps,
 /// a sorted list ([`MapSet`]) when there are many and few cover any one cell.
-pub trait Status: Clone + PartialEq + std::fmt::Debug {
+pub trait Status: Clone + PartialEq + std::fmt::Debug + Send + Sync {
     /// The empty set for `maps` maps.
     fn empty(maps: usize) -> Self;
     /// Sets map `map` to `on`.
@@ -193,23 +198,24 @@ pub fn cell_statuses<S: Status>(
         .iter()
         .map(|f| cycles[f[0].index()].clone())
         .collect();
-    let edges = arr
-        .edges()
-        .iter()
-        .enumerate()
-        .map(|(e, edge)| {
+    // Edges and vertices from the cycles beside them: independent, so in parallel.
+    let edges = (0..arr.edges().len())
+        .into_par_iter()
+        .with_min_len(CELLS_PER_TASK)
+        .map_init(Vec::new, |changes, e| {
+            let edge = &arr.edges()[e];
             let mut s = cycles[arr.cycle(EdgeId::new(e).forward()).index()].clone();
             changes.clear();
             changes.extend(edge.labels.iter().map(|l| (l.map, l.on)));
-            s.assign_all(&mut changes);
+            s.assign_all(changes);
             s
         })
         .collect();
-    let vertices = arr
-        .vertices()
-        .iter()
-        .enumerate()
-        .map(|(v, vert)| {
+    let vertices = (0..arr.vertices().len())
+        .into_par_iter()
+        .with_min_len(CELLS_PER_TASK)
+        .map_init(Vec::new, |changes, v| {
+            let vert = &arr.vertices()[v];
             let mut s = match vert.around.first() {
                 Some(&h) => cycles[arr.cycle(h).index()].clone(),
                 None => S::empty(maps),
@@ -218,8 +224,8 @@ pub fn cell_statuses<S: Status>(
             for &h in &vert.around {
                 changes.extend(arr.edge(h.edge()).labels.iter().map(|l| (l.map, l.on)));
             }
-            changes.extend(arr.vertices()[v].labels.iter().map(|l| (l.map, l.on)));
-            s.assign_all(&mut changes);
+            changes.extend(vert.labels.iter().map(|l| (l.map, l.on)));
+            s.assign_all(changes);
             s
         })
         .collect();
