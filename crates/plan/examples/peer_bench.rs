@@ -215,7 +215,8 @@ fn off_text(points: &[[i64; 3]], faces: &[Vec<usize>]) -> String {
 }
 
 fn box_faces() -> Vec<Vec<usize>> {
-    // Corners numbered by bits (x, y, z); faces counter-clockwise seen from outside.
+    // Corner b has x from bit 0, y from bit 1, z from bit 2; faces counter-clockwise
+    // seen from outside.
     [
         [0, 2, 3, 1],
         [4, 5, 7, 6],
@@ -233,9 +234,9 @@ fn box_points(lo: [i64; 3], hi: [i64; 3]) -> Vec<[i64; 3]> {
     (0..8)
         .map(|b| {
             [
-                if b & 4 != 0 { hi[0] } else { lo[0] },
+                if b & 1 != 0 { hi[0] } else { lo[0] },
                 if b & 2 != 0 { hi[1] } else { lo[1] },
-                if b & 1 != 0 { hi[2] } else { lo[2] },
+                if b & 4 != 0 { hi[2] } else { lo[2] },
             ]
         })
         .collect()
