@@ -31,9 +31,10 @@ use crate::intersect::Contact;
 use crate::locate::Locator;
 use crate::mesh::{fmt_point, Mesh, LIST};
 use crate::problem::{Capped, Problem, ProblemKind};
+use apart_kernel::orient::orient3d_many;
 use apart_kernel::Aabb;
 use apart_kernel::Bvh;
-use apart_kernel::{Grid, Int, Rational, Sign};
+use apart_kernel::{Grid, HPoint, Int, Rational, Sign};
 use rayon::prelude::*;
 
 /// What validation learnt about a mesh.
@@ -244,7 +245,11 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
         .map(|t| Aabb::of(mesh.corners(t)))
         .collect();
     let bvh = Bvh::new(boxes);
-    let (pairs, count) = self_intersection::self_intersections(mesh, &bvh, LIST);
+    let (pairs, count) = if bounds_convex_body_once(mesh, &info, shells, &bvh) {
+        (Vec::new(), 0)
+    } else {
+        self_intersection::self_intersections(mesh, &bvh, LIST)
+    };
     info.self_intersections = count;
     for &(t, u, contact) in &pairs {
         let what = match contact {
@@ -316,6 +321,50 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
     (info, problems)
 }
 
+/// Triangles up to which a closed shell is first tried as the boundary of a convex body
+/// (pieces of a decomposition and convex parts), which needs no pairwise test.
+const SMALL_CONVEX: usize = 64;
+
+/// True when the small closed shell `mesh` (positive volume, one shell, touching itself
+/// nowhere) is the boundary of its convex hull covered once, so that no two of its
+/// triangles can meet beyond what they share. Every vertex lies on or below every
+/// triangle's plane, so each triangle lies in a face of the hull `K`, facing out; seen
+/// from a point inside `K` the shell then covers the hull's boundary the same number of
+/// times `d` everywhere (the winding number of that point), and `d = 1` leaves no room
+/// for two triangles to overlap or to meet anywhere but along shared edges and
+/// vertices. The point is the vertices' centroid, inside `K` since they span space.
+fn bounds_convex_body_once(mesh: &Mesh, info: &MeshInfo, shells: usize, bvh: &Bvh) -> bool {
+    if !info.closed
+        || info.volume6.is_none()
+        || shells != 1
+        || info.touching_edges > 0
+        || info.touching_vertices > 0
+        || mesh.triangles.len() > SMALL_CONVEX
+    {
+        return false;
+    }
+    let v = &mesh.vertices;
+    let below = |t: &[u32; 3], ps: [&[i64; 3]; 3]| {
+        orient3d_many(&v[t[0] as usize], &v[t[1] as usize], &v[t[2] as usize], ps)
+            .iter()
+            .all(|&s| s != Sign::Positive)
+    };
+    let convex = mesh.triangles.iter().all(|t| {
+        v.chunks(3).all(|c| match c {
+            [a, b, c] => below(t, [a, b, c]),
+            [a, b] => below(t, [a, b, b]),
+            [a] => below(t, [a, a, a]),
+            _ => true,
+        })
+    });
+    if !convex {
+        return false;
+    }
+    let sum = [0, 1, 2].map(|k| v.iter().map(|p| Int::from(p[k])).sum::<Int>());
+    let centroid = HPoint::from_big(sum, Int::from(v.len() as i64));
+    Locator::with_bvh(mesh, bvh.clone()).winding(&centroid) == Some(1)
+}
+
 /// Reads, snaps, welds, triangulates and validates one object: the mesh (when one
 /// could be built), what validation learnt, and every problem found on the way.
 pub fn check_solid(
@@ -330,5 +379,125 @@ pub fn check_solid(
             (Some(m), Some(info), problems)
         }
         None => (None, None, problems),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use apart_formats::{Polygons, RawObject};
+
+    fn mesh_of(vertices: Vec<[i64; 3]>, faces: Vec<Vec<usize>>) -> Mesh {
+        let raw = RawObject {
+            name: None,
+            vertices: vertices.iter().map(|p| p.map(|c| c as f64)).collect(),
+            faces: Polygons::from(
+                faces
+                    .iter()
+                    .map(|f| f.iter().map(|&i| i as u32).collect())
+                    .collect::<Vec<Vec<u32>>>(),
+            ),
+        };
+        Mesh::from_raw(&raw, &Grid::unit(30)).0.unwrap()
+    }
+
+    /// Whether the shortcut is taken on `m` (validated first, as `validate` does), after
+    /// checking that the pairwise test agrees whenever it is: no intersecting pair.
+    fn shortcut(mut m: Mesh) -> bool {
+        let (info, _) = validate(&mut m, &Grid::unit(30));
+        let boxes: Vec<Aabb> = (0..m.triangles.len())
+            .map(|t| Aabb::of(m.corners(t)))
+            .collect();
+        let bvh = Bvh::new(boxes);
+        let taken = bounds_convex_body_once(&m, &info, info.shells, &bvh);
+        let (_, count) = self_intersection::self_intersections(&m, &bvh, LIST);
+        assert!(
+            !taken || count == 0,
+            "shortcut taken on a shell with {count} crossings"
+        );
+        taken
+    }
+
+    fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> (Vec<[i64; 3]>, Vec<Vec<usize>>) {
+        let v = (0..8)
+            .map(|b| [0, 1, 2].map(|k| if b >> k & 1 == 1 { hi[k] } else { lo[k] }))
+            .collect();
+        let f = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        (v, f.iter().map(|q| q.to_vec()).collect())
+    }
+
+    /// The top face (z = hi) as four triangles around its centre, lifted by `dz`.
+    fn tented(lo: [i64; 3], hi: [i64; 3], dz: i64) -> Mesh {
+        let (mut v, mut f) = cuboid(lo, hi);
+        f.remove(1);
+        v.push([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2] + dz]);
+        for (a, b) in [(4, 5), (5, 7), (7, 6), (6, 4)] {
+            f.push(vec![a, b, 8]);
+        }
+        mesh_of(v, f)
+    }
+
+    fn octahedron(c: [i64; 3], r: [i64; 6]) -> Mesh {
+        let v = vec![
+            [c[0] + r[0], c[1], c[2]],
+            [c[0] - r[1], c[1], c[2]],
+            [c[0], c[1] + r[2], c[2]],
+            [c[0], c[1] - r[3], c[2]],
+            [c[0], c[1], c[2] + r[4]],
+            [c[0], c[1], c[2] - r[5]],
+        ];
+        let f = [
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ];
+        mesh_of(v, f.iter().map(|t| t.to_vec()).collect())
+    }
+
+    #[test]
+    fn convex_shells_skip_the_pairwise_test_and_others_do_not() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |n: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as i64
+        };
+        for _ in 0..200 {
+            let lo = [next(100) - 50, next(100) - 50, next(100) - 50];
+            let hi = [0, 1, 2].map(|k| lo[k] + 2 + 2 * next(20));
+            let (v, f) = cuboid(lo, hi);
+            assert!(shortcut(mesh_of(v.clone(), f.clone())));
+            // Inside out: validation turns it around first.
+            let flipped = f
+                .iter()
+                .map(|q| q.iter().rev().copied().collect())
+                .collect();
+            assert!(shortcut(mesh_of(v, flipped)));
+            // Coplanar triangles in one face, and a convex tent over it.
+            assert!(shortcut(tented(lo, hi, 0)));
+            assert!(shortcut(tented(lo, hi, 1 + next(5))));
+            // A dent: not convex, so the pairwise test runs.
+            assert!(!shortcut(tented(lo, hi, -1)));
+            let r = [0; 6].map(|_| 1 + next(30));
+            assert!(shortcut(octahedron(lo, r)));
+            // The top vertex pulled below the bottom one: a folded (valid) shell that is
+            // not convex.
+            let mut m = octahedron(lo, r);
+            m.vertices[4][2] = lo[2] - r[5] - 1 - next(10);
+            assert!(!shortcut(m));
+        }
     }
 }
