@@ -388,6 +388,13 @@ fn connecting_arcs<L, P>(arr: &Arrangement<L, P>) -> Vec<Arc> {
     if n <= 1 {
         return Vec::new();
     }
+    // Each component with edges, its cycles traced on its own rotation system (that of a
+    // graph on the sphere), has V - E + F = 2; an isolated vertex has 1. So with edges,
+    // V - E + cycles = 2 holds exactly when the graph is connected: the common case,
+    // decided without the union-find's pass over all edges.
+    if !arr.edges.is_empty() && n + arr.cycles.len() == arr.edges.len() + 2 {
+        return Vec::new();
+    }
     let mut uf = UnionFind::new(n);
     for e in &arr.edges {
         uf.union(e.from.index(), e.to.index());

@@ -208,23 +208,17 @@ fn crossings<P: Sync>(
     stats: &mut BuildStats,
     par: bool,
 ) -> Vec<Vec<VertexId>> {
-    let pairs = candidate_pairs(&runs.boxes, par);
-    stats.candidate_pairs += pairs.len();
     // The circle pairs (oriented as their first candidate pair) of the candidate pairs
     // whose runs may meet, in the order of the pairs.
     let vertices = &table.vertices;
-    let may_meet = |&(i, j): &(usize, usize)| -> Option<(u32, u32)> {
+    let may_meet = |i: usize, j: usize| -> Option<(u32, u32)> {
         let (ca, cb) = (runs.circle[i], runs.circle[j]);
         let (na, nb) = (&circles[ca as usize], &circles[cb as usize]);
         (ca != cb && !runs.apart(i, nb, vertices) && !runs.apart(j, na, vertices))
             .then_some((ca, cb))
     };
-    let meeting: Vec<(u32, u32)> = if par {
-        pairs.par_iter().filter_map(may_meet).collect()
-    } else {
-        pairs.iter().filter_map(may_meet).collect()
-    };
-    drop(pairs);
+    let (count, meeting) = candidate_pairs_with(&runs.boxes, par, may_meet);
+    stats.candidate_pairs += count;
     let mut seen: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
     let circle_pairs: Vec<(u32, u32)> = meeting
         .into_iter()
@@ -642,6 +636,9 @@ struct Ring {
     order: Vec<VertexId>,
     /// Position of each vertex id in `order`.
     pos: HashMap<VertexId, usize>,
+    /// The half circle of each point of `order`: 0 for the reference point `order[0]`
+    /// and the points less than a half turn after it, else 1.
+    half: Vec<u8>,
     /// `covered[k]`: some arc covers the open gap from `order[k]` to `order[k + 1]`
     /// (cyclically).
     covered: Vec<bool>,
@@ -670,6 +667,7 @@ impl Ring {
                     Sign::Zero => std::cmp::Ordering::Equal,
                 })
         });
+        self.half = keyed.iter().map(|&(h, _)| h).collect();
         self.order = keyed.into_iter().map(|(_, v)| v).collect();
         self.pos = self
             .order
@@ -767,12 +765,24 @@ impl Ring {
         let r = &table.vertices[self.order[0].index()].point;
         let half = |x: &Vec3| -> u8 { u8::from(!(x == r || det3_sign(n, r, x) == Sign::Positive)) };
         let hq = half(q);
-        // Number of points strictly before q in the counter-clockwise order.
-        let before = self.order.partition_point(|&v| {
-            let x = &table.vertices[v.index()].point;
-            let hx = half(x);
-            hx < hq || (hx == hq && det3_sign(n, x, q) == Sign::Positive)
-        });
+        // Number of points strictly before q in the counter-clockwise order (the points'
+        // halves are those `sort` found).
+        let is_before = |k: usize| {
+            let hx = self.half[k];
+            hx < hq
+                || (hx == hq
+                    && det3_sign(n, &table.vertices[self.order[k].index()].point, q)
+                        == Sign::Positive)
+        };
+        let (mut before, mut end) = (0, len);
+        while before < end {
+            let mid = before + (end - before) / 2;
+            if is_before(mid) {
+                before = mid + 1;
+            } else {
+                end = mid;
+            }
+        }
         let gap = if before == 0 { len - 1 } else { before - 1 };
         self.covered[gap]
     }
@@ -863,59 +873,84 @@ impl<P> VertexTable<P> {
 /// half-edges, cycles and faces that plans and pictures follow. The kernel's sweep
 /// reports a pair when its earlier box is swept (by the earlier box, then the later);
 /// a stable counting sort by the later box's rank puts them in this order in linear time.
-///
-/// With `par`, the sweep runs on all threads in slices of the order (the pairs of each
-/// slice come as the sequential sweep finds them, and the slices in order).
+#[cfg(test)]
 fn candidate_pairs(boxes: &[Aabb<f64>], par: bool) -> Vec<(usize, usize)> {
+    candidate_pairs_with(boxes, par, |i, j| Some((i, j))).1
+}
+
+/// [`candidate_pairs`] mapped through `keep` (called with the smaller index first) as
+/// they are found, the pairs it drops left out, and the number of all pairs.
+///
+/// With `par`, the sweep and `keep` run on all threads in slices of the order (the
+/// pairs of each slice come as the sequential sweep finds them, and the slices in order).
+fn candidate_pairs_with<T: Send>(
+    boxes: &[Aabb<f64>],
+    par: bool,
+    keep: impl Fn(usize, usize) -> Option<T> + Sync,
+) -> (usize, Vec<T>) {
     let order = by_low_x(boxes);
     let mut rank = vec![0u32; boxes.len()];
     for (r, &i) in order.iter().enumerate() {
         rank[i as usize] = r as u32;
     }
-    let found: Vec<(u32, u32)> = if par {
+    // The kept pairs with their later box's rank, in the order of the sweep.
+    let sweep = |xs: std::ops::Range<usize>| {
+        let mut count = 0;
+        let mut found: Vec<(u32, T)> = Vec::new();
+        for x in xs {
+            sweep_from(boxes, &order, x, |i, j| {
+                count += 1;
+                if let Some(t) = keep(i.min(j) as usize, i.max(j) as usize) {
+                    found.push((rank[j as usize], t));
+                }
+            });
+        }
+        (count, found)
+    };
+    let (count, found) = if par {
         let slice = order
             .len()
             .div_ceil(64 * rayon::current_num_threads())
             .max(1);
-        let per_slice: Vec<Vec<(u32, u32)>> = (0..order.len().div_ceil(slice))
+        let per_slice: Vec<(usize, Vec<(u32, T)>)> = (0..order.len().div_ceil(slice))
             .into_par_iter()
-            .map(|k| {
-                let mut found = Vec::new();
-                for x in k * slice..((k + 1) * slice).min(order.len()) {
-                    sweep_from(boxes, &order, x, &mut found);
-                }
-                found
-            })
+            .map(|k| sweep(k * slice..((k + 1) * slice).min(order.len())))
             .collect();
-        per_slice.concat()
-    } else {
-        let mut found = Vec::new();
-        for x in 0..order.len() {
-            sweep_from(boxes, &order, x, &mut found);
+        let count = per_slice.iter().map(|s| s.0).sum();
+        let mut found = Vec::with_capacity(per_slice.iter().map(|s| s.1.len()).sum());
+        for (_, mut f) in per_slice {
+            found.append(&mut f);
         }
-        found
+        (count, found)
+    } else {
+        sweep(0..order.len())
     };
     // start[r]: where the pairs whose later box has rank r go.
     let mut start = vec![0usize; boxes.len() + 1];
-    for &(_, later) in &found {
-        start[rank[later as usize] as usize + 1] += 1;
+    for &(r, _) in &found {
+        start[r as usize + 1] += 1;
     }
     for r in 0..boxes.len() {
         start[r + 1] += start[r];
     }
-    let mut out = vec![(0, 0); found.len()];
-    for &(a, b) in &found {
-        let slot = &mut start[rank[b as usize] as usize];
-        out[*slot] = (a.min(b) as usize, a.max(b) as usize);
+    let mut out: Vec<Option<T>> = std::iter::repeat_with(|| None).take(found.len()).collect();
+    for (r, t) in found {
+        let slot = &mut start[r as usize];
+        out[*slot] = Some(t);
         *slot += 1;
     }
-    out
+    (
+        count,
+        out.into_iter()
+            .map(|t| t.expect("every slot filled"))
+            .collect(),
+    )
 }
 
 /// The pairs the sweep finds at position `x` of the order `order` of `boxes` by low x
 /// (the kernel's [`apart_kernel::bvh::sweep_pairs`], one step): `order[x]` with every
 /// later box whose low x is at most its high x and that meets it.
-fn sweep_from(boxes: &[Aabb<f64>], order: &[u32], x: usize, found: &mut Vec<(u32, u32)>) {
+fn sweep_from(boxes: &[Aabb<f64>], order: &[u32], x: usize, mut found: impl FnMut(u32, u32)) {
     let i = order[x];
     let bi = &boxes[i as usize];
     for &j in &order[x + 1..] {
@@ -924,7 +959,7 @@ fn sweep_from(boxes: &[Aabb<f64>], order: &[u32], x: usize, found: &mut Vec<(u32
             break;
         }
         if bi.overlaps(bj) {
-            found.push((i, j));
+            found(i, j);
         }
     }
 }
