@@ -112,17 +112,33 @@ pub struct BuildStats {
     pub structural_arcs: usize,
 }
 
-impl<L: ArcLabel, P: Clone> Arrangement<L, P> {
+/// Builds of at least this many input arcs run their steps on all threads; smaller ones
+/// (built by the thousands in other phases) stay on one thread, where rayon's overhead
+/// would cost more than it gains. Both paths give the same arrangement, bit for bit.
+const PARALLEL_ARCS: usize = 1024;
+
+impl<L: ArcLabel + Send + Sync, P: Clone + Send + Sync> Arrangement<L, P> {
     /// Builds the arrangement of `arcs` and `points`.
     pub fn build(
         arcs: Vec<InputArc<L>>,
         points: Vec<InputPoint<P>>,
     ) -> (Arrangement<L, P>, BuildStats) {
+        Self::build_with(arcs, points, None)
+    }
+
+    /// [`Arrangement::build`] with the parallel steps forced on or off (`None`: on for
+    /// [`PARALLEL_ARCS`] input arcs or more).
+    fn build_with(
+        arcs: Vec<InputArc<L>>,
+        points: Vec<InputPoint<P>>,
+        parallel: Option<bool>,
+    ) -> (Arrangement<L, P>, BuildStats) {
+        let par = |n: usize| parallel.unwrap_or(n >= PARALLEL_ARCS);
         let mut stats = BuildStats {
             arcs: arcs.len(),
             ..Default::default()
         };
-        let first = build_once(&arcs, &points, &mut stats);
+        let first = build_once(&arcs, &points, &mut stats, par(arcs.len()));
         let extra = connecting_arcs(&first);
         if extra.is_empty() {
             return (first, stats);
@@ -130,7 +146,7 @@ impl<L: ArcLabel, P: Clone> Arrangement<L, P> {
         stats.structural_arcs = extra.len();
         let mut all = arcs;
         all.extend(extra.into_iter().map(|arc| InputArc { arc, label: None }));
-        let second = build_once(&all, &points, &mut stats);
+        let second = build_once(&all, &points, &mut stats, par(all.len()));
         debug_assert!(
             connecting_arcs(&second).is_empty(),
             "structural arcs left the graph disconnected"
@@ -372,6 +388,13 @@ fn connecting_arcs<L, P>(arr: &Arrangement<L, P>) -> Vec<Arc> {
     if n <= 1 {
         return Vec::new();
     }
+    // Each component with edges, its cycles traced on its own rotation system (that of a
+    // graph on the sphere), has V - E + F = 2; an isolated vertex has 1. So with edges,
+    // V - E + cycles = 2 holds exactly when the graph is connected: the common case,
+    // decided without the union-find's pass over all edges.
+    if !arr.edges.is_empty() && n + arr.cycles.len() == arr.edges.len() + 2 {
+        return Vec::new();
+    }
     let mut uf = UnionFind::new(n);
     for e in &arr.edges {
         uf.union(e.from.index(), e.to.index());
@@ -608,6 +631,112 @@ mod tests {
             .0;
         for i in 1..8 {
             assert!(angles[(k + i) % 8] > angles[(k + i - 1) % 8]);
+        }
+    }
+
+    /// Asserts that two arrangements are the same, cell by cell and in the same order.
+    fn assert_identical<P: Clone + PartialEq + std::fmt::Debug>(
+        a: &Arrangement<L, P>,
+        b: &Arrangement<L, P>,
+    ) {
+        assert_eq!(a.circles, b.circles);
+        assert_eq!(a.vertices.len(), b.vertices.len());
+        for (v, w) in a.vertices.iter().zip(&b.vertices) {
+            assert_eq!(v.point, w.point);
+            assert_eq!(v.labels, w.labels);
+            assert_eq!(v.around, w.around);
+            assert_eq!(v.structural, w.structural);
+        }
+        assert_eq!(a.edges.len(), b.edges.len());
+        for (e, f) in a.edges.iter().zip(&b.edges) {
+            assert_eq!(
+                (e.circle, e.from, e.to, e.structural),
+                (f.circle, f.from, f.to, f.structural)
+            );
+            assert_eq!(e.labels, f.labels);
+        }
+        assert_eq!(a.next, b.next);
+        assert_eq!(a.cycle_of, b.cycle_of);
+        assert_eq!(a.cycles, b.cycles);
+        assert_eq!(a.face_of_cycle, b.face_of_cycle);
+        assert_eq!(a.faces, b.faces);
+    }
+
+    #[test]
+    fn parallel_build_is_identical_to_sequential() {
+        // Short arcs between small integer points (many arcs on one circle, overlapping,
+        // sharing end points, ending on other arcs, crossing at end points), long arcs
+        // through them, and input points at arc end points and midpoints (on the arcs)
+        // and elsewhere. The short arcs leave the graph disconnected, so the second
+        // build with structural arcs is compared too.
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: i64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m as u64) as i64
+        };
+        let mut point = |r: i64| loop {
+            let p = [
+                next(2 * r + 1) - r,
+                next(2 * r + 1) - r,
+                next(2 * r + 1) - r,
+            ];
+            if p != [0, 0, 0] {
+                return p;
+            }
+        };
+        let mut arcs = Vec::new();
+        let mut points = Vec::new();
+        let mut k = 0;
+        while arcs.len() < PARALLEL_ARCS + 500 {
+            let a = point(7);
+            let long = k % 10 == 0;
+            let d = point(if long { 7 } else { 2 });
+            let b = [a[0] + d[0], a[1] + d[1], a[2] + d[2]];
+            let Some(arc) = Arc::between(&Vec3::from(a), &Vec3::from(b)) else {
+                continue;
+            };
+            k += 1;
+            arcs.push(InputArc {
+                arc,
+                label: (k % 7 != 0).then_some(L(k)),
+            });
+            if k % 5 == 0 {
+                let m = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+                points.push(InputPoint {
+                    point: Vec3::from(m),
+                    label: k,
+                });
+            }
+            if k % 11 == 0 {
+                points.push(InputPoint {
+                    point: Vec3::from(a),
+                    label: -k,
+                });
+            }
+        }
+        for _ in 0..50 {
+            points.push(InputPoint {
+                point: Vec3::from(point(9)),
+                label: 0,
+            });
+        }
+        let build = |par| Arrangement::build_with(arcs.clone(), points.clone(), par);
+        let (seq, seq_stats) = build(Some(false));
+        assert!(seq_stats.structural_arcs > 0, "{seq_stats:?}");
+        assert!(
+            seq.vertices().len() > 2 * arcs.len(),
+            "{}",
+            seq.vertices().len()
+        );
+        for par in [None, Some(true)] {
+            let (arr, stats) = build(par);
+            assert_eq!(
+                (stats.candidate_pairs, stats.structural_arcs),
+                (seq_stats.candidate_pairs, seq_stats.structural_arcs)
+            );
+            assert_identical(&seq, &arr);
         }
     }
 }

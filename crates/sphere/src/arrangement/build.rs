@@ -7,12 +7,13 @@ use super::{
     InputPoint, UnionFind, Vertex, VertexId,
 };
 use crate::arc::{point_bbox, Arc};
-use apart_kernel::bvh::{by_low_x, sweep_pairs, sweep_pairs_between};
+use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::circle_intersection;
 use apart_kernel::{Aabb, Sign, Vec3};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
-use std::ops::ControlFlow;
+use std::hash::{BuildHasher, Hash, Hasher};
 
 /// An input arc on its circle's canonical orientation.
 struct Canon<L> {
@@ -23,24 +24,27 @@ struct Canon<L> {
 }
 
 /// Builds the arrangement of `arcs` and `points` once (structural arcs, if any, are
-/// among `arcs`).
-pub(super) fn build_once<L: ArcLabel, P: Clone>(
+/// among `arcs`). With `par`, the steps that are independent per circle, per candidate
+/// pair or per vertex run on all threads; what they produce is put together in the
+/// sequential order, so that both paths give the same arrangement.
+pub(super) fn build_once<L: ArcLabel + Send + Sync, P: Clone + Send + Sync>(
     arcs: &[InputArc<L>],
     points: &[InputPoint<P>],
     stats: &mut BuildStats,
+    par: bool,
 ) -> Arrangement<L, P> {
     // Geometry.
     let (circles, canon) = canonical_arcs(arcs);
     let (mut table, ends, lone) = end_point_vertices(&canon, points);
-    let mut rings = circle_rings(&circles, &canon, &ends, &table);
+    let mut rings = circle_rings(&circles, &canon, &ends, &table, par);
     let runs = Runs::of(&circles, &rings, &table.vertices);
-    let mut extra = crossings(&circles, &rings, &runs, &mut table, stats);
+    let mut extra = crossings(&circles, &rings, &runs, &mut table, stats, par);
     points_on_arcs(&circles, &rings, &runs, &lone, &table, &mut extra);
     let mut vertices = table.vertices;
-    let edges = cut_circles(&circles, &mut rings, extra, &canon, &ends, &vertices);
+    let edges = cut_circles(&circles, &mut rings, extra, &canon, &ends, &vertices, par);
     mark_real_vertices(&mut vertices, &edges, &canon, &ends);
     // Topology.
-    let next = rotation_system(&mut vertices, &edges, &circles);
+    let next = rotation_system(&mut vertices, &edges, &circles, par);
     let (cycle_of, cycles) = trace_cycles(&next);
     let (face_of_cycle, faces) = join_faces(&edges, &cycle_of, cycles.len());
     Arrangement {
@@ -131,11 +135,12 @@ fn end_point_vertices<L, P: Clone>(
 
 /// Step 3: per circle, its arcs' end points in counter-clockwise order and which of the
 /// gaps between consecutive points its arcs cover.
-fn circle_rings<L, P>(
+fn circle_rings<L, P: Sync>(
     circles: &[Vec3],
     canon: &[Canon<L>],
     ends: &[[VertexId; 2]],
     table: &VertexTable<P>,
+    par: bool,
 ) -> Vec<Ring> {
     let mut rings: Vec<Ring> = circles.iter().map(|_| Ring::default()).collect();
     for (i, c) in canon.iter().enumerate() {
@@ -144,9 +149,14 @@ fn circle_rings<L, P>(
         ring.order.push(ends[i][0]);
         ring.order.push(ends[i][1]);
     }
-    for (c, ring) in rings.iter_mut().enumerate() {
+    let sort = |(c, ring): (usize, &mut Ring)| {
         ring.sort(&circles[c], &table.vertices);
         ring.cover(ends);
+    };
+    if par {
+        rings.par_iter_mut().enumerate().for_each(sort);
+    } else {
+        rings.iter_mut().enumerate().for_each(sort);
     }
     rings
 }
@@ -186,42 +196,153 @@ impl Runs {
 /// Step 4: crossings. Each pair of circles with runs whose boxes meet is intersected
 /// once; a crossing point counts when an arc of each circle covers it. Returns the new
 /// points of each circle (vertices are created in the order the pairs come).
-fn crossings<P>(
+///
+/// With `par`, the candidate pairs are filtered, and the circle pairs intersected and
+/// their points tested, on all threads; only the numbering of the new vertices, in the
+/// order of the pairs, is sequential.
+fn crossings<P: Sync>(
     circles: &[Vec3],
     rings: &[Ring],
     runs: &Runs,
     table: &mut VertexTable<P>,
     stats: &mut BuildStats,
+    par: bool,
 ) -> Vec<Vec<VertexId>> {
-    let pairs = candidate_pairs(&runs.boxes);
-    stats.candidate_pairs += pairs.len();
-    let mut seen: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
-    let mut extra: Vec<Vec<VertexId>> = vec![Vec::new(); circles.len()];
-    for (i, j) in pairs {
+    // The circle pairs (oriented as their first candidate pair) of the candidate pairs
+    // whose runs may meet, in the order of the pairs.
+    let vertices = &table.vertices;
+    let may_meet = |i: usize, j: usize| -> Option<(u32, u32)> {
         let (ca, cb) = (runs.circle[i], runs.circle[j]);
-        if ca == cb {
-            continue;
-        }
         let (na, nb) = (&circles[ca as usize], &circles[cb as usize]);
-        if runs.apart(i, nb, &table.vertices)
-            || runs.apart(j, na, &table.vertices)
-            || !seen.insert((ca.min(cb), ca.max(cb)))
-        {
-            continue;
-        }
+        (ca != cb && !runs.apart(i, nb, vertices) && !runs.apart(j, na, vertices))
+            .then_some((ca, cb))
+    };
+    let (count, meeting) = candidate_pairs_with(&runs.boxes, par, may_meet);
+    stats.candidate_pairs += count;
+    let mut seen: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+    let circle_pairs: Vec<(u32, u32)> = meeting
+        .into_iter()
+        .filter(|&(ca, cb)| seen.insert((ca.min(cb), ca.max(cb))))
+        .collect();
+    drop(seen);
+    // Each circle pair's crossing points `-p`, `p` (p = na × nb) that arcs of both
+    // circles cover, with the vertex already at the point (an arc end point or an input
+    // point) or the hash of the point.
+    let table_ref = &*table;
+    let meet = |&(ca, cb): &(u32, u32)| -> [Option<Crossing>; 2] {
+        let (na, nb) = (&circles[ca as usize], &circles[cb as usize]);
         let Some(p) = circle_intersection(na, nb) else {
-            continue;
+            return [None, None];
         };
-        for q in [p.neg(), p] {
-            let (ra, rb) = (&rings[ca as usize], &rings[cb as usize]);
-            if ra.covers(na, &q, table) && rb.covers(nb, &q, table) {
-                let id = table.get_or_insert(&q);
-                extra[ca as usize].push(id);
-                extra[cb as usize].push(id);
+        let (ra, rb) = (&rings[ca as usize], &rings[cb as usize]);
+        let found = |q: Vec3| {
+            (ra.covers(na, &q, table_ref) && rb.covers(nb, &q, table_ref)).then(|| {
+                let known = table_ref.ids.get(&q).copied();
+                let hash = if known.is_some() {
+                    0
+                } else {
+                    rustc_hash::FxBuildHasher.hash_one(&q)
+                };
+                Crossing {
+                    point: q,
+                    known,
+                    hash,
+                }
+            })
+        };
+        [found(p.neg()), found(p)]
+    };
+    let mut points: Vec<[Option<Crossing>; 2]> = if par {
+        circle_pairs.par_iter().map(meet).collect()
+    } else {
+        circle_pairs.iter().map(meet).collect()
+    };
+    // Number the points in order: a point seen before keeps its vertex; a new one gets
+    // the next id.
+    let base = table.vertices.len();
+    let mut fresh: Vec<(usize, usize)> = Vec::new();
+    let mut ids: Vec<[Option<VertexId>; 2]> = Vec::with_capacity(points.len());
+    {
+        let mut new_ids: std::collections::HashMap<Hashed<'_>, VertexId, PassHash> =
+            std::collections::HashMap::with_capacity_and_hasher(points.len(), PassHash);
+        for (k, pts) in points.iter().enumerate() {
+            let mut row = [None, None];
+            for (s, x) in pts.iter().enumerate() {
+                let Some(x) = x else { continue };
+                row[s] = Some(x.known.unwrap_or_else(|| {
+                    *new_ids.entry(Hashed(x.hash, &x.point)).or_insert_with(|| {
+                        fresh.push((k, s));
+                        VertexId::new(base + fresh.len() - 1)
+                    })
+                }));
             }
+            ids.push(row);
+        }
+    }
+    table.vertices.reserve(fresh.len());
+    for (k, s) in fresh {
+        let x = points[k][s].take().expect("a new crossing point");
+        table.vertices.push(Vertex {
+            point: x.point,
+            labels: Vec::new(),
+            around: Vec::new(),
+            structural: true,
+        });
+    }
+    let mut extra: Vec<Vec<VertexId>> = vec![Vec::new(); circles.len()];
+    for (&(ca, cb), row) in circle_pairs.iter().zip(ids) {
+        for id in row.into_iter().flatten() {
+            extra[ca as usize].push(id);
+            extra[cb as usize].push(id);
         }
     }
     extra
+}
+
+/// A crossing point found by [`crossings`]: the vertex already there if any, else the
+/// point's hash (computed with the points, on all threads).
+struct Crossing {
+    point: Vec3,
+    known: Option<VertexId>,
+    hash: u64,
+}
+
+/// A point keyed by its precomputed hash (equality is still the points').
+#[derive(PartialEq, Eq)]
+struct Hashed<'a>(u64, &'a Vec3);
+
+impl Hash for Hashed<'_> {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_u64(self.0);
+    }
+}
+
+/// The hasher of [`Hashed`] keys: passes their precomputed hash through.
+#[derive(Clone, Copy, Default)]
+struct PassHash;
+
+impl BuildHasher for PassHash {
+    type Hasher = PassHasher;
+    fn build_hasher(&self) -> PassHasher {
+        PassHasher(0)
+    }
+}
+
+/// See [`PassHash`].
+struct PassHasher(u64);
+
+impl Hasher for PassHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = x;
+    }
 }
 
 /// Step 4 (points): the input points that are not arc end points, added to `extra` of
@@ -259,21 +380,40 @@ fn points_on_arcs<P>(
 
 /// Step 5: each circle cut at all its points (in circle order); every covered gap is an
 /// edge carrying the labels of the arcs covering it.
-fn cut_circles<L: Clone, P>(
+fn cut_circles<L: Clone + Send + Sync, P: Sync>(
     circles: &[Vec3],
     rings: &mut [Ring],
     mut extra: Vec<Vec<VertexId>>,
     canon: &[Canon<L>],
     ends: &[[VertexId; 2]],
     vertices: &[Vertex<P>],
+    par: bool,
 ) -> Vec<Edge<L>> {
-    let mut edges: Vec<Edge<L>> = Vec::new();
-    for (c, ring) in rings.iter_mut().enumerate() {
-        if !extra[c].is_empty() {
-            ring.order.append(&mut extra[c]);
+    let cut = |(c, (ring, extra)): (usize, (&mut Ring, &mut Vec<VertexId>))| {
+        if !extra.is_empty() {
+            ring.order.append(extra);
             ring.sort(&circles[c], vertices);
         }
+        let mut edges = Vec::new();
         ring.emit_edges(c as u32, canon, ends, &mut edges);
+        edges
+    };
+    if !par {
+        let mut edges: Vec<Edge<L>> = Vec::new();
+        for (c, ring) in rings.iter_mut().enumerate() {
+            edges.append(&mut cut((c, (ring, &mut extra[c]))));
+        }
+        return edges;
+    }
+    let per_circle: Vec<Vec<Edge<L>>> = rings
+        .par_iter_mut()
+        .zip(extra.par_iter_mut())
+        .enumerate()
+        .map(cut)
+        .collect();
+    let mut edges = Vec::with_capacity(per_circle.iter().map(Vec::len).sum());
+    for mut e in per_circle {
+        edges.append(&mut e);
     }
     edges
 }
@@ -308,18 +448,33 @@ fn mark_real_vertices<L, P>(
 /// Step 6: the rotation system. Every vertex's outgoing half-edges sorted
 /// counter-clockwise; returns `next`: for each half-edge, the outgoing half-edge at its
 /// target just before its twin (clockwise), so that the face on the left is followed.
-fn rotation_system<L, P>(
+fn rotation_system<L: Sync, P: Send + Sync>(
     vertices: &mut [Vertex<P>],
     edges: &[Edge<L>],
     circles: &[Vec3],
+    par: bool,
 ) -> Vec<HalfEdge> {
+    // Each vertex's half-edges in the order of their ids (the order the sort starts
+    // from), in lists of the exact length.
+    let mut degree = vec![0u32; vertices.len()];
+    for edge in edges {
+        degree[edge.from.index()] += 1;
+        degree[edge.to.index()] += 1;
+    }
+    for (v, &d) in vertices.iter_mut().zip(&degree) {
+        v.around.reserve_exact(d as usize);
+    }
+    drop(degree);
     for (e, edge) in edges.iter().enumerate() {
         let e = EdgeId::new(e);
         vertices[edge.from.index()].around.push(e.forward());
         vertices[edge.to.index()].around.push(e.backward());
     }
-    for v in vertices.iter_mut() {
-        sort_around(&v.point, &mut v.around, edges, circles);
+    let sort = |v: &mut Vertex<P>| sort_around(&v.point, &mut v.around, edges, circles);
+    if par {
+        vertices.par_iter_mut().for_each(sort);
+    } else {
+        vertices.iter_mut().for_each(sort);
     }
     let mut pos_in_around = vec![0u32; edges.len() * 2];
     for v in vertices.iter() {
@@ -327,20 +482,24 @@ fn rotation_system<L, P>(
             pos_in_around[h.index()] = k as u32;
         }
     }
-    (0..edges.len() * 2)
-        .map(|h| {
-            let twin = HalfEdge::new(h).twin();
-            let edge = &edges[twin.edge().index()];
-            let w = if twin.is_forward() {
-                edge.from
-            } else {
-                edge.to
-            };
-            let around = &vertices[w.index()].around;
-            let k = pos_in_around[twin.index()] as usize;
-            around[(k + around.len() - 1) % around.len()]
-        })
-        .collect()
+    let vertices = &*vertices;
+    let next = |h: usize| {
+        let twin = HalfEdge::new(h).twin();
+        let edge = &edges[twin.edge().index()];
+        let w = if twin.is_forward() {
+            edge.from
+        } else {
+            edge.to
+        };
+        let around = &vertices[w.index()].around;
+        let k = pos_in_around[twin.index()] as usize;
+        around[(k + around.len() - 1) % around.len()]
+    };
+    if par {
+        (0..edges.len() * 2).into_par_iter().map(next).collect()
+    } else {
+        (0..edges.len() * 2).map(next).collect()
+    }
 }
 
 /// Sorts outgoing half-edges at `v` counter-clockwise, seen from outside.
@@ -447,15 +606,18 @@ fn join_faces<L>(
             );
         }
     }
-    let mut face_ids: HashMap<usize, FaceId> = HashMap::default();
+    // The face of each root cycle, numbered in the order of the first cycle reaching it.
+    let none = FaceId::new(u32::MAX as usize);
+    let mut face_of_root: Vec<FaceId> = vec![none; cycle_count];
     let mut faces: Vec<Vec<CycleId>> = Vec::new();
-    let mut face_of_cycle = vec![FaceId::new(0); cycle_count];
+    let mut face_of_cycle = vec![none; cycle_count];
     for (c, slot) in face_of_cycle.iter_mut().enumerate() {
         let root = uf.find(c);
-        let f = *face_ids.entry(root).or_insert_with(|| {
+        if face_of_root[root] == none {
             faces.push(Vec::new());
-            FaceId::new(faces.len() - 1)
-        });
+            face_of_root[root] = FaceId::new(faces.len() - 1);
+        }
+        let f = face_of_root[root];
         faces[f.index()].push(CycleId::new(c));
         *slot = f;
     }
@@ -474,6 +636,9 @@ struct Ring {
     order: Vec<VertexId>,
     /// Position of each vertex id in `order`.
     pos: HashMap<VertexId, usize>,
+    /// The half circle of each point of `order`: 0 for the reference point `order[0]`
+    /// and the points less than a half turn after it, else 1.
+    half: Vec<u8>,
     /// `covered[k]`: some arc covers the open gap from `order[k]` to `order[k + 1]`
     /// (cyclically).
     covered: Vec<bool>,
@@ -502,6 +667,7 @@ impl Ring {
                     Sign::Zero => std::cmp::Ordering::Equal,
                 })
         });
+        self.half = keyed.iter().map(|&(h, _)| h).collect();
         self.order = keyed.into_iter().map(|(_, v)| v).collect();
         self.pos = self
             .order
@@ -599,12 +765,24 @@ impl Ring {
         let r = &table.vertices[self.order[0].index()].point;
         let half = |x: &Vec3| -> u8 { u8::from(!(x == r || det3_sign(n, r, x) == Sign::Positive)) };
         let hq = half(q);
-        // Number of points strictly before q in the counter-clockwise order.
-        let before = self.order.partition_point(|&v| {
-            let x = &table.vertices[v.index()].point;
-            let hx = half(x);
-            hx < hq || (hx == hq && det3_sign(n, x, q) == Sign::Positive)
-        });
+        // Number of points strictly before q in the counter-clockwise order (the points'
+        // halves are those `sort` found).
+        let is_before = |k: usize| {
+            let hx = self.half[k];
+            hx < hq
+                || (hx == hq
+                    && det3_sign(n, &table.vertices[self.order[k].index()].point, q)
+                        == Sign::Positive)
+        };
+        let (mut before, mut end) = (0, len);
+        while before < end {
+            let mid = before + (end - before) / 2;
+            if is_before(mid) {
+                before = mid + 1;
+            } else {
+                end = mid;
+            }
+        }
         let gap = if before == 0 { len - 1 } else { before - 1 };
         self.covered[gap]
     }
@@ -695,31 +873,95 @@ impl<P> VertexTable<P> {
 /// half-edges, cycles and faces that plans and pictures follow. The kernel's sweep
 /// reports a pair when its earlier box is swept (by the earlier box, then the later);
 /// a stable counting sort by the later box's rank puts them in this order in linear time.
-fn candidate_pairs(boxes: &[Aabb<f64>]) -> Vec<(usize, usize)> {
+#[cfg(test)]
+fn candidate_pairs(boxes: &[Aabb<f64>], par: bool) -> Vec<(usize, usize)> {
+    candidate_pairs_with(boxes, par, |i, j| Some((i, j))).1
+}
+
+/// [`candidate_pairs`] mapped through `keep` (called with the smaller index first) as
+/// they are found, the pairs it drops left out, and the number of all pairs.
+///
+/// With `par`, the sweep and `keep` run on all threads in slices of the order (the
+/// pairs of each slice come as the sequential sweep finds them, and the slices in order).
+fn candidate_pairs_with<T: Send>(
+    boxes: &[Aabb<f64>],
+    par: bool,
+    keep: impl Fn(usize, usize) -> Option<T> + Sync,
+) -> (usize, Vec<T>) {
+    let order = by_low_x(boxes);
     let mut rank = vec![0u32; boxes.len()];
-    for (r, &i) in by_low_x(boxes).iter().enumerate() {
+    for (r, &i) in order.iter().enumerate() {
         rank[i as usize] = r as u32;
     }
-    let mut found: Vec<(u32, u32)> = Vec::new();
-    let _ = sweep_pairs(boxes, |earlier, later| {
-        found.push((earlier as u32, later as u32));
-        ControlFlow::<()>::Continue(())
-    });
+    // The kept pairs with their later box's rank, in the order of the sweep.
+    let sweep = |xs: std::ops::Range<usize>| {
+        let mut count = 0;
+        let mut found: Vec<(u32, T)> = Vec::new();
+        for x in xs {
+            sweep_from(boxes, &order, x, |i, j| {
+                count += 1;
+                if let Some(t) = keep(i.min(j) as usize, i.max(j) as usize) {
+                    found.push((rank[j as usize], t));
+                }
+            });
+        }
+        (count, found)
+    };
+    let (count, found) = if par {
+        let slice = order
+            .len()
+            .div_ceil(64 * rayon::current_num_threads())
+            .max(1);
+        let per_slice: Vec<(usize, Vec<(u32, T)>)> = (0..order.len().div_ceil(slice))
+            .into_par_iter()
+            .map(|k| sweep(k * slice..((k + 1) * slice).min(order.len())))
+            .collect();
+        let count = per_slice.iter().map(|s| s.0).sum();
+        let mut found = Vec::with_capacity(per_slice.iter().map(|s| s.1.len()).sum());
+        for (_, mut f) in per_slice {
+            found.append(&mut f);
+        }
+        (count, found)
+    } else {
+        sweep(0..order.len())
+    };
     // start[r]: where the pairs whose later box has rank r go.
     let mut start = vec![0usize; boxes.len() + 1];
-    for &(_, later) in &found {
-        start[rank[later as usize] as usize + 1] += 1;
+    for &(r, _) in &found {
+        start[r as usize + 1] += 1;
     }
     for r in 0..boxes.len() {
         start[r + 1] += start[r];
     }
-    let mut out = vec![(0, 0); found.len()];
-    for &(a, b) in &found {
-        let slot = &mut start[rank[b as usize] as usize];
-        out[*slot] = (a.min(b) as usize, a.max(b) as usize);
+    let mut out: Vec<Option<T>> = std::iter::repeat_with(|| None).take(found.len()).collect();
+    for (r, t) in found {
+        let slot = &mut start[r as usize];
+        out[*slot] = Some(t);
         *slot += 1;
     }
-    out
+    (
+        count,
+        out.into_iter()
+            .map(|t| t.expect("every slot filled"))
+            .collect(),
+    )
+}
+
+/// The pairs the sweep finds at position `x` of the order `order` of `boxes` by low x
+/// (the kernel's [`apart_kernel::bvh::sweep_pairs`], one step): `order[x]` with every
+/// later box whose low x is at most its high x and that meets it.
+fn sweep_from(boxes: &[Aabb<f64>], order: &[u32], x: usize, mut found: impl FnMut(u32, u32)) {
+    let i = order[x];
+    let bi = &boxes[i as usize];
+    for &j in &order[x + 1..] {
+        let bj = &boxes[j as usize];
+        if bj.min[0] > bi.max[0] {
+            break;
+        }
+        if bi.overlaps(bj) {
+            found(i, j);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -768,7 +1010,9 @@ mod tests {
                         }
                     })
                     .collect();
-                assert_eq!(candidate_pairs(&boxes), pairs_by_later_box(&boxes));
+                let expected = pairs_by_later_box(&boxes);
+                assert_eq!(candidate_pairs(&boxes, false), expected);
+                assert_eq!(candidate_pairs(&boxes, true), expected);
             }
         }
     }
