@@ -90,9 +90,10 @@ const PAR_EDGES: usize = 1 << 14;
 /// sort keys), measured on 200 to 1000 separated or touching cubes.
 const BYTES_PER_ARC: u64 = 300;
 /// Cells (vertices, edges, faces and their boundary cycles) per vertex of the arrangement,
-/// and bytes per cell besides its blocking status (topology, status header).
+/// and bytes per cell besides the members of a blocking status held as a list (topology,
+/// and the status itself: inline below [`MapSet::INLINE_MAPS`] maps).
 const CELLS_PER_VERTEX: u64 = 6;
-const BYTES_PER_CELL: u64 = 120;
+const BYTES_PER_CELL: u64 = 152;
 
 impl MotionSpace {
     /// Estimates what [`MotionSpace::build`] of `subset` would cost, in time linear in the
@@ -137,7 +138,11 @@ impl MotionSpace {
         }
         let blocked_per_cell = blocked as f64 / probes.len() as f64;
         let cells = vertices as u64 * CELLS_PER_VERTEX;
-        let status = (4.0 * blocked_per_cell) as u64;
+        let status = if n * n.saturating_sub(1) < MapSet::INLINE_MAPS {
+            0
+        } else {
+            (4.0 * blocked_per_cell) as u64
+        };
         OverlayEstimate {
             parts: n,
             maps: n * n.saturating_sub(1),

@@ -97,6 +97,10 @@ impl Default for MapSet {
 }
 
 impl MapSet {
+    /// Sets of members all below this are held inline (no allocation); a larger member
+    /// makes the set a sorted list of 4 bytes per member.
+    pub const INLINE_MAPS: usize = INLINE_BITS as usize;
+
     /// The empty set.
     pub fn new() -> MapSet {
         MapSet::default()
