@@ -32,6 +32,8 @@ pub mod locate;
 mod mesh;
 mod problem;
 pub mod repair;
+#[cfg(test)]
+mod test_shapes;
 mod triangulate;
 pub mod validate;
 mod weld;

@@ -113,31 +113,10 @@ impl<'m> Locator<'m> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use apart_formats::{Polygons, RawObject};
     use apart_kernel::{Grid, Int};
 
     pub(crate) fn cube(lo: i64, hi: i64) -> Mesh {
-        let mut vertices = Vec::new();
-        for i in 0..8 {
-            vertices.push([
-                if i & 1 == 1 { hi } else { lo } as f64,
-                if i & 2 == 2 { hi } else { lo } as f64,
-                if i & 4 == 4 { hi } else { lo } as f64,
-            ]);
-        }
-        let quads = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
-        let raw = RawObject {
-            name: None,
-            vertices,
-            faces: Polygons::from(quads),
-        };
+        let raw = crate::test_shapes::cuboid_raw([lo as f64; 3], [hi as f64; 3]);
         Mesh::from_raw(&raw, &Grid::unit(30)).0.unwrap()
     }
 

@@ -239,30 +239,9 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use apart_formats::Polygons;
 
     fn cube_raw(s: f64) -> RawObject {
-        let mut vertices = Vec::new();
-        for i in 0..8 {
-            vertices.push([
-                (i & 1) as f64 * s,
-                (i >> 1 & 1) as f64 * s,
-                (i >> 2) as f64 * s,
-            ]);
-        }
-        let quads = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
-        RawObject {
-            name: None,
-            vertices,
-            faces: Polygons::from(quads),
-        }
+        crate::test_shapes::cuboid_raw([0.0; 3], [s; 3])
     }
 
     #[test]

@@ -115,18 +115,10 @@ mod tests {
 
     /// The cube `lo..lo + s` as 12 outward triangles (vertices appended to `v`).
     fn cube(v: &mut Vec<[i64; 3]>, t: &mut Vec<[u32; 3]>, lo: [i64; 3], s: i64) {
+        use crate::test_shapes::{cuboid_corners, CUBOID_QUADS};
         let b = v.len() as u32;
-        for i in 0..8 {
-            v.push([0, 1, 2].map(|k| lo[k] + if i >> k & 1 == 1 { s } else { 0 }));
-        }
-        for q in [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ] {
+        v.extend(cuboid_corners(lo, lo.map(|c| c + s)));
+        for q in CUBOID_QUADS {
             t.push([b + q[0], b + q[1], b + q[2]]);
             t.push([b + q[0], b + q[2], b + q[3]]);
         }

@@ -419,18 +419,9 @@ mod tests {
     }
 
     fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> (Vec<[i64; 3]>, Vec<Vec<usize>>) {
-        let v = (0..8)
-            .map(|b| [0, 1, 2].map(|k| if b >> k & 1 == 1 { hi[k] } else { lo[k] }))
-            .collect();
-        let f = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        (v, f.iter().map(|q| q.to_vec()).collect())
+        use crate::test_shapes::{cuboid_corners, CUBOID_QUADS};
+        let f = CUBOID_QUADS.iter().map(|q| q.map(|i| i as usize).to_vec());
+        (cuboid_corners(lo, hi), f.collect())
     }
 
     /// The top face (z = hi) as four triangles around its centre, lifted by `dz`.
