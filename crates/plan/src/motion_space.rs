@@ -138,14 +138,15 @@ impl MotionSpace {
         }
         let blocked_per_cell = blocked as f64 / probes.len() as f64;
         let cells = vertices as u64 * CELLS_PER_VERTEX;
-        let status = if n * n.saturating_sub(1) < MapSet::INLINE_MAPS {
+        let maps = n * n.saturating_sub(1);
+        let status = if maps < MapSet::INLINE_MAPS {
             0
         } else {
             (4.0 * blocked_per_cell) as u64
         };
         OverlayEstimate {
             parts: n,
-            maps: n * n.saturating_sub(1),
+            maps,
             arcs,
             endpoints,
             vertices,
