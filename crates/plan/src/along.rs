@@ -57,6 +57,9 @@ pub struct QueryStats {
     pub sums: usize,
 }
 
+/// Piece pairs per block of [`DirectionQuery`]'s cache.
+const BLOCK: usize = 64;
+
 /// Lazily computed data of one piece pair (`a` of the smaller part index, `b` of the
 /// larger).
 #[derive(Default)]
@@ -73,8 +76,10 @@ pub struct DirectionQuery<'a> {
     /// Each part's box tree over its pieces (`None` when its coordinates are too large
     /// for integer boxes: then every piece pair is visited).
     trees: Vec<Option<Bvh>>,
-    /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`).
-    cache: Vec<Vec<PairCache>>,
+    /// Unordered part pairs `i < j` and their piece-pair caches (`a * |j| + b`), in
+    /// blocks of [`BLOCK`] allocated when a pair in them is first asked for: two parts
+    /// of a thousand pieces each make a million pairs, of which a query touches few.
+    cache: Vec<Vec<OnceLock<Box<[PairCache]>>>>,
     pair_index: Vec<usize>,
     n_axes: AtomicUsize,
     n_cones: AtomicUsize,
@@ -104,7 +109,7 @@ impl<'a> DirectionQuery<'a> {
             for j in i + 1..n {
                 pair_index[i * n + j] = cache.len();
                 let m = parts[i].pieces.len() * parts[j].pieces.len();
-                cache.push((0..m).map(|_| PairCache::default()).collect());
+                cache.push((0..m.div_ceil(BLOCK)).map(|_| OnceLock::new()).collect());
             }
         }
         Ok(DirectionQuery {
@@ -133,14 +138,18 @@ impl<'a> DirectionQuery<'a> {
         }
     }
 
-    fn pair(&self, i: usize, j: usize) -> &[PairCache] {
-        &self.cache[self.pair_index[i * self.parts.len() + j]]
+    /// The cache of piece pair `k` of parts `i < j`.
+    fn pair(&self, i: usize, j: usize, k: usize) -> &PairCache {
+        let blocks = &self.cache[self.pair_index[i * self.parts.len() + j]];
+        let block =
+            blocks[k / BLOCK].get_or_init(|| (0..BLOCK).map(|_| PairCache::default()).collect());
+        &block[k % BLOCK]
     }
 
     fn axes(&self, i: usize, j: usize, k: usize) -> &[Axis] {
         let nb = self.parts[j].pieces.len();
         let (a, b) = (k / nb, k % nb);
-        self.pair(i, j)[k].axes.get_or_init(|| {
+        self.pair(i, j, k).axes.get_or_init(|| {
             self.n_axes.fetch_add(1, Ordering::Relaxed);
             axes(
                 &self.parts[i].pieces[a],
@@ -155,7 +164,7 @@ impl<'a> DirectionQuery<'a> {
         let nb = self.parts[j].pieces.len();
         let (a, b) = (k / nb, k % nb);
         let axes = self.axes(i, j, k);
-        let r = self.pair(i, j)[k].polygon.get_or_init(|| {
+        let r = self.pair(i, j, k).polygon.get_or_init(|| {
             let r = pair_polygon(
                 &self.parts[i].pieces[a],
                 &self.info[i][a],
