@@ -34,7 +34,9 @@ pub(crate) enum Origin {
 /// A fragment vertex.
 #[derive(Clone, Debug)]
 pub(crate) struct FPt {
-    pub p: HPoint,
+    /// Shared: a crossing point belongs to both parts of a cut fragment, and a fragment
+    /// copied to mark its boundary keeps its points.
+    pub p: Arc<HPoint>,
     /// The input vertex it is, or [`NONE`].
     pub vertex: u32,
     /// It lies on the cell boundary.
@@ -75,7 +77,7 @@ impl Frag {
             pts: tri
                 .iter()
                 .map(|&v| FPt {
-                    p: HPoint::int(solid.pts[v as usize]),
+                    p: Arc::new(HPoint::int(solid.pts[v as usize])),
                     vertex: v,
                     bnd: false,
                 })
@@ -89,8 +91,19 @@ impl Frag {
         }
     }
 
+    /// Whether the fragment lies in `h`, known without a point test: its triangle's
+    /// plane is `h`, either way round (vertices on a plane are the costly case of the
+    /// exact side test).
+    pub fn in_plane(&self, h: &Plane, solid: &Solid) -> bool {
+        let own = &solid.planes[self.tri as usize];
+        own.n == h.n && own.c == h.c || own.n == h.n.map(|v| -v) && own.c == -h.c
+    }
+
     /// Whether some vertex is strictly below and some strictly above `h`.
-    pub fn straddle(&self, h: &Plane) -> (bool, bool) {
+    pub fn straddle(&self, h: &Plane, solid: &Solid) -> (bool, bool) {
+        if self.in_plane(h, solid) {
+            return (false, false);
+        }
         let (mut below, mut above) = (false, false);
         for p in &self.pts {
             match h.side(&p.p) {
@@ -113,8 +126,8 @@ pub(crate) fn split_by(
     h: &Plane,
     solid: &Solid,
 ) -> (Vec<Arc<Frag>>, Vec<Arc<Frag>>) {
-    let mut below = Vec::new();
-    let mut above = Vec::new();
+    let mut below = Vec::with_capacity(frags.len());
+    let mut above = Vec::with_capacity(frags.len());
     for f in frags {
         match place(f, h, solid) {
             Placement::Below(g) => below.push(g),
@@ -131,25 +144,40 @@ pub(crate) fn split_by(
 
 /// Splits fragment `f` by `h`.
 fn place(f: &Arc<Frag>, h: &Plane, solid: &Solid) -> Placement {
-    let s: Vec<Sign> = f.pts.iter().map(|p| h.side(&p.p)).collect();
+    if f.in_plane(h, solid) {
+        return Placement::On;
+    }
+    // The signs on the stack: most fragments have few corners.
+    let mut buf = [Sign::Zero; 12];
+    let mut heap = Vec::new();
+    let s: &mut [Sign] = if f.pts.len() <= buf.len() {
+        &mut buf[..f.pts.len()]
+    } else {
+        heap.resize(f.pts.len(), Sign::Zero);
+        &mut heap
+    };
+    for (si, p) in s.iter_mut().zip(&f.pts) {
+        *si = h.side(&p.p);
+    }
+    let s = &*s;
     let pos = s.contains(&Sign::Positive);
     let neg = s.contains(&Sign::Negative);
     let zero = s.contains(&Sign::Zero);
     match (neg, pos) {
         (false, false) => Placement::On,
-        (true, false) => Placement::Below(touching(f, &s, zero)),
-        (false, true) => Placement::Above(touching(f, &s, zero)),
+        (true, false) => Placement::Below(touching(f, s, zero)),
+        (false, true) => Placement::Above(touching(f, s, zero)),
         (true, true) => {
             let m = f.pts.len();
-            let cross: Vec<Option<HPoint>> = (0..m)
+            let cross: Vec<Option<Arc<HPoint>>> = (0..m)
                 .map(|i| {
                     let j = (i + 1) % m;
-                    (s[i] * s[j] == Sign::Negative).then(|| crossing(f, i, h, solid))
+                    (s[i] * s[j] == Sign::Negative).then(|| Arc::new(crossing(f, i, h, solid)))
                 })
                 .collect();
             Placement::Both(
-                Arc::new(part(f, &s, Sign::Negative, &cross, h)),
-                Arc::new(part(f, &s, Sign::Positive, &cross, h)),
+                Arc::new(part(f, s, Sign::Negative, &cross, h)),
+                Arc::new(part(f, s, Sign::Positive, &cross, h)),
             )
         }
     }
@@ -190,7 +218,7 @@ enum Src {
     Cross(usize),
 }
 
-fn part(f: &Frag, s: &[Sign], keep: Sign, cross: &[Option<HPoint>], h: &Plane) -> Frag {
+fn part(f: &Frag, s: &[Sign], keep: Sign, cross: &[Option<Arc<HPoint>>], h: &Plane) -> Frag {
     let m = f.pts.len();
     let mut out: Vec<(FPt, Src)> = Vec::with_capacity(m + 2);
     for i in 0..m {

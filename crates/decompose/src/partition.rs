@@ -187,7 +187,7 @@ fn leaf(s: &Solid, t: Task) -> Result<Step, DecomposeError> {
     let pts = t
         .frags
         .iter()
-        .map(|f| f.pts.iter().map(|p| (&p.p, p.bnd)).collect::<Vec<_>>())
+        .map(|f| f.pts.iter().map(|p| (&*p.p, p.bnd)).collect::<Vec<_>>())
         .collect::<Vec<_>>();
     t.cell
         .carve(&planes, &pts)

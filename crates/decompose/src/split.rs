@@ -199,9 +199,9 @@ fn element_score(solid: &Solid, live: &Live, h: &Plane) -> Score {
     s
 }
 
-fn fragment_score(frags: &[Arc<Frag>], h: &Plane, s: &mut Score) {
+fn fragment_score(solid: &Solid, frags: &[Arc<Frag>], h: &Plane, s: &mut Score) {
     for f in frags {
-        match f.straddle(h) {
+        match f.straddle(h, solid) {
             (true, true) => {
                 s.cut += 1;
                 s.below += 1;
@@ -339,7 +339,7 @@ pub(crate) fn for_live(
     };
     let mut best: Option<(Score, Plane, Witness)> = None;
     for (mut s, p, w) in scored {
-        fragment_score(frags, &p, &mut s);
+        fragment_score(solid, frags, &p, &mut s);
         if best.as_ref().is_none_or(|b| s.key() > b.0.key()) {
             best = Some((s, p, w));
         }
@@ -364,7 +364,7 @@ pub(crate) fn for_groups(solid: &Solid, frags: &[Arc<Frag>]) -> Choice {
     for i in spread(planes.len(), 24) {
         let p = planes[i];
         let mut s = Score::default();
-        fragment_score(frags, &p, &mut s);
+        fragment_score(solid, frags, &p, &mut s);
         let key = (-s.cut, s.below.min(s.above), s.coplanar);
         if best.as_ref().is_none_or(|b| key > b.0) {
             best = Some((key, p));

@@ -223,7 +223,7 @@ fn choose(solid: &Solid, frags: &[Arc<Frag>]) -> Plane {
     for p in planes {
         let (mut cut, mut on, mut below, mut above) = (0i64, 0i64, 0i64, 0i64);
         for f in frags {
-            match f.straddle(&p) {
+            match f.straddle(&p, solid) {
                 (true, true) => {
                     cut += 1;
                     below += 1;

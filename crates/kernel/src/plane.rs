@@ -38,7 +38,13 @@ pub struct Plane {
     pub c: i128,
     nf: [f64; 3],
     cf: f64,
+    /// Every `|n_i| < 2^62` and `|c| < 2^126`: then `n · p - c` fits `i128` for every
+    /// `|p_i| < 2^62`, from 64-bit products (see [`Plane::side_int`]).
+    narrow: bool,
 }
+
+/// Bound of the narrow tier of [`Plane::side_int`].
+const NARROW: u128 = 1 << 62;
 
 impl PartialEq for Plane {
     fn eq(&self, o: &Self) -> bool {
@@ -66,6 +72,7 @@ impl Plane {
             c,
             nf: n.map(|v| v as f64),
             cf: c as f64,
+            narrow: n.iter().all(|v| v.unsigned_abs() < NARROW) && c.unsigned_abs() < 1 << 126,
         }
     }
 
@@ -102,6 +109,7 @@ impl Plane {
             c: -self.c,
             nf: self.nf.map(|v| -v),
             cf: -self.cf,
+            narrow: self.narrow,
         }
     }
 
@@ -118,6 +126,11 @@ impl Plane {
     /// Exact sign of `n · p - c` for an integer point.
     #[inline]
     pub fn side_int(&self, p: &[i64; 3]) -> Sign {
+        if self.narrow && p.iter().all(|v| (v.unsigned_abs() as u128) < NARROW) {
+            // Each product is below 2^124 and the sum below 2^127: no overflow.
+            let m = |k: usize| (self.n[k] as i64 as i128) * (p[k] as i128);
+            return Sign::of_i128(m(0) + m(1) + m(2) - self.c);
+        }
         match dot_minus(&self.n, p, self.c) {
             Some(v) => Sign::of_i128(v),
             None => int::sign_of(&big_side(&self.n, self.c, &p.map(Int::from), &Int::ONE)),
@@ -766,6 +779,47 @@ mod tests {
                 assert_eq!((&got.n, &got.c), (&want.n, &want.c));
                 assert_eq!(got.small, want.small);
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+        /// The 64-bit-product tier of `side_int` agrees with arbitrary precision, at
+        /// and around its bounds (normals, offsets and points near 2^62 and 2^126) and
+        /// on points exactly on the plane.
+        #[test]
+        fn side_int_tiers_agree(
+            nb in proptest::sample::select(vec![3u32, 30, 61, 62, 63, 70]),
+            pb in proptest::sample::select(vec![3u32, 31, 61, 62, 63]),
+            raw in proptest::array::uniform3(proptest::num::i64::ANY),
+            pr in proptest::array::uniform3(proptest::num::i64::ANY),
+            on in proptest::bool::ANY,
+            dc in -2i128..=2,
+        ) {
+            let clip = |v: i64, b: u32| if b >= 63 { v } else { v >> (63 - b) };
+            let n: [i128; 3] = std::array::from_fn(|k| {
+                let v = clip(raw[k], nb.min(63)) as i128;
+                if nb > 63 { v << (nb - 63) } else { v }
+            });
+            let p: [i64; 3] = std::array::from_fn(|k| clip(pr[k], pb));
+            let exact = |c: i128| {
+                let v = Int::from(n[0]) * Int::from(p[0])
+                    + Int::from(n[1]) * Int::from(p[1])
+                    + Int::from(n[2]) * Int::from(p[2])
+                    - Int::from(c);
+                int::sign_of(&v)
+            };
+            // An offset through p (when it fits) or a large one.
+            let through = n[0].checked_mul(p[0] as i128)
+                .and_then(|a| a.checked_add(n[1].checked_mul(p[1] as i128)?))
+                .and_then(|a| a.checked_add(n[2].checked_mul(p[2] as i128)?));
+            let c = match (on, through) {
+                (true, Some(c)) => c.saturating_add(dc),
+                _ => (raw[0] as i128) << 62,
+            };
+            let h = Plane::new(n, c);
+            proptest::prop_assert_eq!(h.side_int(&p), exact(c));
+            proptest::prop_assert_eq!(h.flipped().side_int(&p), -exact(c));
         }
     }
 
