@@ -227,7 +227,15 @@ impl HPoint {
     pub fn from_wide(x: [i128; 3], w: i128) -> HPoint {
         debug_assert!(w != 0);
         let (x, w) = if w < 0 { (x.map(|v| -v), -w) } else { (x, w) };
-        let g = int::gcd_u128(gcd3(&x), w as u128) as i128;
+        // From the denominator on, stopping at 1 (the usual case).
+        let mut g = w as u128;
+        for v in &x {
+            if g == 1 {
+                break;
+            }
+            g = int::gcd_u128(g, v.unsigned_abs());
+        }
+        let g = g as i128;
         let (x, w) = if g > 1 {
             (x.map(|v| v / g), w / g)
         } else {
@@ -707,6 +715,29 @@ impl BigPlane {
 
 /// Exact sign of `det[a; b; c]` of three plane normals (zero when they are dependent).
 pub fn normals_det_sign(a: &Plane, b: &Plane, c: &Plane) -> Sign {
+    // Filter: each shadow component is within u of its integer, the products and sums
+    // add at most 6u more: the computed value is within 9u of the exact one relative to
+    // the permanent `P` (padded, as the side filter, to 32u of the computed `P`).
+    let (x, y, z) = (&a.nf, &b.nf, &c.nf);
+    let m = [
+        (y[1] * z[2], y[2] * z[1]),
+        (y[2] * z[0], y[0] * z[2]),
+        (y[0] * z[1], y[1] * z[0]),
+    ];
+    let det = x[0] * (m[0].0 - m[0].1) + x[1] * (m[1].0 - m[1].1) + x[2] * (m[2].0 - m[2].1);
+    let perm = x[0].abs() * (m[0].0.abs() + m[0].1.abs())
+        + x[1].abs() * (m[1].0.abs() + m[1].1.abs())
+        + x[2].abs() * (m[2].0.abs() + m[2].1.abs());
+    let bound = SIDE_ERR * perm;
+    if det > bound {
+        return Sign::Positive;
+    }
+    if det < -bound {
+        return Sign::Negative;
+    }
+    if [a, b, c].iter().all(|p| !p.n.contains(&i128::MIN)) {
+        return crate::wide::det3_sign(&a.n, &b.n, &c.n);
+    }
     int::sign_of(&dot_big(
         &a.normal_ints(),
         &cross_big(&b.normal_ints(), &c.normal_ints()),
@@ -820,6 +851,25 @@ mod tests {
             let h = Plane::new(n, c);
             proptest::prop_assert_eq!(h.side_int(&p), exact(c));
             proptest::prop_assert_eq!(h.flipped().side_int(&p), -exact(c));
+        }
+    }
+
+    proptest::proptest! {
+        /// The fixed-width determinant of three normals agrees with arbitrary precision.
+        #[test]
+        fn normals_det_tiers_agree(
+            raw in proptest::array::uniform9(proptest::num::i64::ANY),
+            shift in 0u32..64,
+            dependent in proptest::bool::ANY,
+        ) {
+            let v = |k: usize| [0, 1, 2].map(|i| (raw[3 * k + i] as i128) << shift);
+            let (a, b) = (v(0), v(1));
+            // A third normal in the span of the first two when asked (det 0).
+            let c = if dependent { [0, 1, 2].map(|i| a[i] / 2 - b[i] / 2) } else { v(2) };
+            let big = |n: [i128; 3]| n.map(Int::from);
+            let want = int::sign_of(&dot_big(&big(a), &cross_big(&big(b), &big(c))));
+            let pl = |n: [i128; 3]| Plane::new(n, 0);
+            proptest::prop_assert_eq!(normals_det_sign(&pl(a), &pl(b), &pl(c)), want);
         }
     }
 
