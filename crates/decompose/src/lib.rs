@@ -59,6 +59,7 @@ pub use verify::verify;
 
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
+use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
@@ -238,7 +239,7 @@ pub fn decompose(
     } else {
         (cells, 0)
     };
-    let (max_den_bits, pieces) = finish(&cells)?;
+    let (max_den_bits, pieces) = finish(&cells, opts.parallel)?;
     Ok(Decomposition {
         pieces,
         reflex_edges: reflex,
@@ -254,18 +255,20 @@ pub fn decompose(
     })
 }
 
-/// The largest vertex denominator's bits and the cells as polytopes.
-fn finish(cells: &[cell::Cell]) -> Result<(u32, Vec<Polytope>), DecomposeError> {
+/// The largest vertex denominator's bits and the cells as polytopes (in parallel when
+/// asked: a tenth of a tessellated part's decomposition).
+fn finish(cells: &[cell::Cell], parallel: bool) -> Result<(u32, Vec<Polytope>), DecomposeError> {
     let max_den_bits = cells
         .iter()
         .map(|c| c.max_den_bits().saturating_sub(1))
         .max()
         .unwrap_or(0);
-    let pieces = cells
-        .iter()
-        .map(|c| c.to_polytope())
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| DecomposeError::Internal(format!("a piece is not a polytope: {e}")))?;
+    let pieces = if parallel {
+        cells.par_iter().map(|c| c.to_polytope()).collect()
+    } else {
+        cells.iter().map(|c| c.to_polytope()).collect::<Result<Vec<_>, _>>()
+    }
+    .map_err(|e| DecomposeError::Internal(format!("a piece is not a polytope: {e}")))?;
     Ok((max_den_bits, pieces))
 }
 
@@ -317,7 +320,7 @@ pub fn decompose_union(
     } else {
         (cells, 0)
     };
-    let (max_den_bits, pieces) = finish(&cells)?;
+    let (max_den_bits, pieces) = finish(&cells, opts.parallel)?;
     Ok(Decomposition {
         pieces,
         reflex_edges: 0,
