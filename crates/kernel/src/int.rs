@@ -140,7 +140,19 @@ pub fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
             return (gcd_odd_u64(a as u64, b as u64) as u128) << shift;
         }
         let lo = a.min(b);
-        let d = a.max(b) - lo;
+        let hi = a.max(b);
+        if lo >> 64 == 0 {
+            // One Euclid step brings the other below 2^64 too (instead of as many
+            // subtractions as it has bits more); `lo` is odd, so the gcd is, and the
+            // remainder's factors of 2 can go.
+            let r = hi % lo;
+            if r == 0 {
+                return lo << shift;
+            }
+            let r = r >> r.trailing_zeros();
+            return (gcd_odd_u64(lo as u64, r as u64) as u128) << shift;
+        }
+        let d = hi - lo;
         if d == 0 {
             return lo << shift;
         }
@@ -181,6 +193,26 @@ mod tests {
                 assert_eq!(gcd_u128(a, b), x, "gcd({a},{b})");
                 assert_eq!(gcd(&Int::from(a), &-Int::from(b)), Int::from(x));
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// Wide operands, of equal or very different sizes, with a planted common
+        /// factor (odd or even), against Euclid's algorithm.
+        #[test]
+        fn gcd_u128_matches_euclid(
+            a in proptest::num::u128::ANY,
+            b in proptest::num::u128::ANY,
+            sa in 0u32..128,
+            sb in 0u32..128,
+            g in 1u64..1 << 20,
+        ) {
+            let (a, b) = ((a >> sa) / g as u128 * g as u128, (b >> sb) / g as u128 * g as u128);
+            let (mut x, mut y) = (a, b);
+            while y != 0 {
+                (x, y) = (y, x % y);
+            }
+            proptest::prop_assert_eq!(gcd_u128(a, b), x);
         }
     }
 

@@ -735,6 +735,21 @@ pub fn normals_det_sign(a: &Plane, b: &Plane, c: &Plane) -> Sign {
     if det < -bound {
         return Sign::Negative;
     }
+    if a.narrow && b.narrow {
+        // det = c · (a × b); the cross product of normals below 2^62 fits i128.
+        let (x, y) = (&a.n, &b.n);
+        let u = [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ];
+        if u == [0; 3] {
+            return Sign::Zero;
+        }
+        if !c.n.contains(&i128::MIN) {
+            return crate::wide::dot_sign(&u, &c.n);
+        }
+    }
     if [a, b, c].iter().all(|p| !p.n.contains(&i128::MIN)) {
         return crate::wide::det3_sign(&a.n, &b.n, &c.n);
     }
@@ -865,7 +880,11 @@ mod tests {
             let v = |k: usize| [0, 1, 2].map(|i| (raw[3 * k + i] as i128) << shift);
             let (a, b) = (v(0), v(1));
             // A third normal in the span of the first two when asked (det 0).
-            let c = if dependent { [0, 1, 2].map(|i| a[i] / 2 - b[i] / 2) } else { v(2) };
+            let sum = [0, 1, 2].map(|i| a[i].checked_sub(b[i]));
+            let c = match sum {
+                [Some(x), Some(y), Some(z)] if dependent => [x, y, z],
+                _ => v(2),
+            };
             let big = |n: [i128; 3]| n.map(Int::from);
             let want = int::sign_of(&dot_big(&big(a), &cross_big(&big(b), &big(c))));
             let pl = |n: [i128; 3]| Plane::new(n, 0);
