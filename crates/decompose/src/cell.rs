@@ -8,7 +8,7 @@
 
 use apart_kernel::plane::{normals_det_sign, HPoint, Plane};
 use apart_kernel::{int, Aabb, Int, Sign, Vec3};
-use apart_pieces::hull2d::hull_in_plane;
+use apart_pieces::hull2d::{self, hull_in_plane};
 use apart_pieces::{Polytope, PolytopeError};
 use rustc_hash::FxHashMap;
 
@@ -260,6 +260,31 @@ impl Cell {
 
     /// The cell as a [`Polytope`] with the common denominator of its vertices.
     pub fn to_polytope(&self) -> Result<Polytope, PolytopeError> {
+        let (den, pts, on_facet) = self.integer_points();
+        let mut facets = Vec::with_capacity(self.facets.len());
+        for (f, (pl, ids)) in self.facets.iter().zip(on_facet).enumerate() {
+            let normal = Vec3::from_i128(pl.n);
+            let cycle = match self.facet_cycle(f as u32, &ids, &pts, &normal) {
+                Some(c) => c,
+                None => {
+                    let sub: Vec<Vec3> = ids.iter().map(|&v| pts[v as usize].clone()).collect();
+                    hull_in_plane(&normal, &sub)
+                        .into_iter()
+                        .map(|i| ids[i])
+                        .collect()
+                }
+            };
+            if cycle.len() < 3 {
+                return Err(PolytopeError::Flat);
+            }
+            facets.push((normal, cycle));
+        }
+        Ok(Polytope::from_facets(&pts, facets)?.with_den(den))
+    }
+
+    /// The common denominator of the vertices, the vertices times it, and the vertices
+    /// on each facet (in vertex order).
+    fn integer_points(&self) -> (Int, Vec<Vec3>, Vec<Vec<u32>>) {
         let mut den = Int::ONE;
         for v in &self.verts {
             let w = v.p.den();
@@ -281,17 +306,90 @@ impl Cell {
                 on_facet[f as usize].push(v as u32);
             }
         }
-        let mut facets = Vec::with_capacity(self.facets.len());
-        for (pl, ids) in self.facets.iter().zip(on_facet) {
-            let sub: Vec<Vec3> = ids.iter().map(|&v| pts[v as usize].clone()).collect();
-            let normal = Vec3::from_i128(pl.n);
-            let hull = hull_in_plane(&normal, &sub);
-            if hull.len() < 3 {
-                return Err(PolytopeError::Flat);
-            }
-            facets.push((normal, hull.into_iter().map(|i| ids[i]).collect()));
+        (den, pts, on_facet)
+    }
+}
+
+impl Cell {
+    /// The vertices `ids` of facet `f` (points `pts`, outward normal `normal`) in the
+    /// order [`hull_in_plane`] gives them, read off the vertex lists instead of sorted:
+    /// two vertices of a facet are neighbours on it exactly when they lie on a second
+    /// common facet (the two facets meet in the edge between them; the lists are
+    /// complete), so each other facet holds at most two of `ids`. One exact orientation
+    /// then fixes the direction, and the cycle starts where the hull's does. `None` when
+    /// the lists do not make one cycle through every vertex (the hull decides then).
+    fn facet_cycle(&self, f: u32, ids: &[u32], pts: &[Vec3], normal: &Vec3) -> Option<Vec<u32>> {
+        let k = ids.len();
+        if k < 3 {
+            return None;
         }
-        Ok(Polytope::from_facets(&pts, facets)?.with_den(den))
+        // Per other facet, the (up to two) positions in `ids` on it.
+        let mut on: FxHashMap<u32, [u32; 2]> = FxHashMap::default();
+        let mut next = vec![[u32::MAX; 2]; k];
+        for (i, &v) in ids.iter().enumerate() {
+            for &g in &self.verts[v as usize].on {
+                if g == f {
+                    continue;
+                }
+                let e = on.entry(g).or_insert([u32::MAX; 2]);
+                if e[0] == u32::MAX {
+                    e[0] = i as u32;
+                } else if e[1] == u32::MAX {
+                    e[1] = i as u32;
+                    let (a, b) = (e[0] as usize, i);
+                    for (x, y) in [(a, b), (b, a)] {
+                        let slot = next[x].iter_mut().find(|s| **s == u32::MAX)?;
+                        *slot = y as u32;
+                    }
+                } else {
+                    return None;
+                }
+            }
+        }
+        // Walk the cycle from position 0.
+        let mut order = Vec::with_capacity(k);
+        let (mut prev, mut cur) = (u32::MAX, 0u32);
+        for _ in 0..k {
+            order.push(cur as usize);
+            let [a, b] = next[cur as usize];
+            if a == u32::MAX || b == u32::MAX {
+                return None;
+            }
+            let step = if a != prev { a } else { b };
+            (prev, cur) = (cur, step);
+        }
+        if cur != 0 {
+            return None;
+        }
+        let mut seen = vec![false; k];
+        for &i in &order {
+            if std::mem::replace(&mut seen[i], true) {
+                return None;
+            }
+        }
+        // Counter-clockwise in the hull's projection, then from its lexicographically
+        // smallest point, then reversed when the projection is flipped.
+        let (u, v, flip) = hull2d::plane_axes(normal);
+        let p = |i: usize| &pts[ids[order[i]] as usize];
+        let (a, b, c) = (p(0), p(1), p(2));
+        let turn = (b.get(u) - a.get(u)) * (c.get(v) - a.get(v))
+            - (b.get(v) - a.get(v)) * (c.get(u) - a.get(u));
+        if turn == Int::ZERO {
+            return None;
+        }
+        if turn < Int::ZERO {
+            order.reverse();
+        }
+        let key = |i: usize| {
+            let q = &pts[ids[order[i]] as usize];
+            (q.get(u), q.get(v))
+        };
+        let start = (1..k).fold(0, |m, i| if key(i) < key(m) { i } else { m });
+        order.rotate_left(start);
+        if flip {
+            order.reverse();
+        }
+        Some(order.into_iter().map(|i| ids[i]).collect())
     }
 }
 
@@ -316,6 +414,45 @@ pub(crate) fn spans(facets: &[Plane], on: &[u32]) -> bool {
 mod tests {
     use super::*;
     use apart_kernel::Rational;
+
+    /// The facet cycles read off the vertex lists are the hull's, vertex for vertex,
+    /// on cells cut from a box by random planes (many through its vertices, so with
+    /// degenerate vertices on four or more facets) and on their merged unions.
+    #[test]
+    fn facet_cycles_are_the_hulls() {
+        let mut g = apart_testkit::solids::Lcg(7);
+        let mut checked = 0;
+        for _ in 0..60 {
+            let mut cells = vec![Cell::boxed([0, 0, 0], [6, 6, 6])];
+            for _ in 0..6 {
+                let c = cells.swap_remove(0);
+                let r = |g: &mut apart_testkit::solids::Lcg| [0, 1, 2].map(|_| g.range(0, 4) * 2);
+                let (a, b, d) = (r(&mut g), r(&mut g), r(&mut g));
+                let Some(h) = Plane::through(&a, &b, &d) else {
+                    cells.push(c);
+                    continue;
+                };
+                let (lo, hi) = c.split(&h, true);
+                cells.extend(lo);
+                cells.extend(hi);
+            }
+            let (merged, _) = crate::merge::merge(cells.clone());
+            for c in cells.iter().chain(&merged) {
+                let (_, pts, on_facet) = c.integer_points();
+                for (f, ids) in on_facet.iter().enumerate() {
+                    let normal = Vec3::from_i128(c.facets[f].n);
+                    let sub: Vec<Vec3> = ids.iter().map(|&v| pts[v as usize].clone()).collect();
+                    let hull: Vec<u32> = hull_in_plane(&normal, &sub)
+                        .into_iter()
+                        .map(|i| ids[i])
+                        .collect();
+                    assert_eq!(c.facet_cycle(f as u32, ids, &pts, &normal), Some(hull));
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked}");
+    }
 
     #[test]
     fn box_split_diagonally() {

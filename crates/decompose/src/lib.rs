@@ -266,7 +266,10 @@ fn finish(cells: &[cell::Cell], parallel: bool) -> Result<(u32, Vec<Polytope>), 
     let pieces = if parallel {
         cells.par_iter().map(|c| c.to_polytope()).collect()
     } else {
-        cells.iter().map(|c| c.to_polytope()).collect::<Result<Vec<_>, _>>()
+        cells
+            .iter()
+            .map(|c| c.to_polytope())
+            .collect::<Result<Vec<_>, _>>()
     }
     .map_err(|e| DecomposeError::Internal(format!("a piece is not a polytope: {e}")))?;
     Ok((max_den_bits, pieces))
