@@ -503,16 +503,30 @@ pub fn sweep_pairs<T: Coord, B>(
     mut f: impl FnMut(usize, usize) -> ControlFlow<B>,
 ) -> ControlFlow<B> {
     let order = by_low_x(boxes);
-    for (x, &i) in order.iter().enumerate() {
-        let bi = &boxes[i as usize];
-        for &j in &order[x + 1..] {
-            let bj = &boxes[j as usize];
-            if bj.min[0] > bi.max[0] {
-                break;
-            }
-            if bi.overlaps(bj) {
-                f(i as usize, j as usize)?;
-            }
+    for x in 0..order.len() {
+        sweep_step(boxes, &order, x, |i, j| f(i as usize, j as usize))?;
+    }
+    ControlFlow::Continue(())
+}
+
+/// One step of [`sweep_pairs`] at position `x` of the [`by_low_x`] order `order`:
+/// `f(order[x], j)` for every later box `j` whose low x is at most `order[x]`'s high x
+/// and that meets it (a caller can run the steps in slices, in parallel).
+pub fn sweep_step<T: Coord, B>(
+    boxes: &[Aabb<T>],
+    order: &[u32],
+    x: usize,
+    mut f: impl FnMut(u32, u32) -> ControlFlow<B>,
+) -> ControlFlow<B> {
+    let i = order[x];
+    let bi = &boxes[i as usize];
+    for &j in &order[x + 1..] {
+        let bj = &boxes[j as usize];
+        if bj.min[0] > bi.max[0] {
+            break;
+        }
+        if bi.overlaps(bj) {
+            f(i, j)?;
         }
     }
     ControlFlow::Continue(())

@@ -7,13 +7,14 @@ use super::{
     InputPoint, UnionFind, Vertex, VertexId,
 };
 use crate::arc::{point_bbox, Arc};
-use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
+use apart_kernel::bvh::{by_low_x, sweep_pairs_between, sweep_step};
 use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::circle_intersection;
 use apart_kernel::{Aabb, Sign, Vec3};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 use std::hash::{BuildHasher, Hash, Hasher};
+use std::ops::ControlFlow;
 
 /// An input arc on its circle's canonical orientation.
 struct Canon<L> {
@@ -898,11 +899,12 @@ fn candidate_pairs_with<T: Send>(
         let mut count = 0;
         let mut found: Vec<(u32, T)> = Vec::new();
         for x in xs {
-            sweep_from(boxes, &order, x, |i, j| {
+            let _ = sweep_step(boxes, &order, x, |i, j| {
                 count += 1;
                 if let Some(t) = keep(i.min(j) as usize, i.max(j) as usize) {
                     found.push((rank[j as usize], t));
                 }
+                ControlFlow::<()>::Continue(())
             });
         }
         (count, found)
@@ -945,23 +947,6 @@ fn candidate_pairs_with<T: Send>(
             .map(|t| t.expect("every slot filled"))
             .collect(),
     )
-}
-
-/// The pairs the sweep finds at position `x` of the order `order` of `boxes` by low x
-/// (the kernel's [`apart_kernel::bvh::sweep_pairs`], one step): `order[x]` with every
-/// later box whose low x is at most its high x and that meets it.
-fn sweep_from(boxes: &[Aabb<f64>], order: &[u32], x: usize, mut found: impl FnMut(u32, u32)) {
-    let i = order[x];
-    let bi = &boxes[i as usize];
-    for &j in &order[x + 1..] {
-        let bj = &boxes[j as usize];
-        if bj.min[0] > bi.max[0] {
-            break;
-        }
-        if bi.overlaps(bj) {
-            found(i, j);
-        }
-    }
 }
 
 #[cfg(test)]
