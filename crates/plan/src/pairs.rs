@@ -738,13 +738,8 @@ mod tests {
     /// denominators, touching and apart, and directions with zero components).
     #[test]
     fn the_ray_meets_the_box_exactly_when_the_projection_holds_the_direction() {
-        let mut s = 5u64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(5u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         let mut seen = [0usize; 2];
         for _ in 0..400 {
             let cuboid = |next: &mut dyn FnMut(i64) -> i64| {

@@ -930,13 +930,8 @@ mod prune_tests {
     #[test]
     fn pruning_by_chunks_keeps_the_union() {
         // What pair_region does with many sums: prune each chunk, then all kept ones.
-        let mut s = 4242u64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(4242u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         for _ in 0..20 {
             let mut all = Vec::new();
             for _ in 0..30 {
@@ -967,13 +962,8 @@ mod prune_tests {
 
     #[test]
     fn halves_united_give_the_union() {
-        let mut s = 987u64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(987u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         for _ in 0..6 {
             let mut polygons = Vec::new();
             while polygons.len() < 3 * UNION_LEAF {
@@ -1001,13 +991,8 @@ mod prune_tests {
 
     #[test]
     fn the_cap_filter_keeps_every_containment() {
-        let mut s = 12345u64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(12345u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         let mut pruned = 0;
         for _ in 0..200 {
             // Boxes on a small grid, grown copies (nested projections), equal copies and
@@ -1040,13 +1025,8 @@ mod prune_tests {
         // (nested projections), shifted copies, and bases far wider than their height
         // above the origin (nearly hemispheres, the shape of pieces a small gap apart):
         // the float walk must never reject a true containment.
-        let mut s = 99u64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(99u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         let prism = |c: [i64; 2], r: i64, n: usize, z: [i64; 2]| {
             let mut pts = Vec::new();
             for k in 0..n {

@@ -669,13 +669,8 @@ mod tests {
         // through them, and input points at arc end points and midpoints (on the arcs)
         // and elsewhere. The short arcs leave the graph disconnected, so the second
         // build with structural arcs is compared too.
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % m as u64) as i64
-        };
+        let mut rng = apart_testkit::solids::Lcg(0x2545_f491_4f6c_dd1du64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
         let mut point = |r: i64| loop {
             let p = [
                 next(2 * r + 1) - r,
