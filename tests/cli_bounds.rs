@@ -55,14 +55,7 @@ fn cube_off(origin: [i64; 3]) -> String {
             origin[2] + (i >> 2 & 1)
         ));
     }
-    for f in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
+    for f in apart_testkit::solids::CUBOID_QUADS {
         s.push_str(&format!("4 {} {} {} {}\n", f[0], f[1], f[2], f[3]));
     }
     s

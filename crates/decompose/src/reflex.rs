@@ -121,15 +121,7 @@ mod tests {
                 o[2] + (i >> 2),
             ));
         }
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        for q in quads {
+        for q in apart_testkit::solids::CUBOID_QUADS {
             tris.push([base + q[0], base + q[1], base + q[2]]);
             tris.push([base + q[0], base + q[2], base + q[3]]);
         }

@@ -215,31 +215,14 @@ fn off_text(points: &[[i64; 3]], faces: &[Vec<usize>]) -> String {
 }
 
 fn box_faces() -> Vec<Vec<usize>> {
-    // Corner b has x from bit 0, y from bit 1, z from bit 2; faces counter-clockwise
-    // seen from outside.
-    [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ]
-    .iter()
-    .map(|f| f.to_vec())
-    .collect()
+    apart_testkit::solids::CUBOID_QUADS
+        .iter()
+        .map(|f| f.iter().map(|&v| v as usize).collect())
+        .collect()
 }
 
 fn box_points(lo: [i64; 3], hi: [i64; 3]) -> Vec<[i64; 3]> {
-    (0..8)
-        .map(|b| {
-            [
-                if b & 1 != 0 { hi[0] } else { lo[0] },
-                if b & 2 != 0 { hi[1] } else { lo[1] },
-                if b & 4 != 0 { hi[2] } else { lo[2] },
-            ]
-        })
-        .collect()
+    apart_testkit::solids::cuboid_corners(lo, hi)
 }
 
 /// Writes part meshes into `raw/` and lets `apart decompose` write the folder with exact

@@ -40,25 +40,9 @@ pub fn cube(size: i64) -> SheetPart {
 }
 
 fn box_mesh(lo: [i64; 3], hi: [i64; 3]) -> IntMesh {
-    let points: Vec<[i64; 3]> = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            ]
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1], // z = lo, normal −z
-        [4, 5, 7, 6], // z = hi
-        [0, 1, 5, 4], // y = lo
-        [2, 6, 7, 3], // y = hi
-        [0, 4, 6, 2], // x = lo
-        [1, 3, 7, 5], // x = hi
-    ];
+    let points = crate::solids::cuboid_corners(lo, hi);
     let mut triangles = Vec::new();
-    for q in quads {
+    for q in crate::solids::CUBOID_QUADS {
         triangles.push([q[0], q[1], q[2]]);
         triangles.push([q[0], q[2], q[3]]);
     }

@@ -164,6 +164,25 @@ pub fn area2(poly: &[[i64; 2]]) -> i128 {
 #[derive(Clone, Debug)]
 pub struct Lcg(pub u64);
 
+/// The six faces of a cuboid, counter-clockwise seen from outside, as corner indices
+/// into [`cuboid_corners`]: corner `b` takes coordinate `k` from the high end when bit
+/// `k` of `b` is set.
+pub const CUBOID_QUADS: [[u32; 4]; 6] = [
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+];
+
+/// The eight corners of the cuboid `lo..hi`, numbered as [`CUBOID_QUADS`] expects.
+pub fn cuboid_corners<T: Copy>(lo: [T; 3], hi: [T; 3]) -> Vec<[T; 3]> {
+    (0..8)
+        .map(|b| [0, 1, 2].map(|k| if b >> k & 1 == 1 { hi[k] } else { lo[k] }))
+        .collect()
+}
+
 impl Lcg {
     /// Advances the state and returns its high 31 bits.
     pub fn next_bits(&mut self) -> u64 {
