@@ -146,6 +146,27 @@ fn sequence_takes_the_hinge_apart_and_stops_at_linked_rings() {
     let (code, v) = apart_json(&["sequence", &example("linked-rings")]);
     assert_eq!(code, 2);
     assert_eq!(v["interlocked"], true);
+    assert_eq!(v["full_searches"], Value::Null);
+
+    // --first: the rings are found interlocked by the full search all the same.
+    let (code, v) = apart_json(&["sequence", "--first", &example("linked-rings")]);
+    assert_eq!(code, 2);
+    assert_eq!(v["interlocked"], true);
+    assert_eq!(v["full_searches"], 1);
+    let (code, v) = apart_json(&["sequence", "--first", &example("hinge")]);
+    assert_eq!(code, 0);
+    assert_eq!(v["complete"], true);
+    assert_eq!(
+        v["steps"].as_array().unwrap().len(),
+        v["parts"].as_array().unwrap().len() - 1
+    );
+    // It ranks nothing, so it takes no ranking flag.
+    let out = Command::new(env!("CARGO_BIN_EXE_apart"))
+        .args(["sequence", "--first", "--growth", &example("hinge")])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot be used with"));
 }
 
 #[test]

@@ -319,7 +319,7 @@ fn faces_that_cross_become_the_solid_they_enclose_and_a_fold_stays_an_error() {
 
 #[test]
 fn a_bolted_joint_of_five_differently_tessellated_parts_comes_apart_along_its_axis() {
-    use apart::plan::{sequence, BlockingRegions, SequenceOptions};
+    use apart::plan::{sequence, sequence_first, BlockingRegions, Progress, SequenceOptions};
     let dir = folder("joint");
     write_parts(
         &dir,
@@ -358,5 +358,40 @@ fn a_bolted_joint_of_five_differently_tessellated_parts_comes_apart_along_its_ax
         })
         .collect();
     assert_eq!(order, ["nut", "washer", "plate_b", "plate_a"]);
+
+    // The plan along likely directions (`sequence --first`) finds the same: the axis is
+    // the first candidate, and no subassembly needs the full search. Without the base
+    // the bolt may leave too; each step is re-checked by the oracle.
+    for base in [base, None] {
+        let first = sequence_first(
+            parts,
+            &SequenceOptions {
+                base,
+                ..SequenceOptions::default()
+            },
+            &Progress::new(),
+        )
+        .unwrap();
+        assert!(first.complete());
+        assert_eq!(first.full_searches, 0);
+        for s in &first.steps {
+            let rest: Vec<Part> = s.subassembly.iter().map(|&k| parts[k].clone()).collect();
+            let local: Vec<usize> = s
+                .moving
+                .iter()
+                .map(|m| s.subassembly.iter().position(|k| k == m).unwrap())
+                .collect();
+            assert!(oracle_free(&rest, &local, &s.direction), "{s:?}");
+            assert!(s.unit[2].abs() > 0.999, "{:?}", s.unit);
+        }
+        if base.is_some() {
+            let order: Vec<&str> = first
+                .steps
+                .iter()
+                .map(|s| parts[s.moving[0]].name.as_str())
+                .collect();
+            assert_eq!(order, ["nut", "washer", "plate_b", "plate_a"]);
+        }
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

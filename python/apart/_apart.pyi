@@ -42,6 +42,7 @@ class Assembly:
         self,
         *,
         base: Optional[str],
+        first: bool,
         prefer_single: bool,
         prefer_connected: bool,
         prefer_axes: bool,

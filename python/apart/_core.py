@@ -354,18 +354,23 @@ class Assembly:
                               max_per_set=max_per_set, timeout=_timeout(timeout)))
         return DirectionAnswer(raw) if d is not None else Partition(raw)
 
-    def sequence(self, base: Optional[str] = None, *, prefer_single: bool = False,
+    def sequence(self, base: Optional[str] = None, *, first: bool = False,
+                 prefer_single: bool = False,
                  prefer_connected: bool = False, prefer_axes: bool = False,
                  max_depth: Optional[int] = None, growth: bool = False,
                  progress: ProgressArg = None, timeout: Optional[float] = None) -> Sequence:
         """A complete disassembly plan by recursive two-handed partitioning
         (``apart sequence``): ``base`` never moves; the ``prefer_*`` options rank the
         steps as the command line's flags do; ``max_depth`` leaves subassemblies below
-        whole; ``growth`` computes each step's largest uniform growth. Iterate the
-        result for its steps."""
+        whole; ``growth`` computes each step's largest uniform growth. ``first``
+        (``apart sequence --first``) splits each subassembly along the first likely
+        direction that frees a subset, without ranking (much faster on tessellated
+        parts; not with ``prefer_*`` or ``growth``). Iterate the result for its steps."""
         if max_depth is not None and (isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < 1):
             raise InputError(f"max_depth must be an integer of 1 or more, not {max_depth!r}")
-        text, plan = _run(self._inner.sequence_json, progress, base=base,
+        if first and (prefer_single or prefer_connected or prefer_axes or growth):
+            raise InputError("first=True ranks no steps: it takes no prefer_* options and no growth")
+        text, plan = _run(self._inner.sequence_json, progress, base=base, first=bool(first),
                           prefer_single=bool(prefer_single),
                           prefer_connected=bool(prefer_connected),
                           prefer_axes=bool(prefer_axes), max_depth=max_depth,

@@ -319,12 +319,14 @@ fn direction_json(
     Ok(with_facts(v, loaded, units))
 }
 
-/// A disassembly plan, and the plan itself (for its pictures). A run stopped by the
-/// flag has `"status": "stopped"`.
+/// A disassembly plan, and the plan itself (for its pictures); with `first`, each step
+/// along the first likely direction that frees a subset ([`apart_plan::sequence_first`]).
+/// A run stopped by the flag has `"status": "stopped"`.
 pub fn sequence(
     loaded: &Loaded,
     units: Option<&str>,
     opts: &SequenceOptions,
+    first: bool,
     progress: &Progress,
 ) -> Result<(Value, apart_plan::Sequence), PlanError> {
     let asm = &loaded.assembly;
@@ -338,7 +340,10 @@ pub fn sequence(
             pending: Vec::new(),
             stopped: false,
             step_seconds: 0.0,
+            full_searches: 0,
         }
+    } else if first {
+        apart_plan::sequence_first(parts_of(asm)?, opts, progress)?
     } else {
         match BlockingRegions::compute_with(parts_of(asm)?, progress) {
             Ok(regions) => apart_plan::sequence_with(&regions, opts, progress),
@@ -410,6 +415,7 @@ pub fn sequence(
         "stuck": plan.stuck.iter().map(|s| names(s)).collect::<Vec<_>>(),
         "unsplit": plan.unsplit.iter().map(|s| names(s)).collect::<Vec<_>>(),
         "not_yet_split": plan.pending.iter().map(|s| names(s)).collect::<Vec<_>>(),
+        "full_searches": first.then_some(plan.full_searches),
         "seconds": {"total": regions_and_steps, "steps": plan.step_seconds},
     });
     Ok((with_facts(v, loaded, units), plan))

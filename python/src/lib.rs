@@ -256,12 +256,13 @@ impl Assembly {
     /// A disassembly plan (`apart sequence --json`), as JSON text, with the plan for
     /// its pictures (`None` when the run stopped: the command line draws no partial
     /// plan either).
-    #[pyo3(signature = (*, base, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout))]
+    #[pyo3(signature = (*, base, first, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout))]
     #[allow(clippy::too_many_arguments)]
     fn sequence_json(
         &self,
         py: Python<'_>,
         base: Option<String>,
+        first: bool,
         prefer_single: bool,
         prefer_connected: bool,
         prefer_axes: bool,
@@ -298,7 +299,7 @@ impl Assembly {
             stoppable: true,
         };
         let (answer, stop) = run(py, limits, move |p| {
-            answers::sequence(&loaded, units.as_deref(), &opts, p)
+            answers::sequence(&loaded, units.as_deref(), &opts, first, p)
         })?;
         let (mut answer, plan) = answer.map_err(|e| errors::plan_error(py, e))?;
         let plan = (!plan.stopped).then(|| Plan {

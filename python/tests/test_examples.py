@@ -103,6 +103,22 @@ def test_sequence_matches_the_command_line(example, base, cli):
         assert set(step.staying) == set(step.subassembly) - set(step.moving)
 
 
+@pytest.mark.parametrize("example,base", [("tray-of-cubes", "tray"), ("split-star", None)])
+def test_first_sequence_matches_the_command_line(example, base, cli):
+    plan = apart.load(EXAMPLES / example).sequence(base=base, first=True)
+    args = ["sequence", "--first", str(EXAMPLES / example)] + (["--base", base] if base else [])
+    code, j = cli(*args)
+    assert code == 0 and plan.complete and j["full_searches"] == plan.to_dict()["full_searches"]
+    assert [(s.moving, s.subassembly, s.exact_direction, s.cell) for s in plan] == [
+        (tuple(t["moving"]), tuple(t["subassembly"]), tuple(int(c) for c in t["exact_direction"]),
+         t["cell"]) for t in j["steps"]]
+    assert len(plan) == len(plan.parts) - 1
+    if base:
+        assert all(base not in s.moving for s in plan)
+    with pytest.raises(apart.InputError):
+        apart.load(EXAMPLES / example).sequence(first=True, growth=True)
+
+
 def test_sequence_preferences_match_the_command_line(cli):
     asm = apart.load(EXAMPLES / "tray-of-cubes")
     plan = asm.sequence(base="tray", prefer_single=True, prefer_axes=True, growth=True)

@@ -17,8 +17,8 @@ use apart::draw::{
 };
 use apart::plan::sequence::{Choice, Keys};
 use apart::plan::{
-    parts_of, sequence_with, BlockingRegions, CellKind, KeepSolutions, MotionSpace, PlanError,
-    Sequence, SequenceOptions, Step, Tolerance,
+    parts_of, sequence_first, sequence_with, BlockingRegions, CellKind, KeepSolutions, MotionSpace,
+    PlanError, Sequence, SequenceOptions, Step, Tolerance,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -30,6 +30,14 @@ use std::time::Instant;
 pub struct SequenceArgs {
     /// A folder of mesh files, one mesh file, or an assembly.json manifest.
     pub assembly: PathBuf,
+    /// Split each subassembly along the first likely direction that frees a subset of
+    /// it (the axes, the axes of tessellated cylinders, the normals of touching planes,
+    /// each tested exactly), without the pair regions of the whole assembly: much faster
+    /// on tessellated parts. The moving set is the smallest minimal one there; a
+    /// subassembly that no likely direction splits gets the full, ranked search, so the
+    /// plan is as complete as without --first. Steps are not ranked by clearance.
+    #[arg(long, conflicts_with_all = ["prefer_single", "prefer_connected", "prefer_axes", "explain", "growth", "svg", "png"])]
+    pub first: bool,
     /// Prefer steps that move a single part.
     #[arg(long)]
     pub prefer_single: bool,
@@ -164,6 +172,9 @@ struct SequenceJson {
     /// Subassemblies not yet split when --timeout stopped the run (empty otherwise), in
     /// the order they would have been split.
     not_yet_split: Vec<Vec<String>>,
+    /// With --first: subassemblies that no likely direction split, searched in full
+    /// (their own pair regions); null without --first.
+    full_searches: Option<usize>,
     seconds: SecondsJson,
     #[serde(flatten)]
     input: InputFacts,
@@ -188,7 +199,9 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         None => None,
     };
     let t = Instant::now();
-    let regions = {
+    let regions = if args.first {
+        None
+    } else {
         let (_phase, progress) = output::planner(global, "pair regions");
         match BlockingRegions::compute_with(parts_of(asm)?, &progress) {
             Ok(r) => Some(r),
@@ -212,6 +225,10 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         },
     };
     let plan = match &regions {
+        None if args.first => {
+            let (_phase, progress) = output::planner(global, "sequence steps");
+            sequence_first(parts_of(asm)?, &opts, &progress)?
+        }
         // Stopped while the pair regions were computed: no step yet.
         None => Sequence::stopped_before_steps(asm.parts.iter().map(|p| p.name.clone()).collect()),
         Some(regions) => {
@@ -228,9 +245,9 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         || args.html.is_some()
         || args.renders.is_some();
     let stop = output::partial(global, plan.stopped, files);
-    if let Some(regions) = regions.as_ref().filter(|_| stop.is_none()) {
+    if stop.is_none() && (regions.is_some() || args.first) {
         let _phase = output::phase(global, "pictures and exports");
-        pictures(args, asm, regions, &plan)?;
+        pictures(args, asm, regions.as_ref(), &plan)?;
     }
     let step_unit = asm.grid.step();
     let motions = plan.motions();
@@ -260,13 +277,15 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     })
 }
 
+/// The files asked for; the sphere pictures need the pair regions (`None` with
+/// --first, which clap keeps apart from --svg and --png).
 fn pictures(
     args: &SequenceArgs,
     asm: &apart::assembly::Assembly,
-    regions: &BlockingRegions,
+    regions: Option<&BlockingRegions>,
     plan: &Sequence,
 ) -> anyhow::Result<()> {
-    if args.svg.is_some() || args.png.is_some() {
+    if let Some(regions) = regions.filter(|_| args.svg.is_some() || args.png.is_some()) {
         let names = regions.names();
         let base = SphereSvgOptions {
             projection: args.projection.into(),
@@ -410,6 +429,7 @@ fn to_json(
             .collect(),
         stuck: plan.stuck.iter().map(|s| names(plan, s)).collect(),
         unsplit: plan.unsplit.iter().map(|s| names(plan, s)).collect(),
+        full_searches: args.first.then_some(plan.full_searches),
         seconds: SecondsJson {
             load,
             regions,
@@ -597,6 +617,14 @@ fn print_text(
                 d[2]
             ));
         }
+    }
+    if args.first {
+        output::line("");
+        output::line(format_args!(
+            "--first: each step along the first likely direction that frees a subset, not ranked by clearance; {} subassembl{} searched in full",
+            plan.full_searches,
+            if plan.full_searches == 1 { "y" } else { "ies" }
+        ));
     }
     if !global.quiet {
         output::line("");

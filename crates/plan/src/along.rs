@@ -338,15 +338,24 @@ impl<'a> DirectionQuery<'a> {
 
     /// The exact blocking graph at `d`, its minimal moving sets and the cell kind.
     pub fn answer(&self, d: &Vec3) -> Result<DirectionAnswer, PlanError> {
+        let all: Vec<usize> = (0..self.parts.len()).collect();
+        self.answer_in(&all, d)
+    }
+
+    /// [`DirectionQuery::answer`] within the subassembly `sub` (global part indices,
+    /// increasing): the blocking graph among its parts (vertex `k` of [`Dbg`] stands for
+    /// part `sub[k]`), its minimal moving sets in global indices, and the cell kind of `d`
+    /// in the subassembly's motion space.
+    pub fn answer_in(&self, sub: &[usize], d: &Vec3) -> Result<DirectionAnswer, PlanError> {
         let d = d.primitive();
-        let n = self.parts.len();
+        let n = sub.len();
         let mut arcs = Vec::new();
         let mut local: Vec<Vec<SphericalPolygon>> = Vec::new();
         let mut any = false;
-        for i in 0..n {
-            for j in i + 1..n {
+        for (li, &i) in sub.iter().enumerate() {
+            for (lj, &j) in sub.iter().enumerate().skip(li + 1) {
                 let mut keep: Vec<usize> = Vec::new();
-                for (x, arc) in [(d.clone(), (i, j)), (d.neg(), (j, i))] {
+                for (x, arc) in [(d.clone(), (li, lj)), (d.neg(), (lj, li))] {
                     let (blocked, ks) = self.local(i, j, &x)?;
                     if blocked {
                         arcs.push(arc);
@@ -364,9 +373,13 @@ impl<'a> DirectionQuery<'a> {
             }
         }
         let dbg = Dbg::new(n, arcs);
-        let moving = dbg.minimal_moving_sets();
+        let moving = dbg
+            .minimal_moving_sets()
+            .into_iter()
+            .map(|s| s.into_iter().map(|k| sub[k]).collect())
+            .collect();
         let cell = if any {
-            let names: Vec<String> = self.parts.iter().map(|p| p.name.clone()).collect();
+            let names: Vec<String> = sub.iter().map(|&k| self.parts[k].name.clone()).collect();
             let regions = BlockingRegions::from_polygons(names, local);
             let all: Vec<usize> = (0..n).collect();
             MotionSpace::build(&regions, &all).locate(&d).0
@@ -385,6 +398,13 @@ impl<'a> DirectionQuery<'a> {
     /// tessellated cylinders (edge directions shared by many pieces), and normals of
     /// touching planes between different parts; each with both signs.
     pub fn candidates(&self) -> Vec<Vec3> {
+        let all: Vec<usize> = (0..self.parts.len()).collect();
+        self.candidates_in(&all)
+    }
+
+    /// [`DirectionQuery::candidates`] of the subassembly `sub` (global part indices,
+    /// increasing): its pieces' edge directions and the touching planes among its parts.
+    pub fn candidates_in(&self, sub: &[usize]) -> Vec<Vec3> {
         let mut out: Vec<Vec3> = Vec::new();
         let push = |v: Vec3, out: &mut Vec<Vec3>| {
             let v = v.primitive();
@@ -398,7 +418,7 @@ impl<'a> DirectionQuery<'a> {
             push(Vec3::from_i64(e), &mut out);
         }
         let mut count: rustc_hash::FxHashMap<Vec3, usize> = Default::default();
-        for p in self.parts.iter().flat_map(|p| &p.pieces) {
+        for p in sub.iter().flat_map(|&k| &self.parts[k].pieces) {
             for e in p.edge_directions() {
                 *count.entry(e.clone()).or_default() += 1;
             }
@@ -418,9 +438,8 @@ impl<'a> DirectionQuery<'a> {
         // Touching planes: normals of the axes of touching piece pairs (computed lazily:
         // only pairs whose boxes touch or overlap).
         let mut normals: rustc_hash::FxHashMap<Vec3, usize> = Default::default();
-        let n = self.parts.len();
-        for i in 0..n {
-            for j in i + 1..n {
+        for (li, &i) in sub.iter().enumerate() {
+            for &j in &sub[li + 1..] {
                 let found: Vec<Vec3> = self
                     .touching_pairs(i, j)
                     .into_par_iter()
@@ -458,6 +477,20 @@ impl<'a> DirectionQuery<'a> {
     /// (within a relative 1e-6), so the value is the true distance (in floating point) or
     /// at most a millionth more.
     pub fn clearance(&self, d: &Vec3, moving: &[usize]) -> Result<f64, PlanError> {
+        let rest: Vec<usize> = (0..self.parts.len())
+            .filter(|j| !moving.contains(j))
+            .collect();
+        self.clearance_against(d, moving, &rest)
+    }
+
+    /// [`DirectionQuery::clearance`] against the parts `rest` only (global indices; the
+    /// parts of a subassembly that stay).
+    pub fn clearance_against(
+        &self,
+        d: &Vec3,
+        moving: &[usize],
+        rest: &[usize],
+    ) -> Result<f64, PlanError> {
         use std::cmp::Reverse;
         use std::collections::BinaryHeap;
         // Bounds are non-negative, so their bit patterns order like the values.
@@ -465,7 +498,6 @@ impl<'a> DirectionQuery<'a> {
         let key = |bound: f64, p, q, flip, na, nb| -> Key {
             Reverse((bound.max(0.0).to_bits(), p, q, flip, na, nb))
         };
-        let n = self.parts.len();
         let units = [d.unit_f64(), d.neg().unit_f64()];
         let xs = [d.clone(), d.neg()];
         let mut heap: BinaryHeap<Key> = BinaryHeap::new();
@@ -473,7 +505,7 @@ impl<'a> DirectionQuery<'a> {
         // floating-point box of its sum.
         let mut loose: Vec<(f64, usize, usize, bool, usize)> = Vec::new();
         for i in moving.iter().copied() {
-            for j in (0..n).filter(|j| !moving.contains(j)) {
+            for j in rest.iter().copied() {
                 // Map i -> j is P_ab of the pair (min, max) at d when i < j, at −d else.
                 let (p, q, flip) = if i < j { (i, j, false) } else { (j, i, true) };
                 let u = &units[usize::from(flip)];

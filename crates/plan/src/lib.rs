@@ -68,7 +68,8 @@ pub use regions::parts_of;
 pub use regions::{BlockingRegions, Part};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{
-    sequence, sequence_with, KeepSolutions, Sequence, SequenceOptions, Step, Tolerance,
+    sequence, sequence_first, sequence_with, KeepSolutions, Sequence, SequenceOptions, Step,
+    Tolerance,
 };
 
 /// Why planning could not run.

@@ -15,7 +15,9 @@ use apart_kernel::Vec3;
 use apart_minkowski::minkowski_difference;
 use std::time::Instant;
 
+mod first;
 mod rank;
+pub use first::sequence_first;
 pub use rank::{Choice, Criterion, Keys, Rival};
 
 /// Choices a planner wants.
@@ -121,8 +123,11 @@ pub struct Sequence {
     /// Never set by [`sequence`], which takes no [`Progress`].
     pub stopped: bool,
     /// Seconds spent overlaying regions and analysing graphs for the steps (the shared
-    /// pair regions are computed before, once).
+    /// pair regions are computed before, once); for [`sequence_first`], the whole plan.
     pub step_seconds: f64,
+    /// Subassemblies that [`sequence_first`] split (or found interlocked) from their own
+    /// pair regions because no likely direction freed a subset; 0 for [`sequence`].
+    pub full_searches: usize,
 }
 
 impl Sequence {
@@ -162,6 +167,7 @@ impl Sequence {
             },
             stopped: true,
             step_seconds: 0.0,
+            full_searches: 0,
         }
     }
 }
@@ -245,6 +251,7 @@ pub fn sequence_with(
         stopped: !pending.is_empty(),
         pending,
         step_seconds: t.elapsed().as_secs_f64(),
+        full_searches: 0,
     }
 }
 

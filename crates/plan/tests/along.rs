@@ -216,54 +216,13 @@ fn check_first(name: &str, parts: &[Part]) {
             .fold(0.0, f64::max);
         assert!(s.clearance_deg <= most + 1e-6, "{name}: {s:?} vs {most}");
         // And it is that distance: every piece pair's polygon summed and measured.
-        let want = exhaustive_clearance(parts, &s.moving, &s.direction).to_degrees();
+        let rest: Vec<usize> = (0..parts.len()).filter(|k| !s.moving.contains(k)).collect();
+        let want = common::exhaustive_clearance(parts, &s.moving, &rest, &s.direction).to_degrees();
         assert!(
             (s.clearance_deg - want).abs() <= 1e-6 * want.max(1.0),
             "{name}: {s:?}, exhaustively {want}"
         );
     }
-}
-
-/// The angular clearance at `d` of `moving` by brute force: the smallest angle from `d`
-/// to the closed projection of `b ⊕ −a` over every piece `a` of a moving part and `b`
-/// of a fixed one (floating point).
-fn exhaustive_clearance(parts: &[Part], moving: &[usize], d: &Vec3) -> f64 {
-    use apart_kernel::fvec;
-    use apart_minkowski::{minkowski_difference, project, Projection};
-    let u = d.unit_f64();
-    let angle = |a: [f64; 3], b: [f64; 3]| fvec::norm(fvec::cross(a, b)).atan2(fvec::dot(a, b));
-    let mut best = std::f64::consts::PI;
-    for i in moving.iter().copied() {
-        for j in (0..parts.len()).filter(|j| !moving.contains(j)) {
-            for a in &parts[i].pieces {
-                for b in &parts[j].pieces {
-                    let m = minkowski_difference(b, a).unwrap();
-                    let Projection::Polygon(p) = project(&m).unwrap() else {
-                        return 0.0;
-                    };
-                    if p.contains_closed(d) {
-                        return 0.0;
-                    }
-                    for arc in p.boundary() {
-                        let (s, e) = (arc.start.unit_f64(), arc.end.unit_f64());
-                        let n = fvec::normalize(arc.normal.unit_f64());
-                        // The nearest point of the arc's circle, if it is on the arc.
-                        let q = fvec::sub(u, fvec::scale(n, fvec::dot(u, n)));
-                        let on = fvec::norm(q) > 1e-12
-                            && fvec::dot(fvec::cross(s, q), n) >= 0.0
-                            && fvec::dot(fvec::cross(q, e), n) >= 0.0;
-                        let dist = if on {
-                            angle(u, fvec::normalize(q))
-                        } else {
-                            angle(u, s).min(angle(u, e))
-                        };
-                        best = best.min(dist);
-                    }
-                }
-            }
-        }
-    }
-    best
 }
 
 #[test]

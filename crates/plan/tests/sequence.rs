@@ -3,7 +3,10 @@
 mod common;
 
 use apart_kernel::Vec3;
-use apart_plan::{sequence, BlockingRegions, CellKind, Part, Sequence, SequenceOptions, Tolerance};
+use apart_plan::{
+    sequence, sequence_first, BlockingRegions, CellKind, MotionSpace, Part, Progress, Sequence,
+    SequenceOptions, Tolerance,
+};
 use common::check_plan;
 use proptest::prelude::*;
 
@@ -261,5 +264,193 @@ fn kept_solutions_are_those_of_partitioning_the_step() {
                 assert_eq!(bare(&one.steps[k]), plain.steps[k]);
             }
         }
+    }
+}
+
+/// [`sequence_first`], every step re-checked by the oracle (`check_plan`).
+fn plan_first(parts: &[Part], opts: &SequenceOptions) -> Sequence {
+    let p = sequence_first(parts, opts, &Progress::new()).unwrap();
+    check_plan(parts, &p);
+    p
+}
+
+/// Each step of a `sequence_first` plan lies in a cell of the kind it says, in the full
+/// motion space of its subassembly, and moves a minimal moving set there (no proper
+/// subset of it is free against the rest of the subassembly, by the oracle).
+fn check_first_steps(name: &str, parts: &[Part], p: &Sequence) {
+    let regions = BlockingRegions::compute(parts).unwrap();
+    let oracle = common::oracle::Oracle::new(parts);
+    for s in &p.steps {
+        let ms = MotionSpace::build(&regions, &s.subassembly);
+        assert_eq!(ms.locate(&s.direction).0, s.cell, "{name}: {s:?}");
+        let rest: Vec<usize> = s
+            .subassembly
+            .iter()
+            .copied()
+            .filter(|k| !s.moving.contains(k))
+            .collect();
+        if s.cell == CellKind::Face {
+            // The distance to the nearest blocked direction, every piece pair summed (0
+            // when the direction slides along a contact at the edge of its face).
+            let want =
+                common::exhaustive_clearance(parts, &s.moving, &rest, &s.direction).to_degrees();
+            assert!(
+                (s.clearance_deg - want).abs() <= 1e-6 * want.max(1.0),
+                "{name}: {s:?}, exhaustively {want}"
+            );
+        } else {
+            assert_eq!(s.clearance_deg, 0.0, "{name}: {s:?}");
+        }
+        for drop in &s.moving {
+            let smaller: Vec<usize> = s.moving.iter().copied().filter(|k| k != drop).collect();
+            if smaller.is_empty() {
+                continue;
+            }
+            let others: Vec<usize> = s
+                .subassembly
+                .iter()
+                .copied()
+                .filter(|k| !smaller.contains(k))
+                .collect();
+            // A minimal moving set is a sink of the blocking graph with no smaller one in
+            // it, so each of its proper subsets is blocked by the rest of the set.
+            let free = oracle.free(&smaller, &others, &s.direction);
+            assert!(!free, "{name}: {smaller:?} of {s:?} is free");
+        }
+    }
+}
+
+#[test]
+fn first_plans_are_valid_and_as_complete_as_ranked_ones() {
+    let cases: Vec<(&str, Vec<Part>)> = vec![
+        ("split star", common::split_star()),
+        ("linked rings", common::linked_rings()),
+        ("dovetail", common::dovetail()),
+        ("peg in hole", common::peg_in_hole()),
+        ("stacked cubes", common::stacked_cubes()),
+        ("cubes in a row", common::cubes_in_a_row(4)),
+        ("block", common::lattice(2, 0)),
+        ("channels", common::lattice(2, 1)),
+        ("random boxes", common::random_box_parts(24, 5, 7)),
+        ("random boxes 2", common::random_box_parts(30, 6, 11)),
+    ];
+    for (name, parts) in cases {
+        let first = plan_first(&parts, &SequenceOptions::default());
+        let ranked = plan(&parts, &SequenceOptions::default());
+        assert_eq!(first.complete(), ranked.complete(), "{name}");
+        assert_eq!(
+            first.steps.len() + first.stuck.iter().map(|s| s.len() - 1).sum::<usize>(),
+            parts.len() - 1,
+            "{name}"
+        );
+        check_first_steps(name, &parts, &first);
+    }
+}
+
+#[test]
+fn first_plans_find_interlocked_subassemblies_by_the_full_search() {
+    let p = plan_first(&common::linked_rings(), &SequenceOptions::default());
+    assert!(p.steps.is_empty());
+    assert_eq!(p.stuck, vec![vec![0, 1]]);
+    assert_eq!(p.full_searches, 1);
+}
+
+#[test]
+fn first_plans_keep_the_base_still() {
+    for base in 0..4 {
+        let p = plan_first(
+            &common::cubes_in_a_row(4),
+            &SequenceOptions {
+                base: Some(base),
+                ..Default::default()
+            },
+        );
+        assert!(p.complete());
+        assert!(
+            p.steps.iter().all(|s| !s.moving.contains(&base)),
+            "base {base}: {:?}",
+            p.steps
+        );
+    }
+}
+
+/// A tetrahedron seated in a pocket of three walls, each a prism over one of its faces
+/// at the apex: it can leave only inside the narrow cone of its edges from the apex
+/// (about 7° around (3, 5, 7)), which holds no axis, no edge direction shared by four
+/// pieces, and no normal of a touching plane (the faces' normals at the apex meet at
+/// obtuse angles). So no likely direction frees anything and the full search must split
+/// the pair; a far cube, part 0, makes the pair's indices global ones (1 and 2).
+#[test]
+fn first_plans_fall_back_to_the_full_search() {
+    let (a, b, c, e) = ([0, 0, 0], [40, 44, 70], [28, 58, 65], [22, 48, 75]);
+    let tet = common::hull(&[a, b, c, e]);
+    let cross = |u: [i64; 3], v: [i64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let dot = |u: [i64; 3], v: [i64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let mut walls = Vec::new();
+    let mut normals = Vec::new();
+    for (p, q, opposite) in [(b, c, e), (c, e, b), (e, b, c)] {
+        let mut m = cross(p, q);
+        if dot(m, opposite) > 0 {
+            m = [-m[0], -m[1], -m[2]];
+        }
+        let up = |x: [i64; 3]| [x[0] + m[0], x[1] + m[1], x[2] + m[2]];
+        walls.push(common::hull(&[a, p, q, up(a), up(p), up(q)]));
+        normals.push(m);
+    }
+    // The premise: the outward normals at the apex pairwise obtuse.
+    for i in 0..3 {
+        assert!(dot(normals[i], normals[(i + 1) % 3]) < 0);
+    }
+    let parts = vec![
+        common::part("far", vec![common::cuboid([-1000, 0, 0], [-990, 10, 10])]),
+        common::part("walls", walls),
+        common::part("tet", vec![tet]),
+    ];
+    let p = plan_first(&parts, &SequenceOptions::default());
+    assert!(p.complete(), "{p:?}");
+    assert_eq!(p.full_searches, 1);
+    assert_eq!(p.steps[0].moving, vec![0]);
+    let last = &p.steps[1];
+    assert_eq!(last.subassembly, vec![1, 2]);
+    assert_eq!(last.cell, CellKind::Face);
+    // Whichever side moves, the tetrahedron's motion relative to the walls lies strictly
+    // inside the cone of its edges (positive in all three edge-face normals' opposites).
+    let d = last
+        .direction
+        .to_strings()
+        .map(|s| s.parse::<i64>().unwrap());
+    let d = if last.moving == vec![2] {
+        d
+    } else {
+        d.map(|x| -x)
+    };
+    for m in &normals {
+        assert!(dot(*m, d) < 0, "{last:?}");
+    }
+    check_first_steps("pocket", &parts, &p);
+    // The ranked plan agrees that the pair splits only inside that cone.
+    let ranked = plan(&parts, &SequenceOptions::default());
+    assert!(ranked.complete());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Random box assemblies: `sequence_first` is valid by the oracle and complete
+    /// exactly when the ranked plan is.
+    #[test]
+    fn random_first_plans_match_the_ranked_ones(n in 6usize..20, k in 2usize..6, seed in 0u64..1000) {
+        let parts = common::random_box_parts(n, k, seed);
+        prop_assume!(parts.len() >= 2);
+        let first = plan_first(&parts, &SequenceOptions::default());
+        let ranked = plan(&parts, &SequenceOptions::default());
+        prop_assert_eq!(first.complete(), ranked.complete());
+        check_first_steps("random", &parts, &first);
     }
 }

@@ -239,3 +239,45 @@ pub fn check_plan(parts: &[Part], plan: &Sequence) {
         assert!(open.contains(s));
     }
 }
+
+/// The angular clearance at `d` of `moving` by brute force: the smallest angle from `d`
+/// to the closed projection of `b ⊕ −a` over every piece `a` of a moving part and `b`
+/// of a part of `rest` (floating point).
+pub fn exhaustive_clearance(parts: &[Part], moving: &[usize], rest: &[usize], d: &Vec3) -> f64 {
+    use apart_kernel::fvec;
+    use apart_minkowski::{minkowski_difference, project, Projection};
+    let u = d.unit_f64();
+    let angle = |a: [f64; 3], b: [f64; 3]| fvec::norm(fvec::cross(a, b)).atan2(fvec::dot(a, b));
+    let mut best = std::f64::consts::PI;
+    for i in moving.iter().copied() {
+        for j in rest.iter().copied() {
+            for a in &parts[i].pieces {
+                for b in &parts[j].pieces {
+                    let m = minkowski_difference(b, a).unwrap();
+                    let Projection::Polygon(p) = project(&m).unwrap() else {
+                        return 0.0;
+                    };
+                    if p.contains_closed(d) {
+                        return 0.0;
+                    }
+                    for arc in p.boundary() {
+                        let (s, e) = (arc.start.unit_f64(), arc.end.unit_f64());
+                        let n = fvec::normalize(arc.normal.unit_f64());
+                        // The nearest point of the arc's circle, if it is on the arc.
+                        let q = fvec::sub(u, fvec::scale(n, fvec::dot(u, n)));
+                        let on = fvec::norm(q) > 1e-12
+                            && fvec::dot(fvec::cross(s, q), n) >= 0.0
+                            && fvec::dot(fvec::cross(q, e), n) >= 0.0;
+                        let dist = if on {
+                            angle(u, fvec::normalize(q))
+                        } else {
+                            angle(u, s).min(angle(u, e))
+                        };
+                        best = best.min(dist);
+                    }
+                }
+            }
+        }
+    }
+    best
+}
