@@ -1058,12 +1058,16 @@ mod snapping {
         if n == [0.0; 3] {
             return None;
         }
-        let noise = NOISE * max_abs(t.iter().chain(f));
         let z = |x: F3| dot(n, sub(x, f[0]));
-        // The part of `t` over `f` lies between the heights of `t`'s corners.
+        // The part of `t` over `f` lies between the heights of `t`'s corners. (Most
+        // pairs end at the first test, before the noise bound is computed.)
         let zt = t.map(z);
         let (lo, hi) = (zt[0].min(zt[1]).min(zt[2]), zt[0].max(zt[1]).max(zt[2]));
-        if !(lo < -noise) || hi < -cap || -lo <= floor {
+        if lo >= 0.0 || hi < -cap || -lo <= floor {
+            return None;
+        }
+        let noise = NOISE * max_abs(t.iter().chain(f));
+        if !(lo < -noise) {
             return None;
         }
         let mut walls = [(f[0], n); 3];

@@ -96,7 +96,7 @@ impl Frag {
     /// exact side test).
     pub fn in_plane(&self, h: &Plane, solid: &Solid) -> bool {
         let own = &solid.planes[self.tri as usize];
-        own.n == h.n && own.c == h.c || own.n == h.n.map(|v| -v) && own.c == -h.c
+        own == h || own.is_flip_of(h)
     }
 
     /// Whether some vertex is strictly below and some strictly above `h`.

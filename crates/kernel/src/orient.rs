@@ -108,7 +108,9 @@ pub fn cross(u: &P3, v: &P3) -> [i128; 3] {
 /// True when `a`, `b`, `c` are collinear (including coincident).
 #[inline]
 pub fn collinear(a: &P3, b: &P3, c: &P3) -> bool {
-    normal(a, b, c) == [0, 0, 0]
+    // Component by component: `==` on `[i128; 3]` compiles to a `memcmp` call.
+    let n = normal(a, b, c);
+    n[0] == 0 && n[1] == 0 && n[2] == 0
 }
 
 /// The axis along which `n` has its largest magnitude (the one to drop when projecting

@@ -48,7 +48,16 @@ const NARROW: u128 = 1 << 62;
 
 impl PartialEq for Plane {
     fn eq(&self, o: &Self) -> bool {
-        self.n == o.n && self.c == o.c
+        // The offset first (it tells most planes apart), then the normal component by
+        // component (`==` on `[i128; 3]` compiles to a `memcmp` call).
+        self.c == o.c && self.n[0] == o.n[0] && self.n[1] == o.n[1] && self.n[2] == o.n[2]
+    }
+}
+
+impl Plane {
+    /// Whether `o` is this plane with its sides swapped (`−n · x = −c`).
+    pub fn is_flip_of(&self, o: &Plane) -> bool {
+        self.c == -o.c && self.n[0] == -o.n[0] && self.n[1] == -o.n[1] && self.n[2] == -o.n[2]
     }
 }
 impl Eq for Plane {}
