@@ -34,6 +34,8 @@ use std::sync::OnceLock;
 pub(crate) struct PieceInfo {
     /// The box of the piece's integer vertices (the piece's box times its denominator).
     bounds: Aabb<Int>,
+    /// The piece's box in true coordinates, floating point (for preferences only).
+    pub(crate) float_bounds: ([f64; 3], [f64; 3]),
     /// `bounds` in machine integers when the piece is on the grid itself (denominator 1)
     /// and every bound is below 2^61: the ray–box test's fast path.
     small: Option<Aabb>,
@@ -56,7 +58,12 @@ impl PieceInfo {
             }),
             _ => None,
         };
+        let float = |c: &[Int; 3]| {
+            c.clone()
+                .map(|v| apart_kernel::Rational::new(v, p.den().clone()).to_f64())
+        };
         PieceInfo {
+            float_bounds: (float(&lo), float(&hi)),
             bounds: Aabb { min: lo, max: hi },
             small,
             fixed: OnceLock::new(),
