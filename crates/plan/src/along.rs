@@ -816,7 +816,7 @@ fn ray_depth(a: ([f64; 3], [f64; 3]), b: ([f64; 3], [f64; 3]), u: &[f64; 3]) -> 
             t1 = t1.min(p.max(q));
         }
     }
-    if t1 < t0 || t1.is_nan() || !t1.is_finite() {
+    if t1 < t0 || !t1.is_finite() {
         return 0.0;
     }
     let t = 0.5 * (t0 + t1);
