@@ -45,4 +45,6 @@ row plug-20k plug:20000 partition
 row nut-64 nut:64 partition
 row joint-same-5k joint-same:128 sequence
 row joint-5k joint:128 sequence --tolerance auto
+row joint-5k joint:128 sequence --first --tolerance auto
 row joint-50k joint:1250 sequence --tolerance auto
+row joint-50k joint:1250 sequence --first --tolerance auto
