@@ -332,16 +332,7 @@ pub fn sequence(
     let asm = &loaded.assembly;
     let t = std::time::Instant::now();
     let plan = if asm.parts.len() < 2 {
-        apart_plan::Sequence {
-            names: asm.parts.iter().map(|p| p.name.clone()).collect(),
-            steps: Vec::new(),
-            stuck: Vec::new(),
-            unsplit: Vec::new(),
-            pending: Vec::new(),
-            stopped: false,
-            step_seconds: 0.0,
-            full_searches: 0,
-        }
+        apart_plan::Sequence::empty(asm.parts.iter().map(|p| p.name.clone()).collect())
     } else if first {
         apart_plan::sequence_first(parts_of(asm)?, opts, progress)?
     } else {

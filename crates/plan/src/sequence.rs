@@ -151,23 +151,33 @@ impl Sequence {
         self.stuck.is_empty() && self.unsplit.is_empty() && self.pending.is_empty()
     }
 
-    /// The plan of a run stopped before its first step (while the pair regions were
-    /// computed): no step, the whole assembly pending.
-    pub fn stopped_before_steps(names: Vec<String>) -> Sequence {
-        let n = names.len();
+    /// A plan of no step yet for parts `names`: nothing split, nothing pending (the plan
+    /// of an assembly of one part).
+    pub fn empty(names: Vec<String>) -> Sequence {
         Sequence {
             names,
             steps: Vec::new(),
             stuck: Vec::new(),
             unsplit: Vec::new(),
+            pending: Vec::new(),
+            stopped: false,
+            step_seconds: 0.0,
+            full_searches: 0,
+        }
+    }
+
+    /// The plan of a run stopped before its first step (while the pair regions were
+    /// computed): no step, the whole assembly pending.
+    pub fn stopped_before_steps(names: Vec<String>) -> Sequence {
+        let n = names.len();
+        Sequence {
             pending: if n >= 2 {
                 vec![(0..n).collect()]
             } else {
                 Vec::new()
             },
             stopped: true,
-            step_seconds: 0.0,
-            full_searches: 0,
+            ..Sequence::empty(names)
         }
     }
 }
@@ -188,14 +198,44 @@ pub fn sequence_with(
     opts: &SequenceOptions,
     progress: &Progress,
 ) -> Sequence {
+    // Steps found so far: the index of the next one, for `keep_solutions`.
+    let mut found_steps = 0;
+    let split = split_recursively(regions.names().to_vec(), opts, progress, |sub, inner| {
+        let keep = opts.keep_solutions.keeps(found_steps);
+        let found = best_step_with(regions, sub, opts, keep, inner).map(|found| {
+            found.map(|mut step| {
+                if opts.tolerance {
+                    step.tolerance = Some(growth_tolerance(regions, &step));
+                }
+                step
+            })
+        });
+        if matches!(found, Ok(Some(_))) {
+            found_steps += 1;
+        }
+        Ok::<_, std::convert::Infallible>(found)
+    });
+    match split {
+        Ok(plan) => plan,
+        Err(never) => match never {},
+    }
+}
+
+/// The recursion of both planners: splits the whole assembly of parts `names`, then
+/// depth-first the side that moved before the side that stayed, each subassembly by
+/// `step` (given it and the silent progress for its own phases; `Ok(None)`:
+/// interlocked, `Err(Stopped)`: the flag rose), honouring `opts.max_depth`, reporting
+/// the splits made ([`phases::SEQUENCE`]) and watching the stop flag before each step.
+fn split_recursively<E>(
+    names: Vec<String>,
+    opts: &SequenceOptions,
+    progress: &Progress,
+    mut step: impl FnMut(&[usize], &Progress) -> Result<Result<Option<Step>, Stopped>, E>,
+) -> Result<Sequence, E> {
     let t = Instant::now();
-    let n = regions.part_count();
-    let all: Vec<usize> = (0..n).collect();
-    let mut stack = vec![(all, 0usize)];
-    let mut steps = Vec::new();
-    let mut stuck = Vec::new();
-    let mut unsplit = Vec::new();
-    let mut pending = Vec::new();
+    let n = names.len();
+    let mut plan = Sequence::empty(names);
+    let mut stack = vec![((0..n).collect::<Vec<usize>>(), 0usize)];
     let total = n.saturating_sub(1);
     let mut done = 0;
     progress.report(phases::SEQUENCE, 0, total);
@@ -207,35 +247,31 @@ pub fn sequence_with(
             continue;
         }
         if progress.stopped() {
-            pending.push(sub);
+            plan.pending.push(sub);
             continue;
         }
         if opts.max_depth.is_some_and(|m| depth >= m) {
             done += sub.len() - 1;
             progress.report(phases::SEQUENCE, done, total);
-            unsplit.push(sub);
+            plan.unsplit.push(sub);
             continue;
         }
-        let keep = opts.keep_solutions.keeps(steps.len());
-        match best_step_with(regions, &sub, opts, keep, &inner) {
-            Err(Stopped) => pending.push(sub),
+        match step(&sub, &inner)? {
+            Err(Stopped) => plan.pending.push(sub),
             Ok(None) => {
                 done += sub.len() - 1;
                 progress.report(phases::SEQUENCE, done, total);
-                stuck.push(sub)
+                plan.stuck.push(sub)
             }
             Ok(Some(mut step)) => {
                 step.depth = depth;
-                if opts.tolerance {
-                    step.tolerance = Some(growth_tolerance(regions, &step));
-                }
                 let rest: Vec<usize> = sub
                     .iter()
                     .copied()
                     .filter(|k| !step.moving.contains(k))
                     .collect();
                 let moving = step.moving.clone();
-                steps.push(step);
+                plan.steps.push(step);
                 done += 1;
                 progress.report(phases::SEQUENCE, done, total);
                 stack.push((rest, depth + 1));
@@ -243,16 +279,9 @@ pub fn sequence_with(
             }
         }
     }
-    Sequence {
-        names: regions.names().to_vec(),
-        steps,
-        stuck,
-        unsplit,
-        stopped: !pending.is_empty(),
-        pending,
-        step_seconds: t.elapsed().as_secs_f64(),
-        full_searches: 0,
-    }
+    plan.stopped = !plan.pending.is_empty();
+    plan.step_seconds = t.elapsed().as_secs_f64();
+    Ok(plan)
 }
 
 /// The preferred way to split `sub`, or `None` when it is interlocked.

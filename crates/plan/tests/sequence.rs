@@ -82,14 +82,18 @@ fn plans_are_deterministic() {
 
 #[test]
 fn base_part_never_moves() {
-    for base in 0..4 {
-        let p = plan(
-            &common::cubes_in_a_row(4),
-            &SequenceOptions {
-                base: Some(base),
-                ..Default::default()
-            },
-        );
+    let parts = common::cubes_in_a_row(4);
+    for (base, first) in (0..4).flat_map(|b| [(b, false), (b, true)]) {
+        let opts = SequenceOptions {
+            base: Some(base),
+            ..Default::default()
+        };
+        // Both planners: ranked, and along the first likely direction.
+        let p = if first {
+            plan_first(&parts, &opts)
+        } else {
+            plan(&parts, &opts)
+        };
         assert!(p.complete());
         assert!(
             p.steps.iter().all(|s| !s.moving.contains(&base)),
@@ -353,25 +357,6 @@ fn first_plans_find_interlocked_subassemblies_by_the_full_search() {
     assert!(p.steps.is_empty());
     assert_eq!(p.stuck, vec![vec![0, 1]]);
     assert_eq!(p.full_searches, 1);
-}
-
-#[test]
-fn first_plans_keep_the_base_still() {
-    for base in 0..4 {
-        let p = plan_first(
-            &common::cubes_in_a_row(4),
-            &SequenceOptions {
-                base: Some(base),
-                ..Default::default()
-            },
-        );
-        assert!(p.complete());
-        assert!(
-            p.steps.iter().all(|s| !s.moving.contains(&base)),
-            "base {base}: {:?}",
-            p.steps
-        );
-    }
 }
 
 /// A tetrahedron seated in a pocket of three walls, each a prism over one of its faces

@@ -13,14 +13,15 @@
 //! subset of it. (Whether a subassembly can be split depends on its parts alone, so
 //! any split of a plan that can be completed leaves parts that can be split again.)
 
-use super::{best_step_with, phases, rank, Choice, Keys, Sequence, SequenceOptions, Step};
+use super::{
+    best_step_with, rank, split_recursively, Choice, Keys, Sequence, SequenceOptions, Step,
+};
 use crate::along::DirectionQuery;
 use crate::motion_space::CellKind;
 use crate::progress::{Progress, Stopped};
 use crate::regions::{BlockingRegions, Part};
 use crate::PlanError;
 use apart_kernel::Vec3;
-use std::time::Instant;
 
 /// A complete disassembly plan whose steps move along the first likely direction that
 /// frees a subset ([module docs](self)), falling back to the full pair regions of a
@@ -40,70 +41,19 @@ pub fn sequence_first(
     opts: &SequenceOptions,
     progress: &Progress,
 ) -> Result<Sequence, PlanError> {
-    let t = Instant::now();
     let query = DirectionQuery::new(parts)?;
-    let n = parts.len();
-    let mut stack = vec![((0..n).collect::<Vec<usize>>(), 0usize)];
-    let mut plan = Sequence {
-        names: parts.iter().map(|p| p.name.clone()).collect(),
-        steps: Vec::new(),
-        stuck: Vec::new(),
-        unsplit: Vec::new(),
-        pending: Vec::new(),
-        stopped: false,
-        step_seconds: 0.0,
-        full_searches: 0,
-    };
-    let total = n.saturating_sub(1);
-    let mut done = 0;
-    progress.report(phases::SEQUENCE, 0, total);
-    let inner = progress.silent();
-    while let Some((sub, depth)) = stack.pop() {
-        if sub.len() < 2 {
-            continue;
-        }
-        if progress.stopped() {
-            plan.pending.push(sub);
-            continue;
-        }
-        if opts.max_depth.is_some_and(|m| depth >= m) {
-            done += sub.len() - 1;
-            progress.report(phases::SEQUENCE, done, total);
-            plan.unsplit.push(sub);
-            continue;
-        }
-        let found = match likely_step(&query, &sub, opts)? {
-            Some(step) => Ok(Some(step)),
+    let names = parts.iter().map(|p| p.name.clone()).collect();
+    let mut full_searches = 0;
+    let mut plan = split_recursively(names, opts, progress, |sub, inner| {
+        match likely_step(&query, sub, opts)? {
+            Some(step) => Ok(Ok(Some(step))),
             None => {
-                plan.full_searches += 1;
-                full_step(parts, &sub, opts, &inner)?
-            }
-        };
-        match found {
-            Err(Stopped) => plan.pending.push(sub),
-            Ok(None) => {
-                done += sub.len() - 1;
-                progress.report(phases::SEQUENCE, done, total);
-                plan.stuck.push(sub);
-            }
-            Ok(Some(mut step)) => {
-                step.depth = depth;
-                let rest: Vec<usize> = sub
-                    .iter()
-                    .copied()
-                    .filter(|k| !step.moving.contains(k))
-                    .collect();
-                let moving = step.moving.clone();
-                plan.steps.push(step);
-                done += 1;
-                progress.report(phases::SEQUENCE, done, total);
-                stack.push((rest, depth + 1));
-                stack.push((moving, depth + 1));
+                full_searches += 1;
+                full_step(parts, sub, opts, inner)
             }
         }
-    }
-    plan.stopped = !plan.pending.is_empty();
-    plan.step_seconds = t.elapsed().as_secs_f64();
+    })?;
+    plan.full_searches = full_searches;
     Ok(plan)
 }
 
