@@ -6,6 +6,7 @@
 
 use apart_assembly::{load, LoadError, LoadOptions, Loaded, Problem, Severity};
 use apart_formats::{off, Polygons, RawObject};
+use apart_testkit::solids::{cuboid_corners, CUBOID_QUADS};
 use apart_testkit::Scratch;
 use std::path::Path;
 use std::sync::mpsc;
@@ -17,23 +18,8 @@ fn tmp(name: &str) -> Scratch {
 
 /// The box `lo..hi` with outward quadrilateral faces.
 fn boxed(lo: [f64; 3], hi: [f64; 3]) -> RawObject {
-    let vertices = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            ]
-        })
-        .collect();
-    let faces = Polygons::from(vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ]);
+    let vertices = cuboid_corners(lo, hi);
+    let faces = Polygons::from(CUBOID_QUADS.iter().map(|q| q.to_vec()).collect::<Vec<_>>());
     RawObject {
         name: None,
         vertices,

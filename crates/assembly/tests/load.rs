@@ -5,6 +5,7 @@ use apart_assembly::{load, LoadError, LoadOptions, Stage};
 use apart_formats::{obj, off, stl, Polygons, RawObject};
 use apart_kernel::{Int, Rational};
 use apart_mesh::Severity;
+use apart_testkit::solids::{cuboid_corners, CUBOID_QUADS};
 use apart_testkit::Scratch;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
@@ -14,23 +15,8 @@ fn tmp(name: &str) -> Scratch {
 }
 
 fn boxed(name: Option<&str>, lo: [f64; 3], hi: [f64; 3]) -> RawObject {
-    let vertices = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            ]
-        })
-        .collect();
-    let faces = Polygons::from(vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ]);
+    let vertices = cuboid_corners(lo, hi);
+    let faces = Polygons::from(CUBOID_QUADS.iter().map(|q| q.to_vec()).collect::<Vec<_>>());
     RawObject {
         name: name.map(str::to_string),
         vertices,

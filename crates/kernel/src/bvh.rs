@@ -600,13 +600,8 @@ mod tests {
     #[test]
     fn query_matches_brute_force() {
         let mut boxes = Vec::new();
-        let mut s = 12345u64;
-        let mut rnd = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) as i64) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(12345);
+        let mut rnd = |m: i64| rng.below(m as u64) as i64;
         for _ in 0..1000 {
             let p = [rnd(1000), rnd(1000), rnd(1000)];
             let d = [rnd(50), rnd(50), rnd(50)];
@@ -652,13 +647,8 @@ mod tests {
     /// upper half of each split (by box centres along the longest axis) before the lower.
     #[test]
     fn median_split_order() {
-        let mut s = 7u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 33) as f64 / (1u64 << 31) as f64 * 100.0
-        };
+        let mut rng = apart_testkit::solids::Lcg(7);
+        let mut rnd = || rng.next_bits() as f64 / (1u64 << 31) as f64 * 100.0;
         let boxes: Vec<Aabb<f64>> = (0..300)
             .map(|_| {
                 let lo = [rnd(), rnd(), rnd()];
@@ -718,13 +708,8 @@ mod tests {
     /// subtree first, and the self pairs and labels of the tree are those of brute force.
     #[test]
     fn median_split_nodes() {
-        let mut s = 31u64;
-        let mut rnd = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) as i64) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(31);
+        let mut rnd = |m: i64| rng.below(m as u64) as i64;
         for (n, leaf) in [(0, 1), (1, 1), (2, 1), (7, 1), (97, 1), (200, 3), (255, 4)] {
             let boxes: Vec<Aabb<i64>> = (0..n)
                 .map(|_| {
@@ -780,13 +765,8 @@ mod tests {
 
     #[test]
     fn sweeps_match_brute_force() {
-        let mut s = 99u64;
-        let mut rnd = |m: i64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) as i64) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(99);
+        let mut rnd = |m: i64| rng.below(m as u64) as i64;
         let mut boxes: Vec<Aabb<f64>> = Vec::new();
         for _ in 0..300 {
             let p = [rnd(100), rnd(100), rnd(100)].map(|v| v as f64);

@@ -6,20 +6,14 @@
 use apart_formats::{off, read_bytes, stl, Format, Polygons, RawObject};
 use apart_kernel::Grid;
 use apart_mesh::validate::check_solid;
+use apart_testkit::solids::CUBOID_QUADS;
 use proptest::prelude::*;
 
 fn cube() -> RawObject {
     let vertices = (0..8)
         .map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64 * 0.5, (i >> 2) as f64])
         .collect();
-    let faces = Polygons::from(vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ]);
+    let faces = Polygons::from(CUBOID_QUADS.iter().map(|q| q.to_vec()).collect::<Vec<_>>());
     RawObject {
         name: None,
         vertices,

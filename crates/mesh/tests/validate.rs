@@ -4,32 +4,18 @@ use apart_formats::{Polygons, RawObject};
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::validate::{check_solid, MeshInfo};
 use apart_mesh::{Problem, Severity};
+use apart_testkit::solids::{cuboid_corners, CUBOID_QUADS};
 
 /// The 6 quads of the box [lo, hi], outward.
 fn box_faces(base: u32) -> Vec<Vec<u32>> {
-    vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ]
-    .into_iter()
-    .map(|f| f.into_iter().map(|i| i + base).collect())
-    .collect()
+    CUBOID_QUADS
+        .iter()
+        .map(|q| q.iter().map(|i| i + base).collect())
+        .collect()
 }
 
 fn box_vertices(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f64; 3]> {
-    (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 1 { hi[0] } else { lo[0] },
-                if i & 2 == 2 { hi[1] } else { lo[1] },
-                if i & 4 == 4 { hi[2] } else { lo[2] },
-            ]
-        })
-        .collect()
+    cuboid_corners(lo, hi)
 }
 
 /// Boxes in one object; `outward[k]` false reverses box k.

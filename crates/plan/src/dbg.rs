@@ -422,13 +422,8 @@ mod tests {
     fn bit_graphs_agree_with_tarjan_beyond_64_nodes() {
         // Random graphs of 65 to 300 nodes: sparse (many components), a cycle through
         // all, and a few extra arcs; can_move agrees on the sink sets and their unions.
-        let mut s = 777u64;
-        let mut next = |m: u64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 33) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(777);
+        let mut next = |m: u64| rng.below(m);
         for round in 0..60 {
             let n = 65 + next(236) as usize;
             let mut arcs = Vec::new();
@@ -464,13 +459,8 @@ mod tests {
     fn bit_masks_agree_with_tarjan() {
         // Random graphs of 2 to 64 nodes and various densities (a small LCG keeps the
         // test deterministic), including complete and empty ones.
-        let mut s = 12345u64;
-        let mut next = |m: u64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 33) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(12345);
+        let mut next = |m: u64| rng.below(m);
         for _ in 0..400 {
             let n = 2 + next(63) as usize;
             let density = next(100);
