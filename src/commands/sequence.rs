@@ -600,12 +600,7 @@ fn print_text(
             "assembly sequence (the reverse):"
         });
         for (k, s) in plan.steps.iter().rev().enumerate() {
-            let rest: Vec<usize> = s
-                .subassembly
-                .iter()
-                .copied()
-                .filter(|x| !s.moving.contains(x))
-                .collect();
+            let rest: Vec<usize> = s.staying();
             let d = s.direction.neg().to_strings();
             output::line(format_args!(
                 "{}. bring {{{}}} to {{{}}} along ({}, {}, {})",

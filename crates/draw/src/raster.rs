@@ -955,12 +955,7 @@ fn step_svg(
     legend_w: f64,
 ) -> String {
     let names = &sequence.names;
-    let rest: Vec<usize> = step
-        .subassembly
-        .iter()
-        .copied()
-        .filter(|p| !step.moving.contains(p))
-        .collect();
+    let rest: Vec<usize> = step.staying();
     let mut svg = svg_open(width, height);
     let verb = if step.moving.len() == 1 {
         "moves"

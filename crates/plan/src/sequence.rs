@@ -93,6 +93,17 @@ pub struct Step {
     pub solutions: Option<Vec<Solution>>,
 }
 
+impl Step {
+    /// The parts of the subassembly that stay (global indices, sorted).
+    pub fn staying(&self) -> Vec<usize> {
+        self.subassembly
+            .iter()
+            .copied()
+            .filter(|k| !self.moving.contains(k))
+            .collect()
+    }
+}
+
 /// How much the parts may grow before a step becomes impossible.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tolerance {
@@ -265,11 +276,7 @@ fn split_recursively<E>(
             }
             Ok(Some(mut step)) => {
                 step.depth = depth;
-                let rest: Vec<usize> = sub
-                    .iter()
-                    .copied()
-                    .filter(|k| !step.moving.contains(k))
-                    .collect();
+                let rest = step.staying();
                 let moving = step.moving.clone();
                 plan.steps.push(step);
                 done += 1;
@@ -456,12 +463,7 @@ fn set_along_axes(regions: &BlockingRegions, ms: &MotionSpace, moving: &[usize])
 /// combinatorial decision), to about 1e-9 relative.
 pub fn growth_tolerance(regions: &BlockingRegions, step: &Step) -> Tolerance {
     let d = step.unit;
-    let rest: Vec<usize> = step
-        .subassembly
-        .iter()
-        .copied()
-        .filter(|k| !step.moving.contains(k))
-        .collect();
+    let rest: Vec<usize> = step.staying();
     let mut best = f64::INFINITY;
     for &i in &step.moving {
         for &j in &rest {

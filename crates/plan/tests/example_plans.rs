@@ -43,13 +43,7 @@ fn plan(parts: &[Part], opts: &SequenceOptions) -> Sequence {
 
 /// The two sides of a step as sorted sets: (moving, staying).
 fn sides(step: &Step) -> (Vec<usize>, Vec<usize>) {
-    let rest = step
-        .subassembly
-        .iter()
-        .copied()
-        .filter(|k| !step.moving.contains(k))
-        .collect();
-    (step.moving.clone(), rest)
+    (step.moving.clone(), step.staying())
 }
 
 /// The step's direction as seen by `part`: unchanged when it moves, reversed when the

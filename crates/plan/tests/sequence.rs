@@ -142,12 +142,7 @@ fn preferences() {
         },
     );
     for s in &p.steps {
-        let rest: Vec<usize> = s
-            .subassembly
-            .iter()
-            .copied()
-            .filter(|k| !s.moving.contains(k))
-            .collect();
+        let rest: Vec<usize> = s.staying();
         for side in [&s.moving, &rest] {
             let (lo, hi) = (side.iter().min().unwrap(), side.iter().max().unwrap());
             assert_eq!(
@@ -287,12 +282,7 @@ fn check_first_steps(name: &str, parts: &[Part], p: &Sequence) {
     for s in &p.steps {
         let ms = MotionSpace::build(&regions, &s.subassembly);
         assert_eq!(ms.locate(&s.direction).0, s.cell, "{name}: {s:?}");
-        let rest: Vec<usize> = s
-            .subassembly
-            .iter()
-            .copied()
-            .filter(|k| !s.moving.contains(k))
-            .collect();
+        let rest: Vec<usize> = s.staying();
         if s.cell == CellKind::Face {
             // The distance to the nearest blocked direction, every piece pair summed (0
             // when the direction slides along a contact at the edge of its face).

@@ -213,12 +213,7 @@ pub fn check_plan(parts: &[Part], plan: &Sequence) {
             !step.moving.is_empty() && step.moving.len() < step.subassembly.len(),
             "{step:?}"
         );
-        let rest: Vec<usize> = step
-            .subassembly
-            .iter()
-            .copied()
-            .filter(|k| !step.moving.contains(k))
-            .collect();
+        let rest: Vec<usize> = step.staying();
         assert!(
             oracle.free(&step.moving, &rest, &step.direction),
             "step blocked: {step:?}"
