@@ -104,7 +104,10 @@ pub struct Rival {
 pub struct Choice {
     /// The chosen candidate's keys.
     pub keys: Keys,
-    /// Candidates ranked (distinct moving set and direction pairs), the chosen included.
+    /// Candidates ranked (distinct moving set and direction pairs), the chosen included;
+    /// for a step [`sequence_first`](super::sequence_first) took along a likely
+    /// direction (nothing ranked, no runner-up), the likely directions tried, its own
+    /// included.
     pub candidates: usize,
     /// The best of the others; `None` when there was no other.
     pub runner_up: Option<Rival>,
