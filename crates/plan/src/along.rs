@@ -38,9 +38,11 @@ pub struct DirectionAnswer {
     pub direction: Vec3,
     /// The kind of motion-space cell it lies in (as [`MotionSpace::locate`] says).
     pub cell: CellKind,
-    /// The directional blocking graph (global part indices).
+    /// The directional blocking graph: over global part indices from
+    /// [`DirectionQuery::answer`], over positions in the subassembly from
+    /// [`DirectionQuery::answer_in`].
     pub dbg: Dbg,
-    /// Its minimal moving sets.
+    /// Its minimal moving sets (global part indices).
     pub moving: Vec<Vec<usize>>,
 }
 
