@@ -18,8 +18,8 @@ use crate::cull::{pairs_where, piece_tree, split_pair, sum_box};
 use crate::dbg::Dbg;
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::pairs::{
-    axes, classify, pair_polygon, ray_meets_box, ray_meets_int_box, Axis, PairPolygon, PieceInfo,
-    Sep,
+    axes, classify, pair_polygon, ray_meets_box, ray_meets_int_box, Axis, FloatBox, PairPolygon,
+    PieceInfo, Sep,
 };
 use crate::partition::{Partitioning, PhaseSeconds, Solution, Stats};
 use crate::regions::{BlockingRegions, Part};
@@ -539,10 +539,9 @@ impl<'a> DirectionQuery<'a> {
                     }
                     continue;
                 }
-                let fa: Vec<_> = self.parts[p].pieces.iter().map(float_box).collect();
-                let fq: Vec<_> = self.parts[q].pieces.iter().map(float_box).collect();
-                for (a, (alo, ahi)) in fa.iter().enumerate() {
-                    for (b, (blo, bhi)) in fq.iter().enumerate() {
+                let (fa, fq) = (&self.info[p], &self.info[q]);
+                for (a, (alo, ahi)) in fa.iter().map(|i| &i.float_bounds).enumerate() {
+                    for (b, (blo, bhi)) in fq.iter().map(|i| &i.float_bounds).enumerate() {
                         let lo = std::array::from_fn(|k| blo[k] - ahi[k]);
                         let hi = std::array::from_fn(|k| bhi[k] - alo[k]);
                         loose.push((box_angle_f64(lo, hi, u), p, q, flip, a * fq.len() + b));
@@ -566,7 +565,11 @@ impl<'a> DirectionQuery<'a> {
             let x = &xs[usize::from(flip)];
             let m = self.parts[q].pieces.len();
             let (a, b) = (&self.parts[p].pieces[k / m], &self.parts[q].pieces[k % m]);
-            if axes_bound(self.axes(p, q, k), a, b, x) >= slack(*best) {
+            let boxes = (
+                &self.info[p][k / m].float_bounds,
+                &self.info[q][k % m].float_bounds,
+            );
+            if axes_bound(self.axes(p, q, k), (a, b), boxes, x) >= slack(*best) {
                 return Ok(());
             }
             let poly = self.polygon(p, q, k)?;
@@ -647,14 +650,13 @@ impl<'a> DirectionQuery<'a> {
 /// used to skip sums in [`DirectionQuery::clearance`].
 fn axes_bound(
     axes: &[Axis],
-    a: &apart_pieces::Polytope,
-    b: &apart_pieces::Polytope,
+    (a, b): (&apart_pieces::Polytope, &apart_pieces::Polytope),
+    ((alo, ahi), (blo, bhi)): (&FloatBox, &FloatBox),
     x: &Vec3,
 ) -> f64 {
     use apart_kernel::fvec;
     use std::f64::consts::FRAC_PI_2;
     let u = x.unit_f64();
-    let ((alo, ahi), (blo, bhi)) = (float_box(a), float_box(b));
     let mut scale = 0.0f64;
     let mut h = 0.0;
     for k in 0..3 {
@@ -714,32 +716,6 @@ fn distance(p: &SphericalPolygon, x: &Vec3) -> f64 {
         .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()).distance2(&u))
         .fold(4.0, f64::min);
     to_angle(c2)
-}
-
-/// The floating-point bounds of a piece (true coordinates).
-fn float_box(x: &apart_pieces::Polytope) -> ([f64; 3], [f64; 3]) {
-    // Each coordinate divided once: `approx` is only proportional for big vectors, and
-    // decomposed pieces have denominators of hundreds of bits.
-    let coords = |v: &Vec3| -> [f64; 3] {
-        [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), x.den().clone()).to_f64())
-    };
-    let owned: Vec<[f64; 3]>;
-    let points: &[[f64; 3]] = match x.shadow() {
-        Some(s) => &s.points,
-        None => {
-            owned = x.vertices().iter().map(coords).collect();
-            &owned
-        }
-    };
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for c in points {
-        for t in 0..3 {
-            lo[t] = lo[t].min(c[t]);
-            hi[t] = hi[t].max(c[t]);
-        }
-    }
-    (lo, hi)
 }
 
 /// [`box_angle_f64`] of an integer box.
@@ -807,7 +783,7 @@ fn box_angle_f64(lo: [f64; 3], hi: [f64; 3], u: &[f64; 3]) -> f64 {
 /// How deep inside the box of the sum `b ⊕ −a` (boxes `(lo, hi)` of `a` and `b`) the
 /// ray along the unit vector `u` runs: the relative depth (0 to 1/2) of its chord's
 /// middle point, least over the axes; 0 when it misses. Floating point, a preference.
-fn ray_depth(a: ([f64; 3], [f64; 3]), b: ([f64; 3], [f64; 3]), u: &[f64; 3]) -> f64 {
+fn ray_depth(a: FloatBox, b: FloatBox, u: &[f64; 3]) -> f64 {
     let lo: [f64; 3] = std::array::from_fn(|k| b.0[k] - a.1[k]);
     let hi: [f64; 3] = std::array::from_fn(|k| b.1[k] - a.0[k]);
     let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
@@ -1024,17 +1000,17 @@ mod tests {
                 Polytope::cuboid(alo, ahi).unwrap(),
                 Polytope::cuboid(blo, bhi).unwrap(),
             );
-            let ax = crate::pairs::axes(
-                &a,
-                &crate::pairs::PieceInfo::new(&a),
-                &b,
-                &crate::pairs::PieceInfo::new(&b),
+            let (ia, ib) = (
+                crate::pairs::PieceInfo::new(&a),
+                crate::pairs::PieceInfo::new(&b),
             );
+            let ax = crate::pairs::axes(&a, &ia, &b, &ib);
             let d = Vec3::new(r(4), r(4), r(4));
             if d.is_zero() {
                 continue;
             }
-            let bound = axes_bound(&ax, &a, &b, &d);
+            let boxes = (&ia.float_bounds, &ib.float_bounds);
+            let bound = axes_bound(&ax, (&a, &b), boxes, &d);
             // The same boxes stored with a denominator of 96 bits give the same bound.
             let k = apart_kernel::Int::from(3).pow(60);
             let big = |p: &Polytope| {
@@ -1042,13 +1018,13 @@ mod tests {
                 Polytope::hull_of_points(&pts).unwrap().with_den(k.clone())
             };
             let (ab, bb) = (big(&a), big(&b));
-            let axb = crate::pairs::axes(
-                &ab,
-                &crate::pairs::PieceInfo::new(&ab),
-                &bb,
-                &crate::pairs::PieceInfo::new(&bb),
+            let (iab, ibb) = (
+                crate::pairs::PieceInfo::new(&ab),
+                crate::pairs::PieceInfo::new(&bb),
             );
-            let again = axes_bound(&axb, &ab, &bb, &d);
+            let axb = crate::pairs::axes(&ab, &iab, &bb, &ibb);
+            let boxes = (&iab.float_bounds, &ibb.float_bounds);
+            let again = axes_bound(&axb, (&ab, &bb), boxes, &d);
             assert!((again - bound).abs() <= 1e-9, "{again} vs {bound}");
             let u = d.unit_f64();
             let (lo, hi) = (

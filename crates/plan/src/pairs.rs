@@ -31,11 +31,15 @@ use std::cmp::Ordering;
 use std::sync::OnceLock;
 
 /// A piece with the data the exact culls need.
+/// A box `(lo, hi)` in floating point.
+pub(crate) type FloatBox = ([f64; 3], [f64; 3]);
+
 pub(crate) struct PieceInfo {
     /// The box of the piece's integer vertices (the piece's box times its denominator).
     bounds: Aabb<Int>,
-    /// The piece's box in true coordinates, floating point (for preferences only).
-    pub(crate) float_bounds: ([f64; 3], [f64; 3]),
+    /// The piece's box in true coordinates, floating point (each bound correctly
+    /// rounded: for preferences and widened float bounds only).
+    pub(crate) float_bounds: FloatBox,
     /// `bounds` in machine integers when the piece is on the grid itself (denominator 1)
     /// and every bound is below 2^61: the ray–box test's fast path.
     small: Option<Aabb>,
