@@ -211,7 +211,7 @@ pub fn sequence_with(
 ) -> Sequence {
     // Steps found so far: the index of the next one, for `keep_solutions`.
     let mut found_steps = 0;
-    let split = split_recursively(regions.names().to_vec(), opts, progress, |sub, inner| {
+    let Ok(plan) = split_recursively(regions.names().to_vec(), opts, progress, |sub, inner| {
         let keep = opts.keep_solutions.keeps(found_steps);
         let found = best_step_with(regions, sub, opts, keep, inner).map(|found| {
             found.map(|mut step| {
@@ -226,10 +226,7 @@ pub fn sequence_with(
         }
         Ok::<_, std::convert::Infallible>(found)
     });
-    match split {
-        Ok(plan) => plan,
-        Err(never) => match never {},
-    }
+    plan
 }
 
 /// The recursion of both planners: splits the whole assembly of parts `names`, then
