@@ -9,10 +9,7 @@
 //!
 //! Method: a binary space partition of a box around the part (see `partition`), cutting
 //! at reflex edges with planes through input points, until the part is convex in each
-//! cell; then greedy merging of pieces whose union is convex (see `merge`). A right
-//! prism (a polygon with holes extruded straight, such as a washer or a plate with
-//! holes) is instead cut in the plane of its cap, into pieces with grid vertices (see
-//! `prism`).
+//! cell; then greedy merging of pieces whose union is convex (see `merge`).
 //!
 //! A surface that crosses itself (as real CAD tessellations do) is handled by
 //! [`decompose_union`]: the convex pieces of its union solid `{w >= 1}`, `w` the winding
@@ -48,7 +45,6 @@ mod cell;
 mod fragments;
 mod merge;
 mod partition;
-mod prism;
 mod reflex;
 mod solid;
 mod split;
@@ -70,8 +66,7 @@ use std::time::Instant;
 /// Settings of [`decompose`].
 #[derive(Clone, Debug)]
 pub struct Options {
-    /// Merge pieces whose union is convex after the partition (default true). Without
-    /// it, a prism is partitioned like any other solid (the cut in its cap merges).
+    /// Merge pieces whose union is convex after the partition (default true).
     pub merge: bool,
     /// Process independent cells in parallel with rayon (default true).
     pub parallel: bool,
@@ -236,20 +231,6 @@ pub fn decompose(
     let start = Instant::now();
     let solid = solid::Solid::new(points, triangles)?;
     let reflex = solid.edges.iter().filter(|e| e.reflex).count();
-    if opts.merge {
-        if let Some((pieces, merges)) = prism::pieces(&solid) {
-            return Ok(Decomposition {
-                stats: Stats {
-                    partition_pieces: pieces.len() + merges,
-                    merges,
-                    seconds: start.elapsed().as_secs_f64(),
-                    ..Stats::default()
-                },
-                pieces,
-                reflex_edges: reflex,
-            });
-        }
-    }
     let part = partition::Partition::new(&solid, opts.parallel);
     let cells = part.run()?;
     let partition_pieces = cells.len();
