@@ -834,13 +834,8 @@ mod depth_tests {
         assert!(p.vertices().len() > 64, "the walk is used");
         let mut walk = Extremes::new(&p);
         let pts = &p.shadow().unwrap().points;
-        let mut seed = 12345u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rng = apart_testkit::solids::Lcg(12345);
+        let mut next = || rng.unit() * 2.0 - 1.0;
         for _ in 0..500 {
             let n = [next(), next(), next() * 0.1];
             let len = fvec::norm(n);

@@ -430,11 +430,8 @@ mod tests {
     fn the_float_filter_agrees_with_the_exact_arc_test() {
         // Arcs between small integer points (many on the polygons' sides, through their
         // corners, or along their circles) against box projections.
-        let mut seed = 7u64;
-        let mut next = |n: i64| {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-            ((seed >> 33) % (2 * n as u64 + 1)) as i64 - n
-        };
+        let mut rng = apart_testkit::solids::Lcg(7);
+        let mut next = |n: i64| rng.centred(n);
         let mut tested = [0usize; 2];
         for _ in 0..300 {
             let lo = [next(3), next(3), 4 + next(2)];

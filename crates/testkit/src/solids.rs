@@ -202,6 +202,17 @@ impl Lcg {
     pub fn range(&mut self, lo: i64, hi: i64) -> i64 {
         lo + self.below((hi - lo) as u64) as i64
     }
+
+    /// A number in `-n..=n` (`n >= 0`).
+    pub fn centred(&mut self, n: i64) -> i64 {
+        self.range(-n, n + 1)
+    }
+
+    /// Advances the state and returns a float in `[0, 1)` from its high 53 bits.
+    pub fn unit(&mut self) -> f64 {
+        self.next_bits();
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
 
 /// `n` random disjoint integer boxes `(lo, hi)` linked into `k` parts, box `i` in part
