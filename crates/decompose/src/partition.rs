@@ -18,10 +18,9 @@
 use crate::cell::Cell;
 use crate::fragments::{split_by, Frag};
 use crate::solid::Solid;
-use crate::split::{for_groups, for_live, live, Choice, Witness};
+use crate::split::{for_groups, for_live, live, Choice};
 use crate::DecomposeError;
 use apart_kernel::plane::Plane;
-use apart_kernel::Sign;
 use rustc_hash::FxHashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -72,24 +71,11 @@ impl<'a> Partition<'a> {
         let frags = (0..s.tris.len() as u32)
             .map(|t| Arc::new(Frag::whole(s, t)))
             .collect();
-        let mut task = Task {
+        self.solve(Task {
             cell: Cell::boxed(lo, hi),
             frags,
             inside: false,
-        };
-        for h in supporting_planes(s) {
-            // All of the solid is on the inner side: the part above is empty, and the
-            // fragments in the plane leave the cell (they now bound it).
-            match self.divide(task, Witness::Face.choice(h))? {
-                Step::Split(below, above) if above.frags.is_empty() => task = below,
-                _ => {
-                    return Err(DecomposeError::Internal(
-                        "a supporting plane left fragments above it".into(),
-                    ))
-                }
-            }
-        }
-        self.solve(task)
+        })
     }
 
     fn solve(&self, task: Task) -> Result<Vec<Cell>, DecomposeError> {
@@ -165,49 +151,6 @@ impl<'a> Partition<'a> {
             },
         ))
     }
-}
-
-/// Solids of fewer triangles are partitioned without first cuts (see
-/// [`supporting_planes`]).
-const SUPPORT_MIN_TRIANGLES: usize = 256;
-
-/// The planes cut first: face planes that hold at least a sixteenth of the triangles and
-/// have the whole solid on their inner side (the caps of a tessellated ring or plate,
-/// the flat faces of a block). Cutting there removes nothing of the solid but all of
-/// those triangles' fragments, which every later split would otherwise walk and cut
-/// (the cap of a ring is as many slivers as its wall has facets). Largest first, then
-/// by normal, to stay deterministic.
-fn supporting_planes(s: &Solid) -> Vec<Plane> {
-    let n = s.tris.len();
-    if n < SUPPORT_MIN_TRIANGLES {
-        return Vec::new();
-    }
-    let mut count: FxHashMap<Plane, usize> = FxHashMap::default();
-    for p in &s.planes {
-        *count.entry(*p).or_default() += 1;
-    }
-    let mut big: Vec<(usize, Plane)> = count
-        .into_iter()
-        .filter(|(_, c)| 16 * c >= n)
-        .map(|(p, c)| (c, p))
-        .collect();
-    big.sort_unstable_by(|x, y| y.0.cmp(&x.0).then_with(|| x.1.n.cmp(&y.1.n)));
-    // Only the points of the mesh's triangles count (the solid's points may hold more).
-    let mut used = vec![false; s.pts.len()];
-    for t in &s.tris {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
-    big.into_iter()
-        .map(|(_, p)| p)
-        .filter(|p| {
-            s.pts
-                .iter()
-                .zip(&used)
-                .all(|(q, &u)| !u || p.side_int(q) != Sign::Positive)
-        })
-        .collect()
 }
 
 /// Number of groups of fragments connected across paired input edges in the open cell.
