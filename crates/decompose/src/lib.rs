@@ -9,9 +9,7 @@
 //!
 //! Method: a binary space partition of a box around the part (see `partition`), cutting
 //! at reflex edges with planes through input points, until the part is convex in each
-//! cell; then greedy merging of pieces whose union is convex (see `merge`). Face planes
-//! that hold many triangles and support the solid are cut first: that removes their
-//! triangles from every later split without cutting the solid.
+//! cell; then greedy merging of pieces whose union is convex (see `merge`).
 //!
 //! A surface that crosses itself (as real CAD tessellations do) is handled by
 //! [`decompose_union`]: the convex pieces of its union solid `{w >= 1}`, `w` the winding
