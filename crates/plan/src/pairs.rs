@@ -30,10 +30,10 @@ use apart_sphere::SphericalPolygon;
 use std::cmp::Ordering;
 use std::sync::OnceLock;
 
-/// A piece with the data the exact culls need.
 /// A box `(lo, hi)` in floating point.
 pub(crate) type FloatBox = ([f64; 3], [f64; 3]);
 
+/// A piece with the data the exact culls need.
 pub(crate) struct PieceInfo {
     /// The box of the piece's integer vertices (the piece's box times its denominator).
     bounds: Aabb<Int>,
