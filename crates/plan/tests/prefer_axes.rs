@@ -32,17 +32,9 @@ fn along_axis(d: &Vec3) -> bool {
     c.iter().filter(|x| **x == 0.0).count() == 2
 }
 
-fn rest(step: &Step) -> Vec<usize> {
-    step.subassembly
-        .iter()
-        .copied()
-        .filter(|k| !step.moving.contains(k))
-        .collect()
-}
-
 /// The axes along which the step's moving set is free, by the oracle.
 fn free_axes(oracle: &Oracle, step: &Step) -> Vec<Vec3> {
-    let rest = rest(step);
+    let rest = step.staying();
     axes()
         .into_iter()
         .filter(|d| oracle.free(&step.moving, &rest, d))

@@ -87,13 +87,9 @@ fn check_partial_plan(parts: &[Part], plan: &Sequence) {
     let mut open: Vec<Vec<usize>> = vec![(0..parts.len()).collect()];
     for step in &plan.steps {
         let k = open.iter().position(|s| s == &step.subassembly).unwrap();
-        let sub = open.remove(k);
+        open.remove(k);
         open.push(step.moving.clone());
-        open.push(
-            sub.into_iter()
-                .filter(|p| !step.moving.contains(p))
-                .collect(),
-        );
+        open.push(step.staying());
     }
     let mut left: Vec<Vec<usize>> = open.into_iter().filter(|s| s.len() > 1).collect();
     let mut reported: Vec<Vec<usize>> = plan
