@@ -976,13 +976,8 @@ mod tests {
     #[test]
     fn candidate_pairs_come_in_the_order_of_their_later_box() {
         // Boxes on a coarse grid (many equal low x, equal ends and touching faces).
-        let mut s = 12345u64;
-        let mut next = |m: u64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 33) % m
-        };
+        let mut rng = apart_testkit::solids::Lcg(12345);
+        let mut next = |m: u64| rng.below(m);
         for n in [0, 1, 2, 5, 20, 200] {
             for _ in 0..20 {
                 let boxes: Vec<Aabb<f64>> = (0..n)
