@@ -241,8 +241,13 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     // overlap test of the few pairs it asks about). When snapping moved no coordinate
     // (integer inputs, or values already on the grid), no relation can have changed:
     // the search, most of loading a small integer assembly, is skipped.
+    // Pairs of parts whose interiors that check found disjoint: the overlap check
+    // below skips them.
+    let mut disjoint = Vec::new();
     if max_snap_displacement > 0.0 {
-        problems.extend(snapping::changed_relations(&parts, &raw_points, &grid));
+        let (warnings, apart) = snapping::changed_relations(&parts, &raw_points, &grid);
+        problems.extend(warnings);
+        disjoint = apart;
     }
     drop(raw_points);
     seconds.snapping = lap();
@@ -254,9 +259,14 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         tolerance: None,
     };
     if opts.tolerance == Tolerance::None {
-        problems.extend(overlap::check_parts(&assembly, opts));
+        problems.extend(overlap::check_parts(&assembly, opts, &disjoint));
     } else {
-        problems.extend(tolerance::apply(&mut assembly, opts.tolerance, opts));
+        problems.extend(tolerance::apply(
+            &mut assembly,
+            opts.tolerance,
+            opts,
+            &disjoint,
+        ));
     }
     seconds.overlaps = lap();
     Ok(Loaded {
@@ -1132,47 +1142,6 @@ mod snapping {
         Some((-zmin, x))
     }
 
-    /// What the pairs of triangles of two parts say.
-    #[derive(Clone, Copy)]
-    struct Acc {
-        /// Some snapped triangles meet (exact).
-        meet: bool,
-        /// Some input triangles are within rounding noise of each other.
-        touch: bool,
-        /// The smallest distance between input triangles, and where.
-        gap: (f64, F3),
-        /// The deepest overlap of the input parts found (0: none), and where.
-        depth: (f64, F3),
-    }
-
-    impl Acc {
-        fn new() -> Acc {
-            Acc {
-                meet: false,
-                touch: false,
-                gap: (f64::INFINITY, [0.0; 3]),
-                depth: (0.0, [0.0; 3]),
-            }
-        }
-
-        fn merge(self, o: Acc) -> Acc {
-            Acc {
-                meet: self.meet || o.meet,
-                touch: self.touch || o.touch,
-                gap: if o.gap.0 < self.gap.0 {
-                    o.gap
-                } else {
-                    self.gap
-                },
-                depth: if o.depth.0 > self.depth.0 {
-                    o.depth
-                } else {
-                    self.depth
-                },
-            }
-        }
-    }
-
     fn grow(b: Aabb, r: i64) -> Aabb {
         Aabb {
             min: b.min.map(|c| c.saturating_sub(r)),
@@ -1216,7 +1185,7 @@ mod snapping {
 
     /// Witnesses of triangle `t` of `s` inside the part of `o`, behind its triangles
     /// `near`.
-    fn witnesses(acc: &mut Acc, s: Side, t: u32, o: Side, near: &[u32], cap: f64) {
+    fn witnesses(deepest: &mut (f64, F3), s: Side, t: u32, o: Side, near: &[u32], cap: f64) {
         let origin = s.raw[s.mesh.triangles[t as usize][0] as usize];
         let tt = input_tri(s.mesh, s.raw, t, origin);
         let faces: Vec<(Tri, F3)> = near
@@ -1224,8 +1193,8 @@ mod snapping {
             .map(|&u| (input_tri(o.mesh, o.raw, u, origin), o.normals[u as usize]))
             .collect();
         for k in 0..faces.len() {
-            if let Some((d, x)) = witness(&tt, &faces, k, cap, acc.depth.0) {
-                acc.depth = (d, add(x, origin));
+            if let Some((d, x)) = witness(&tt, &faces, k, cap, deepest.0) {
+                *deepest = (d, add(x, origin));
             }
         }
     }
@@ -1244,9 +1213,150 @@ mod snapping {
             .collect()
     }
 
-    /// Compares parts `a` and `b` (with input coordinates `ra`, `rb` of their vertices)
-    /// pair of near triangles by pair of near triangles.
-    fn compare(a: &Part, ra: &[F3], b: &Part, rb: &[F3], grid: &Grid) -> Option<Acc> {
+    /// The triangles of two parts near each other, and what their pairs say, each
+    /// measure taken only when [`judge`] needs it.
+    struct Near<'a> {
+        a: Side<'a>,
+        b: Side<'a>,
+        /// Each triangle of `a` near `b`, with the triangles of `b` near it.
+        from_a: Vec<(u32, Vec<u32>)>,
+        /// The same pairs seen from `b`'s triangles.
+        from_b: Vec<(u32, Vec<u32>)>,
+        /// Overlap witnesses count up to this depth (two grid steps).
+        cap: f64,
+        /// The unit normals of the near triangles, indexed by triangle, for `a` and `b`.
+        normals: [Vec<F3>; 2],
+        /// Whether the boxes of the input coordinates overlap in volume (otherwise the
+        /// input parts cannot overlap).
+        inputs_overlap: bool,
+    }
+
+    /// Whether the boxes of two sets of points overlap in volume (exact comparisons).
+    fn boxes_overlap_open(p: &[F3], q: &[F3]) -> bool {
+        let bounds = |v: &[F3]| {
+            v.iter().fold(
+                ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                |(lo, hi), x| {
+                    (
+                        [0, 1, 2].map(|k| lo[k].min(x[k])),
+                        [0, 1, 2].map(|k| hi[k].max(x[k])),
+                    )
+                },
+            )
+        };
+        let ((lp, hp), (lq, hq)) = (bounds(p), bounds(q));
+        (0..3).all(|k| lp[k] < hq[k] && lq[k] < hp[k])
+    }
+
+    /// The deeper of two overlap witnesses (the first on a tie).
+    fn deeper(p: (f64, F3), q: (f64, F3)) -> (f64, F3) {
+        if q.0 > p.0 {
+            q
+        } else {
+            p
+        }
+    }
+
+    /// The nearer of two distances (the first on a tie).
+    fn nearer(p: (f64, F3), q: (f64, F3)) -> (f64, F3) {
+        if q.0 < p.0 {
+            q
+        } else {
+            p
+        }
+    }
+
+    impl Near<'_> {
+        /// Whether some snapped triangles of the two parts meet (exact).
+        fn meet(&self) -> bool {
+            let (ma, mb) = (self.a.mesh, self.b.mesh);
+            self.from_a.par_iter().any(|(t, near)| {
+                let (ta, boxed) = (ma.corners(*t as usize), tri_box(ma, *t));
+                near.iter().any(|&u| {
+                    boxed.overlaps(&tri_box(mb, u))
+                        && triangles_meet(ta, mb.corners(u as usize)).is_some()
+                })
+            })
+        }
+
+        /// The distance between input triangles `t` of `a` and `u` of `b`, the point
+        /// halfway between their nearest points, and the rounding noise of the measure.
+        fn distance(&self, t: u32, u: u32) -> (f64, F3, f64) {
+            let (a, b) = (&self.a, &self.b);
+            let origin = a.raw[a.mesh.triangles[t as usize][0] as usize];
+            let fa = input_tri(a.mesh, a.raw, t, origin);
+            let fb = input_tri(b.mesh, b.raw, u, origin);
+            let (d, x) = distance(&fa, &fb);
+            (d, add(x, origin), NOISE * max_abs(fa.iter().chain(&fb)))
+        }
+
+        /// Where some input triangles are within rounding noise of each other (the
+        /// first such pair in order), if any are.
+        fn touch(&self) -> Option<F3> {
+            self.from_a.par_iter().find_map_first(|(t, near)| {
+                near.iter().find_map(|&u| {
+                    let (d, x, noise) = self.distance(*t, u);
+                    (d <= noise).then_some(x)
+                })
+            })
+        }
+
+        /// The smallest distance between input triangles, and where.
+        fn gap(&self) -> (f64, F3) {
+            let none = (f64::INFINITY, [0.0; 3]);
+            self.from_a
+                .par_iter()
+                .map(|(t, near)| {
+                    near.iter().fold(none, |best, &u| {
+                        let (d, x, _) = self.distance(*t, u);
+                        nearer(best, (d, x))
+                    })
+                })
+                .reduce(|| none, nearer)
+        }
+
+        /// The deepest overlap of the input parts found (0: none), and where: points of
+        /// each part's triangles inside the other, less than `cap` deep.
+        fn depth(&self) -> (f64, F3) {
+            let none = (0.0, [0.0; 3]);
+            if !self.inputs_overlap {
+                return none;
+            }
+            let deepest = |lists: &[(u32, Vec<u32>)], s: Side, o: Side| {
+                lists
+                    .par_iter()
+                    .fold(
+                        || none,
+                        |mut acc, (t, near)| {
+                            witnesses(&mut acc, s, *t, o, near, self.cap);
+                            acc
+                        },
+                    )
+                    .reduce(|| none, deeper)
+            };
+            let (sa, sb) = (self.side(0), self.side(1));
+            deeper(deepest(&self.from_a, sa, sb), deepest(&self.from_b, sb, sa))
+        }
+
+        /// Part `k`'s side (0: `a`, 1: `b`) with its near triangles' unit normals.
+        fn side(&self, k: usize) -> Side<'_> {
+            let s = if k == 0 { &self.a } else { &self.b };
+            Side {
+                normals: &self.normals[k],
+                ..*s
+            }
+        }
+    }
+
+    /// The near triangles of parts `a` and `b` (with input coordinates `ra`, `rb` of
+    /// their vertices), if any.
+    fn near<'a>(
+        a: &'a Part,
+        ra: &'a [F3],
+        b: &'a Part,
+        rb: &'a [F3],
+        grid: &Grid,
+    ) -> Option<Near<'a>> {
         let (ma, mb) = (a.mesh.as_ref()?, b.mesh.as_ref()?);
         let (ga, gb) = (grow(a.bbox?, REACH), grow(b.bbox?, REACH));
         let region = Aabb {
@@ -1265,56 +1375,26 @@ mod snapping {
         if na.is_empty() || nb.is_empty() {
             return None;
         }
-        let lists = near_lists(ma, &na, mb, &nb);
-        if lists.is_empty() {
+        let from_a = near_lists(ma, &na, mb, &nb);
+        if from_a.is_empty() {
             return None;
         }
-        let (qa, qb) = (unit_normals(ma, ra, &na), unit_normals(mb, rb, &nb));
-        let sa = Side {
-            mesh: ma,
-            raw: ra,
-            normals: &qa,
+        let from_b = near_lists(mb, &nb, ma, &na);
+        let normals = [unit_normals(ma, ra, &na), unit_normals(mb, rb, &nb)];
+        let side = |mesh, raw| Side {
+            mesh,
+            raw,
+            normals: &[],
         };
-        let sb = Side {
-            mesh: mb,
-            raw: rb,
-            normals: &qb,
-        };
-        let cap = 2.0 * grid.step();
-        let from_a = lists
-            .par_iter()
-            .fold(Acc::new, |mut acc, (t, near)| {
-                let ta = ma.corners(*t as usize);
-                let boxed = tri_box(ma, *t);
-                let origin = ra[ma.triangles[*t as usize][0] as usize];
-                let fa = input_tri(ma, ra, *t, origin);
-                for &u in near {
-                    if !acc.meet && boxed.overlaps(&tri_box(mb, u)) {
-                        acc.meet = triangles_meet(ta, mb.corners(u as usize)).is_some();
-                    }
-                    if !acc.touch {
-                        let fb = input_tri(mb, rb, u, origin);
-                        let (d, x) = distance(&fa, &fb);
-                        if d <= NOISE * max_abs(fa.iter().chain(&fb)) {
-                            acc.touch = true;
-                        } else if d < acc.gap.0 {
-                            acc.gap = (d, add(x, origin));
-                        }
-                    }
-                }
-                witnesses(&mut acc, sa, *t, sb, near, cap);
-                acc
-            })
-            .reduce(Acc::new, Acc::merge);
-        // The same pairs seen from `b`'s triangles, for witnesses of `b` inside `a`.
-        let from_b = near_lists(mb, &nb, ma, &na)
-            .par_iter()
-            .fold(Acc::new, |mut acc, (t, near)| {
-                witnesses(&mut acc, sb, *t, sa, near, cap);
-                acc
-            })
-            .reduce(Acc::new, Acc::merge);
-        Some(from_a.merge(from_b))
+        Some(Near {
+            a: side(ma, ra),
+            b: side(mb, rb),
+            from_a,
+            from_b,
+            cap: 2.0 * grid.step(),
+            normals,
+            inputs_overlap: boxes_overlap_open(ra, rb),
+        })
     }
 
     /// The smallest `--grid-bits` whose step is at most a quarter of `len`, if any.
@@ -1355,20 +1435,47 @@ mod snapping {
         format!("near ({}, {}, {})", c[0], c[1], c[2])
     }
 
-    /// The warning for parts `a` and `b`, if snapping changed how they meet.
-    fn judge(a: &Part, b: &Part, acc: Acc, grid: &Grid) -> Option<Problem> {
+    /// The warning for parts `a` and `b`, if snapping changed how they meet, and
+    /// whether their interiors overlap after snapping, when that was decided.
+    fn judge(a: &Part, b: &Part, near: &Near, grid: &Grid) -> (Option<Problem>, Option<bool>) {
+        let mut known_overlap = None;
+        let warning = warning(a, b, near, grid, &mut known_overlap);
+        (warning, known_overlap)
+    }
+
+    /// [`judge`]'s warning; `known_overlap` caches the exact overlap test.
+    fn warning(
+        a: &Part,
+        b: &Part,
+        near: &Near,
+        grid: &Grid,
+        known_overlap: &mut Option<bool>,
+    ) -> Option<Problem> {
         let step = fmt_len(grid.step());
         let pair = format!(
             "part \"{}\" and part \"{}\"",
             escape(&a.name),
             escape(&b.name)
         );
-        let (message, at) = if acc.depth.0 > 0.0 {
-            if overlap::part_overlap(a, b, grid).is_some() {
+        // The measures, each taken once and only when the answer needs it (the witness
+        // scan behind `depth` is the costliest).
+        let touch = near.touch();
+        let meet = near.meet();
+        let mut overlap_after =
+            || *known_overlap.get_or_insert_with(|| overlap::parts_overlap(a, b));
+        // Touching before snapping and meeting after: only an overlap that snapping
+        // removed could be reported, and none was if the parts still overlap (as
+        // interpenetrating tessellations do).
+        if touch.is_some() && meet && overlap_after() {
+            return None;
+        }
+        let depth = near.depth();
+        let (message, at) = if depth.0 > 0.0 {
+            if overlap_after() {
                 return None;
             }
-            let depth = acc.depth.0;
-            let after = match acc.meet {
+            let (depth, at) = depth;
+            let after = match meet {
                 true => "they only touch after snapping",
                 false => "they are apart after snapping",
             };
@@ -1379,24 +1486,27 @@ mod snapping {
                     finer(grid, depth, "the overlap (reported as an error)"),
                     fmt_len(depth)
                 ),
-                acc.depth.1,
+                at,
             )
-        } else if acc.touch {
-            if acc.meet {
+        } else if let Some(at) = touch {
+            if meet {
                 return None;
             }
             (
                 format!(
                     "snapping to the grid (step {step}) separated {pair}, which touched before snapping: they are apart after it; a larger --grid-bits (at most {MAX_BITS}) makes the gap smaller"
                 ),
-                acc.gap.1,
+                at,
             )
         } else {
-            if !acc.meet || !acc.gap.0.is_finite() {
+            if !meet {
                 return None;
             }
-            let gap = acc.gap.0;
-            let after = match overlap::part_overlap(a, b, grid).is_some() {
+            let (gap, at) = near.gap();
+            if !gap.is_finite() {
+                return None;
+            }
+            let after = match overlap_after() {
                 true => "they overlap after snapping",
                 false => "they touch after snapping",
             };
@@ -1406,7 +1516,7 @@ mod snapping {
                     fmt_len(gap),
                     finer(grid, gap, "the gap")
                 ),
-                acc.gap.1,
+                at,
             )
         };
         Some(
@@ -1419,11 +1529,14 @@ mod snapping {
     /// Warnings for every pair of parts whose relation snapping changed. `raw[k]` holds
     /// the input coordinates of the vertices of part `k`'s mesh (`None`: the part has no
     /// usable mesh and is left out).
+    /// Also returns the pairs `(i, j)` (sorted) of parts whose interiors the check found
+    /// disjoint after snapping (exactly), so that the overlap check need not test them
+    /// again.
     pub(crate) fn changed_relations(
         parts: &[Part],
         raw: &[Option<Vec<F3>>],
         grid: &Grid,
-    ) -> Vec<Problem> {
+    ) -> (Vec<Problem>, Vec<(usize, usize)>) {
         let usable: Vec<usize> = (0..parts.len())
             .filter(|&k| raw[k].is_some() && parts[k].mesh.is_some() && parts[k].bbox.is_some())
             .collect();
@@ -1436,13 +1549,20 @@ mod snapping {
                 }
             }
         }
-        pairs
+        let judged: Vec<_> = pairs
             .par_iter()
             .filter_map(|&(i, j)| {
                 let (ra, rb) = (raw[i].as_deref()?, raw[j].as_deref()?);
-                let acc = compare(&parts[i], ra, &parts[j], rb, grid)?;
-                judge(&parts[i], &parts[j], acc, grid)
+                let near = near(&parts[i], ra, &parts[j], rb, grid)?;
+                Some(((i, j), judge(&parts[i], &parts[j], &near, grid)))
             })
-            .collect()
+            .collect();
+        let disjoint = judged
+            .iter()
+            .filter(|(_, (_, overlap))| *overlap == Some(false))
+            .map(|&(pair, _)| pair)
+            .collect();
+        let warnings = judged.into_iter().filter_map(|(_, (w, _))| w).collect();
+        (warnings, disjoint)
     }
 }

@@ -14,11 +14,9 @@
 //! smallest `eps` (rounded up to 8 significant bits) that makes the assembly valid, up to
 //! `1e-3` of the assembly's size.
 
-use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::fmt_witness;
-use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::{Problem, ProblemKind};
@@ -73,12 +71,14 @@ struct Overlap {
     depth: f64,
 }
 
-fn pair_boxes(parts: &[Part]) -> Vec<(usize, usize)> {
+/// Pairs of parts with pieces whose open boxes meet, but for the pairs `disjoint`.
+fn pair_boxes(parts: &[Part], disjoint: &[(usize, usize)]) -> Vec<(usize, usize)> {
     let mut pairs = Vec::new();
     for i in 0..parts.len() {
         for j in i + 1..parts.len() {
             let (a, b) = (&parts[i], &parts[j]);
-            if a.pieces.is_empty() || b.pieces.is_empty() {
+            if a.pieces.is_empty() || b.pieces.is_empty() || disjoint.binary_search(&(i, j)).is_ok()
+            {
                 continue;
             }
             if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
@@ -98,12 +98,7 @@ fn pair_boxes(parts: &[Part]) -> Vec<(usize, usize)> {
 /// axis each. The result is the same maximum.
 pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f64> {
     use std::sync::atomic::{AtomicU64, Ordering};
-    let ba: Vec<Aabb> = a.iter().map(polytope_bbox).collect();
-    let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
-    let pairs: Vec<(usize, usize)> = sweep_pairs_between(&ba, &by_low_x(&ba), &bb, &by_low_x(&bb))
-        .into_iter()
-        .filter(|&(i, j)| ba[i].overlaps_open(&bb[j]))
-        .collect();
+    let pairs = crate::overlap::open_box_pairs(a, b);
     // The deepest overlap so far as the bits of a non-negative f64 (which order like
     // the values); NONE before the first.
     const NONE: u64 = u64::MAX;
@@ -130,8 +125,9 @@ pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f6
     (d != NONE).then(|| f64::from_bits(d))
 }
 
-fn overlaps(parts: &[Part]) -> Vec<Overlap> {
-    pair_boxes(parts)
+/// The overlapping pairs of parts, but for the pairs `disjoint` (known not to).
+fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Vec<Overlap> {
+    pair_boxes(parts, disjoint)
         .into_par_iter()
         .filter_map(|(i, j)| {
             deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
@@ -197,11 +193,18 @@ fn shrink_all(parts: &mut [Part], eps: &Rational) -> (usize, f64) {
 /// in place of the plain overlap check): shrinks the pieces, and returns the problems of
 /// the overlap check on the shrunk pieces (deeper overlaps as errors with a witness and
 /// the measured depth; accepted overlaps and vanished pieces as notes).
-pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> Vec<Problem> {
+/// `disjoint` lists pairs of parts `(i, j)`, `i < j`, sorted, already known not to
+/// overlap.
+pub(crate) fn apply(
+    asm: &mut Assembly,
+    tol: Tolerance,
+    opts: &LoadOptions,
+    disjoint: &[(usize, usize)],
+) -> Vec<Problem> {
     let grid = asm.grid;
     let h = grid.step();
     let tracker = Tracker::start(opts, Stage::Overlaps, 1);
-    let before = overlaps(&asm.parts);
+    let before = overlaps(&asm.parts, disjoint);
     tracker.tick();
     let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * h;
     let size = asm
@@ -256,7 +259,8 @@ pub(crate) fn apply(asm: &mut Assembly, tol: Tolerance, opts: &LoadOptions) -> V
     let mut after;
     loop {
         (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
-        after = overlaps(&asm.parts);
+        // Shrunk pieces lie inside the originals: disjoint parts stay disjoint.
+        after = overlaps(&asm.parts, disjoint);
         // The depth is a floating-point measurement: when it fell short, double (auto
         // only; a stated tolerance is kept as stated).
         if !auto || after.is_empty() || eps * 2.0 > limit {

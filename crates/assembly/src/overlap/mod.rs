@@ -13,7 +13,8 @@ use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
-use apart_kernel::Rational;
+use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
+use apart_kernel::{Aabb, Rational};
 use apart_kernel::{Grid, HPoint};
 use apart_mesh::locate::Locator;
 use apart_mesh::{Mesh, Problem, ProblemKind};
@@ -61,24 +62,40 @@ pub(crate) fn polytope_mesh(p: &Polytope) -> Mesh {
     }
 }
 
-/// A point strictly inside both parts, if their interiors overlap.
+/// A point strictly inside both parts, if their interiors overlap: the simplest such
+/// point found (see [`simplest`]), for a readable witness.
 pub(crate) fn part_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational; 3]> {
-    if !a.pieces.is_empty() && !b.pieces.is_empty() {
-        let bb: Vec<_> = b.pieces.iter().map(polytope_bbox).collect();
-        for pa in &a.pieces {
-            let ba = polytope_bbox(pa);
-            for (pb, bbox) in b.pieces.iter().zip(&bb) {
-                if !ba.overlaps_open(bbox) {
-                    continue;
-                }
-                if let Some(w) = interior_witness(pa, pb) {
-                    if verified_in_polytopes(&w, pa, pb) {
-                        return Some(simplest(w, grid, |r| verified_in_polytopes(r, pa, pb)));
-                    }
-                }
-            }
+    overlap_point(a, b, Some(grid))
+}
+
+/// Whether the interiors of two parts overlap (exact), without simplifying the witness.
+pub(crate) fn parts_overlap(a: &Part, b: &Part) -> bool {
+    overlap_point(a, b, None).is_some()
+}
+
+/// A point strictly inside both parts, made [`simplest`] on `grid` when one is given.
+fn overlap_point(a: &Part, b: &Part, grid: Option<&Grid>) -> Option<[Rational; 3]> {
+    // Each part lies in its box: parts whose boxes only touch cannot overlap (their
+    // pieces' boxes, rounded outward, may still).
+    if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
+        if !ba.overlaps_open(&bb) {
+            return None;
         }
-        return None;
+    }
+    if !a.pieces.is_empty() && !b.pieces.is_empty() {
+        // The first overlapping pair in index order (the same answer on any number of
+        // threads).
+        let mut pairs = open_box_pairs(&a.pieces, &b.pieces);
+        pairs.sort_unstable();
+        let (pa, pb, w) = pairs.par_iter().find_map_first(|&(i, j)| {
+            let (pa, pb) = (&a.pieces[i], &b.pieces[j]);
+            let w = interior_witness(pa, pb)?;
+            verified_in_polytopes(&w, pa, pb).then_some((pa, pb, w))
+        })?;
+        return Some(match grid {
+            Some(g) => simplest(w, g, |r| verified_in_polytopes(r, pa, pb)),
+            None => w,
+        });
     }
     let (sa, sb) = (solids(a), solids(b));
     for ma in &sa {
@@ -90,8 +107,11 @@ pub(crate) fn part_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational;
                 continue;
             }
             if let Some(w) = boundary::overlap(ma, mb) {
+                let Some(g) = grid else {
+                    return Some(w.to_rationals());
+                };
                 let (la, lb) = (Locator::new(ma), Locator::new(mb));
-                return Some(simplest(w.to_rationals(), grid, |r| {
+                return Some(simplest(w.to_rationals(), g, |r| {
                     let q = HPoint::from_rationals(r);
                     la.strictly_inside(&q) && lb.strictly_inside(&q)
                 }));
@@ -99,6 +119,17 @@ pub(crate) fn part_overlap(a: &Part, b: &Part, grid: &Grid) -> Option<[Rational;
         }
     }
     None
+}
+
+/// The pairs `(i, j)` of pieces `a[i]`, `b[j]` whose open boxes meet (only those can
+/// overlap), by sort and sweep.
+pub(crate) fn open_box_pairs(a: &[Polytope], b: &[Polytope]) -> Vec<(usize, usize)> {
+    let ba: Vec<Aabb> = a.iter().map(polytope_bbox).collect();
+    let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
+    sweep_pairs_between(&ba, &by_low_x(&ba), &bb, &by_low_x(&bb))
+        .into_iter()
+        .filter(|&(i, j)| ba[i].overlaps_open(&bb[j]))
+        .collect()
 }
 
 /// The solids standing for a part in the boundary test: its mesh when usable, else its
@@ -114,14 +145,19 @@ fn solids(p: &Part) -> Vec<Cow<'_, Mesh>> {
     }
 }
 
-/// Problems for every pair of parts whose interiors overlap.
-pub(crate) fn check_parts(asm: &Assembly, opts: &LoadOptions) -> Vec<Problem> {
+/// Problems for every pair of parts whose interiors overlap; the pairs `disjoint`
+/// (`(i, j)`, `i < j`, sorted) are already known not to.
+pub(crate) fn check_parts(
+    asm: &Assembly,
+    opts: &LoadOptions,
+    disjoint: &[(usize, usize)],
+) -> Vec<Problem> {
     let parts = &asm.parts;
     let mut pairs = Vec::new();
     for i in 0..parts.len() {
         for j in i + 1..parts.len() {
             let (a, b) = (&parts[i], &parts[j]);
-            if !usable(a) || !usable(b) {
+            if !usable(a) || !usable(b) || disjoint.binary_search(&(i, j)).is_ok() {
                 continue;
             }
             if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
