@@ -94,7 +94,7 @@ pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
 /// conversely (separating axes of two convex polygons). False for a degenerate one.
 /// A cheap first exit for the many disjoint coplanar pairs of flat tessellations
 /// (radial slivers of an annulus, whose boxes overlap widely).
-fn coplanar_apart(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
+pub(crate) fn coplanar_apart(t: &[[i64; 2]; 3], u: &[[i64; 2]; 3]) -> bool {
     let st = orient2d(&t[0], &t[1], &t[2]);
     let su = orient2d(&u[0], &u[1], &u[2]);
     if st == Sign::Zero || su == Sign::Zero {

@@ -20,8 +20,10 @@
 use crate::intersect::{triangle_pair, Contact};
 use crate::mesh::Mesh;
 use apart_kernel::fvec;
+use apart_kernel::orient;
 use apart_kernel::Aabb;
 use apart_kernel::Bvh;
+use apart_kernel::Sign;
 use rayon::prelude::*;
 
 /// Intersecting pairs found so far: the smallest `limit` of them, their number, and
@@ -38,6 +40,13 @@ impl Found {
             kept: Vec::new(),
             count: 0,
             tests: 0,
+        }
+    }
+
+    /// Runs the exact test on triangles `t < u`, unless their [`Flat`]s show them apart.
+    fn test_filtered(&mut self, mesh: &Mesh, flats: &[Flat], t: u32, u: u32, limit: usize) {
+        if !apart_by_planes(mesh, flats, t, u) {
+            self.test(mesh, t, u, limit);
         }
     }
 
@@ -123,6 +132,11 @@ pub(crate) fn self_intersections_counted(
         [NONE; 3],
     );
     let shares = |a: &[u32; 3], b: &[u32; 3]| a.iter().any(|x| *x != NONE && b.contains(x));
+    let flats: Vec<Flat> = tris
+        .par_iter()
+        .with_min_len(8192)
+        .map(|t| Flat::of(mesh, t))
+        .collect();
     let boxes = bvh.self_pairs_pruned(
         Found::new,
         |found, t, u| {
@@ -130,7 +144,7 @@ pub(crate) fn self_intersections_counted(
             if distinct[t as usize] && distinct[u as usize] && shares(tt, uu) {
                 return; // around their shared vertex
             }
-            found.test(mesh, t, u, limit);
+            found.test_filtered(mesh, &flats, t, u, limit);
         },
         |a, b| a.merge(b, limit),
         // Empty nodes have no common vertex, so they are never pruned (nothing to skip).
@@ -140,6 +154,101 @@ pub(crate) fn self_intersections_counted(
     let mut found = all.kept;
     found.sort_by_key(|&(t, u, _)| (t, u));
     (found, all.count, all.tests)
+}
+
+/// A triangle's plane `n · (x − a) = 0`, `n = (b − a) × (c − a)`, kept when the edge
+/// vectors fit in 31 bits (so `n` fits in `i64`) and `n ≠ 0`, with the triangle's
+/// projection along the dominant axis of `n`: the box phase's exact filter
+/// ([`apart_by_planes`]) then needs no cross product per pair.
+#[derive(Clone, Copy)]
+struct Flat {
+    n: [i64; 3],
+    axis: u8,
+    /// The corners projected along `axis` (see `orient::project`).
+    flat: [[i64; 2]; 3],
+    ok: bool,
+}
+
+/// Edge vector components below this bound (2^31) keep `n` and the filter's sums exact.
+const FLAT_BOUND: i64 = 1 << 31;
+
+impl Flat {
+    fn of(mesh: &Mesh, t: &[u32; 3]) -> Flat {
+        let [a, b, c] = t.map(|v| mesh.vertices[v as usize]);
+        let none = Flat {
+            n: [0; 3],
+            axis: 0,
+            flat: [[0; 2]; 3],
+            ok: false,
+        };
+        let (u, v) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        if u.iter()
+            .chain(&v)
+            .any(|x| x.unsigned_abs() >= FLAT_BOUND as u64)
+        {
+            return none;
+        }
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        if n == [0; 3] {
+            return none;
+        }
+        let axis = orient::dominant_axis(&n.map(|x| x as i128));
+        Flat {
+            n,
+            axis: axis as u8,
+            flat: [a, b, c].map(|p| orient::project(&p, axis)),
+            ok: true,
+        }
+    }
+
+    /// Signs of `n · (p − a)` for the corners `p` of `other` (mesh positions), `a` being
+    /// `corner`; `None` when a difference is too wide for the exact `i128` sum.
+    fn sides(&self, corner: &[i64; 3], other: [&[i64; 3]; 3]) -> Option<[Sign; 3]> {
+        let mut out = [Sign::Zero; 3];
+        for (s, p) in out.iter_mut().zip(other) {
+            let mut sum = 0i128;
+            for k in 0..3 {
+                let d = p[k].checked_sub(corner[k])?;
+                if d.unsigned_abs() >= 1 << 40 {
+                    return None;
+                }
+                sum += self.n[k] as i128 * d as i128;
+            }
+            *s = Sign::of_i128(sum);
+        }
+        Some(out)
+    }
+}
+
+/// True when triangles `t` and `u` (no shared vertex index) are shown disjoint by one
+/// lying strictly on one side of the other's plane, or, when coplanar, by an edge line
+/// of one with the other strictly outside (exact; `false` means undecided).
+fn apart_by_planes(mesh: &Mesh, flats: &[Flat], t: u32, u: u32) -> bool {
+    let (ft, fu) = (&flats[t as usize], &flats[u as usize]);
+    if !ft.ok || !fu.ok {
+        return false;
+    }
+    let corners = |x: u32| mesh.triangles[x as usize].map(|v| &mesh.vertices[v as usize]);
+    let (ct, cu) = (corners(t), corners(u));
+    let one_side = |s: [Sign; 3]| s[0] != Sign::Zero && s[0] == s[1] && s[1] == s[2];
+    let Some(su) = ft.sides(ct[0], cu) else {
+        return false;
+    };
+    if one_side(su) {
+        return true;
+    }
+    if su != [Sign::Zero; 3] {
+        return fu.sides(cu[0], ct).is_some_and(one_side);
+    }
+    // Coplanar, both non-degenerate: parallel normals have the same dominant axis.
+    ft.axis == fu.axis && crate::intersect::coplanar_apart(&ft.flat, &fu.flat)
 }
 
 /// No vertex (padding in a node's common vertices).
