@@ -208,28 +208,24 @@ impl Flat {
         }
     }
 
-    /// Signs of `n · (p − a)` for the corners `p` of `other` (mesh positions), `a` being
-    /// `corner`; `None` when a difference is too wide for the exact `i128` sum.
-    fn sides(&self, corner: &[i64; 3], other: [&[i64; 3]; 3]) -> Option<[Sign; 3]> {
-        let mut out = [Sign::Zero; 3];
-        for (s, p) in out.iter_mut().zip(other) {
-            let mut sum = 0i128;
-            for k in 0..3 {
-                let d = p[k].checked_sub(corner[k])?;
-                if d.unsigned_abs() >= 1 << 40 {
-                    return None;
-                }
-                sum += self.n[k] as i128 * d as i128;
-            }
-            *s = Sign::of_i128(sum);
-        }
-        Some(out)
+    /// Signs of `n · (p − a)` for the corners `p` of `other`, `a` being `corner`
+    /// (exact: the triangles' boxes meet and both have edges below 2^31, so every
+    /// `p − a` is below 2^32 and each sum below 2^97).
+    #[inline]
+    fn sides(&self, corner: &[i64; 3], other: [&[i64; 3]; 3]) -> [Sign; 3] {
+        let n = self.n.map(|x| x as i128);
+        other.map(|p| {
+            let d = [0, 1, 2].map(|k| (p[k] - corner[k]) as i128);
+            debug_assert!(d.iter().all(|x| x.unsigned_abs() <= 1 << 32));
+            Sign::of_i128(n[0] * d[0] + n[1] * d[1] + n[2] * d[2])
+        })
     }
 }
 
-/// True when triangles `t` and `u` (no shared vertex index) are shown disjoint by one
-/// lying strictly on one side of the other's plane, or, when coplanar, by an edge line
-/// of one with the other strictly outside (exact; `false` means undecided).
+/// True when triangles `t` and `u` (no shared vertex index, meeting boxes) are shown
+/// disjoint by one lying strictly on one side of the other's plane, or, when coplanar,
+/// by an edge line of one with the other strictly outside (exact; `false` means
+/// undecided).
 fn apart_by_planes(mesh: &Mesh, flats: &[Flat], t: u32, u: u32) -> bool {
     let (ft, fu) = (&flats[t as usize], &flats[u as usize]);
     if !ft.ok || !fu.ok {
@@ -238,14 +234,12 @@ fn apart_by_planes(mesh: &Mesh, flats: &[Flat], t: u32, u: u32) -> bool {
     let corners = |x: u32| mesh.triangles[x as usize].map(|v| &mesh.vertices[v as usize]);
     let (ct, cu) = (corners(t), corners(u));
     let one_side = |s: [Sign; 3]| s[0] != Sign::Zero && s[0] == s[1] && s[1] == s[2];
-    let Some(su) = ft.sides(ct[0], cu) else {
-        return false;
-    };
+    let su = ft.sides(ct[0], cu);
     if one_side(su) {
         return true;
     }
     if su != [Sign::Zero; 3] {
-        return fu.sides(cu[0], ct).is_some_and(one_side);
+        return one_side(fu.sides(cu[0], ct));
     }
     // Coplanar, both non-degenerate: parallel normals have the same dominant axis.
     ft.axis == fu.axis && crate::intersect::coplanar_apart(&ft.flat, &fu.flat)
