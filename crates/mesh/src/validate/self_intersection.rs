@@ -97,20 +97,56 @@ pub(crate) fn self_intersections_counted(
         .collect();
     let around = around_vertices(mesh, &distinct, limit);
 
+    // Thin triangles (the slivers of a tessellated cap) are boxed in pieces: the box
+    // phase then meets far fewer pairs. `owner[p]` is the triangle of box `p`; the boxes
+    // of triangle `t` are `first[t]..first[t + 1]`.
+    let flats: Vec<Flat> = tris
+        .par_iter()
+        .with_min_len(8192)
+        .map(|t| Flat::of(mesh, t))
+        .collect();
+    let pieces: Vec<Vec<Aabb>> = (0..tris.len())
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|t| match flats[t].ok {
+            true => piece_boxes(mesh, t, bvh),
+            false => vec![bvh.boxes()[t]],
+        })
+        .collect();
+    let chunked = pieces.iter().any(|b| b.len() > 1);
+    let (owner, first, own_bvh): (Vec<u32>, Vec<u32>, Option<Bvh>) = if chunked {
+        let mut owner = Vec::new();
+        let mut first = Vec::with_capacity(tris.len() + 1);
+        let mut boxes = Vec::new();
+        for (t, b) in pieces.into_iter().enumerate() {
+            first.push(boxes.len() as u32);
+            owner.extend(std::iter::repeat_n(t as u32, b.len()));
+            boxes.extend(b);
+        }
+        first.push(boxes.len() as u32);
+        (owner, first, Some(Bvh::new(boxes)))
+    } else {
+        let n = tris.len() as u32;
+        ((0..n).collect(), (0..=n).collect(), None)
+    };
+    let bvh = own_bvh.as_ref().unwrap_or(bvh);
+    let boxes_of = bvh.boxes();
+
     // Every node's vertices common to all its triangles (sorted, `NONE` padding;
     // all `NONE` when some triangle has a repeated index).
     let labels = bvh.node_labels(
         |prims| {
-            let first = prims[0] as usize;
+            let first = owner[prims[0] as usize] as usize;
             let mut common = if distinct[first] {
                 tris[first]
             } else {
                 [NONE; 3]
             };
             for &p in &prims[1..] {
-                let t = &tris[p as usize];
+                let p = owner[p as usize] as usize;
+                let t = &tris[p];
                 for c in common.iter_mut() {
-                    if !distinct[p as usize] || !t.contains(c) {
+                    if !distinct[p] || !t.contains(c) {
                         *c = NONE;
                     }
                 }
@@ -132,19 +168,46 @@ pub(crate) fn self_intersections_counted(
         [NONE; 3],
     );
     let shares = |a: &[u32; 3], b: &[u32; 3]| a.iter().any(|x| *x != NONE && b.contains(x));
-    let flats: Vec<Flat> = tris
-        .par_iter()
-        .with_min_len(8192)
-        .map(|t| Flat::of(mesh, t))
-        .collect();
+    // Whether boxes `p` of `t` and `q` of `u` are the first pair of their boxes that
+    // meets (in index order), so that each triangle pair is tested once.
+    let first_meeting = |t: u32, p: u32, u: u32, q: u32| -> bool {
+        let (rt, ru) = (
+            first[t as usize]..first[t as usize + 1],
+            first[u as usize]..first[u as usize + 1],
+        );
+        if rt.len() == 1 && ru.len() == 1 {
+            return true;
+        }
+        for i in rt {
+            for j in ru.clone() {
+                if (i, j) == (p, q) {
+                    return true;
+                }
+                if boxes_of[i as usize].overlaps(&boxes_of[j as usize]) {
+                    return false;
+                }
+            }
+        }
+        true
+    };
     let boxes = bvh.self_pairs_pruned(
         Found::new,
-        |found, t, u| {
+        |found, p, q| {
+            let (mut t, mut u) = (owner[p as usize], owner[q as usize]);
+            let (mut p, mut q) = (p, q);
+            if t == u {
+                return;
+            }
+            if t > u {
+                (t, u, p, q) = (u, t, q, p);
+            }
             let (tt, uu) = (&tris[t as usize], &tris[u as usize]);
             if distinct[t as usize] && distinct[u as usize] && shares(tt, uu) {
                 return; // around their shared vertex
             }
-            found.test_filtered(mesh, &flats, t, u, limit);
+            if first_meeting(t, p, u, q) {
+                found.test_filtered(mesh, &flats, t, u, limit);
+            }
         },
         |a, b| a.merge(b, limit),
         // Empty nodes have no common vertex, so they are never pruned (nothing to skip).
@@ -243,6 +306,73 @@ fn apart_by_planes(mesh: &Mesh, flats: &[Flat], t: u32, u: u32) -> bool {
     }
     // Coplanar, both non-degenerate: parallel normals have the same dominant axis.
     ft.axis == fu.axis && crate::intersect::coplanar_apart(&ft.flat, &fu.flat)
+}
+
+/// Slabs a thin triangle's box is cut into along its longest side.
+const SLABS: usize = 4;
+/// Coordinates below this bound (2^48) are interpolated in `f64` well within the
+/// boxes' margin.
+const SLAB_BOUND: f64 = (1u64 << 48) as f64;
+
+/// The boxes covering triangle `t` (not degenerate): its own box (`bvh`'s), or, when
+/// the triangle is thin across its box, the boxes of its parts in [`SLABS`] slabs along the box's
+/// longest side (computed in floating point, grown by 2 units and cut to the whole
+/// box: each still contains its part) when their areas add up to less than half of it.
+fn piece_boxes(mesh: &Mesh, t: usize, bvh: &Bvh) -> Vec<Aabb> {
+    let whole = bvh.boxes()[t];
+    let ext = [0, 1, 2].map(|k| whole.max[k] - whole.min[k]);
+    // Area across the two largest sides (flat boxes of flat caps have a zero side).
+    let area = |e: [i64; 3]| {
+        let mut e = e.map(|x| x as f64 + 1.0);
+        e.sort_by(f64::total_cmp);
+        e[1] * e[2]
+    };
+    let axis = (0..3).max_by_key(|&k| ext[k]).unwrap_or(0);
+    let corners = mesh.corners(t).map(|c| c.map(|x| x as f64));
+    if ext[axis] < 64 || corners.iter().flatten().any(|x| x.abs() >= SLAB_BOUND) {
+        return vec![whole];
+    }
+    let (lo, w) = (whole.min[axis] as f64, ext[axis] as f64 / SLABS as f64);
+    let mut out = Vec::with_capacity(SLABS);
+    for i in 0..SLABS {
+        let (s0, s1) = (lo + w * i as f64, lo + w * (i + 1) as f64);
+        let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+        let mut add = |p: [f64; 3]| {
+            for k in 0..3 {
+                b[0][k] = b[0][k].min(p[k]);
+                b[1][k] = b[1][k].max(p[k]);
+            }
+        };
+        for (j, p) in corners.iter().enumerate() {
+            if (s0..=s1).contains(&p[axis]) {
+                add(*p);
+            }
+            let q = corners[(j + 1) % 3];
+            for cut in [s0, s1] {
+                let (dp, dq) = (p[axis] - cut, q[axis] - cut);
+                if (dp < 0.0) != (dq < 0.0) {
+                    let l = dp / (dp - dq);
+                    add([0, 1, 2].map(|k| p[k] + l * (q[k] - p[k])));
+                }
+            }
+        }
+        if b[0][0] > b[1][0] {
+            continue; // nothing of the triangle in this slab
+        }
+        let part = Aabb {
+            min: [0, 1, 2].map(|k| (b[0][k].floor() as i64 - 2).max(whole.min[k])),
+            max: [0, 1, 2].map(|k| (b[1][k].ceil() as i64 + 2).min(whole.max[k])),
+        };
+        out.push(part);
+    }
+    let parts: f64 = out
+        .iter()
+        .map(|b| area([0, 1, 2].map(|k| b.max[k] - b.min[k])))
+        .sum();
+    if out.is_empty() || 2.0 * parts >= area(ext) {
+        return vec![whole];
+    }
+    out
 }
 
 /// No vertex (padding in a node's common vertices).
@@ -482,6 +612,31 @@ mod tests {
                 assert!(tests < 20 * n, "{on_rim} {lift}: {tests} exact tests");
             }
         }
+    }
+
+    #[test]
+    fn thin_triangles_are_boxed_in_pieces_and_still_found() {
+        // The radial slivers of a fan are cut into slab boxes; triangles laid across the
+        // fan in its plane and through it are found exactly as by the oracle.
+        let mut m = fan(120, 5000.0, false, |_| 0);
+        let b = bvh(&m);
+        let cut = (0..m.triangles.len())
+            .filter(|&t| piece_boxes(&m, t, &b).len() > 1)
+            .count();
+        assert!(cut > 60, "{cut} of 120 slivers cut");
+        let nv = m.vertices.len() as u32;
+        m.vertices.extend([
+            [-4000, 300, 0],
+            [4000, 700, 0],
+            [0, 2500, -50],
+            [0, 2400, 60],
+        ]);
+        m.triangles
+            .extend([[nv, nv + 1, 7], [nv + 2, nv + 3, 40], [nv, nv + 3, 90]]);
+        let found = agrees(&m).unwrap();
+        assert!(found > 0);
+        let (got, count, _) = self_intersections_counted(&m, &bvh(&m), usize::MAX);
+        assert!(count > 0 && got.len() == count);
     }
 
     fn point(r: i64) -> impl Strategy<Value = [i64; 3]> {
