@@ -15,7 +15,10 @@
 //! - All other pairs come from the hierarchy over triangle boxes, traversed against
 //!   itself in parallel. A node whose triangles all share one vertex (a piece of a
 //!   fan) is skipped against another such node with the same vertex, so a fan's pairs
-//!   are not even enumerated there.
+//!   are not even enumerated there. A triangle thin across its box (a cap's radial
+//!   sliver) is boxed in slabs instead, and a pair whose boxes meet is first filtered
+//!   exactly by planes computed once per triangle (one triangle strictly on one side
+//!   of the other's plane, or, coplanar, outside an edge line of it).
 
 use crate::intersect::{triangle_pair, Contact};
 use crate::mesh::Mesh;
