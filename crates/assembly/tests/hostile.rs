@@ -4,7 +4,7 @@
 //! that the grid collapses. Each must end with a clear error naming the file and the
 //! part, or with the right answer; known answers are worked out by hand in each test.
 
-use apart_assembly::{load, LoadError, LoadOptions, Loaded, Problem, Severity};
+use apart_assembly::{load, LoadError, LoadOptions, Loaded, Problem, Severity, Tolerance};
 use apart_formats::{off, Polygons, RawObject};
 use apart_testkit::solids::{cuboid_corners, CUBOID_QUADS};
 use apart_testkit::Scratch;
@@ -446,6 +446,41 @@ fn snapping_that_opens_a_gap_is_reported() {
         w[0].message,
         "snapping to the grid (step 0.0625) separated part \"a\" and part \"b\", which touched before snapping: they are apart after it; a larger --grid-bits (at most 52) makes the gap smaller"
     );
+}
+
+/// A triangular prism: the right triangle (0, 0), (4, 0), (0, 4), from z = 0 to 1.
+const WEDGE_OFF: &str = "OFF\n6 5 0\n0 0 0\n4 0 0\n0 4 0\n0 0 1\n4 0 1\n0 4 1\n\
+3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 0 3 5 2\n4 1 2 5 4\n";
+
+#[test]
+fn parts_the_snapping_check_finds_disjoint_are_not_reported_and_others_still_are() {
+    // "a" is a wedge; "b" a box in the empty corner of a's bounding box, touching a's
+    // slanted face along its edge x = y = 2 (its heights are off the grid, so the
+    // snapping check runs and finds the two disjoint, while their boxes overlap); "c"
+    // a box inside the wedge. Only a and c overlap, with or without a tolerance.
+    let d = tmp("disjoint-after-snapping");
+    std::fs::write(d.join("a.off"), WEDGE_OFF).unwrap();
+    write_off(&d.join("b.off"), &boxed([2.0, 2.0, 0.3], [3.0, 3.0, 0.7]));
+    write_off(&d.join("c.off"), &boxed([0.5, 0.5, 0.3], [1.5, 1.5, 0.8]));
+    for tolerance in [Tolerance::None, Tolerance::Fixed(1e-3)] {
+        let opts = LoadOptions {
+            tolerance,
+            ..LoadOptions::default()
+        };
+        let l = load(&d, &opts).unwrap();
+        assert!(l.assembly.max_snap_displacement > 0.0);
+        let errors: Vec<&Problem> = l.problems.iter().filter(|p| p.is_error()).collect();
+        assert_eq!(errors.len(), 1, "{tolerance:?}: {:?}", l.problems);
+        assert_eq!(errors[0].part.as_deref(), Some("a"));
+        assert!(
+            errors[0]
+                .message
+                .starts_with("overlaps part \"c\" by a depth of"),
+            "{}",
+            errors[0].message
+        );
+        assert!(warnings(&l).is_empty(), "{:?}", l.problems);
+    }
 }
 
 #[test]
