@@ -1220,8 +1220,8 @@ mod snapping {
         b: Side<'a>,
         /// Each triangle of `a` near `b`, with the triangles of `b` near it.
         from_a: Vec<(u32, Vec<u32>)>,
-        /// The same pairs seen from `b`'s triangles.
-        from_b: Vec<(u32, Vec<u32>)>,
+        /// The triangles of `a` and of `b` near the other part.
+        near: [Vec<u32>; 2],
         /// Overlap witnesses count up to this depth (two grid steps).
         cap: f64,
         /// The unit normals of the near triangles, indexed by triangle, for `a` and `b`.
@@ -1233,19 +1233,8 @@ mod snapping {
 
     /// Whether the boxes of two sets of points overlap in volume (exact comparisons).
     fn boxes_overlap_open(p: &[F3], q: &[F3]) -> bool {
-        let bounds = |v: &[F3]| {
-            v.iter().fold(
-                ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-                |(lo, hi), x| {
-                    (
-                        [0, 1, 2].map(|k| lo[k].min(x[k])),
-                        [0, 1, 2].map(|k| hi[k].max(x[k])),
-                    )
-                },
-            )
-        };
-        let ((lp, hp), (lq, hq)) = (bounds(p), bounds(q));
-        (0..3).all(|k| lp[k] < hq[k] && lq[k] < hp[k])
+        let bounds = |v: &[F3]| v.iter().fold(Aabb::<f64>::EMPTY, |b, x| b.with(x));
+        bounds(p).overlaps_open(&bounds(q))
     }
 
     /// The deeper of two overlap witnesses (the first on a tie).
@@ -1335,7 +1324,10 @@ mod snapping {
                     .reduce(|| none, deeper)
             };
             let (sa, sb) = (self.side(0), self.side(1));
-            deeper(deepest(&self.from_a, sa, sb), deepest(&self.from_b, sb, sa))
+            // The pairs seen from `b`'s triangles, built only here: most pairs never
+            // need a depth.
+            let from_b = near_lists(sb.mesh, &self.near[1], sa.mesh, &self.near[0]);
+            deeper(deepest(&self.from_a, sa, sb), deepest(&from_b, sb, sa))
         }
 
         /// Part `k`'s side (0: `a`, 1: `b`) with its near triangles' unit normals.
@@ -1379,7 +1371,6 @@ mod snapping {
         if from_a.is_empty() {
             return None;
         }
-        let from_b = near_lists(mb, &nb, ma, &na);
         let normals = [unit_normals(ma, ra, &na), unit_normals(mb, rb, &nb)];
         let side = |mesh, raw| Side {
             mesh,
@@ -1390,7 +1381,7 @@ mod snapping {
             a: side(ma, ra),
             b: side(mb, rb),
             from_a,
-            from_b,
+            near: [na, nb],
             cap: 2.0 * grid.step(),
             normals,
             inputs_overlap: boxes_overlap_open(ra, rb),
