@@ -40,6 +40,43 @@ pub fn bit_len(v: &Int) -> u32 {
     BitTest::bit_len(v) as u32
 }
 
+/// The `f64` nearest to `n / d` (`d > 0`), rounded once (ties to even), so that equal
+/// fractions give the same double whatever their representation (`to_f64(n) / to_f64(d)`
+/// rounds three times and can differ in the last bit). Infinite beyond the `f64` range;
+/// quotients below about 2^-1000 come from that float quotient.
+pub fn ratio_to_f64(n: &Int, d: &Int) -> f64 {
+    debug_assert!(*d > Int::ZERO, "ratio_to_f64 needs a positive denominator");
+    if *n == Int::ZERO {
+        return 0.0;
+    }
+    // Exact operands divide once in IEEE arithmetic.
+    const EXACT: u32 = 53;
+    if bit_len(n) <= EXACT && bit_len(d) <= EXACT {
+        return to_f64(n) / to_f64(d);
+    }
+    // q = ⌊|n| 2^k / d⌋ with 56 or 57 bits; a nonzero remainder sets its last bit, which
+    // lies below the rounding bit, so converting q rounds as the true quotient would.
+    let k = 56 - (bit_len(n) as i64 - bit_len(d) as i64);
+    if k.abs() > 1000 {
+        return to_f64(n) / to_f64(d);
+    }
+    let a = Int::from(n.unsigned_abs());
+    let (a, b) = if k >= 0 {
+        (a << k as usize, d.clone())
+    } else {
+        (a, d << (-k) as usize)
+    };
+    let (q, r) = (&a / &b, &a % &b);
+    let q = u64::try_from(&q).expect("a quotient of at most 57 bits") | u64::from(r != Int::ZERO);
+    // Exact scaling by a power of two (both factors within the normal range).
+    let m = q as f64 * 2f64.powi(-(k / 2) as i32) * 2f64.powi(-(k - k / 2) as i32);
+    if *n < Int::ZERO {
+        -m
+    } else {
+        m
+    }
+}
+
 /// Number of bits of |v| (0 for 0).
 #[inline]
 pub fn bit_len_i64(v: i64) -> u32 {
@@ -178,6 +215,48 @@ fn gcd_odd_u64(mut a: u64, mut b: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ratio_to_f64_rounds_once() {
+        // Against IEEE division of exactly representable operands, scaled by a common
+        // factor that makes both wide: the quotient must not change.
+        let mut x: u64 = 0x9e3779b97f4a7c15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let k = Int::from(3).pow(60);
+        for _ in 0..20000 {
+            let (a, b) = (
+                (next() >> 11) as i64 - (1 << 52),
+                (next() >> 11).max(1) as i64,
+            );
+            let want = a as f64 / b as f64;
+            let (n, d) = (Int::from(a), Int::from(b));
+            assert_eq!(ratio_to_f64(&n, &d).to_bits(), want.to_bits());
+            assert_eq!(
+                ratio_to_f64(&(&n * &k), &(&d * &k)).to_bits(),
+                want.to_bits(),
+                "{a}/{b}"
+            );
+            let big = Int::ONE << 300usize;
+            assert_eq!(
+                ratio_to_f64(&(&n * &big), &(&d * &big)).to_bits(),
+                want.to_bits()
+            );
+        }
+        // Halfway cases: 2^53 + 1 and 2^53 + 3 over 1 tie to even.
+        let h = Int::from((1i64 << 53) + 1) * &k;
+        assert_eq!(ratio_to_f64(&h, &k), (1u64 << 53) as f64);
+        let h = Int::from((1i64 << 53) + 3) * &k;
+        assert_eq!(ratio_to_f64(&h, &k), ((1u64 << 53) + 4) as f64);
+        // Just above a halfway point rounds up.
+        let above = Int::from((1i64 << 53) + 1) * &k + Int::ONE;
+        assert_eq!(ratio_to_f64(&above, &k), ((1u64 << 53) + 2) as f64);
+        assert_eq!(ratio_to_f64(&Int::ZERO, &k), 0.0);
+    }
 
     #[test]
     fn gcd_matches_euclid() {

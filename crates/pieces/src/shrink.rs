@@ -16,9 +16,11 @@
 //! What the planners get ([`Polytope::shrunk`]) is that cut made one grid step deeper,
 //! with each vertex rounded to the nearest grid point and the convex hull taken: still
 //! at least `eps` inside every face, with integers as short as the input's. Since the
-//! vertices are rounded anyway, that cut is first made in floating point (the same
-//! clipping, generic over its arithmetic); the rounded hull is kept only when an exact test
-//! puts every vertex at least `eps` inside every facet, else the exact cut is made.
+//! vertices are rounded anyway, that cut is first made in floating point (each face
+//! polygon clipped on its own, in an order of the exact coordinates, so that the same
+//! solid stored another way rounds the same); the rounded hull is kept only when an
+//! exact test puts every vertex at least `eps` inside every facet, else the exact cut is
+//! made (also whenever the float cut comes out empty).
 //! Either way the result holds the exact cut by `eps` plus two steps: a hull of points
 //! each less than a step from a convex set's vertices holds that set eroded by a step.
 
@@ -71,32 +73,10 @@ impl Cut for HPoint {
     }
 }
 
-/// Floating point, for [`Polytope::shrunk`]'s fast path: a true point against a unit
-/// normal and offset `(u, h)`, `u · x <= h`; values within [`FLOAT_ON`] of the plane
-/// count as on it (never trusted: the result is checked exactly).
-impl Cut for [f64; 3] {
-    type Half = ([f64; 3], f64);
-    type Value = f64;
-    fn side(&self, h: &([f64; 3], f64)) -> (Sign, f64) {
-        let s = fvec::dot(h.0, *self) - h.1;
-        let sign = if s > FLOAT_ON {
-            Sign::Positive
-        } else if s < -FLOAT_ON {
-            Sign::Negative
-        } else {
-            Sign::Zero
-        };
-        (sign, s)
-    }
-    fn between(inner: &[f64; 3], outer: &[f64; 3], vi: &f64, vo: &f64) -> [f64; 3] {
-        fvec::lerp(*inner, *outer, vi / (vi - vo))
-    }
-}
-
 /// Pieces of at most this many facets are cut plane by plane; bigger ones are scaled.
 const EXACT_CUT_FACETS: usize = 32;
 
-/// How close to a plane (grid steps) a floating-point vertex counts as on it.
+/// How close to a plane (grid steps) a vertex of the float cut counts as on it.
 const FLOAT_ON: f64 = 1e-4;
 
 /// The edges of the current polytope: pairs of vertices sharing two planes.
@@ -178,6 +158,73 @@ fn clip<P: Cut>(verts: Vec<Vertex<P>>, h: &P::Half, hi: u32) -> Option<Vec<Verte
         v.on.dedup();
     }
     Some(out)
+}
+
+/// The faces of a convex polytope (convex polygons) cut by each half-space `u · x <= c`
+/// in turn, in floating point: each face is clipped on its own (Sutherland–Hodgman) and
+/// the points on the cutting plane, ordered around their centre, make the new face. No
+/// vertex-to-plane incidences are kept, so near-parallel planes cannot make the cut
+/// lose a vertex; only positions carry rounding errors. `None` when nothing is left.
+fn cut_faces(
+    mut faces: Vec<Vec<[f64; 3]>>,
+    halves: &[([f64; 3], f64)],
+) -> Option<Vec<Vec<[f64; 3]>>> {
+    for (u, c) in halves {
+        let value = |x: &[f64; 3]| fvec::dot(*u, *x) - c;
+        if faces.iter().flatten().all(|x| value(x) <= FLOAT_ON) {
+            continue;
+        }
+        let mut cap: Vec<[f64; 3]> = Vec::new();
+        let mut out: Vec<Vec<[f64; 3]>> = Vec::with_capacity(faces.len() + 1);
+        for face in &faces {
+            let mut kept = Vec::with_capacity(face.len() + 2);
+            for (i, x) in face.iter().enumerate() {
+                let y = &face[(i + 1) % face.len()];
+                let (vx, vy) = (value(x), value(y));
+                if vx <= 0.0 {
+                    kept.push(*x);
+                    if vx >= -FLOAT_ON {
+                        cap.push(*x);
+                    }
+                }
+                if (vx < 0.0 && vy > 0.0) || (vx > 0.0 && vy < 0.0) {
+                    let z = fvec::lerp(*x, *y, vx / (vx - vy));
+                    kept.push(z);
+                    cap.push(z);
+                }
+            }
+            if kept.len() >= 3 {
+                out.push(kept);
+            }
+        }
+        if out.is_empty() {
+            return None;
+        }
+        if cap.len() >= 3 {
+            // Around the centre, by angle in a basis of the plane.
+            let n = cap.len() as f64;
+            let g = cap
+                .iter()
+                .fold([0.0; 3], |s, x| fvec::add(s, *x))
+                .map(|s| s / n);
+            let k = (0..3)
+                .min_by(|&i, &j| u[i].abs().total_cmp(&u[j].abs()))
+                .unwrap_or(0);
+            let mut axis = [0.0; 3];
+            axis[k] = 1.0;
+            let e1 = fvec::cross(*u, axis);
+            let e2 = fvec::cross(*u, e1);
+            let angle = |x: &[f64; 3]| {
+                let d = fvec::sub(*x, g);
+                fvec::dot(d, e2).atan2(fvec::dot(d, e1))
+            };
+            let mut around: Vec<(f64, [f64; 3])> = cap.iter().map(|x| (angle(x), *x)).collect();
+            around.sort_by(|a, b| a.0.total_cmp(&b.0));
+            out.push(around.into_iter().map(|(_, x)| x).collect());
+        }
+        faces = out;
+    }
+    Some(faces)
 }
 
 /// How far the farthest facet plane of `original` moved inward in `shrunk` (true
@@ -350,7 +397,7 @@ impl Polytope {
         let margin = eps_num + eps_den; // eps + 1 step
         if self.facets().len() <= EXACT_CUT_FACETS {
             if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
-                return p;
+                return Some(p);
             }
         }
         let cut = if self.facets().len() <= EXACT_CUT_FACETS {
@@ -368,75 +415,110 @@ impl Polytope {
     /// over `eps_den`) computed in floating point, each vertex rounded to the nearest
     /// grid point, and the exact hull of those points, returned only when every one of
     /// them lies at least `eps` inside every facet of the piece, checked exactly (the
-    /// bound [`Polytope::shrunk_exact`] guarantees). `Some(None)` when the cut leaves
-    /// nothing, or the rounded points span no volume: nothing is lost then, as the cut
-    /// one step deeper has no interior. `None` when the check fails (or a coordinate
-    /// does not fit): then the exact cut decides.
-    fn shrunk_in_floats(
-        &self,
-        margin: &Int,
-        eps_num: &Int,
-        eps_den: &Int,
-    ) -> Option<Option<Polytope>> {
+    /// bound [`Polytope::shrunk_exact`] guarantees). `None` when the check fails, the
+    /// float cut leaves nothing or the rounded points span no volume (float
+    /// combinatorics can lose vertices where facets are nearly parallel, so emptiness is
+    /// never decided here), or a coordinate does not fit: then the exact cut decides.
+    fn shrunk_in_floats(&self, margin: &Int, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
         let den = self.den();
         let m = int::to_f64(margin) / int::to_f64(eps_den);
         let nf = self.facets().len() as u32;
-        // True coordinates and unit facet planes (exact values divided once: decomposed
-        // pieces have denominators of hundreds of bits).
-        let shadow = self.shadow()?;
+        // True coordinates, each rounded once from its exact value, and the vertices and
+        // facets taken in an order of those values: the same solid stored with another
+        // denominator, or listed in another order, is cut by the same float operations
+        // and rounds to the same grid points.
+        let small_den = (int::bit_len(den) <= 53).then(|| int::to_f64(den));
+        let coordinate = |c: i64| match small_den {
+            Some(d) if c.unsigned_abs() <= 1 << 53 => c as f64 / d,
+            _ => int::ratio_to_f64(&Int::from(c), den),
+        };
+        let points: Vec<[f64; 3]> = self
+            .vertices()
+            .iter()
+            .map(|v| match v.as_small() {
+                Some(c) => c.map(coordinate),
+                None => [0, 1, 2].map(|k| int::ratio_to_f64(&v.get(k), den)),
+            })
+            .collect();
+        if !points.iter().flatten().all(|c| c.is_finite()) {
+            return None;
+        }
+        let lex = |a: &[f64; 3], b: &[f64; 3]| {
+            (0..3)
+                .map(|k| a[k].total_cmp(&b[k]))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        };
+        let mut vorder: Vec<u32> = (0..points.len() as u32).collect();
+        vorder.sort_unstable_by(|&a, &b| {
+            let (va, vb) = (&self.vertices()[a as usize], &self.vertices()[b as usize]);
+            lex(&points[a as usize], &points[b as usize]).then_with(|| {
+                (0..3)
+                    .map(|k| va.get(k).cmp(&vb.get(k)))
+                    .find(|o| o.is_ne())
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+        });
+        let mut vpos = vec![0u32; points.len()];
+        for (i, &v) in vorder.iter().enumerate() {
+            vpos[v as usize] = i as u32;
+        }
+        let units: Vec<[f64; 3]> = self.facets().iter().map(|f| f.normal.unit_f64()).collect();
+        if !units
+            .iter()
+            .all(|u| u.iter().all(|c| c.is_finite()) && *u != [0.0; 3])
+        {
+            return None;
+        }
+        let mut forder: Vec<u32> = (0..nf).collect();
+        forder.sort_by(|&a, &b| lex(&units[a as usize], &units[b as usize]));
         let bounds: Vec<Int> = self
             .facets()
             .iter()
             .map(|f| length_bound_256(&f.normal))
             .collect();
-        let halves: Vec<([f64; 3], f64)> = self
-            .facets()
+        let halves: Vec<([f64; 3], f64)> = forder
             .iter()
-            .zip(&bounds)
-            .enumerate()
-            .map(|(k, (f, r))| {
+            .map(|&k| {
+                let (f, r) = (&self.facets()[k as usize], &bounds[k as usize]);
                 // Moved by margin r / |n| (1 up to 1 / (256 |n|)).
-                let n2 = int::to_f64(&f.normal.dot(&f.normal));
-                let stretch = int::to_f64(r) / 256.0 / n2.sqrt();
+                let n = int::to_f64(&f.normal.dot(&f.normal)).sqrt();
+                let stretch = int::to_f64(r) / 256.0 / n;
                 let stretch = if stretch.is_finite() { stretch } else { 1.0 };
-                (shadow.facet_units[k], shadow.facet_levels[k] - m * stretch)
+                let level = int::ratio_to_f64(&f.offset, den) / n;
+                (units[k as usize], level - m * stretch)
             })
             .collect();
-        let mut on_of: Vec<Vec<u32>> = vec![Vec::new(); self.vertices().len()];
-        for (f, facet) in self.facets().iter().enumerate() {
-            for &v in &facet.cycle {
-                on_of[v as usize].push(nf + f as u32);
-            }
-        }
-        let mut verts: Vec<Vertex<[f64; 3]>> = shadow
-            .points
+        // Each facet's polygon in the facets' order, from its first vertex in the
+        // vertices' order.
+        let faces: Vec<Vec<[f64; 3]>> = forder
             .iter()
-            .zip(on_of)
-            .map(|(v, on)| Vertex { p: *v, on })
+            .map(|&f| {
+                let cycle = &self.facets()[f as usize].cycle;
+                let first = (0..cycle.len())
+                    .min_by_key(|&i| vpos[cycle[i] as usize])
+                    .unwrap_or(0);
+                (0..cycle.len())
+                    .map(|i| points[cycle[(first + i) % cycle.len()] as usize])
+                    .collect()
+            })
             .collect();
-        for hi in 0..nf {
-            match clip(verts, &halves[hi as usize], hi) {
-                Some(v) => verts = v,
-                None => return Some(None),
-            }
-        }
+        // An empty float cut is not trusted (the exact cut decides).
+        let faces = cut_faces(faces, &halves)?;
         const LIMIT: f64 = (1u64 << 52) as f64;
-        let points: Vec<Vec3> = verts
+        let points: Vec<Vec3> = faces
             .iter()
+            .flatten()
             .map(|v| {
-                let r = v.p.map(f64::round);
+                let r = v.map(f64::round);
                 r.iter()
                     .all(|x| x.abs() < LIMIT)
                     .then(|| Vec3::new(r[0] as i64, r[1] as i64, r[2] as i64))
             })
             .collect::<Option<_>>()?;
-        let hull = match Polytope::hull(&points) {
-            Ok(h) => h,
-            Err(crate::polytope::PolytopeError::Flat) => return Some(None),
-            Err(_) => return None,
-        };
+        let hull = Polytope::hull(&points).ok()?;
         if hull.volume6() <= Int::ZERO {
-            return Some(None);
+            return None;
         }
         // Every hull vertex v (true coordinates, integers) at least eps inside every
         // facet n · x <= c / den: 256 eps_den (c - den n · v) >= eps_num den ⌈256 |n|⌉.
@@ -447,7 +529,7 @@ impl Polytope {
                 .iter()
                 .all(|v| &scale * (&f.offset - den * f.normal.dot(v)) >= need)
         });
-        inside.then_some(Some(hull))
+        inside.then_some(hull)
     }
 
     /// The convex hull of this polytope's vertices, each rounded to the nearest point of
