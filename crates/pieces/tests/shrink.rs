@@ -206,3 +206,31 @@ fn the_96_bit_copy_shrinks_to_the_same_piece_on_the_stop_28_case() {
     .map(|(x, y, z)| Vec3::new(x, y, z));
     holds_the_exact_cut_two_steps_deeper(&pts, 3, 1).unwrap();
 }
+
+/// Cases where near-parallel facets made the float cut's vertex-plane incidences
+/// inconsistent (before each face was clipped on its own): the cut came out empty, or
+/// lost a vertex of the exact cut two steps deeper.
+#[test]
+fn near_parallel_facets_lose_nothing_of_the_cut() {
+    for pts in [
+        [
+            (-54, 265, -3964),
+            (-162, -330, 2974),
+            (21, 119, -2673),
+            (29, -372, -3016),
+            (33, 0, 0),
+            (-149, 194, -457),
+        ],
+        [
+            (-120, -353, 3329),
+            (0, 0, 0),
+            (0, 0, 1),
+            (-342, -321, -1091),
+            (183, -363, 616),
+            (-35, -331, -3638),
+        ],
+    ] {
+        let pts = pts.map(|(x, y, z)| Vec3::new(x, y, z));
+        holds_the_exact_cut_two_steps_deeper(&pts, 1, 1).unwrap();
+    }
+}
