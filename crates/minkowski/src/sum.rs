@@ -506,7 +506,7 @@ fn crossing(a: &GaussArc, b: &GaussArc) -> bool {
 
 /// `max n · v` over the vertices of `p` (the support function).
 pub fn support_value(p: &Polytope, n: &Vec3) -> Int {
-    p.support(n).0
+    p.support_value(n)
 }
 
 #[cfg(test)]

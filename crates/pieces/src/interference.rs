@@ -23,10 +23,10 @@ pub fn interiors_meet_translated(a: &Polytope, t: &HPoint, b: &Polytope) -> bool
     let (x, w) = (t.num(), t.den());
     // Separated along n when [la, ha]/da + n·t and [lb, hb]/db touch or are apart.
     let separated = |n: &Vec3| -> bool {
-        let (ha, _) = a.support(n);
-        let (hb, _) = b.support(n);
-        let (na, _) = a.support(&n.neg());
-        let (nb, _) = b.support(&n.neg());
+        let ha = a.support_value(n);
+        let hb = b.support_value(n);
+        let na = a.support_value(&n.neg());
+        let nb = b.support_value(&n.neg());
         let (la, lb) = (-na, -nb);
         let nd = n.to_ints();
         let nd = &nd[0] * &x[0] + &nd[1] * &x[1] + &nd[2] * &x[2];
@@ -92,8 +92,8 @@ fn exact_separating_normal(a: &Polytope, b: &Polytope) -> Option<Vec3> {
         return exact_separating_normal(&a, &b);
     }
     let separates = |n: &Vec3| -> bool {
-        let (ha, _) = a.support(n);
-        let (hb, _) = b.support(&n.neg());
+        let ha = a.support_value(n);
+        let hb = b.support_value(&n.neg());
         // max_a n·x <= min_b n·y  <=>  ha + hb' <= 0 with hb' = max_b (-n)·y.
         ha + hb <= Int::ZERO
     };
@@ -137,6 +137,12 @@ fn unit(n: &Vec3) -> Option<[f64; 3]> {
 /// The smallest and largest of `u · p` over the shadow's points.
 fn float_range(s: &Shadow, u: &[f64; 3]) -> (f64, f64) {
     range_of(&s.points, u)
+}
+
+/// Whether [`Polytope::support`] climbs `p`'s vertex graph (exact, a few steps) rather
+/// than scanning every vertex: then it beats the float filter's scans too.
+fn climbs(p: &Polytope) -> bool {
+    p.vertices().len() >= crate::climb::CLIMB_MIN
 }
 
 /// The smallest and largest of `u · p` over `points`.
@@ -207,6 +213,11 @@ impl<'p> FilteredPair<'p> {
     /// Whether `a` lies weakly below `b` along `n` (`max_a n·x <= min_b n·y`), and
     /// whether strictly; `None` when not.
     fn below(&self, n: &Vec3, u: &[f64; 3]) -> Option<bool> {
+        if climbs(self.a) || climbs(self.b) {
+            let ha = self.a.support_value(n);
+            let hb = self.b.support_value(&n.neg());
+            return compare(&ha, self.a.den(), &-hb, self.b.den());
+        }
         let ((_, ahi), (blo, _)) = (float_range(self.sa, u), float_range(self.sb, u));
         self.below_given(n, u, ahi, blo)
     }
@@ -224,6 +235,10 @@ impl<'p> FilteredPair<'p> {
     /// value is its offset).
     fn below_facet_of_a(&self, i: usize, u: &[f64; 3]) -> Option<bool> {
         let (f, c) = (&self.a.facets()[i], self.sa.facet_levels[i]);
+        if climbs(self.b) {
+            let mb = -self.b.support_value(&f.normal.neg());
+            return compare(&f.offset, self.a.den(), &mb, self.b.den());
+        }
         let (blo, _) = float_range(self.sb, u);
         if c - blo > 2.0 * self.err {
             return None;
@@ -236,6 +251,10 @@ impl<'p> FilteredPair<'p> {
     /// `f`'s offset.
     fn below_facet_of_b(&self, i: usize, u: &[f64; 3]) -> Option<bool> {
         let (f, c) = (&self.b.facets()[i], self.sb.facet_levels[i]);
+        if climbs(self.a) {
+            let ma = -self.a.support_value(&f.normal.neg());
+            return compare(&f.offset, self.b.den(), &ma, self.a.den());
+        }
         let (alo, _) = float_range(self.sa, u);
         if c - alo > 2.0 * self.err {
             return None;
@@ -387,13 +406,13 @@ pub fn facet_axes(a: &Polytope, b: &Polytope) -> Vec<(Vec3, bool)> {
 fn exact_facet_axes(a: &Polytope, b: &Polytope) -> Vec<(Vec3, bool)> {
     let mut out = Vec::new();
     for f in a.facets() {
-        let (hb, _) = b.support(&f.normal.neg());
+        let hb = b.support_value(&f.normal.neg());
         if let Some(s) = compare(&f.offset, a.den(), &-hb, b.den()) {
             out.push((f.normal.clone(), s));
         }
     }
     for f in b.facets() {
-        let (ha, _) = a.support(&f.normal.neg());
+        let ha = a.support_value(&f.normal.neg());
         if let Some(s) = compare(&f.offset, b.den(), &-ha, a.den()) {
             out.push((f.normal.neg(), s));
         }
@@ -407,8 +426,8 @@ pub fn below_along(a: &Polytope, b: &Polytope, n: &Vec3) -> Option<bool> {
     match (FilteredPair::new(a, b), unit(n)) {
         (Some(fp), Some(u)) => fp.below(n, &u),
         _ => {
-            let (ha, _) = a.support(n);
-            let (hb, _) = b.support(&n.neg());
+            let ha = a.support_value(n);
+            let hb = b.support_value(&n.neg());
             compare(&ha, a.den(), &-hb, b.den())
         }
     }

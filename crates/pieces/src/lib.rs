@@ -19,6 +19,7 @@
 //! assert!(!interiors_disjoint(&cube(0), &cube(1)));
 //! ```
 
+mod climb;
 pub mod hull2d;
 pub mod hull3d;
 pub mod interference;

@@ -1,5 +1,6 @@
 //! Exact convex polytopes: vertices, facet planes with integer normals, adjacency.
 
+use crate::climb::{Climb, CLIMB_MIN};
 use crate::hull2d::hull_in_plane;
 use apart_kernel::fvec;
 use apart_kernel::int::{self, Int};
@@ -46,6 +47,9 @@ pub struct Polytope {
     edge_dirs: std::sync::OnceLock<Vec<Vec3>>,
     /// Floating-point coordinates for filters (computed on demand).
     shadow: std::sync::OnceLock<Option<Shadow>>,
+    /// The vertex graph for climbing support queries (computed on demand, for
+    /// polytopes of at least [`CLIMB_MIN`] vertices).
+    climb: std::sync::OnceLock<Climb>,
 }
 
 /// Floating-point true coordinates of a polytope's vertices, for filters that prune
@@ -434,6 +438,7 @@ impl Polytope {
             edges,
             edge_dirs: std::sync::OnceLock::new(),
             shadow: std::sync::OnceLock::new(),
+            climb: std::sync::OnceLock::new(),
         })
     }
 
@@ -525,8 +530,36 @@ impl Polytope {
         })
     }
 
-    /// The support value `max n · v` and the vertices attaining it.
+    /// The support value `max n · v` and the vertices attaining it (in increasing
+    /// order).
     pub fn support(&self, n: &Vec3) -> (Int, Vec<u32>) {
+        if self.vertices.len() >= CLIMB_MIN {
+            if let Some(s) = self.climb.get_or_init(|| Climb::new(self)).support(self, n) {
+                return s;
+            }
+            // A maximal face of many vertices is a facet (an edge has two): the one
+            // whose (primitive) normal is `n`'s direction.
+            let m = n.primitive();
+            if let Some(f) = self.facets.iter().find(|f| f.normal == m) {
+                let mut arg = f.cycle.clone();
+                arg.sort_unstable();
+                return (n.dot(&self.vertices[arg[0] as usize]), arg);
+            }
+        }
+        self.support_scan(n)
+    }
+
+    /// The support value `max n · v` alone ([`Polytope::support`] without the
+    /// maximisers, which a big maximal face would make costly).
+    pub fn support_value(&self, n: &Vec3) -> Int {
+        if self.vertices.len() >= CLIMB_MIN {
+            return self.climb.get_or_init(|| Climb::new(self)).value(self, n);
+        }
+        self.support_scan(n).0
+    }
+
+    /// [`Polytope::support`] over every vertex.
+    pub(crate) fn support_scan(&self, n: &Vec3) -> (Int, Vec<u32>) {
         if let Some(nn) = n.as_small() {
             if self.vertices.iter().all(|v| v.as_small().is_some()) {
                 let dot = |v: &Vec3| {
