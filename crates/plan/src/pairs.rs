@@ -449,17 +449,20 @@ fn meets_relative_interior(fa: &[Vec3], da: &Int, fb: &[Vec3], db: &Int, n: &Vec
         let edges = if k == 2 { 1 } else { k };
         // Edges near the other set first (the separating one, when there is one, is
         // usually there); the order changes nothing but the time.
-        let target = other[0].approx();
+        let (fc, fo) = (approx(dc), approx(dother));
+        let target = other[0].approx().map(|t| t / fo);
         let dist = |e: usize| {
             let u = cycle[e].approx();
-            (0..3)
-                .map(|t| (u[t] / approx(dc) - target[t] / approx(dother)).powi(2))
-                .sum::<f64>()
+            (0..3).map(|t| (u[t] / fc - target[t]).powi(2)).sum::<f64>()
         };
-        let mut order: Vec<usize> = (0..edges).collect();
-        if edges > 8 {
-            order.sort_by(|&x, &y| dist(x).total_cmp(&dist(y)));
-        }
+        let order: Vec<usize> = if edges > 8 {
+            // Each distance once (a many-sided cap has a thousand edges).
+            let mut by: Vec<(f64, usize)> = (0..edges).map(|e| (dist(e), e)).collect();
+            by.sort_by(|x, y| x.0.total_cmp(&y.0));
+            by.into_iter().map(|(_, e)| e).collect()
+        } else {
+            (0..edges).collect()
+        };
         order.into_iter().any(|e| {
             let (u, v) = (&cycle[e], &cycle[(e + 1) % k]);
             let g = n.cross(&v.sub(u));
