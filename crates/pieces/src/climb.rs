@@ -68,7 +68,8 @@ pub(crate) struct Climb {
     /// For each cell of a cube map of directions ([`cell_of`]), a vertex extreme along
     /// its centre (in floating point: only a start, never an answer).
     starts: Vec<u32>,
-    /// The stored vertices as machine integers, when all fit.
+    /// The stored vertices as machine integers, when all fit (a copy: a polytope whose
+    /// stored integers change must drop its climb, as `rescaled` and `translated` do).
     small: Option<Vec<[i64; 3]>>,
 }
 
@@ -312,6 +313,14 @@ mod tests {
                     prop_assert_eq!(c.value(&p, d), scan.0.clone());
                     prop_assert_eq!(p.support_value(d), scan.0.clone());
                     prop_assert_eq!(p.support(d), scan);
+                }
+                // Copies whose stored integers change climb on their own integers.
+                let t = p.translated(&Vec3::new(7, -3, 11));
+                let r = p.rescaled(&Int::from(3));
+                for d in dirs.iter().chain(&huge) {
+                    prop_assert_eq!(t.support(d), t.support_scan(d));
+                    prop_assert_eq!(r.support(d), r.support_scan(d));
+                    prop_assert_eq!(r.support_value(d), r.support_scan(d).0);
                 }
             }
         }

@@ -484,6 +484,8 @@ impl Polytope {
         }
         p.den *= k;
         p.edge_dirs = std::sync::OnceLock::new();
+        // The climb keeps the stored integers it walks on.
+        p.climb = std::sync::OnceLock::new();
         p
     }
 
@@ -687,6 +689,7 @@ impl Polytope {
             f.offset += f.normal.dot(t);
         }
         p.shadow = std::sync::OnceLock::new();
+        p.climb = std::sync::OnceLock::new();
         p
     }
 
