@@ -251,7 +251,7 @@ mod tests {
             pts.push(Vec3::new(x, y, 0));
             pts.push(Vec3::new(x, y, h));
         }
-        Polytope::hull_of_points(&pts).unwrap()
+        Polytope::hull(&pts).unwrap()
     }
 
     fn direction() -> impl Strategy<Value = Vec3> {
@@ -277,26 +277,26 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(32))]
+        #![proptest_config(ProptestConfig::with_cases(96))]
         /// Climbing finds the scan's support value and maximisers, on cylinders (many
         /// vertices of equal height, caps of many vertices) and random hulls.
         #[test]
         fn climbing_agrees_with_the_scan(
-            k in 32usize..100,
+            k in 32usize..1200,
             r in 50f64..100000.0,
             h in 1i64..1000,
             shift in (-1000i64..1000, -1000i64..1000),
-            pts in prop::collection::vec((-3000i64..3000, -3000i64..3000, -3000i64..3000), 64..120),
+            pts in prop::collection::vec((-3000i64..3000, -3000i64..3000, -3000i64..3000), 64..400),
             dirs in prop::collection::vec(direction(), 1..20),
             den in 1i64..1000,
         ) {
-            let random = Polytope::hull_of_points(
+            let random = Polytope::hull(
                 &pts.iter().map(|&(x, y, z)| Vec3::new(x, y, z)).collect::<Vec<_>>(),
             ).unwrap();
             // Directions and coordinates beyond machine integers take the filtered walk.
             let big = Vec3::new(1 << 40, 3, -(1 << 41)).scale(&Int::from(1i64 << 40));
             let huge: Vec<Vec3> = dirs.iter().map(|d| d.scale(&Int::from(1i64 << 62))).collect();
-            let wide = Polytope::hull_of_points(
+            let wide = Polytope::hull(
                 &pts.iter().map(|&(x, y, z)| Vec3::new(x, y, z).scale(&Int::from(1i64 << 55))).collect::<Vec<_>>(),
             ).unwrap().with_den(Int::from(den));
             for p in [cylinder(k, r, h, shift.0, shift.1), random, wide] {
