@@ -68,9 +68,6 @@ pub(crate) struct Climb {
     /// For each cell of a cube map of directions ([`cell_of`]), a vertex extreme along
     /// its centre (in floating point: only a start, never an answer).
     starts: Vec<u32>,
-    /// The stored vertices as machine integers, when all fit (a copy: a polytope whose
-    /// stored integers change must drop its climb, as `rescaled` and `translated` do).
-    small: Option<Vec<[i64; 3]>>,
 }
 
 impl Climb {
@@ -103,7 +100,6 @@ impl Climb {
             offsets,
             adjacent,
             starts: Vec::with_capacity(6 * SIDE * SIDE),
-            small: None,
         };
         // Each cell's start: the float climb from the previous cell's (a few steps).
         let mut v = 0u32;
@@ -124,8 +120,6 @@ impl Climb {
             }
             climb.starts.push(v);
         }
-        let small = p.vertices().iter().map(|v| v.as_small().copied()).collect();
-        climb.small = small;
         climb
     }
 
@@ -161,18 +155,23 @@ impl Climb {
     fn peak(&self, p: &Polytope, n: &Vec3) -> (u32, Int) {
         let verts = p.vertices();
         let start = self.starts[cell_of(n.approx())];
-        // Machine integers when they fit (products of two 62-bit values in `i128`).
-        if let (Some(m), Some(small)) = (n.as_small(), &self.small) {
-            let dot = |v: u32| {
-                let c = &small[v as usize];
-                m[0] as i128 * c[0] as i128
-                    + m[1] as i128 * c[1] as i128
-                    + m[2] as i128 * c[2] as i128
-            };
-            let v = self.climb(start, |a, b| dot(a) > dot(b));
-            return (v, Int::from(dot(v)));
-        }
         let exact = |w: u32| n.dot(&verts[w as usize]);
+        // Machine integers when they fit (products of two 62-bit values in `i128`).
+        if let Some(m) = n.as_small() {
+            let small = |w: u32| {
+                let c = verts[w as usize].as_small()?;
+                Some(
+                    m[0] as i128 * c[0] as i128
+                        + m[1] as i128 * c[1] as i128
+                        + m[2] as i128 * c[2] as i128,
+                )
+            };
+            let v = self.climb(start, |a, b| match (small(a), small(b)) {
+                (Some(x), Some(y)) => x > y,
+                _ => exact(a) > exact(b),
+            });
+            return (v, exact(v));
+        }
         let u = n.unit_f64();
         let v = match filter(p, &u) {
             // Each `u · x` is within `slack / 2` of the exact `n · x / (|n| den)`: a
@@ -314,7 +313,7 @@ mod tests {
                     prop_assert_eq!(p.support_value(d), scan.0.clone());
                     prop_assert_eq!(p.support(d), scan);
                 }
-                // Copies whose stored integers change climb on their own integers.
+                // Copies whose stored integers change (translated, rescaled) climb on their own.
                 let t = p.translated(&Vec3::new(7, -3, 11));
                 let r = p.rescaled(&Int::from(3));
                 for d in dirs.iter().chain(&huge) {

@@ -48,7 +48,8 @@ pub struct Polytope {
     /// Floating-point coordinates for filters (computed on demand).
     shadow: std::sync::OnceLock<Option<Shadow>>,
     /// The vertex graph for climbing support queries (computed on demand, for
-    /// polytopes of at least [`CLIMB_MIN`] vertices).
+    /// polytopes of at least [`CLIMB_MIN`] vertices; it holds no coordinates, and stays
+    /// valid under translation and positive scaling).
     climb: std::sync::OnceLock<Climb>,
 }
 
@@ -484,8 +485,6 @@ impl Polytope {
         }
         p.den *= k;
         p.edge_dirs = std::sync::OnceLock::new();
-        // The climb keeps the stored integers it walks on.
-        p.climb = std::sync::OnceLock::new();
         p
     }
 
@@ -689,7 +688,6 @@ impl Polytope {
             f.offset += f.normal.dot(t);
         }
         p.shadow = std::sync::OnceLock::new();
-        p.climb = std::sync::OnceLock::new();
         p
     }
 
