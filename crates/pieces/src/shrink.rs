@@ -31,46 +31,31 @@ use apart_kernel::int::{self, Int};
 use apart_kernel::{BigPlane, HPoint, Sign, Vec3};
 use rustc_hash::FxHashMap as HashMap;
 
-/// A vertex of a polytope being cut, and the sorted indices of the half-spaces whose
-/// plane passes through it.
+/// A vertex of a polytope being cut (the kernel's reduced homogeneous point `y / w`,
+/// `w > 0`, on the piece's stored integers), and the sorted indices of the half-spaces
+/// whose plane passes through it.
 #[derive(Clone)]
-struct Vertex<P> {
-    p: P,
+struct Vertex {
+    p: HPoint,
     on: Vec<u32>,
 }
 
-/// The arithmetic of a cut: a point type, its half-space type and the value of a point
-/// against a half-space (positive outside).
-trait Cut: Sized {
-    /// A half-space.
-    type Half;
-    /// How far outside a half-space a point is (scaled).
-    type Value;
-    /// The side of the half-space's plane the point is on, and its value.
-    fn side(&self, h: &Self::Half) -> (Sign, Self::Value);
-    /// The point on the plane between `inner` (value `vi < 0`) and `outer` (`vo > 0`).
-    fn between(inner: &Self, outer: &Self, vi: &Self::Value, vo: &Self::Value) -> Self;
+/// The side of the half-space `h` (`n · y <= c` on the piece's stored integers `y`)
+/// that `p` is on: the sign of `n · (y / w) - c` (as `w > 0`), and the value
+/// `n · y - c w` (positive outside).
+fn side(p: &HPoint, h: &BigPlane) -> (Sign, Int) {
+    let s = h.value(p);
+    (int::sign_of(&s), s)
 }
 
-/// Exact: the kernel's reduced homogeneous point `y / w` (`w > 0`, stored integers of
-/// the piece scaled by `1 / w`) against a [`BigPlane`] `n · y <= c` on the piece's
-/// stored integers `y` (true point `y / den`).
-impl Cut for HPoint {
-    type Half = BigPlane;
-    type Value = Int;
-    /// Sign of `n · (y / w) - c` (as `w > 0`), and the value `n · y - c w`.
-    fn side(&self, h: &BigPlane) -> (Sign, Int) {
-        let s = h.value(self);
-        (int::sign_of(&s), s)
-    }
-    fn between(inner: &HPoint, outer: &HPoint, vi: &Int, vo: &Int) -> HPoint {
-        // vo * inner - vi * outer lies on the plane; its weight is positive because
-        // vo > 0 > vi and both weights are positive.
-        let (iy, oy) = (inner.num(), outer.num());
-        let y = [0, 1, 2].map(|k| vo * &iy[k] - vi * &oy[k]);
-        let w = vo * inner.den() - vi * outer.den();
-        HPoint::from_big(y, w)
-    }
+/// The point on the plane between `inner` (value `vi < 0`) and `outer` (`vo > 0`).
+fn between(inner: &HPoint, outer: &HPoint, vi: &Int, vo: &Int) -> HPoint {
+    // vo * inner - vi * outer lies on the plane; its weight is positive because
+    // vo > 0 > vi and both weights are positive.
+    let (iy, oy) = (inner.num(), outer.num());
+    let y = [0, 1, 2].map(|k| vo * &iy[k] - vi * &oy[k]);
+    let w = vo * inner.den() - vi * outer.den();
+    HPoint::from_big(y, w)
 }
 
 /// Pieces of at most this many facets are cut plane by plane; bigger ones are scaled.
@@ -80,7 +65,7 @@ const EXACT_CUT_FACETS: usize = 32;
 const FLOAT_ON: f64 = 1e-4;
 
 /// The edges of the current polytope: pairs of vertices sharing two planes.
-fn edges<P>(verts: &[Vertex<P>]) -> Vec<(u32, u32)> {
+fn edges(verts: &[Vertex]) -> Vec<(u32, u32)> {
     let mut by_pair: HashMap<(u32, u32), Vec<u32>> = HashMap::default();
     for (i, v) in verts.iter().enumerate() {
         for a in 0..v.on.len() {
@@ -104,8 +89,8 @@ fn edges<P>(verts: &[Vertex<P>]) -> Vec<(u32, u32)> {
 
 /// Clips `verts` by half-space number `hi`. `None` when nothing of positive volume is
 /// left on the inner side.
-fn clip<P: Cut>(verts: Vec<Vertex<P>>, h: &P::Half, hi: u32) -> Option<Vec<Vertex<P>>> {
-    let sides: Vec<(Sign, P::Value)> = verts.iter().map(|v| v.p.side(h)).collect();
+fn clip(verts: Vec<Vertex>, h: &BigPlane, hi: u32) -> Option<Vec<Vertex>> {
+    let sides: Vec<(Sign, Int)> = verts.iter().map(|v| side(&v.p, h)).collect();
     if sides.iter().all(|(s, _)| *s != Sign::Positive) {
         // Nothing cut; vertices on the plane learn it.
         return Some(
@@ -124,7 +109,7 @@ fn clip<P: Cut>(verts: Vec<Vertex<P>>, h: &P::Half, hi: u32) -> Option<Vec<Verte
     if sides.iter().all(|(s, _)| *s != Sign::Negative) {
         return None;
     }
-    let mut out: Vec<Vertex<P>> = Vec::with_capacity(verts.len() + 8);
+    let mut out: Vec<Vertex> = Vec::with_capacity(verts.len() + 8);
     for (e0, e1) in edges(&verts) {
         let (a, b) = (&verts[e0 as usize], &verts[e1 as usize]);
         let ((sa, va), (sb, vb)) = (&sides[e0 as usize], &sides[e1 as usize]);
@@ -133,7 +118,7 @@ fn clip<P: Cut>(verts: Vec<Vertex<P>>, h: &P::Half, hi: u32) -> Option<Vec<Verte
             (Sign::Positive, Sign::Negative) => (b, a, vb, va),
             _ => continue,
         };
-        let p = P::between(&inner.p, &outer.p, vi, vo);
+        let p = between(&inner.p, &outer.p, vi, vo);
         let mut on: Vec<u32> = inner
             .on
             .iter()
@@ -449,8 +434,8 @@ impl Polytope {
                 .find(|o| o.is_ne())
                 .unwrap_or(std::cmp::Ordering::Equal)
         };
-        let mut vorder: Vec<u32> = (0..points.len() as u32).collect();
-        vorder.sort_unstable_by(|&a, &b| {
+        // Vertices by their rounded coordinates, ties by their exact ones.
+        let vertex_order = |a: u32, b: u32| {
             let (va, vb) = (&self.vertices()[a as usize], &self.vertices()[b as usize]);
             lex(&points[a as usize], &points[b as usize]).then_with(|| {
                 (0..3)
@@ -458,11 +443,7 @@ impl Polytope {
                     .find(|o| o.is_ne())
                     .unwrap_or(std::cmp::Ordering::Equal)
             })
-        });
-        let mut vpos = vec![0u32; points.len()];
-        for (i, &v) in vorder.iter().enumerate() {
-            vpos[v as usize] = i as u32;
-        }
+        };
         let units: Vec<[f64; 3]> = self.facets().iter().map(|f| f.normal.unit_f64()).collect();
         if !units
             .iter()
@@ -489,14 +470,13 @@ impl Polytope {
                 (units[k as usize], level - m * stretch)
             })
             .collect();
-        // Each facet's polygon in the facets' order, from its first vertex in the
-        // vertices' order.
+        // Each facet's polygon in the facets' order, from its least vertex.
         let faces: Vec<Vec<[f64; 3]>> = forder
             .iter()
             .map(|&f| {
                 let cycle = &self.facets()[f as usize].cycle;
                 let first = (0..cycle.len())
-                    .min_by_key(|&i| vpos[cycle[i] as usize])
+                    .min_by(|&i, &j| vertex_order(cycle[i], cycle[j]))
                     .unwrap_or(0);
                 (0..cycle.len())
                     .map(|i| points[cycle[(first + i) % cycle.len()] as usize])
@@ -680,7 +660,7 @@ impl Polytope {
                 on_of[v as usize].push(nf + f as u32);
             }
         }
-        let mut verts: Vec<Vertex<HPoint>> = self
+        let mut verts: Vec<Vertex> = self
             .vertices()
             .iter()
             .zip(on_of)
