@@ -341,7 +341,7 @@ fn face_neighbourhood(p: &Polytope, face: &[u32]) -> Option<Option<Polytope>> {
     if pts.len() == p.vertices().len() {
         return Some(None);
     }
-    Polytope::hull_of_points(&pts)
+    Polytope::hull(&pts)
         .ok()
         .map(|h| Some(h.with_den(p.den().clone())))
 }
@@ -699,6 +699,31 @@ mod tests {
         cases.push(generated("plug", &curved::plug_and_socket(20 * 16 - 8)));
         cases.push(generated("pin", &curved::pin_in_hole(12, 12, 0.0)));
         cases.push(generated("nut", &curved::nut_on_bolt(10, 2)));
+        // A tessellated cone's tip on a box's edge, on a box's corner and on another
+        // tip: the contacts lie on no face's relative interior, so the tip's
+        // neighbourhood (the tip and a 120-point ring, not the whole piece) is hulled.
+        let cone = |s: i64| {
+            let mut pts = vec![Vec3::new(0, 0, 0)];
+            for (z, r) in [(100.0, 1000.0), (1000.0, 3000.0)] {
+                for k in 0..120 {
+                    let t = k as f64 * std::f64::consts::TAU / 120.0;
+                    let (x, y) = ((r * t.cos()).round() as i64, (r * t.sin()).round() as i64);
+                    pts.push(Vec3::new(x, y, s * z as i64));
+                }
+            }
+            Polytope::hull(&pts).unwrap()
+        };
+        let tip = cone(1).vertices().iter().position(|v| v.is_zero()).unwrap() as u32;
+        let Some(Some(near)) = face_neighbourhood(&cone(1), &[tip]) else {
+            panic!("the tip's neighbourhood is a part of the cone")
+        };
+        assert_eq!(near.vertices().len(), 121);
+        let part = |name: &str, p: Polytope| Part::from_pieces(name, vec![p]);
+        for hi in [[0, 5000, 0], [0, 0, 0]] {
+            let block = Polytope::cuboid([-5000, -5000, -5000], hi).unwrap();
+            cases.push(vec![part("cone", cone(1)), part("block", block)]);
+        }
+        cases.push(vec![part("up", cone(1)), part("down", cone(-1))]);
         let dirs: Vec<Vec3> = (0..27)
             .map(|i| Vec3::new(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1))
             .filter(|d| !d.is_zero())
