@@ -23,7 +23,7 @@ pub mod projection;
 pub mod sum;
 
 pub use projection::{project, Projection};
-pub use sum::{minkowski_difference, minkowski_sum, sum_prepared, Summand};
+pub use sum::{minkowski_difference, minkowski_sum, project_apart, sum_prepared, Summand};
 
 use apart_pieces::{Polytope, PolytopeError};
 use apart_sphere::polygon::PolygonError;

@@ -67,46 +67,61 @@ fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonE
             (_, Sign::Negative) => (g, f),
             _ => continue,
         };
-        let (v0, v1) = (
-            &m.vertices()[e.ends[0] as usize],
-            &m.vertices()[e.ends[1] as usize],
-        );
-        let n = v0.cross(v1);
-        if n.is_zero() {
-            continue; // the edge's line passes through the origin: it projects to a point
-        }
-        // Inward normal: the side where the rest of the front facet lies.
-        let cycle = &m.facets()[front].cycle;
-        let w = cycle
-            .iter()
-            .map(|&i| &m.vertices()[i as usize])
-            .find(|w| dot_sign(&n, w) != Sign::Zero)
-            .ok_or_else(|| PolygonError("front facet lies in a plane through the origin".into()))?;
-        let q = if dot_sign(&n, w) == Sign::Positive {
-            n.primitive()
-        } else {
-            n.neg().primitive()
-        };
-        // `Arc::on_circle(&q, v0, v1)`, without making the primitive `q` primitive again
-        // and with each vertex made primitive once (it ends two silhouette edges).
-        let (a, b) = match det3_sign(&q, v0, v1) {
-            Sign::Positive => (e.ends[0], e.ends[1]),
-            Sign::Negative => (e.ends[1], e.ends[0]),
-            Sign::Zero => panic!("silhouette edge endpoints are independent"),
-        };
-        let mut unit = |i: u32| -> Vec3 {
-            primitive[i as usize]
-                .get_or_insert_with(|| m.vertices()[i as usize].primitive())
-                .clone()
-        };
-        let (start, end) = (unit(a), unit(b));
-        arcs.push(Arc {
-            normal: q,
-            start,
-            end,
-        });
+        let front = &m.facets()[front].cycle;
+        arcs.extend(silhouette_side(
+            m.vertices(),
+            e.ends,
+            front,
+            &mut primitive,
+        )?);
     }
     SphericalPolygon::from_arcs(arcs)
+}
+
+/// The side of a projection on the silhouette edge `ends` of a convex polytope with
+/// vertices `vs`, whose facet facing the origin has the cycle `front`; `None` when the
+/// edge's line passes through the origin (it projects to a point). `primitive` caches
+/// each vertex made primitive (it ends two silhouette edges).
+pub(crate) fn silhouette_side(
+    vs: &[Vec3],
+    ends: [u32; 2],
+    front: &[u32],
+    primitive: &mut [Option<Vec3>],
+) -> Result<Option<Arc>, PolygonError> {
+    let (v0, v1) = (&vs[ends[0] as usize], &vs[ends[1] as usize]);
+    let n = v0.cross(v1);
+    if n.is_zero() {
+        return Ok(None);
+    }
+    // Inward normal: the side where the rest of the front facet lies.
+    let w = front
+        .iter()
+        .map(|&i| &vs[i as usize])
+        .find(|w| dot_sign(&n, w) != Sign::Zero)
+        .ok_or_else(|| PolygonError("front facet lies in a plane through the origin".into()))?;
+    let q = if dot_sign(&n, w) == Sign::Positive {
+        n.primitive()
+    } else {
+        n.neg().primitive()
+    };
+    // `Arc::on_circle(&q, v0, v1)`, without making the primitive `q` primitive again
+    // and with each vertex made primitive once.
+    let (a, b) = match det3_sign(&q, v0, v1) {
+        Sign::Positive => (ends[0], ends[1]),
+        Sign::Negative => (ends[1], ends[0]),
+        Sign::Zero => panic!("silhouette edge endpoints are independent"),
+    };
+    let mut unit = |i: u32| -> Vec3 {
+        primitive[i as usize]
+            .get_or_insert_with(|| vs[i as usize].primitive())
+            .clone()
+    };
+    let (start, end) = (unit(a), unit(b));
+    Ok(Some(Arc {
+        normal: q,
+        start,
+        end,
+    }))
 }
 
 /// The tangent cone at the vertex of `m` at the origin (three or more facets through it).

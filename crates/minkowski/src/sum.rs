@@ -14,6 +14,7 @@
 //! depends on the summands' scale, so two pieces with different denominators are summed
 //! as they are and only the sum's vertices are brought to the common denominator.
 
+use crate::projection::silhouette_side;
 use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::fvec;
 use apart_kernel::predicates::{det3_sign, dot_sign};
@@ -21,6 +22,8 @@ use apart_kernel::spherical::{arc_position, ArcPosition};
 use apart_kernel::{Aabb, Components, Int, Sign, Vec3};
 use apart_pieces::hull2d::{hull_in_plane, plane_axes};
 use apart_pieces::{Polytope, PolytopeError};
+use apart_sphere::polygon::PolygonError;
+use apart_sphere::SphericalPolygon;
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
 
@@ -311,53 +314,82 @@ fn scaled(v: &Vec3, k: &Int) -> [Int; 3] {
     }
 }
 
-/// The Minkowski sum of two prepared polytopes.
-pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
-    let (p, q) = (&sp.polytope, &sq.polytope);
-    // Different denominators: the sum's vertices are `kp vp + kq vq` over the least
-    // common multiple (everything else is scale-invariant).
-    let (den, scaled) = if p.den() == q.den() {
-        (p.den().clone(), None)
-    } else {
+/// The factors `(kp, kq)` that bring the stored integers of `p` and of `q` to the
+/// least common multiple of their denominators, or `None` when the two are equal.
+fn den_factors(p: &Polytope, q: &Polytope) -> Option<(Int, Int)> {
+    (p.den() != q.den()).then(|| {
         let g = apart_kernel::int::gcd(p.den(), q.den());
-        let (kp, kq) = (q.den() / &g, p.den() / &g);
+        (q.den() / &g, p.den() / &g)
+    })
+}
+
+/// The points `vp + vq` of a sum, over the common denominator: each vertex of a
+/// Minkowski sum decomposes uniquely into vertices of the summands, so the index pair
+/// `(i, j)` names it.
+struct PairPoints<'a> {
+    pv: &'a [Vec3],
+    qv: &'a [Vec3],
+    /// The summands' vertices times `kp` and `kq` when the denominators differ.
+    scaled: Option<[Vec<[Int; 3]>; 2]>,
+}
+
+impl<'a> PairPoints<'a> {
+    fn new(p: &'a Polytope, q: &'a Polytope, k: &Option<(Int, Int)>) -> PairPoints<'a> {
         let scale =
             |vs: &[Vec3], k: &Int| -> Vec<[Int; 3]> { vs.iter().map(|v| scaled(v, k)).collect() };
-        (
-            p.den() * &kp,
-            Some((scale(p.vertices(), &kp), scale(q.vertices(), &kq))),
-        )
-    };
-    let (pv, qv) = (p.vertices(), q.vertices());
-    let nq = qv.len() as u64;
-    // A vertex of a Minkowski sum decomposes uniquely into vertices of the summands, so
-    // the index pair (i, j) identifies it.
-    let sum_of = |i: u32, j: u32| -> Vec3 {
+        PairPoints {
+            pv: p.vertices(),
+            qv: q.vertices(),
+            scaled: k
+                .as_ref()
+                .map(|(kp, kq)| [scale(p.vertices(), kp), scale(q.vertices(), kq)]),
+        }
+    }
+
+    fn get(&self, i: u32, j: u32) -> Vec3 {
         let (i, j) = (i as usize, j as usize);
-        match &scaled {
-            None => pv[i].add(&qv[j]),
-            Some((sp, sq)) => {
+        match &self.scaled {
+            None => self.pv[i].add(&self.qv[j]),
+            Some([sp, sq]) => {
                 let (x, y) = (&sp[i], &sq[j]);
                 Vec3::from_ints([&x[0] + &y[0], &x[1] + &y[1], &x[2] + &y[2]])
             }
         }
-    };
-    let mut points: Vec<Vec3> = Vec::new();
-    let mut ids: HashMap<u64, u32> = HashMap::default();
-    let mut vertex = |i: u32, j: u32, points: &mut Vec<Vec3>| -> u32 {
-        *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-            points.push(sum_of(i, j));
-            (points.len() - 1) as u32
-        })
-    };
-    let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
+    }
+}
 
+/// Receives a facet of a sum: its outward normal, its cycle of vertex pairs, and
+/// whether that cycle runs clockwise ([`facets_where`]).
+type Emit<'a> = dyn FnMut(&Vec3, &[(u32, u32)], bool) + 'a;
+
+/// The facets of `sp ⊕ sq` whose plane `want(normal, i, j)` accepts (`(i, j)` a vertex
+/// pair whose sum lies on the facet); a facet of `p` or `q` plus a face of the other is
+/// skipped first, before that face is found, when `maybe(from_p, facet index)` says so,
+/// and only the edges of `p` and of `q` listed in `edges` (in the order of `by_low_x`;
+/// `None` for all) may make parallelograms. Each handed to `emit` as its outward normal and
+/// its cycle of vertex pairs: counter-clockwise around the normal, or clockwise when
+/// the flag is set (a parallelogram, listed before its orientation was known). Facets
+/// come in a fixed order: those of `p`, those of `q`, then the parallelograms.
+fn facets_where(
+    sp: &Summand,
+    sq: &Summand,
+    points: &PairPoints,
+    maybe: &dyn Fn(bool, usize) -> bool,
+    edges: [Option<&[u32]>; 2],
+    want: &mut dyn FnMut(&Vec3, u32, u32) -> bool,
+    emit: &mut Emit,
+) -> Result<(), PolytopeError> {
+    let (p, q) = (&sp.polytope, &sq.polytope);
+    let mut cycle: Vec<(u32, u32)> = Vec::new();
     // Facets of p and of q, each with the other's extreme face.
     for (x_is_p, sx, sy) in [(true, sp, sq), (false, sq, sp)] {
-        let x = &sx.polytope;
+        let (x, y) = (&sx.polytope, &sy.polytope);
         for (fi, f) in x.facets().iter().enumerate() {
             if !x_is_p && sy.by_normal.contains_key(&f.normal) {
                 continue; // both have a facet with this normal: already summed
+            }
+            if !maybe(x_is_p, fi) {
+                continue;
             }
             let pair = |a: u32, b: u32| if x_is_p { (a, b) } else { (b, a) };
             // The face of y extreme along f's normal: y's facet with that normal, else
@@ -367,20 +399,24 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
                 Some(_) => Vec::new(),
                 None => extreme(sy, &f.normal),
             };
+            let on_y = match (parallel, arg.first()) {
+                (Some(&g), _) => y.facets()[g as usize].cycle[0],
+                (None, Some(&b)) => b,
+                (None, None) => return Err(PolytopeError::NotClosed),
+            };
+            let (i, j) = pair(f.cycle[0], on_y);
+            if !want(&f.normal, i, j) {
+                continue;
+            }
             let polygon = match (parallel, arg.len()) {
                 (Some(&g), _) => Some(sy.facet_polygon(g as usize)),
                 (None, 2) => sy.segment_polygon(&f.normal, arg[0], arg[1]),
                 _ => None,
             };
-            let cycle: Vec<u32> = if arg.len() == 1 {
+            cycle.clear();
+            if arg.len() == 1 {
                 // Facet plus a vertex: the facet's own cycle, translated.
-                f.cycle
-                    .iter()
-                    .map(|&a| {
-                        let (i, j) = pair(a, arg[0]);
-                        vertex(i, j, &mut points)
-                    })
-                    .collect()
+                cycle.extend(f.cycle.iter().map(|&a| pair(a, arg[0])));
             } else if let Some((gv, ge)) = polygon {
                 // Facet plus an edge or a parallel facet: merge the two cycles from
                 // their lexicographically smallest vertices (the order the 2-D hull of
@@ -391,12 +427,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
                 if plane_axes(&f.normal).2 {
                     sum.rotate_left(1);
                 }
-                sum.into_iter()
-                    .map(|(a, b)| {
-                        let (i, j) = pair(a, b);
-                        vertex(i, j, &mut points)
-                    })
-                    .collect()
+                cycle.extend(sum.into_iter().map(|(a, b)| pair(a, b)));
             } else {
                 // Not a face of the expected shape (never for a valid polytope): the
                 // exact hull of all pairwise sums.
@@ -406,68 +437,244 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
                     for &b in &arg {
                         let (i, j) = pair(a, b);
                         cand.push((i, j));
-                        pts.push(sum_of(i, j));
+                        pts.push(points.get(i, j));
                     }
                 }
                 let hull = hull_in_plane(&f.normal, &pts);
                 if hull.len() < 3 {
                     return Err(PolytopeError::NotClosed);
                 }
-                hull.into_iter()
-                    .map(|k| vertex(cand[k].0, cand[k].1, &mut points))
-                    .collect()
-            };
-            facets.push((f.normal.clone(), cycle));
+                cycle.extend(hull.into_iter().map(|k| cand[k]));
+            }
+            emit(&f.normal, &cycle, false);
         }
     }
 
     // Parallelograms of edge pairs whose Gaussian arcs cross (pairs whose boxes on the
     // unit sphere overlap, by sort and sweep; then the exact test).
-    for (ip, iq) in overlapping(sp, sq) {
+    let [ep, eq] = edges;
+    let pairs = sweep_pairs_between(
+        &sp.boxes,
+        ep.unwrap_or(&sp.by_low_x),
+        &sq.boxes,
+        eq.unwrap_or(&sq.by_low_x),
+    );
+    for (ip, iq) in pairs {
         let (ep, ap, eq, aq) = (&p.edges()[ip], &sp.arcs[ip], &q.edges()[iq], &sq.arcs[iq]);
-        {
-            if !crossing(ap, aq) {
-                continue;
-            }
-            let [p0, p1] = ep.ends;
-            let [q0, q1] = eq.ends;
-            // The facet's normal is the crossing point of the two arcs, perpendicular to
-            // both edges: ±(dp × dq), far smaller than the cross of the arcs' normals
-            // (and the same from the primitive directions). Its sign puts it on arc a
-            // (counter-clockwise after a's first normal).
-            let n = sp.dirs[ip].cross(&sq.dirs[iq]).primitive();
-            let flip = det3_sign(&ap.c, &ap.m0, &n) == Sign::Negative;
-            // Counter-clockwise around n = +(dp × dq): (p0+q0, p1+q0, p1+q1, p0+q1).
-            let mut cycle = vec![
-                vertex(p0, q0, &mut points),
-                vertex(p1, q0, &mut points),
-                vertex(p1, q1, &mut points),
-                vertex(p0, q1, &mut points),
-            ];
-            let n = if flip {
-                cycle.reverse();
-                n.neg()
-            } else {
-                n
-            };
-            debug_assert_eq!(
-                arc_position(&ap.c, &ap.m0, &ap.m1, &n),
-                ArcPosition::Interior
-            );
-            debug_assert_eq!(
-                arc_position(&aq.c, &aq.m0, &aq.m1, &n),
-                ArcPosition::Interior
-            );
-            facets.push((n, cycle));
+        if !crossing(ap, aq) {
+            continue;
         }
+        let [p0, p1] = ep.ends;
+        let [q0, q1] = eq.ends;
+        // The facet's normal is the crossing point of the two arcs, perpendicular to
+        // both edges: ±(dp × dq), far smaller than the cross of the arcs' normals (and
+        // the same from the primitive directions). Its sign puts it on arc a
+        // (counter-clockwise after a's first normal).
+        let n = sp.dirs[ip].cross(&sq.dirs[iq]).primitive();
+        let flip = det3_sign(&ap.c, &ap.m0, &n) == Sign::Negative;
+        let n = if flip { n.neg() } else { n };
+        debug_assert_eq!(
+            arc_position(&ap.c, &ap.m0, &ap.m1, &n),
+            ArcPosition::Interior
+        );
+        debug_assert_eq!(
+            arc_position(&aq.c, &aq.m0, &aq.m1, &n),
+            ArcPosition::Interior
+        );
+        if !want(&n, p0, q0) {
+            continue;
+        }
+        // Counter-clockwise around +(dp × dq): (p0+q0, p1+q0, p1+q1, p0+q1).
+        emit(&n, &[(p0, q0), (p1, q0), (p1, q1), (p0, q1)], flip);
     }
+    Ok(())
+}
+
+/// The Minkowski sum of two prepared polytopes.
+pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
+    let (p, q) = (&sp.polytope, &sq.polytope);
+    // Different denominators: the sum's vertices are `kp vp + kq vq` over the least
+    // common multiple (everything else is scale-invariant).
+    let k = den_factors(p, q);
+    let den = match &k {
+        None => p.den().clone(),
+        Some((kp, _)) => p.den() * kp,
+    };
+    let pairs = PairPoints::new(p, q, &k);
+    let nq = q.vertices().len() as u64;
+    let mut points: Vec<Vec3> = Vec::new();
+    let mut ids: HashMap<u64, u32> = HashMap::default();
+    let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
+    let all = &mut |_: &Vec3, _, _| true;
+    facets_where(
+        sp,
+        sq,
+        &pairs,
+        &|_, _| true,
+        [None, None],
+        all,
+        &mut |n, cycle, reversed| {
+            let mut c: Vec<u32> = cycle
+                .iter()
+                .map(|&(i, j)| {
+                    *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
+                        points.push(pairs.get(i, j));
+                        (points.len() - 1) as u32
+                    })
+                })
+                .collect();
+            if reversed {
+                c.reverse();
+            }
+            facets.push((n.clone(), c));
+        },
+    )?;
     Ok(Polytope::from_facets(&points, facets)?.with_den(den))
 }
 
-/// Index pairs `(i, j)` whose boxes `a.boxes[i]` and `b.boxes[j]` overlap, by the
-/// kernel's sort and sweep on x (in its order, which fixes the order of the sum's facets).
-fn overlapping(a: &Summand, b: &Summand) -> Vec<(usize, usize)> {
-    sweep_pairs_between(&a.boxes, &a.by_low_x, &b.boxes, &b.by_low_x)
+/// The central projection of `sp ⊕ sq` (as [`crate::project`] gives it) when the
+/// origin lies outside the sum, made from the sum's facets that face the origin alone:
+/// the sides of the projection are the edges of those facets that no second such facet
+/// shares. `None` when no facet faces the origin (the origin lies in the sum: project
+/// the whole sum instead). A sum of a piece with a many-sided one has as many facets,
+/// but seen from a point just outside it only a few face that point.
+pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolygon, PolygonError>> {
+    let (p, q) = (&sp.polytope, &sq.polytope);
+    let k = den_factors(p, q);
+    let pairs = PairPoints::new(p, q, &k);
+    let nq = q.vertices().len() as u64;
+    // The facing facets' vertices (local indices) and cycles, counter-clockwise.
+    let mut local: HashMap<u64, u32> = HashMap::default();
+    let mut points: Vec<Vec3> = Vec::new();
+    let mut cycles: Vec<Vec<u32>> = Vec::new();
+    // A facet of one summand plus a face of the other faces the origin only when its
+    // level plus the other's support value is negative, and a parallelogram on an edge
+    // only when no vertex of the other summand keeps both facets at the edge clear of
+    // the origin: most of a many-sided piece's facets and edges are dropped by floats.
+    let (bp, bq) = (clear_of(p, q), clear_of(q, p));
+    let maybe = |from_p: bool, fi: usize| -> bool {
+        let (x, y, bits) = if from_p { (p, q, &bp) } else { (q, p, &bq) };
+        match bits {
+            Some(b) => b[fi] == 0,
+            None => !clearly_positive(x, fi, y),
+        }
+    };
+    let (ep, eq) = (live_edges(sp, &bp), live_edges(sq, &bq));
+    let facing = |n: &Vec3, i: u32, j: u32| dot_sign(n, &pairs.get(i, j)) == Sign::Negative;
+    let edges = [ep.as_deref(), eq.as_deref()];
+    let found = facets_where(
+        sp,
+        sq,
+        &pairs,
+        &maybe,
+        edges,
+        &mut |n, i, j| facing(n, i, j),
+        &mut |_, cycle, reversed| {
+            let mut c: Vec<u32> = cycle
+                .iter()
+                .map(|&(i, j)| {
+                    *local.entry(i as u64 * nq + j as u64).or_insert_with(|| {
+                        points.push(pairs.get(i, j));
+                        (points.len() - 1) as u32
+                    })
+                })
+                .collect();
+            if reversed {
+                c.reverse();
+            }
+            cycles.push(c);
+        },
+    );
+    if let Err(e) = found {
+        return Some(Err(PolygonError(format!("Minkowski sum: {e}"))));
+    }
+    if cycles.is_empty() {
+        return None;
+    }
+    // Each edge of a facing facet, by its ends: shared by two facing facets, or a side.
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut uses: HashMap<(u32, u32), u32> = HashMap::default();
+    for c in &cycles {
+        for t in 0..c.len() {
+            *uses.entry(key(c[t], c[(t + 1) % c.len()])).or_default() += 1;
+        }
+    }
+    let mut primitive: Vec<Option<Vec3>> = vec![None; points.len()];
+    let mut arcs = Vec::new();
+    for c in &cycles {
+        for t in 0..c.len() {
+            let (a, b) = (c[t], c[(t + 1) % c.len()]);
+            if uses[&key(a, b)] == 1 {
+                match silhouette_side(&points, [a, b], c, &mut primitive) {
+                    Ok(side) => arcs.extend(side),
+                    Err(e) => return Some(Err(e)),
+                }
+            }
+        }
+    }
+    Some(SphericalPolygon::from_arcs(arcs))
+}
+
+/// For each facet of `x`, a bit per vertex `y_k` of `y` (at most 64) set when the
+/// facet's plane, moved by `y_k`, clearly (beyond the float error) has the origin inside:
+/// then no facet of `x ⊕ y` with that normal, nor between it and the normal of a facet
+/// whose bit `k` is also set, faces the origin (`h(n) ≥ n · (x_f + y_k)` is linear in
+/// `n`). `None` when `y` has more vertices or either polytope has no float shadow.
+fn clear_of(x: &Polytope, y: &Polytope) -> Option<Vec<u64>> {
+    let (sx, sy) = (x.shadow()?, y.shadow()?);
+    if sy.points.len() > 64 {
+        return None;
+    }
+    let margin = 2.0 * (sx.error() + sy.error());
+    Some(
+        sx.facet_units
+            .iter()
+            .zip(&sx.facet_levels)
+            .map(|(u, level)| {
+                sy.points.iter().enumerate().fold(0u64, |bits, (k, y)| {
+                    if level + fvec::dot(*u, *y) > margin {
+                        bits | 1 << k
+                    } else {
+                        bits
+                    }
+                })
+            })
+            .collect(),
+    )
+}
+
+/// Whether facet `fi` of `x` plus the face of `y` extreme along its normal clearly lies
+/// in a plane with the origin inside (float level plus float support value, beyond the
+/// error bound); false when not sure.
+fn clearly_positive(x: &Polytope, fi: usize, y: &Polytope) -> bool {
+    let (Some(sx), Some(sy)) = (x.shadow(), y.shadow()) else {
+        return false;
+    };
+    let u = sx.facet_units[fi];
+    let top = sy
+        .points
+        .iter()
+        .map(|y| fvec::dot(u, *y))
+        .fold(f64::NEG_INFINITY, f64::max);
+    sx.facet_levels[fi] + top > 2.0 * (sx.error() + sy.error())
+}
+
+/// The edges of `sx` (in its `by_low_x` order) whose parallelograms may face the
+/// origin: those whose two facets share no bit of `clear` ([`clear_of`]). `None` (all)
+/// without bits.
+fn live_edges(sx: &Summand, clear: &Option<Vec<u64>>) -> Option<Vec<u32>> {
+    let bits = clear.as_ref()?;
+    let edges = sx.polytope.edges();
+    Some(
+        sx.by_low_x
+            .iter()
+            .copied()
+            .filter(|&e| {
+                let [f, g] = edges[e as usize].facets;
+                bits[f as usize] & bits[g as usize] == 0
+            })
+            .collect(),
+    )
 }
 
 /// The Gaussian arc of an edge: normals `m0`, `m1` of its two facets and the normal

@@ -5,14 +5,20 @@
 //! (tiny grids: shared facet normals, parallel edges, coplanar faces, touching
 //! summands), and the central projections of the differences against the old
 //! projection, on the same shapes under big integer linear maps and translations
-//! (coordinates of hundreds of bits), and with different big denominators.
+//! (coordinates of hundreds of bits), and with different big denominators. The
+//! projection made from the facets facing the origin alone ([`project_apart`]) against
+//! the projection of the whole sum, on the same shapes and on many-sided prisms near
+//! small pieces.
 
 #[path = "support/reference.rs"]
 mod reference;
 
 use apart_kernel::{Int, Vec3};
-use apart_minkowski::{minkowski_difference, minkowski_sum, project};
+use apart_minkowski::{
+    minkowski_difference, minkowski_sum, project, project_apart, Projection, Summand,
+};
 use apart_pieces::Polytope;
+use apart_sphere::SphericalPolygon;
 use proptest::prelude::*;
 use reference::{identical, reference_project, reference_sum, same_projection};
 
@@ -97,7 +103,41 @@ fn points() -> impl Strategy<Value = Vec<[i64; 3]>> {
     ]
 }
 
+/// The same boundary, up to where its cycle starts.
+fn same_cycle(a: &SphericalPolygon, b: &SphericalPolygon) -> bool {
+    let (x, y) = (a.boundary(), b.boundary());
+    x.len() == y.len()
+        && (x.is_empty()
+            || (0..y.len()).any(|k| (0..x.len()).all(|t| x[t] == y[(t + k) % y.len()])))
+}
+
+/// `project_apart` against the projection of the whole difference `p ⊕ (−q)`: `None`
+/// exactly when no facet has the origin strictly outside, else the same polygon (or
+/// both fail).
+fn check_apart(p: &Polytope, q: &Polytope) -> Result<(), TestCaseError> {
+    let whole = minkowski_difference(p, q).expect("difference");
+    let apart = project_apart(&Summand::new(p.clone()), &Summand::new(q.reflected()));
+    let outside = whole.facets().iter().any(|f| f.offset < Int::ZERO);
+    match (apart, project(&whole)) {
+        (None, _) => prop_assert!(!outside, "{:?} ⊖ {:?}: the origin is outside", p, q),
+        (Some(Ok(a)), Ok(Projection::Polygon(b))) => {
+            prop_assert!(outside);
+            prop_assert!(
+                same_cycle(&a, &b),
+                "{:?} ⊖ {:?}: {:?} against {:?}",
+                p,
+                q,
+                a,
+                b
+            );
+        }
+        (Some(a), b) => prop_assert!(false, "{:?} ⊖ {:?}: {:?} against {:?}", p, q, a, b),
+    }
+    Ok(())
+}
+
 fn check(p: &Polytope, q: &Polytope) -> Result<(), TestCaseError> {
+    check_apart(p, q)?;
     let fast = minkowski_sum(p, q).expect("sum");
     let old = reference_sum(p, q).expect("reference");
     prop_assert!(identical(&fast, &old), "{:?} ⊕ {:?}", p, q);
@@ -112,8 +152,52 @@ fn check(p: &Polytope, q: &Polytope) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// A prism over a regular `n`-gon of radius `r` (rounded to the grid) from `z0` to
+/// `z1`, centred at `(cx, cy)`: a tessellated cylinder.
+fn cylinder(n: usize, r: f64, (cx, cy): (i64, i64), (z0, z1): (i64, i64)) -> Option<Polytope> {
+    let mut pts = Vec::new();
+    for k in 0..n {
+        let t = k as f64 * std::f64::consts::TAU / n as f64;
+        let (x, y) = ((r * t.cos()).round() as i64, (r * t.sin()).round() as i64);
+        pts.push(Vec3::new(cx + x, cy + y, z0));
+        pts.push(Vec3::new(cx + x, cy + y, z1));
+    }
+    Polytope::hull(&pts).ok()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
+
+    /// A many-sided cylinder against a small piece beside it, above it, touching it
+    /// or a step away: most of the sum's facets and edges are dropped by the float
+    /// filters, and the facets facing the origin alone make the polygon.
+    #[test]
+    fn many_sided_prism_near_a_small_piece(
+        n in 3usize..400,
+        a in points(),
+        at in prop::array::uniform3(-3i64..=3),
+        side in 0usize..4,
+        scale in prop::sample::select(vec![1i64, 7, 1 << 20]),
+    ) {
+        let r = 1000.0;
+        let Some(c) = cylinder(n, r, (0, 0), (0, 2000)) else { return Ok(()) };
+        // Place the small piece just outside (or on) the cylinder's side, top or bottom.
+        let base: [i64; 3] = match side {
+            0 => [1003, 0, 1000],
+            1 => [0, -1003, 500],
+            2 => [0, 0, 2002],
+            _ => [700, 700, -2],
+        };
+        let moved: Vec<[i64; 3]> = a
+            .iter()
+            .map(|v| [0, 1, 2].map(|k| base[k] + at[k] + v[k]))
+            .collect();
+        let Some(b) = grid_hull(&moved) else { return Ok(()) };
+        let (c, b) = (c.rescaled(&Int::from(scale)), b.rescaled(&Int::from(scale)));
+        check_apart(&b, &c)?;
+        check_apart(&c, &b)?;
+        check_apart(&b.clone().with_den(Int::from(scale + 2)), &c)?;
+    }
 
     #[test]
     fn small_grid_pieces(a in points(), b in points()) {

@@ -23,7 +23,7 @@
 use crate::PlanError;
 use apart_kernel::int::{self, cmp_fractions};
 use apart_kernel::{Aabb, Int, Vec3};
-use apart_minkowski::{project, sum_prepared, Projection, Summand};
+use apart_minkowski::{project, project_apart, sum_prepared, Projection, Summand};
 use apart_pieces::interference::{below_along, facet_axes};
 use apart_pieces::Polytope;
 use apart_sphere::SphericalPolygon;
@@ -291,8 +291,13 @@ pub(crate) fn full_polygon(
     b: &Polytope,
     ib: &PieceInfo,
 ) -> Result<PairPolygon, String> {
-    let m =
-        sum_prepared(ib.fixed(b), ia.reflected(a)).map_err(|e| format!("Minkowski sum: {e}"))?;
+    let (sb, sa) = (ib.fixed(b), ia.reflected(a));
+    if let Some(p) = project_apart(sb, sa) {
+        return p
+            .map(|p| PairPolygon::Polygon(p, false))
+            .map_err(|e| format!("projection: {e}"));
+    }
+    let m = sum_prepared(sb, sa).map_err(|e| format!("Minkowski sum: {e}"))?;
     match project(&m) {
         Ok(Projection::Polygon(p)) => {
             let contact = m.facets().iter().all(|f| f.offset >= Int::ZERO);

@@ -12,7 +12,7 @@ use crate::progress::{phases, Progress};
 use crate::PlanError;
 use apart_kernel::fvec::dot;
 use apart_kernel::{Bvh, Vec3};
-use apart_minkowski::{project, sum_prepared, Projection};
+use apart_minkowski::{project, project_apart, sum_prepared, Projection};
 use apart_pieces::Polytope;
 use apart_sphere::overlay::{cell_statuses, PointStatus, SideLabel};
 use apart_sphere::region::{region_inputs, simplify_union, RegionMap, Sides};
@@ -454,13 +454,23 @@ fn pair_region(
     let polygon_of = |k: usize| -> Result<Cone, PlanError> {
         let (a, b) = jobs[k];
         let t0 = Instant::now();
-        let m =
-            sum_prepared(info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a])).map_err(|e| {
+        let (sb, sa) = (info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a]));
+        // Apart: the projection from the facets facing the origin, without the sum.
+        if let Some(p) = project_apart(sb, sa) {
+            sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
+            return p.map(|p| (p, false)).map_err(|e| {
                 PlanError::Internal(format!(
-                    "Minkowski sum of {} and {}: {e}",
+                    "projection for {} and {}: {e}",
                     parts[i].name, parts[j].name
                 ))
-            })?;
+            });
+        }
+        let m = sum_prepared(sb, sa).map_err(|e| {
+            PlanError::Internal(format!(
+                "Minkowski sum of {} and {}: {e}",
+                parts[i].name, parts[j].name
+            ))
+        })?;
         sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
         let t1 = Instant::now();
         let out = match project(&m) {
