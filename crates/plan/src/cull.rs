@@ -207,12 +207,26 @@ impl<'a> Cover<'a> {
             .iter()
             .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()))
             .collect();
+        // A point where arcs end lies in `p` only if a closed arc does: only the other
+        // points (isolated in the map) need a test of their own.
+        let ends: rustc_hash::FxHashSet<Vec3> = map
+            .arcs
+            .iter()
+            .flat_map(|(a, _)| [a.start.primitive(), a.end.primitive()])
+            .collect();
+        let exact_points: Vec<Vec3> = map
+            .points
+            .iter()
+            .map(|(p, _)| p)
+            .filter(|p| !ends.contains(&p.primitive()))
+            .cloned()
+            .collect();
         Cover {
             polygons,
             arcs,
-            points: map.points.iter().map(|(p, _)| p.unit_f64()).collect(),
+            points: exact_points.iter().map(|p| p.unit_f64()).collect(),
             exact_arcs,
-            exact_points: map.points.iter().map(|(p, _)| p.clone()).collect(),
+            exact_points,
         }
     }
 
@@ -251,11 +265,14 @@ impl<'a> Cover<'a> {
             Some((c, reach2)) => a.distance2(c) <= *reach2,
             None => true,
         };
+        // Neighbouring arcs of the map mostly lie outside `p` beyond the same side:
+        // that side is tried first.
+        let mut hint = 0;
         if self
             .arcs
             .iter()
             .zip(&self.exact_arcs)
-            .any(|(a, x)| near_arc(a) && arc_meets_open(x, a, &normals, p))
+            .any(|(a, x)| near_arc(a) && arc_meets_open(x, a, &normals, p, &mut hint))
         {
             return false;
         }
@@ -278,14 +295,28 @@ impl<'a> Cover<'a> {
 /// arc, and when every bound on `t` has a slope above 1e-6 (so it is within 1e-8) an
 /// interval or a gap wider than 1e-7 is sure. Arcs on or near a side of `p` are decided
 /// exactly.
-fn arc_meets_open(arc: &Arc, f: &FArc, normals: &[[f64; 3]], p: &SphericalPolygon) -> bool {
+///
+/// `hint` is the index of a side tried first, alone: when the arc lies beyond it the
+/// answer is no at once; `hint` becomes the side that excluded the arc, if one did.
+fn arc_meets_open(
+    arc: &Arc,
+    f: &FArc,
+    normals: &[[f64; 3]],
+    p: &SphericalPolygon,
+    hint: &mut usize,
+) -> bool {
     const FILTER: f64 = 1e-9;
     let (s, e) = f.ends();
+    let beyond = |m: &[f64; 3]| dot(*m, s) < -FILTER && dot(*m, e) < -FILTER;
+    if normals.get(*hint).is_some_and(beyond) {
+        return false;
+    }
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut sure = true;
-    for m in normals {
+    for (k, m) in normals.iter().enumerate() {
         let (a, b) = (dot(*m, s), dot(*m, e));
         if a < -FILTER && b < -FILTER {
+            *hint = k;
             return false;
         }
         // (A slope above 1e-6 keeps the rounding of t = −a / (b − a) below 1e-8.)
@@ -442,6 +473,8 @@ mod tests {
             ];
             let p = box_polygon(lo, hi);
             let normals: Vec<[f64; 3]> = p.normals().iter().map(|m| m.unit_f64()).collect();
+            // The hint carries over from arc to arc, as in `Cover::contains`.
+            let mut hint = 0;
             for _ in 0..20 {
                 let s = Vec3::new(next(6), next(6), next(8));
                 let e = Vec3::new(next(6), next(6), next(8));
@@ -464,10 +497,66 @@ mod tests {
                 if (0..=64).any(|k| p.contains_open(&along(k))) {
                     assert!(exact, "{arc:?} has a point inside");
                 }
-                assert_eq!(arc_meets_open(&arc, &f, &normals, &p), exact, "{arc:?}");
+                let filtered = arc_meets_open(&arc, &f, &normals, &p, &mut hint);
+                assert_eq!(filtered, exact, "{arc:?}");
             }
         }
         assert!(tested[0] > 100 && tested[1] > 100, "{tested:?}");
+    }
+
+    /// Three open triangles with a common corner `x`, each 150° wide there, cover a
+    /// neighbourhood of `x` but not `x`: the union's map has `x` as an isolated point
+    /// (no arc ends there), and a small polygon around `x` is not inside the union,
+    /// while one beside it is.
+    #[test]
+    fn an_isolated_uncovered_point_keeps_a_polygon_out() {
+        let x = Vec3::new(0, 0, 10_000);
+        let at = |deg: f64, r: f64| {
+            let t = deg.to_radians();
+            Vec3::new(
+                (r * t.cos()).round() as i64,
+                (r * t.sin()).round() as i64,
+                10_000,
+            )
+        };
+        let polygon = |corners: &[Vec3]| {
+            let arcs = (0..corners.len())
+                .map(|k| Arc::between(&corners[k], &corners[(k + 1) % corners.len()]).unwrap())
+                .collect();
+            SphericalPolygon::from_arcs(arcs).unwrap()
+        };
+        let polys: Vec<SphericalPolygon> = (0..3)
+            .map(|k| {
+                let a = 120.0 * k as f64 - 15.0;
+                polygon(&[x.clone(), at(a, 1000.0), at(a + 150.0, 1000.0)])
+            })
+            .collect();
+        let map = union_of(&polys);
+        let ends: Vec<&Vec3> = map
+            .arcs
+            .iter()
+            .flat_map(|(a, _)| [&a.start, &a.end])
+            .collect();
+        assert!(map
+            .points
+            .iter()
+            .any(|(p, _)| p.primitive() == x.primitive()));
+        assert!(!ends.iter().any(|e| e.primitive() == x.primitive()));
+        let cover = Cover::new(&polys, &map);
+        let around = polygon(&[at(0.0, 20.0), at(120.0, 20.0), at(240.0, 20.0)]);
+        assert!(!cover.contains(&around));
+        let beside = |c: f64| {
+            let t = c.to_radians();
+            let (cx, cy) = (
+                (100.0 * t.cos()).round() as i64,
+                (100.0 * t.sin()).round() as i64,
+            );
+            let corner = |dx: i64, dy: i64| Vec3::new(cx + dx, cy + dy, 10_000);
+            polygon(&[corner(10, 0), corner(-5, 9), corner(-5, -9)])
+        };
+        for c in [0.0, 60.0, 120.0, 200.0, 300.0] {
+            assert!(cover.contains(&beside(c)), "at {c}°");
+        }
     }
 
     #[test]
