@@ -501,9 +501,7 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
         Some((kp, _)) => p.den() * kp,
     };
     let pairs = PairPoints::new(p, q, &k);
-    let nq = q.vertices().len() as u64;
-    let mut points: Vec<Vec3> = Vec::new();
-    let mut ids: HashMap<u64, u32> = HashMap::default();
+    let mut numbers = Numbering::new(&pairs);
     let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
     let all = &mut |_: &Vec3, _, _| true;
     facets_where(
@@ -513,23 +511,45 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
         &|_, _| true,
         [None, None],
         all,
-        &mut |n, cycle, reversed| {
-            let mut c: Vec<u32> = cycle
-                .iter()
-                .map(|&(i, j)| {
-                    *ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-                        points.push(pairs.get(i, j));
-                        (points.len() - 1) as u32
-                    })
-                })
-                .collect();
-            if reversed {
-                c.reverse();
-            }
-            facets.push((n.clone(), c));
-        },
+        &mut |n, cycle, reversed| facets.push((n.clone(), numbers.cycle(cycle, reversed))),
     )?;
-    Ok(Polytope::from_facets(&points, facets)?.with_den(den))
+    Ok(Polytope::from_facets(&numbers.points, facets)?.with_den(den))
+}
+
+/// The vertices of some facets of a sum, numbered as they first appear in their cycles.
+struct Numbering<'a> {
+    pairs: &'a PairPoints<'a>,
+    ids: HashMap<u64, u32>,
+    /// The vertices' points, by number.
+    points: Vec<Vec3>,
+}
+
+impl<'a> Numbering<'a> {
+    fn new(pairs: &'a PairPoints<'a>) -> Numbering<'a> {
+        Numbering {
+            pairs,
+            ids: HashMap::default(),
+            points: Vec::new(),
+        }
+    }
+
+    /// A cycle of vertex pairs ([`facets_where`]) as vertex numbers, counter-clockwise.
+    fn cycle(&mut self, cycle: &[(u32, u32)], reversed: bool) -> Vec<u32> {
+        let nq = self.pairs.qv.len() as u64;
+        let mut c: Vec<u32> = cycle
+            .iter()
+            .map(|&(i, j)| {
+                *self.ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
+                    self.points.push(self.pairs.get(i, j));
+                    (self.points.len() - 1) as u32
+                })
+            })
+            .collect();
+        if reversed {
+            c.reverse();
+        }
+        c
+    }
 }
 
 /// The central projection of `sp ⊕ sq` (as [`crate::project`] gives it) when the
@@ -542,10 +562,8 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
     let (p, q) = (&sp.polytope, &sq.polytope);
     let k = den_factors(p, q);
     let pairs = PairPoints::new(p, q, &k);
-    let nq = q.vertices().len() as u64;
-    // The facing facets' vertices (local indices) and cycles, counter-clockwise.
-    let mut local: HashMap<u64, u32> = HashMap::default();
-    let mut points: Vec<Vec3> = Vec::new();
+    // The facing facets' vertices and cycles, counter-clockwise.
+    let mut numbers = Numbering::new(&pairs);
     let mut cycles: Vec<Vec<u32>> = Vec::new();
     // A facet of one summand plus a face of the other faces the origin only when its
     // level plus the other's support value is negative, and a parallelogram on an edge
@@ -569,21 +587,7 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
         &maybe,
         edges,
         &mut |n, i, j| facing(n, i, j),
-        &mut |_, cycle, reversed| {
-            let mut c: Vec<u32> = cycle
-                .iter()
-                .map(|&(i, j)| {
-                    *local.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-                        points.push(pairs.get(i, j));
-                        (points.len() - 1) as u32
-                    })
-                })
-                .collect();
-            if reversed {
-                c.reverse();
-            }
-            cycles.push(c);
-        },
+        &mut |_, cycle, reversed| cycles.push(numbers.cycle(cycle, reversed)),
     );
     if let Err(e) = found {
         return Some(Err(PolygonError(format!("Minkowski sum: {e}"))));
@@ -599,6 +603,7 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
             *uses.entry(key(c[t], c[(t + 1) % c.len()])).or_default() += 1;
         }
     }
+    let points = numbers.points;
     let mut primitive: Vec<Option<Vec3>> = vec![None; points.len()];
     let mut arcs = Vec::new();
     for c in &cycles {

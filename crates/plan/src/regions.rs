@@ -92,9 +92,10 @@ pub struct RegionStats {
     pub culled: usize,
     /// Arcs in the simplified pair regions.
     pub region_arcs: usize,
-    /// Seconds spent on Minkowski sums.
+    /// Seconds spent on Minkowski sums, and on the projections of pieces apart (made
+    /// from the facets facing the origin, without a sum: `project_apart`).
     pub sums_seconds: f64,
-    /// Seconds spent on central projections.
+    /// Seconds spent on central projections of whole sums.
     pub projection_seconds: f64,
     /// Seconds spent on per-pair unions.
     pub unions_seconds: f64,
