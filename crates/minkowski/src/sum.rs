@@ -573,8 +573,10 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
     let maybe = |from_p: bool, fi: usize| -> bool {
         let (x, y, bits) = if from_p { (p, q, &bp) } else { (q, p, &bq) };
         match bits {
-            Some(b) => b[fi] == 0,
-            None => !clearly_positive(x, fi, y),
+            Some(b) if b[fi] != 0 => false,
+            // No bit: every vertex of `y` (when it has 64 or fewer, they all had one).
+            Some(_) if y.vertices().len() <= 64 => true,
+            _ => !clearly_positive(x, fi, y),
         }
     };
     let (ep, eq) = (live_edges(sp, &bp), live_edges(sq, &bq));
@@ -620,23 +622,28 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
     Some(SphericalPolygon::from_arcs(arcs))
 }
 
-/// For each facet of `x`, a bit per vertex `y_k` of `y` (at most 64) set when the
-/// facet's plane, moved by `y_k`, clearly (beyond the float error) has the origin inside:
-/// then no facet of `x ⊕ y` with that normal, nor between it and the normal of a facet
-/// whose bit `k` is also set, faces the origin (`h(n) ≥ n · (x_f + y_k)` is linear in
-/// `n`). `None` when `y` has more vertices or either polytope has no float shadow.
+/// For each facet of `x`, a bit per vertex `y_k` of `y` set when the facet's plane,
+/// moved by `y_k`, clearly (beyond the float error) has the origin inside: then no facet
+/// of `x ⊕ y` with that normal, nor between it and the normal of a facet whose bit `k`
+/// is also set, faces the origin (`h(n) ≥ n · (x_f + y_k)` is linear in `n`). A `y` of
+/// more than 64 vertices is represented by 64 of them spread over its list (any vertex
+/// gives a valid bound; a facet without a bit may still be clear). `None` when either
+/// polytope has no float shadow.
 fn clear_of(x: &Polytope, y: &Polytope) -> Option<Vec<u64>> {
     let (sx, sy) = (x.shadow()?, y.shadow()?);
-    if sy.points.len() > 64 {
-        return None;
-    }
+    let m = sy.points.len();
+    let sample: Vec<[f64; 3]> = if m > 64 {
+        (0..64).map(|k| sy.points[k * m / 64]).collect()
+    } else {
+        sy.points.clone()
+    };
     let margin = 2.0 * (sx.error() + sy.error());
     Some(
         sx.facet_units
             .iter()
             .zip(&sx.facet_levels)
             .map(|(u, level)| {
-                sy.points.iter().enumerate().fold(0u64, |bits, (k, y)| {
+                sample.iter().enumerate().fold(0u64, |bits, (k, y)| {
                     if level + fvec::dot(*u, *y) > margin {
                         bits | 1 << k
                     } else {
