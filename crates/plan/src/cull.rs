@@ -197,6 +197,8 @@ pub(crate) struct Cover<'a> {
     points: Vec<[f64; 3]>,
     exact_arcs: Vec<Arc>,
     exact_points: Vec<Vec3>,
+    /// Float boxes of the arcs, for the polygons with a cap.
+    arc_tree: Bvh<f64>,
 }
 
 impl<'a> Cover<'a> {
@@ -225,6 +227,7 @@ impl<'a> Cover<'a> {
             polygons,
             arcs,
             points: exact_points.iter().map(|p| p.unit_f64()).collect(),
+            arc_tree: Bvh::by_median_splits(exact_arcs.iter().map(Arc::bbox).collect()),
             exact_arcs,
             exact_points,
         }
@@ -261,19 +264,30 @@ impl<'a> Cover<'a> {
         {
             return false;
         }
-        let near_arc = |a: &FArc| match &cap {
-            Some((c, reach2)) => a.distance2(c) <= *reach2,
-            None => true,
-        };
         // Neighbouring arcs of the map mostly lie outside `p` beyond the same side:
         // that side is tried first.
         let mut hint = 0;
-        if self
-            .arcs
-            .iter()
-            .zip(&self.exact_arcs)
-            .any(|(a, x)| near_arc(a) && arc_meets_open(x, a, &normals, p, &mut hint))
-        {
+        let mut meets =
+            |k: usize| arc_meets_open(&self.exact_arcs[k], &self.arcs[k], &normals, p, &mut hint);
+        let met = match &cap {
+            // Only arcs whose boxes meet the cap's box can come within its reach (the
+            // box is padded far beyond the rounding of the float distance).
+            Some((c, reach2)) => {
+                let r = reach2.sqrt() + 1e-9;
+                let reach = Aabb {
+                    min: c.map(|x| x - r),
+                    max: c.map(|x| x + r),
+                };
+                let mut met = false;
+                self.arc_tree.query(&reach, |k| {
+                    let k = k as usize;
+                    met = met || (self.arcs[k].distance2(c) <= *reach2 && meets(k));
+                });
+                met
+            }
+            None => (0..self.arcs.len()).any(&mut meets),
+        };
+        if met {
             return false;
         }
         // No boundary point of the union lies in `p`: one interior point decides. The
