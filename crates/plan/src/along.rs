@@ -713,7 +713,7 @@ fn distance(p: &SphericalPolygon, x: &Vec3) -> f64 {
     let c2 = p
         .boundary()
         .iter()
-        .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()).distance2(&u))
+        .map(|a| FArc::of(a).distance2(&u))
         .fold(4.0, f64::min);
     to_angle(c2)
 }

@@ -36,6 +36,15 @@ impl FArc {
         FArc { a, b, n }
     }
 
+    /// The exact arc `arc` in floating point (its ends and normal as unit vectors).
+    pub fn of(arc: &apart_sphere::Arc) -> FArc {
+        FArc::new(
+            arc.start.unit_f64(),
+            arc.end.unit_f64(),
+            arc.normal.unit_f64(),
+        )
+    }
+
     /// The unit end points.
     pub fn ends(&self) -> (V3, V3) {
         (self.a, self.b)

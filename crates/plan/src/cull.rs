@@ -205,10 +205,7 @@ impl<'a> Cover<'a> {
     /// The union of `polygons`, whose simplified map is `map`.
     pub(crate) fn new(polygons: &'a [SphericalPolygon], map: &RegionMap) -> Cover<'a> {
         let exact_arcs: Vec<Arc> = map.arcs.iter().flat_map(|(a, _)| a.quarters()).collect();
-        let arcs = exact_arcs
-            .iter()
-            .map(|a| FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64()))
-            .collect();
+        let arcs = exact_arcs.iter().map(FArc::of).collect();
         // A point where arcs end lies in `p` only if a closed arc does: only the other
         // points (isolated in the map) need a test of their own.
         let ends: rustc_hash::FxHashSet<Vec3> = map
@@ -519,11 +516,7 @@ mod tests {
                 let Some(arc) = Arc::between(&s, &e) else {
                     continue;
                 };
-                let f = FArc::new(
-                    arc.start.unit_f64(),
-                    arc.end.unit_f64(),
-                    arc.normal.unit_f64(),
-                );
+                let f = FArc::of(&arc);
                 let exact = exact_arc_meets_open(&arc, &p);
                 tested[usize::from(exact)] += 1;
                 // Independent check: exact points along the arc found inside `p`.
@@ -639,11 +632,7 @@ mod tests {
                 let Some(arc) = Arc::between(&s, &e) else {
                     continue;
                 };
-                let f = FArc::new(
-                    arc.start.unit_f64(),
-                    arc.end.unit_f64(),
-                    arc.normal.unit_f64(),
-                );
+                let f = FArc::of(&arc);
                 let exact = exact_arc_meets_open(&arc, &p);
                 tested[usize::from(exact)] += 1;
                 let filtered = arc_meets_open(&arc, &f, &normals, &p, &mut hint);

@@ -669,12 +669,7 @@ pub(crate) fn free_clearance(ms: &MotionSpace, moving: &[usize], u: &[f64; 3]) -
         };
         if is_free(arr.face(e.forward())) != is_free(arr.face(e.backward())) {
             let arc = arr.edge_arc(e);
-            let fa = FArc::new(
-                arc.start.unit_f64(),
-                arc.end.unit_f64(),
-                arc.normal.unit_f64(),
-            );
-            c2 = c2.min(fa.distance2(u));
+            c2 = c2.min(FArc::of(&arc).distance2(u));
         }
     }
     crate::clearance::to_angle(c2)
@@ -724,14 +719,7 @@ fn minimal_zone(ms: &MotionSpace, r: &FreeRegion) -> Option<Vec<HalfEdge>> {
 /// an exact point of the seed face found without floating point.
 fn region_direction(regions: &BlockingRegions, ms: &MotionSpace, r: &FreeRegion) -> (Vec3, f64) {
     let arr = ms.arrangement();
-    let farc = |&h: &HalfEdge| {
-        let arc = arr.half_edge_arc(h);
-        FArc::new(
-            arc.start.unit_f64(),
-            arc.end.unit_f64(),
-            arc.normal.unit_f64(),
-        )
-    };
+    let farc = |&h: &HalfEdge| FArc::of(&arr.half_edge_arc(h));
     let arcs: Vec<FArc> = r.boundary.iter().map(farc).collect();
     // Where a smaller set is free too, the set is free but not minimal, and a direction
     // there is no solution of it: the search keeps to the faces around the seed where

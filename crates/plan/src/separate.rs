@@ -166,10 +166,7 @@ fn deep_direction(
         .boundary_loops(f)
         .into_iter()
         .flatten()
-        .map(|h| {
-            let a = arr.half_edge_arc(h);
-            FArc::new(a.start.unit_f64(), a.end.unit_f64(), a.normal.unit_f64())
-        })
+        .map(|h| FArc::of(&arr.half_edge_arc(h)))
         .collect();
     if let Some(found) = crate::clearance::deep_direction(&arcs, points, ok) {
         return found;
