@@ -452,12 +452,12 @@ fn facets_where(
 
     // Parallelograms of edge pairs whose Gaussian arcs cross (pairs whose boxes on the
     // unit sphere overlap, by sort and sweep; then the exact test).
-    let [ep, eq] = edges;
+    let [live_p, live_q] = edges;
     let pairs = sweep_pairs_between(
         &sp.boxes,
-        ep.unwrap_or(&sp.by_low_x),
+        live_p.unwrap_or(&sp.by_low_x),
         &sq.boxes,
-        eq.unwrap_or(&sq.by_low_x),
+        live_q.unwrap_or(&sq.by_low_x),
     );
     for (ip, iq) in pairs {
         let (ep, ap, eq, aq) = (&p.edges()[ip], &sp.arcs[ip], &q.edges()[iq], &sq.arcs[iq]);
@@ -579,16 +579,14 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
             _ => !clearly_positive(x, fi, y),
         }
     };
-    let (ep, eq) = (live_edges(sp, &bp), live_edges(sq, &bq));
-    let facing = |n: &Vec3, i: u32, j: u32| dot_sign(n, &pairs.get(i, j)) == Sign::Negative;
-    let edges = [ep.as_deref(), eq.as_deref()];
+    let (live_p, live_q) = (live_edges(sp, &bp), live_edges(sq, &bq));
     let found = facets_where(
         sp,
         sq,
         &pairs,
         &maybe,
-        edges,
-        &mut |n, i, j| facing(n, i, j),
+        [live_p.as_deref(), live_q.as_deref()],
+        &mut |n, i, j| dot_sign(n, &pairs.get(i, j)) == Sign::Negative,
         &mut |_, cycle, reversed| cycles.push(numbers.cycle(cycle, reversed)),
     );
     if let Err(e) = found {
