@@ -68,26 +68,69 @@ fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonE
             _ => continue,
         };
         let front = &m.facets()[front].cycle;
-        arcs.extend(silhouette_side(
+        arcs.push(silhouette_side(
             m.vertices(),
             e.ends,
             front,
             &mut primitive,
         )?);
     }
-    SphericalPolygon::from_arcs(arcs)
+    polygon_of_sides(arcs, m.vertices().len())
+}
+
+/// The polygon bounded by silhouette sides ([`silhouette_side`]'s answers, each with
+/// the numbers of its start and end vertex), chained through those numbers; through the
+/// sides' points ([`SphericalPolygon::from_arcs`]) when an edge projected to a point
+/// (its ends share a direction) or the numbers do not close one cycle.
+pub(crate) fn polygon_of_sides(
+    sides: Vec<Option<([u32; 2], Arc)>>,
+    vertices: usize,
+) -> Result<SphericalPolygon, PolygonError> {
+    let by_numbers = || -> Option<Vec<usize>> {
+        let mut from = vec![u32::MAX; vertices];
+        for (k, side) in sides.iter().enumerate() {
+            let start = &mut from[side.as_ref()?.0[0] as usize];
+            if *start != u32::MAX {
+                return None;
+            }
+            *start = k as u32;
+        }
+        let mut order = Vec::with_capacity(sides.len());
+        let mut k = 0;
+        for _ in 0..sides.len() {
+            order.push(k);
+            k = from[sides[k].as_ref()?.0[1] as usize] as usize;
+            if k >= sides.len() {
+                return None;
+            }
+        }
+        (k == 0).then_some(order)
+    };
+    match by_numbers() {
+        Some(order) => {
+            let mut slots = sides;
+            SphericalPolygon::from_cycle(
+                order
+                    .into_iter()
+                    .map(|k| slots[k].take().expect("each side once").1)
+                    .collect(),
+            )
+        }
+        None => SphericalPolygon::from_arcs(sides.into_iter().flatten().map(|s| s.1).collect()),
+    }
 }
 
 /// The side of a projection on the silhouette edge `ends` of a convex polytope with
-/// vertices `vs`, whose facet facing the origin has the cycle `front`; `None` when the
-/// edge's line passes through the origin (it projects to a point). `primitive` caches
-/// each vertex made primitive (it ends two silhouette edges).
+/// vertices `vs`, whose facet facing the origin has the cycle `front`, with the numbers
+/// of its start and end vertex; `None` when the edge's line passes through the origin
+/// (it projects to a point). `primitive` caches each vertex made primitive (it ends two
+/// silhouette edges).
 pub(crate) fn silhouette_side(
     vs: &[Vec3],
     ends: [u32; 2],
     front: &[u32],
     primitive: &mut [Option<Vec3>],
-) -> Result<Option<Arc>, PolygonError> {
+) -> Result<Option<([u32; 2], Arc)>, PolygonError> {
     let (v0, v1) = (&vs[ends[0] as usize], &vs[ends[1] as usize]);
     let n = v0.cross(v1);
     if n.is_zero() {
@@ -117,11 +160,14 @@ pub(crate) fn silhouette_side(
             .clone()
     };
     let (start, end) = (unit(a), unit(b));
-    Ok(Some(Arc {
-        normal: q,
-        start,
-        end,
-    }))
+    Ok(Some((
+        [a, b],
+        Arc {
+            normal: q,
+            start,
+            end,
+        },
+    )))
 }
 
 /// The tangent cone at the vertex of `m` at the origin (three or more facets through it).

@@ -14,7 +14,7 @@
 //! depends on the summands' scale, so two pieces with different denominators are summed
 //! as they are and only the sum's vertices are brought to the common denominator.
 
-use crate::projection::silhouette_side;
+use crate::projection::{polygon_of_sides, silhouette_side};
 use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::fvec;
 use apart_kernel::predicates::{det3_sign, dot_sign};
@@ -611,13 +611,13 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
             let (a, b) = (c[t], c[(t + 1) % c.len()]);
             if uses[&key(a, b)] == 1 {
                 match silhouette_side(&points, [a, b], c, &mut primitive) {
-                    Ok(side) => arcs.extend(side),
+                    Ok(side) => arcs.push(side),
                     Err(e) => return Some(Err(e)),
                 }
             }
         }
     }
-    Some(SphericalPolygon::from_arcs(arcs))
+    Some(polygon_of_sides(arcs, points.len()))
 }
 
 /// For each facet of `x`, a bit per vertex `y_k` of `y` set when the facet's plane,

@@ -84,6 +84,55 @@ impl SphericalPolygon {
         Ok(SphericalPolygon { normals, boundary })
     }
 
+    /// [`SphericalPolygon::from_arcs`] for arcs already in boundary order (each ends where
+    /// the next starts, the last where the first starts), without hashing their points:
+    /// consecutive arcs on one circle are merged, the first side is the one holding
+    /// `arcs[0]`, as `from_arcs` gives it.
+    pub fn from_cycle(mut arcs: Vec<Arc>) -> Result<SphericalPolygon, PolygonError> {
+        let n = arcs.len();
+        for (k, a) in arcs.iter().enumerate() {
+            let next = (k + 1) % n;
+            if a.end != arcs[next].start {
+                return Err(PolygonError(format!(
+                    "side {k} does not end where {next} starts"
+                )));
+            }
+        }
+        // The arcs of the first side's circle at the end of the cycle belong to it.
+        let mut tail = n;
+        while tail > 1 && arcs[tail - 1].normal == arcs[0].normal {
+            tail -= 1;
+        }
+        if tail == 1 && n > 1 {
+            return Err(PolygonError(
+                "arcs on one circle close a full circle".into(),
+            ));
+        }
+        arcs.rotate_left(tail % n.max(1));
+        let mut boundary: Vec<Arc> = Vec::with_capacity(n);
+        let mut merged = Vec::new();
+        for a in arcs {
+            match boundary.last_mut() {
+                Some(last) if last.normal == a.normal => {
+                    last.end = a.end;
+                    merged.push(boundary.len() - 1);
+                }
+                _ => boundary.push(a),
+            }
+        }
+        if boundary.len() < 3 {
+            return Err(PolygonError(format!("only {} sides", boundary.len())));
+        }
+        if merged.iter().any(|&k| {
+            let a = &boundary[k];
+            det3_sign(&a.normal, &a.start, &a.end) != Sign::Positive
+        }) {
+            return Err(PolygonError("merged side is not a minor arc".into()));
+        }
+        let normals = boundary.iter().map(|a| a.normal.clone()).collect();
+        Ok(SphericalPolygon { normals, boundary })
+    }
+
     /// The inward normals.
     pub fn normals(&self) -> &[Vec3] {
         &self.normals
@@ -300,5 +349,47 @@ mod tests {
         assert!(!p.contains_open(&Vec3::new(1, 1, 0)));
         assert!(p.contains_open_perturbed(&Vec3::new(1, 1, 0), &Vec3::new(0, 0, 1)));
         assert!(!p.contains_open_perturbed(&Vec3::new(1, 1, 0), &Vec3::new(0, 0, -1)));
+    }
+
+    proptest::proptest! {
+        /// A convex k-gon around +z, some sides cut into several cocircular pieces, given
+        /// in boundary order from any piece: `from_cycle` gives what `from_arcs` gives
+        /// (the same sides, starting at the same one), and refuses a broken cycle.
+        #[test]
+        fn from_cycle_matches_from_arcs(
+            k in 3usize..12,
+            cuts in proptest::collection::vec(0usize..4, 12),
+            rotate in 0usize..64,
+            r in 50i64..1000,
+        ) {
+            // Corners on a circle of radius r at height 1000 (convex, pointed).
+            let corner = |t: f64| {
+                let a = t * std::f64::consts::TAU;
+                [(r as f64 * a.cos()).round() as i64, (r as f64 * a.sin()).round() as i64]
+            };
+            let mut arcs = Vec::new();
+            for (i, &cut) in cuts.iter().enumerate().take(k) {
+                let (p, q) = (corner(i as f64 / k as f64), corner((i + 1) as f64 / k as f64));
+                // Points along the chord p..q (exactly on it: integer steps times the
+                // denominator), so the pieces share the side's great circle.
+                let m = cut as i64 + 1;
+                let pts: Vec<Vec3> = (0..=m)
+                    .map(|j| Vec3::new(p[0] * (m - j) + q[0] * j, p[1] * (m - j) + q[1] * j, 1000 * m))
+                    .collect();
+                for w in pts.windows(2) {
+                    arcs.push(Arc::between(&w[0], &w[1]).unwrap());
+                }
+            }
+            let n = arcs.len();
+            arcs.rotate_left(rotate % n);
+            let a = SphericalPolygon::from_arcs(arcs.clone()).unwrap();
+            let c = SphericalPolygon::from_cycle(arcs.clone()).unwrap();
+            proptest::prop_assert_eq!(a.boundary(), c.boundary());
+            proptest::prop_assert_eq!(a.normals(), c.normals());
+            proptest::prop_assert_eq!(c.boundary().len(), k);
+            // Two arcs swapped: no longer a cycle.
+            arcs.swap(0, 1);
+            proptest::prop_assert!(SphericalPolygon::from_cycle(arcs).is_err());
+        }
     }
 }
