@@ -199,16 +199,20 @@ pub fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
 }
 
 /// gcd of two odd non-zero words.
+///
+/// The shift comes from `a - b` taken modulo 2^64, which has the trailing zeros of
+/// `|a - b|`: it does not wait for the minimum and the difference, which come alongside.
 #[inline]
 fn gcd_odd_u64(mut a: u64, mut b: u64) -> u64 {
     loop {
-        let lo = a.min(b);
-        let d = a.max(b) - lo;
+        let d = a.wrapping_sub(b);
         if d == 0 {
-            return lo;
+            return a;
         }
+        let z = d.trailing_zeros();
+        let lo = a.min(b);
+        b = a.abs_diff(b) >> z;
         a = lo;
-        b = d >> d.trailing_zeros();
     }
 }
 
