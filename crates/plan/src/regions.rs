@@ -672,27 +672,15 @@ pub(crate) fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
     })
 }
 
-/// False when `p` (with cap `cp`) provably cannot lie in `q` (with cap `cq`): `p`'s
-/// centre, a point of `p`, lies outside `q`'s cap.
-fn may_contain(cp: &Option<Cap>, cq: &Option<Cap>) -> bool {
-    match (cp, cq) {
-        (
-            Some(p),
-            Some(Cap {
-                centre,
-                cos_radius: Some(c),
-            }),
-        ) => p.centre[0] * centre[0] + p.centre[1] * centre[1] + p.centre[2] * centre[2] >= *c,
-        _ => true,
-    }
-}
-
 /// Floating-point data of a polygon for the containment filter of [`prune_contained`]:
-/// its bounding cap, unit corners and unit inward normals, and for a polygon whose
-/// corners all lie in the open hemisphere of its cap's centre `h`, the factors
+/// its bounding cap and the corner farthest from the cap's centre, unit corners and unit
+/// inward normals, and for a polygon whose corners all lie in the open hemisphere of a
+/// point `h` (the cap's centre, or the sum of the inward normals), the factors
 /// `1 / (h · c)` that map each corner `c` to the gnomonic plane at `h`.
 struct Approx {
     cap: Option<Cap>,
+    /// The corner farthest from the cap's centre.
+    far: Option<[f64; 3]>,
     corners: Vec<[f64; 3]>,
     normals: Vec<[f64; 3]>,
     gnomonic: Vec<f64>,
@@ -702,19 +690,58 @@ impl Approx {
     fn new(p: &SphericalPolygon) -> Approx {
         let cap = cap_of(p);
         let corners: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
-        let normals = p.normals().iter().map(|n| n.unit_f64()).collect();
-        let gnomonic = match &cap {
-            Some(c) if corners.iter().all(|u| dot(*u, c.centre) > 1e-6) => {
-                corners.iter().map(|u| 1.0 / dot(*u, c.centre)).collect()
-            }
-            _ => Vec::new(),
+        let normals: Vec<[f64; 3]> = p.normals().iter().map(|n| n.unit_f64()).collect();
+        // The gnomonic centre: the cap's, or else the sum of the inward normals, which
+        // has a positive product with every point of a pointed polygon (the normals
+        // span space, and each has a non-negative product with the point).
+        let factors = |h: [f64; 3]| -> Option<Vec<f64>> {
+            let f: Vec<f64> = corners.iter().map(|u| dot(*u, h)).collect();
+            f.iter()
+                .all(|&x| x > 1e-6)
+                .then(|| f.iter().map(|x| 1.0 / x).collect())
         };
+        let sum = normals
+            .iter()
+            .fold([0.0; 3], |s, n| [s[0] + n[0], s[1] + n[1], s[2] + n[2]]);
+        let len = dot(sum, sum).sqrt();
+        let gnomonic = cap
+            .as_ref()
+            .and_then(|c| factors(c.centre))
+            .or_else(|| {
+                (len > 1e-6 && p.normals().len() >= 3)
+                    .then(|| factors(sum.map(|x| x / len)))
+                    .flatten()
+            })
+            .unwrap_or_default();
+        let far = cap.as_ref().and_then(|c| {
+            corners
+                .iter()
+                .min_by(|a, b| dot(**a, c.centre).total_cmp(&dot(**b, c.centre)))
+                .copied()
+        });
         Approx {
             cap,
+            far,
             corners,
             normals,
             gnomonic,
         }
+    }
+
+    /// False when `self` provably cannot lie in `q`: its cap's centre or its farthest
+    /// corner, two of its points, lies outside `q`'s cap (widened far beyond rounding).
+    fn may_lie_in_cap(&self, q: &Approx) -> bool {
+        let (
+            Some(cp),
+            Some(Cap {
+                centre,
+                cos_radius: Some(c),
+            }),
+        ) = (&self.cap, &q.cap)
+        else {
+            return true;
+        };
+        dot(cp.centre, *centre) >= *c && self.far.is_none_or(|f| dot(f, *centre) >= *c)
     }
 
     /// False when a corner of `self` lies clearly outside the closed `q` (a unit normal
@@ -765,7 +792,7 @@ fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..polygons.len()).collect();
     order.sort_by_key(|&k| polygons[k].normals().len());
     let inside = |p: usize, q: usize| {
-        may_contain(&approx[p].cap, &approx[q].cap)
+        approx[p].may_lie_in_cap(&approx[q])
             && approx[p].may_lie_in(&approx[q])
             && contained_in(&polygons[p], &polygons[q])
     };
@@ -1081,5 +1108,65 @@ mod prune_tests {
             "the generator must produce containments ({pruned})"
         );
         assert!(sides > 24 * 18 * 8, "many-sided polygons ({sides})");
+    }
+
+    #[test]
+    fn the_walk_from_the_normals_centre_keeps_every_containment() {
+        // Prisms over most of a circle (its corners crowd one side), wide and just above
+        // the origin: corners fall behind the corners' mean direction, so the walk runs
+        // in the gnomonic plane of the inward normals' sum. Grown, shifted and equal
+        // copies make containments; the float filters must keep every one.
+        let mut rng = apart_testkit::solids::Lcg(7u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
+        let arc_prism = |c: [i64; 2], r: i64, n: usize, turn: f64, z: [i64; 2]| {
+            let mut pts = Vec::new();
+            for k in 0..=n {
+                let t = k as f64 * turn / n as f64;
+                let (x, y) = (
+                    (r as f64 * t.cos()).round() as i64,
+                    (r as f64 * t.sin()).round() as i64,
+                );
+                for h in z {
+                    pts.push(Vec3::new(c[0] + x, c[1] + y, h));
+                }
+            }
+            match project(&Polytope::hull(&pts).ok()?).ok()? {
+                Projection::Polygon(p) => Some(p),
+                Projection::Everything => None,
+            }
+        };
+        let (mut pruned, mut from_normals) = (0, 0);
+        for _ in 0..24 {
+            let mut polygons = Vec::new();
+            for _ in 0..6 {
+                let n = 12 + next(40) as usize;
+                let turn = std::f64::consts::PI * (1.0 + next(50) as f64 / 100.0);
+                let c = [next(21) - 10, next(21) - 10];
+                let r = 500 + next(2000);
+                let z = [1 + next(2), 3 + next(5)];
+                polygons.extend(arc_prism(c, r, n, turn, z));
+                polygons.extend(arc_prism(c, r + next(3), n, turn, [z[0], z[1] + next(3)]));
+                polygons.extend(arc_prism([c[0] + next(3) - 1, c[1]], r, n, turn, z));
+            }
+            for p in &polygons {
+                let a = Approx::new(p);
+                let at_cap = a
+                    .cap
+                    .as_ref()
+                    .is_some_and(|c| a.corners.iter().all(|u| dot(*u, c.centre) > 1e-6));
+                from_normals += usize::from(!at_cap && !a.gnomonic.is_empty());
+            }
+            let fast = prune_contained(&polygons);
+            assert_eq!(fast, brute(&polygons));
+            pruned += polygons.len() - fast.len();
+        }
+        assert!(
+            pruned > 24,
+            "the generator must produce containments ({pruned})"
+        );
+        assert!(
+            from_normals > 100,
+            "walks from the normals' sum ({from_normals})"
+        );
     }
 }
