@@ -305,7 +305,15 @@ impl<T: Coord> Bvh<T> {
     /// Calls `f(i)` for every box `i` that meets the closed box `q`, in the build's order
     /// (Morton or median splits).
     #[inline]
-    pub fn query(&self, q: &Aabb<T>, mut f: impl FnMut(u32)) {
+    pub fn query(&self, q: &Aabb<T>, f: impl FnMut(u32)) {
+        self.query_by(|b| b.overlaps(q), f);
+    }
+
+    /// Calls `f(i)` for every box `i` that `may_hold(box)` accepts, skipping every node
+    /// whose box it rejects, in the build's order. `may_hold` must accept a box that
+    /// contains an accepted one (as "meets a region" does).
+    #[inline]
+    pub fn query_by(&self, may_hold: impl Fn(&Aabb<T>) -> bool, mut f: impl FnMut(u32)) {
         if self.boxes.is_empty() {
             return;
         }
@@ -315,13 +323,13 @@ impl<T: Coord> Bvh<T> {
         while top > 0 {
             top -= 1;
             let i = stack[top];
-            if !self.nodes[i].overlaps(q) {
+            if !may_hold(&self.nodes[i]) {
                 continue;
             }
             let [x, y] = self.kids[i];
             if x == 0 {
                 for &p in self.items(i) {
-                    if self.boxes[p as usize].overlaps(q) {
+                    if may_hold(&self.boxes[p as usize]) {
                         f(p);
                     }
                 }

@@ -197,7 +197,7 @@ pub(crate) struct Cover<'a> {
     points: Vec<[f64; 3]>,
     exact_arcs: Vec<Arc>,
     exact_points: Vec<Vec3>,
-    /// Float boxes of the arcs, for the polygons with a cap.
+    /// Float boxes of the arcs: a polygon skips the groups of arcs beyond one of its sides.
     arc_tree: Bvh<f64>,
 }
 
@@ -264,36 +264,56 @@ impl<'a> Cover<'a> {
         // Neighbouring arcs of the map mostly lie outside `p` beyond the same side:
         // that side is tried first.
         let mut hint = 0;
-        let mut meets =
-            |k: usize| arc_meets_open(&self.exact_arcs[k], &self.arcs[k], &normals, p, &mut hint);
-        let met = match &cap {
-            // Only arcs whose boxes meet the cap's box can come within its reach (the
-            // box is padded far beyond the rounding of the float distance).
-            Some((c, reach2)) => {
-                let r = reach2.sqrt() + 1e-9;
-                let reach = Aabb {
-                    min: c.map(|x| x - r),
-                    max: c.map(|x| x + r),
-                };
-                let mut met = false;
-                self.arc_tree.query(&reach, |k| {
-                    let k = k as usize;
-                    met = met || (self.arcs[k].distance2(c) <= *reach2 && meets(k));
-                });
-                met
+        let met = std::cell::Cell::new(false);
+        // Only arcs whose boxes meet the cap's box (padded far beyond the rounding) can
+        // come within its reach. A polygon of few sides (a group's box) also skips every
+        // group of arcs whose box lies beyond one of its sides; a many-sided one (a sum
+        // with a curved piece) tests the float distance to its cap's centre.
+        let reach = cap.as_ref().map(|(c, reach2)| {
+            let r = reach2.sqrt() + 1e-9;
+            Aabb {
+                min: c.map(|x| x - r),
+                max: c.map(|x| x + r),
             }
-            None => (0..self.arcs.len()).any(&mut meets),
-        };
+        });
+        let few = normals.len() <= 8;
+        self.arc_tree.query_by(
+            |b| {
+                !met.get()
+                    && reach.as_ref().is_none_or(|r| b.overlaps(r))
+                    && !(few && normals.iter().any(|m| box_beyond(m, b)))
+            },
+            |k| {
+                let k = k as usize;
+                let near = few
+                    || cap
+                        .as_ref()
+                        .is_none_or(|(c, r2)| self.arcs[k].distance2(c) <= *r2);
+                if !met.get()
+                    && near
+                    && arc_meets_open(&self.exact_arcs[k], &self.arcs[k], &normals, p, &mut hint)
+                {
+                    met.set(true);
+                }
+            },
+        );
+        let met = met.get();
         if met {
             return false;
         }
         // No boundary point of the union lies in `p`: one interior point decides. The
-        // sum of a pointed polygon's corners is interior to it.
-        let inner = p
-            .corners()
-            .fold(Vec3::new(0, 0, 0), |s, c| s.add(&c.primitive()));
+        // sum of a pointed polygon's corners (primitive already, as arc ends are) is
+        // interior to it.
+        let inner = p.corners().fold(Vec3::new(0, 0, 0), |s, c| s.add(c));
         p.contains_open(&inner) && self.polygons.iter().any(|q| q.contains_open(&inner))
     }
+}
+
+/// True when every point of the box `b` lies clearly (beyond rounding) on the negative
+/// side of the unit normal `m`.
+fn box_beyond(m: &[f64; 3], b: &Aabb<f64>) -> bool {
+    let top: f64 = (0..3).map(|k| (m[k] * b.min[k]).max(m[k] * b.max[k])).sum();
+    top < -1e-9
 }
 
 /// Exactly: does the closed minor arc `arc` meet the open convex polygon `p`? The arc's
@@ -640,6 +660,79 @@ mod tests {
             }
         }
         assert!(tested[0] > 300 && tested[1] > 300, "{tested:?}");
+    }
+
+    /// The cover test without its float filters and tree: every arc and point of the
+    /// map tested exactly.
+    fn contains_unfiltered(cover: &Cover, p: &SphericalPolygon) -> bool {
+        !cover.polygons.is_empty()
+            && p.normals().len() >= 3
+            && !cover.exact_points.iter().any(|x| p.contains_open(x))
+            && !cover.exact_arcs.iter().any(|a| exact_arc_meets_open(a, p))
+            && {
+                let inner = p.corners().fold(Vec3::new(0, 0, 0), |s, c| s.add(c));
+                cover.polygons.iter().any(|q| q.contains_open(&inner))
+            }
+    }
+
+    #[test]
+    fn the_filtered_cover_test_agrees_with_the_unfiltered_one() {
+        // Unions of boxes on a small grid (shared sides, corners on other boxes' sides)
+        // and query boxes among them: the tree's box tests, the side filter and the
+        // float arc test may only skip what cannot meet the polygon.
+        let mut rng = apart_testkit::solids::Lcg(23);
+        let mut next = |n: i64| rng.centred(n);
+        let mut answers = [0usize; 2];
+        for _ in 0..60 {
+            let boxes = 2 + next(2).unsigned_abs() as usize * 2;
+            let mut polys = Vec::new();
+            let mut corners = Vec::new();
+            for _ in 0..boxes {
+                let lo = [next(5), next(5), 6 + next(2)];
+                let hi = [
+                    lo[0] + 1 + next(3).abs(),
+                    lo[1] + 1 + next(3).abs(),
+                    lo[2] + 1 + next(1).abs(),
+                ];
+                polys.push(box_polygon(lo, hi));
+                corners.push((lo, hi));
+            }
+            let map = union_of(&polys);
+            let cover = Cover::new(&polys, &map);
+            for k in 0..40 {
+                let (lo, hi) = if k % 4 == 3 {
+                    // A box of the union at a thousand times the scale, each side moved
+                    // out or in by one: sides cross the union's by a ten-thousandth.
+                    let (a, b) = corners[k % boxes];
+                    (
+                        [0, 1, 2].map(|c| 1000 * a[c] + next(1)),
+                        [0, 1, 2].map(|c| 1000 * b[c] + next(1)),
+                    )
+                } else if k % 2 == 0 {
+                    let lo = [next(5), next(5), 6 + next(3)];
+                    let hi = [
+                        lo[0] + 1 + next(2).abs(),
+                        lo[1] + 1 + next(2).abs(),
+                        lo[2] + 1 + next(2).abs(),
+                    ];
+                    (lo, hi)
+                } else {
+                    // A box of the union at twice the scale, trimmed on some sides: its
+                    // projection lies in that box's, sharing the untrimmed sides.
+                    let (a, b) = corners[k % boxes];
+                    let trim = [0, 1, 2].map(|_| next(1));
+                    (
+                        [0, 1, 2].map(|c| 2 * a[c] + i64::from(trim[c] > 0)),
+                        [0, 1, 2].map(|c| 2 * b[c] - i64::from(trim[c] < 0)),
+                    )
+                };
+                let q = box_polygon(lo, hi);
+                let inside = cover.contains(&q);
+                assert_eq!(inside, contains_unfiltered(&cover, &q), "{lo:?} {hi:?}");
+                answers[usize::from(inside)] += 1;
+            }
+        }
+        assert!(answers[0] > 200 && answers[1] > 100, "{answers:?}");
     }
 
     #[test]
