@@ -202,30 +202,30 @@ pub(crate) enum Sep {
 /// oriented from `a` to `b`.
 pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -> Vec<Axis> {
     let (da, db) = (a.den(), b.den());
+    let ((fa_lo, fa_hi), (fb_lo, fb_hi)) = (ia.float_bounds, ib.float_bounds);
     let (ia, ib) = (&ia.bounds, &ib.bounds);
     let mut out = Vec::new();
     for k in 0..3 {
-        let mut e = [0i64; 3];
-        // a below b along +e_k: hi_a <= lo_b.
-        match cmp_fractions(&ia.max[k], da, &ib.min[k], db) {
-            Ordering::Less | Ordering::Equal => {
-                e[k] = 1;
+        // a below b along +e_k: hi_a <= lo_b; b below a along -e_k likewise.
+        let below = [
+            (
+                1,
+                cmp_bound(fa_hi[k], &ia.max[k], da, fb_lo[k], &ib.min[k], db),
+            ),
+            (
+                -1,
+                cmp_bound(fb_hi[k], &ib.max[k], db, fa_lo[k], &ia.min[k], da),
+            ),
+        ];
+        for (sign, order) in below {
+            if order != Ordering::Greater {
+                let mut e = [0i64; 3];
+                e[k] = sign;
                 out.push(Axis {
                     n: Vec3::from_i64(e),
-                    strict: cmp_fractions(&ia.max[k], da, &ib.min[k], db) == Ordering::Less,
+                    strict: order == Ordering::Less,
                 });
             }
-            Ordering::Greater => {}
-        }
-        match cmp_fractions(&ib.max[k], db, &ia.min[k], da) {
-            Ordering::Less | Ordering::Equal => {
-                e[k] = -1;
-                out.push(Axis {
-                    n: Vec3::from_i64(e),
-                    strict: cmp_fractions(&ib.max[k], db, &ia.min[k], da) == Ordering::Less,
-                });
-            }
-            Ordering::Greater => {}
         }
     }
     if out.iter().any(|x| x.strict) {
@@ -238,6 +238,20 @@ pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -
             .map(|(n, strict)| Axis { n, strict }),
     );
     out
+}
+
+/// `x / dx` against `y / dy` (positive denominators), exactly: by their floats `fx` and
+/// `fy` (each within a few ulps of its fraction) when those are apart by far more than
+/// that, else by the fractions.
+fn cmp_bound(fx: f64, x: &Int, dx: &Int, fy: f64, y: &Int, dy: &Int) -> Ordering {
+    let margin = 1e-12 * (fx.abs() + fy.abs()) + 1e-300;
+    if fx < fy - margin {
+        Ordering::Less
+    } else if fx > fy + margin {
+        Ordering::Greater
+    } else {
+        cmp_fractions(x, dx, y, dy)
+    }
 }
 
 /// Whether `a` lies weakly below `b` along some normal of `h` that is a facet normal of
@@ -628,6 +642,33 @@ mod tests {
     use super::*;
     use crate::regions::Part;
     use apart_testkit::curved;
+
+    proptest::proptest! {
+        /// The float-first comparison of box bounds agrees with the exact one, on equal
+        /// fractions in other terms, neighbours one unit apart over huge denominators,
+        /// and bounds of either sign around zero.
+        #[test]
+        fn box_bounds_compare_as_their_fractions(
+            x in -(1i64 << 62)..(1i64 << 62),
+            near in -2i64..=2,
+            dx_bits in 0u32..200,
+            k in 1i64..1000,
+            odd in 0u32..3,
+        ) {
+            let dx = (Int::ONE << dx_bits as usize) + Int::from(odd);
+            let x = Int::from(x);
+            // y / dy: x / dx in other terms (times k), moved by `near` units of dy.
+            let dy = &dx * Int::from(k);
+            let y = &x * Int::from(k) + Int::from(near);
+            let f = |n: &Int, d: &Int| apart_kernel::Rational::new(n.clone(), d.clone()).to_f64();
+            for (a, da, b, db) in [(&x, &dx, &y, &dy), (&y, &dy, &x, &dx)] {
+                proptest::prop_assert_eq!(
+                    cmp_bound(f(a, da), a, da, f(b, db), b, db),
+                    cmp_fractions(a, da, b, db)
+                );
+            }
+        }
+    }
 
     fn generated(name: &str, parts: &[curved::NamedSoup]) -> Vec<Part> {
         let dir = std::env::temp_dir().join(format!("apart-pairs-{}-{name}", std::process::id()));
