@@ -101,11 +101,25 @@ pub fn clearance(p: &V3, arcs: &[FArc], points: &[V3]) -> f64 {
 }
 
 /// Points just inside the face next to some of its boundary arcs (at most `max`), each
-/// with its squared chord clearance, best first.
+/// with its squared chord clearance, best first (equal ones by their coordinates). The
+/// arcs are sampled in an order of their own end points, so the points do not depend on
+/// where the boundary's list starts.
 pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64)> {
     let mut out = Vec::new();
     let stride = (arcs.len() / max.max(1)).max(1);
-    for (k, arc) in arcs.iter().enumerate().step_by(stride) {
+    let mut order: Vec<usize> = (0..arcs.len()).collect();
+    if stride > 1 {
+        order.sort_by(|&i, &j| {
+            let key = |k: usize| arcs[k].a.into_iter().chain(arcs[k].b);
+            key(i)
+                .zip(key(j))
+                .map(|(x, y)| x.total_cmp(&y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+    }
+    for &k in order.iter().step_by(stride) {
+        let arc = &arcs[k];
         let m = normalize([
             arc.a[0] + arc.b[0],
             arc.a[1] + arc.b[1],
@@ -130,7 +144,14 @@ pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64
         ]);
         out.push((p, clearance2(&p, arcs, points)));
     }
-    out.sort_by(|a, b| b.1.total_cmp(&a.1));
+    out.sort_by(|a, b| {
+        b.1.total_cmp(&a.1).then_with(|| {
+            (0..3)
+                .map(|k| a.0[k].total_cmp(&b.0[k]))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    });
     out
 }
 
@@ -407,5 +428,35 @@ mod tests {
         // Beyond the end point b: the distance to b.
         let q = normalize([-1.0, 1.0, 0.0]);
         assert!((to_angle(arc.distance2(&q)) - 45f64.to_radians()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn starting_points_do_not_depend_on_where_the_boundary_starts() {
+        // A face bounded by a 40-gon of arcs (more than the 8 sampled), counter-clockwise
+        // around +z (face on their left), and a square one (all sampled, clearances
+        // equal by symmetry): every rotation of the list gives the same points.
+        for n in [40usize, 4] {
+            let corner = |k: usize| {
+                let t = k as f64 * std::f64::consts::TAU / n as f64;
+                normalize([0.5 * t.cos(), 0.5 * t.sin(), 1.0])
+            };
+            let arcs: Vec<FArc> = (0..n)
+                .map(|k| {
+                    let (a, b) = (corner(k), corner(k + 1));
+                    FArc::new(a, b, normalize(cross(a, b)))
+                })
+                .collect();
+            let first = starting_points(&arcs, &[], 8);
+            assert_eq!(first.len(), n.min(8));
+            for r in 1..n {
+                let mut rotated = arcs.clone();
+                rotated.rotate_left(r);
+                assert_eq!(
+                    starting_points(&rotated, &[], 8),
+                    first,
+                    "{n} arcs from {r}"
+                );
+            }
+        }
     }
 }
