@@ -526,6 +526,7 @@ fn pair_region(
                 .collect();
             let mut map = union_of_pruned(&polygons);
             let mut summed = 0;
+            let mut settled = polygons.is_empty();
             loop {
                 if progress.stopped() {
                     return Err(stopped());
@@ -549,8 +550,12 @@ fn pair_region(
                     // The round's own union, merged into the union so far.
                     let new = pruned(new);
                     map = merge_unions(&map, &polygons, &union_of_pruned(&new), &new);
+                    // The round's polygons are pruned, and so are the union's after the
+                    // first prune (the contact cones before it are not).
+                    let split = settled.then_some(polygons.len());
                     polygons.extend(new);
-                    polygons = pruned(std::mem::take(&mut polygons));
+                    polygons = pruned_split(std::mem::take(&mut polygons), split);
+                    settled = true;
                 }
                 let cover = Cover::new(&polygons, &map);
                 let rest = uncovered_pairs(ti, tj, &cover, &|a, b| need[a * pj.len() + b]);
@@ -784,15 +789,20 @@ impl Approx {
 
 /// The indices of the polygons not contained in another (one of several equal ones
 /// kept), in the order the union builds them. Float filters (caps, then a walk of the
-/// corners against the other's normals) reject most pairs before the exact test.
-fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<usize> {
+/// corners against the other's normals) reject most pairs before the exact test. With
+/// `split` `Some(s)`, the polygons before `s` and those from `s` on are each pruned
+/// already (none lies in another of its group), so only pairs across the two groups are
+/// compared: the same indices, as no pair within a group is contained.
+fn prune_contained(polygons: &[SphericalPolygon], split: Option<usize>) -> Vec<usize> {
     let approx: Vec<Approx> = polygons.par_iter().map(Approx::new).collect();
     let mut keep: Vec<usize> = Vec::with_capacity(polygons.len());
     // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
     let mut order: Vec<usize> = (0..polygons.len()).collect();
     order.sort_by_key(|&k| polygons[k].normals().len());
+    let apart = |p: usize, q: usize| split.is_some_and(|s| (p < s) == (q < s));
     let inside = |p: usize, q: usize| {
-        approx[p].may_lie_in_cap(&approx[q])
+        !apart(p, q)
+            && approx[p].may_lie_in_cap(&approx[q])
             && approx[p].may_lie_in(&approx[q])
             && contained_in(&polygons[p], &polygons[q])
     };
@@ -809,7 +819,12 @@ fn prune_contained(polygons: &[SphericalPolygon]) -> Vec<usize> {
 /// and the same answers to every blocking test (an open polygon inside another adds
 /// no direction), with less to store.
 fn pruned(polygons: Vec<SphericalPolygon>) -> Vec<SphericalPolygon> {
-    let keep = prune_contained(&polygons);
+    pruned_split(polygons, None)
+}
+
+/// [`pruned`] of polygons in two groups each pruned already ([`prune_contained`]).
+fn pruned_split(polygons: Vec<SphericalPolygon>, split: Option<usize>) -> Vec<SphericalPolygon> {
+    let keep = prune_contained(&polygons, split);
     let mut slots: Vec<Option<SphericalPolygon>> = polygons.into_iter().map(Some).collect();
     keep.into_iter()
         .map(|k| slots[k].take().expect("each index kept once"))
@@ -944,10 +959,17 @@ mod prune_tests {
     }
 
     /// Prunes `polygons` with the filters and checks it keeps what the exact test alone
-    /// keeps; the number pruned.
+    /// keeps; the number pruned. Also prunes its two halves first and then the two pruned
+    /// halves together, comparing only across them, and checks that keeps the same.
     fn pruned_as_brute(polygons: &[SphericalPolygon]) -> usize {
-        let fast = prune_contained(polygons);
+        let fast = prune_contained(polygons, None);
         assert_eq!(fast, brute(polygons));
+        let (a, b) = polygons.split_at(polygons.len() / 2);
+        let mut halves = pruned(a.to_vec());
+        let split = halves.len();
+        halves.extend(pruned(b.to_vec()));
+        let keep = prune_contained(&halves, Some(split));
+        assert_eq!(keep, prune_contained(&halves, None));
         polygons.len() - fast.len()
     }
 
@@ -994,7 +1016,7 @@ mod prune_tests {
                 kept.extend(pruned(chunk.to_vec()));
             }
             let kept = pruned(kept);
-            assert_eq!(kept.len(), prune_contained(&all).len());
+            assert_eq!(kept.len(), prune_contained(&all, None).len());
             for _ in 0..40 {
                 let d = Vec3::new(next(15) - 7, next(15) - 7, next(9) - 1);
                 if d.is_zero() {
