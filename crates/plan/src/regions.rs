@@ -650,6 +650,8 @@ pub(crate) struct Cap {
     /// Cosine of the cap's radius widened by 1e-6 rad (far beyond float rounding);
     /// `None` when the cap is not convex (no bound).
     pub(crate) cos_radius: Option<f64>,
+    /// The unit corner farthest from the centre (the first of equally far ones).
+    pub(crate) far: [f64; 3],
 }
 
 pub(crate) fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
@@ -657,35 +659,38 @@ pub(crate) fn cap_of(p: &SphericalPolygon) -> Option<Cap> {
         return None;
     }
     let units: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
+    cap_of_units(&units)
+}
+
+/// [`cap_of`] from the polygon's unit corners.
+fn cap_of_units(units: &[[f64; 3]]) -> Option<Cap> {
     let sum = units
         .iter()
         .fold([0.0; 3], |s, u| [s[0] + u[0], s[1] + u[1], s[2] + u[2]]);
-    let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
+    let len = dot(sum, sum).sqrt();
     if len.is_nan() || len <= 1e-6 {
         return None;
     }
     let centre = sum.map(|c| c / len);
-    let min_cos = units
+    let far = *units
         .iter()
-        .map(|u| u[0] * centre[0] + u[1] * centre[1] + u[2] * centre[2])
-        .fold(1.0f64, f64::min)
-        .clamp(-1.0, 1.0);
+        .min_by(|a, b| dot(**a, centre).total_cmp(&dot(**b, centre)))?;
+    let min_cos = dot(far, centre).min(1.0).clamp(-1.0, 1.0);
     let radius = min_cos.acos() + 1e-6;
     Some(Cap {
         centre,
         cos_radius: (radius < 1.5).then(|| radius.cos()),
+        far,
     })
 }
 
 /// Floating-point data of a polygon for the containment filter of [`prune_contained`]:
-/// its bounding cap and the corner farthest from the cap's centre, unit corners and unit
-/// inward normals, and for a polygon whose corners all lie in the open hemisphere of a
-/// point `h` (the cap's centre, or the sum of the inward normals), the factors
-/// `1 / (h · c)` that map each corner `c` to the gnomonic plane at `h`.
+/// its bounding cap, unit corners and unit inward normals, and for a polygon whose
+/// corners all lie in the open hemisphere of a point `h` (the cap's centre, or the sum of
+/// the inward normals), the factors `1 / (h · c)` that map each corner `c` to the
+/// gnomonic plane at `h`.
 struct Approx {
     cap: Option<Cap>,
-    /// The corner farthest from the cap's centre.
-    far: Option<[f64; 3]>,
     corners: Vec<[f64; 3]>,
     normals: Vec<[f64; 3]>,
     gnomonic: Vec<f64>,
@@ -693,8 +698,13 @@ struct Approx {
 
 impl Approx {
     fn new(p: &SphericalPolygon) -> Approx {
-        let cap = cap_of(p);
         let corners: Vec<[f64; 3]> = p.corners().map(|c| c.unit_f64()).collect();
+        let pointed = p.normals().len() >= 3;
+        let cap = if pointed {
+            cap_of_units(&corners)
+        } else {
+            None
+        };
         let normals: Vec<[f64; 3]> = p.normals().iter().map(|n| n.unit_f64()).collect();
         // The gnomonic centre: the cap's, or else the sum of the inward normals, which
         // has a positive product with every point of a pointed polygon (the normals
@@ -705,28 +715,20 @@ impl Approx {
                 .all(|&x| x > 1e-6)
                 .then(|| f.iter().map(|x| 1.0 / x).collect())
         };
-        let sum = normals
-            .iter()
-            .fold([0.0; 3], |s, n| [s[0] + n[0], s[1] + n[1], s[2] + n[2]]);
-        let len = dot(sum, sum).sqrt();
+        let normals_centre = || {
+            let sum = normals
+                .iter()
+                .fold([0.0; 3], |s, n| [s[0] + n[0], s[1] + n[1], s[2] + n[2]]);
+            let len = dot(sum, sum).sqrt();
+            (pointed && len > 1e-6).then(|| sum.map(|x| x / len))
+        };
         let gnomonic = cap
             .as_ref()
             .and_then(|c| factors(c.centre))
-            .or_else(|| {
-                (len > 1e-6 && p.normals().len() >= 3)
-                    .then(|| factors(sum.map(|x| x / len)))
-                    .flatten()
-            })
+            .or_else(|| normals_centre().and_then(factors))
             .unwrap_or_default();
-        let far = cap.as_ref().and_then(|c| {
-            corners
-                .iter()
-                .min_by(|a, b| dot(**a, c.centre).total_cmp(&dot(**b, c.centre)))
-                .copied()
-        });
         Approx {
             cap,
-            far,
             corners,
             normals,
             gnomonic,
@@ -741,12 +743,13 @@ impl Approx {
             Some(Cap {
                 centre,
                 cos_radius: Some(c),
+                ..
             }),
         ) = (&self.cap, &q.cap)
         else {
             return true;
         };
-        dot(cp.centre, *centre) >= *c && self.far.is_none_or(|f| dot(f, *centre) >= *c)
+        dot(cp.centre, *centre) >= *c && dot(cp.far, *centre) >= *c
     }
 
     /// False when a corner of `self` lies clearly outside the closed `q` (a unit normal
