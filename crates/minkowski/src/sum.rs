@@ -629,11 +629,14 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
 /// polytope has no float shadow.
 fn clear_of(x: &Polytope, y: &Polytope) -> Option<Vec<u64>> {
     let (sx, sy) = (x.shadow()?, y.shadow()?);
+    // Bit `k` stands for vertex `k` of `y`, or for vertex `k m / 64` of a larger one.
     let m = sy.points.len();
-    let sample: Vec<[f64; 3]> = if m > 64 {
-        (0..64).map(|k| sy.points[k * m / 64]).collect()
+    let spread: Vec<[f64; 3]>;
+    let sample: &[[f64; 3]] = if m > 64 {
+        spread = (0..64).map(|k| sy.points[k * m / 64]).collect();
+        &spread
     } else {
-        sy.points.clone()
+        &sy.points
     };
     let margin = 2.0 * (sx.error() + sy.error());
     Some(
