@@ -48,6 +48,15 @@ pub fn cross(a: F3, b: F3) -> F3 {
     ]
 }
 
+/// `a` against `b` coordinate by coordinate, each by `f64::total_cmp`: a total order of
+/// vectors that depends on their values alone (for deterministic orders and tie-breaks).
+#[inline]
+pub fn lex_cmp(a: F3, b: F3) -> std::cmp::Ordering {
+    a[0].total_cmp(&b[0])
+        .then_with(|| a[1].total_cmp(&b[1]))
+        .then_with(|| a[2].total_cmp(&b[2]))
+}
+
 /// The Euclidean length, `sqrt(dot(a, a))`.
 #[inline]
 pub fn norm(a: F3) -> f64 {

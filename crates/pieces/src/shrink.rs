@@ -428,16 +428,10 @@ impl Polytope {
         if !points.iter().flatten().all(|c| c.is_finite()) {
             return None;
         }
-        let lex = |a: &[f64; 3], b: &[f64; 3]| {
-            (0..3)
-                .map(|k| a[k].total_cmp(&b[k]))
-                .find(|o| o.is_ne())
-                .unwrap_or(std::cmp::Ordering::Equal)
-        };
         // Vertices by their rounded coordinates, ties by their exact ones.
         let vertex_order = |a: u32, b: u32| {
             let (va, vb) = (&self.vertices()[a as usize], &self.vertices()[b as usize]);
-            lex(&points[a as usize], &points[b as usize]).then_with(|| {
+            fvec::lex_cmp(points[a as usize], points[b as usize]).then_with(|| {
                 (0..3)
                     .map(|k| va.get(k).cmp(&vb.get(k)))
                     .find(|o| o.is_ne())
@@ -452,7 +446,7 @@ impl Polytope {
             return None;
         }
         let mut forder: Vec<u32> = (0..nf).collect();
-        forder.sort_by(|&a, &b| lex(&units[a as usize], &units[b as usize]));
+        forder.sort_by(|&a, &b| fvec::lex_cmp(units[a as usize], units[b as usize]));
         let bounds: Vec<Int> = self
             .facets()
             .iter()

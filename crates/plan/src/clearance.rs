@@ -110,12 +110,8 @@ pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64
     let mut order: Vec<usize> = (0..arcs.len()).collect();
     if stride > 1 {
         order.sort_by(|&i, &j| {
-            let key = |k: usize| arcs[k].a.into_iter().chain(arcs[k].b);
-            key(i)
-                .zip(key(j))
-                .map(|(x, y)| x.total_cmp(&y))
-                .find(|o| o.is_ne())
-                .unwrap_or(std::cmp::Ordering::Equal)
+            let (x, y) = (&arcs[i], &arcs[j]);
+            fvec::lex_cmp(x.a, y.a).then_with(|| fvec::lex_cmp(x.b, y.b))
         });
     }
     for &k in order.iter().step_by(stride) {
@@ -144,14 +140,7 @@ pub fn starting_points(arcs: &[FArc], points: &[V3], max: usize) -> Vec<(V3, f64
         ]);
         out.push((p, clearance2(&p, arcs, points)));
     }
-    out.sort_by(|a, b| {
-        b.1.total_cmp(&a.1).then_with(|| {
-            (0..3)
-                .map(|k| a.0[k].total_cmp(&b.0[k]))
-                .find(|o| o.is_ne())
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })
-    });
+    out.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| fvec::lex_cmp(a.0, b.0)));
     out
 }
 
