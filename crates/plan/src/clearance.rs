@@ -239,7 +239,9 @@ pub fn climb(mut p: V3, arcs: &[FArc], points: &[V3]) -> (V3, f64) {
                 p = q;
                 c2 = cq;
                 c = to_angle(c2);
-                step = step.min(0.9 * c);
+                // Longer steps while they pay: a start next to a tiny boundary arc has a
+                // tiny first step, and the room may be a hemisphere.
+                step = (2.0 * step).min(0.9 * c);
                 near = Near::around(&p, c2, step, arcs, points);
             }
             None => step *= 0.5,
@@ -417,6 +419,27 @@ mod tests {
         // Beyond the end point b: the distance to b.
         let q = normalize([-1.0, 1.0, 0.0]);
         assert!((to_angle(arc.distance2(&q)) - 45f64.to_radians()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_hemisphere_bounded_by_many_short_arcs_is_climbed_to_its_pole() {
+        // The lower hemisphere, its equator cut into n arcs (clockwise seen from +z, so
+        // the face is on their left): every start lies next to an arc a few thousandths
+        // of a radian long, and the deepest direction is the pole, 90° from the boundary.
+        for n in [64usize, 1354, 5000] {
+            let corner = |k: usize| {
+                let t = -(k as f64) * std::f64::consts::TAU / n as f64;
+                [t.cos(), t.sin(), 0.0]
+            };
+            let arcs: Vec<FArc> = (0..n)
+                .map(|k| FArc::new(corner(k), corner(k + 1), [0.0, 0.0, -1.0]))
+                .collect();
+            let below = |d: &apart_kernel::Vec3| d.approx()[2] < 0.0;
+            let (d, c) = deep_direction(&arcs, &[], &below).expect("a direction");
+            let u = d.unit_f64();
+            assert!(c.to_degrees() > 89.0, "{n} arcs: {}°", c.to_degrees());
+            assert!(u[2] < -0.999, "{n} arcs: {u:?}");
+        }
     }
 
     #[test]
