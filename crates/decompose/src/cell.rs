@@ -181,17 +181,22 @@ impl Cell {
                 facets.len() as u32 - 1
             });
             for &(p, bnd) in poly {
-                let i = *index.entry(p.clone()).or_insert_with(|| {
-                    let on: Vec<u32> = if bnd {
-                        (0..nc as u32)
-                            .filter(|&f| self.facets[f as usize].side(p) == Sign::Zero)
-                            .collect()
-                    } else {
-                        Vec::new()
-                    };
-                    points.push((p.clone(), on));
-                    points.len() - 1
-                });
+                // Most points are corners of several fragments: look up before cloning.
+                let i = match index.get(p) {
+                    Some(&i) => i,
+                    None => {
+                        let on: Vec<u32> = if bnd {
+                            (0..nc as u32)
+                                .filter(|&f| self.facets[f as usize].side(p) == Sign::Zero)
+                                .collect()
+                        } else {
+                            Vec::new()
+                        };
+                        points.push((p.clone(), on));
+                        index.insert(p.clone(), points.len() - 1);
+                        points.len() - 1
+                    }
+                };
                 points[i].1.push(k);
             }
         }
@@ -200,10 +205,13 @@ impl Cell {
             if cut.iter().any(|pl| pl.side(&v.p) == Sign::Positive) {
                 continue;
             }
-            let i = *index.entry(v.p.clone()).or_insert_with(|| {
-                points.push((v.p.clone(), Vec::new()));
-                points.len() - 1
-            });
+            let i = match index.get(&v.p) {
+                Some(&i) => i,
+                None => {
+                    points.push((v.p.clone(), Vec::new()));
+                    points.len() - 1
+                }
+            };
             points[i].1.extend_from_slice(&v.on);
         }
         let mut verts: Vec<CVert> = Vec::new();
