@@ -172,9 +172,12 @@ impl Cell {
     pub fn carve(&self, planes: &[Plane], polys: &[Vec<(&HPoint, bool)>]) -> Option<Cell> {
         let nc = self.facets.len();
         let mut facets: Vec<Plane> = self.facets.clone();
-        let mut ids: FxHashMap<Plane, u32> = FxHashMap::default();
+        let mut ids: FxHashMap<Plane, u32> =
+            FxHashMap::with_capacity_and_hasher(planes.len(), Default::default());
         let mut points: Vec<(HPoint, Vec<u32>)> = Vec::new();
-        let mut index: FxHashMap<HPoint, usize> = FxHashMap::default();
+        let corners: usize = polys.iter().map(Vec::len).sum();
+        let mut index: FxHashMap<HPoint, usize> =
+            FxHashMap::with_capacity_and_hasher(corners, Default::default());
         for (pl, poly) in planes.iter().zip(polys) {
             let k = *ids.entry(*pl).or_insert_with(|| {
                 facets.push(*pl);

@@ -69,15 +69,27 @@ enum Placement {
 }
 
 impl Frag {
-    /// The whole triangle `t`.
-    pub fn whole(solid: &Solid, t: u32) -> Frag {
+    /// Every triangle whole, each input point one shared corner.
+    pub fn all_whole(solid: &Solid) -> Vec<Arc<Frag>> {
+        let corners: Vec<Arc<HPoint>> = solid
+            .pts
+            .iter()
+            .map(|p| Arc::new(HPoint::int(*p)))
+            .collect();
+        (0..solid.tris.len() as u32)
+            .map(|t| Arc::new(Frag::whole(solid, t, &corners)))
+            .collect()
+    }
+
+    /// The whole triangle `t`, with `corners[v]` the input point `v`.
+    fn whole(solid: &Solid, t: u32, corners: &[Arc<HPoint>]) -> Frag {
         let tri = solid.tris[t as usize];
         Frag {
             tri: t,
             pts: tri
                 .iter()
                 .map(|&v| FPt {
-                    p: Arc::new(HPoint::int(solid.pts[v as usize])),
+                    p: corners[v as usize].clone(),
                     vertex: v,
                     bnd: false,
                 })

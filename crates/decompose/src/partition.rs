@@ -68,9 +68,7 @@ impl<'a> Partition<'a> {
         let s = self.solid;
         let lo = s.bbox.min.map(|v| v - 1);
         let hi = s.bbox.max.map(|v| v + 1);
-        let frags = (0..s.tris.len() as u32)
-            .map(|t| Arc::new(Frag::whole(s, t)))
-            .collect();
+        let frags = Frag::all_whole(s);
         self.solve(Task {
             cell: Cell::boxed(lo, hi),
             frags,

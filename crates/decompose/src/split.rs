@@ -247,7 +247,8 @@ pub(crate) fn candidates(
             let (a, b) = solid.edge_ends(e);
             // Per plane: how many edges it holds, and how far (squared, in floating
             // point: a preference only) its farthest one lies from e.
-            let mut count: FxHashMap<Plane, (u32, f64)> = FxHashMap::default();
+            let mut count: FxHashMap<Plane, (u32, f64)> =
+                FxHashMap::with_capacity_and_hasher(r.len().min(400), Default::default());
             for j in spread(r.len(), 400) {
                 if j == i {
                     continue;
