@@ -216,6 +216,21 @@ fn cut_faces(
 /// coordinates), measured in floating point: a report of how much smaller than the
 /// stated tolerance a scaled piece became, never a decision.
 pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
+    if let (Some(o), Some(s)) = (original.shadow(), shrunk.shadow()) {
+        return o
+            .facet_units
+            .iter()
+            .zip(&o.facet_levels)
+            .map(|(u, h)| {
+                let top = s
+                    .points
+                    .iter()
+                    .map(|p| fvec::dot(*p, *u))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                h - top
+            })
+            .fold(0.0, f64::max);
+    }
     let pts: Vec<[f64; 3]> = shrunk
         .vertices()
         .iter()
@@ -243,10 +258,35 @@ pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
 /// floating point, never trusted): a damped Newton method on the log barrier of the
 /// facets, started at the vertex centroid.
 fn inner_centre(p: &Polytope) -> [f64; 3] {
-    let to_f = |v: &Vec3| {
-        [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), p.den().clone()).to_f64())
+    let (verts, units): (Vec<[f64; 3]>, Vec<([f64; 3], f64)>) = match p.shadow() {
+        Some(s) => (
+            s.points.clone(),
+            s.facet_units
+                .iter()
+                .copied()
+                .zip(s.facet_levels.iter().copied())
+                .collect(),
+        ),
+        None => {
+            let to_f = |v: &Vec3| {
+                [0, 1, 2].map(|k| apart_kernel::Rational::new(v.get(k), p.den().clone()).to_f64())
+            };
+            let verts: Vec<[f64; 3]> = p.vertices().iter().map(to_f).collect();
+            let units = p
+                .facets()
+                .iter()
+                .map(|f| {
+                    let a = f.normal.approx();
+                    let len = fvec::norm(a);
+                    let u = a.map(|x| x / len);
+                    // u · x <= h for the points x of the facet's plane.
+                    let v = &verts[f.cycle[0] as usize];
+                    (u, fvec::dot(u, *v))
+                })
+                .collect();
+            (verts, units)
+        }
     };
-    let verts: Vec<[f64; 3]> = p.vertices().iter().map(to_f).collect();
     let n = verts.len() as f64;
     let mut c = [0.0; 3];
     for v in &verts {
@@ -254,18 +294,6 @@ fn inner_centre(p: &Polytope) -> [f64; 3] {
             c[k] += v[k] / n;
         }
     }
-    let units: Vec<([f64; 3], f64)> = p
-        .facets()
-        .iter()
-        .map(|f| {
-            let a = f.normal.approx();
-            let len = fvec::norm(a);
-            let u = a.map(|x| x / len);
-            // u · x <= h for the points x of the facet's plane.
-            let v = &verts[f.cycle[0] as usize];
-            (u, fvec::dot(u, *v))
-        })
-        .collect();
     // The analytic centre of the facet inequalities (damped Newton on the log barrier
     // from the vertex centroid, which lies inside): well away from every facet, also in
     // long thin pieces where the centroid may sit close to a side.
