@@ -55,6 +55,9 @@ pub struct AppliedTolerance {
     pub deepest_overlap: f64,
     /// Pairs of parts whose overlap the tolerance turned into contact.
     pub accepted_overlaps: usize,
+    /// The pairs of parts `(i, j)`, `i < j`, sorted, whose interiors overlapped before
+    /// shrinking: a motion of one against the other cannot hold without the tolerance.
+    pub overlapping: Vec<(usize, usize)>,
     /// Pieces thinner than `2 eps` that vanished.
     pub vanished_pieces: usize,
     /// The farthest any face moved inward (input units; at least `eps`): tessellated
@@ -323,6 +326,11 @@ pub(crate) fn apply(
         auto,
         deepest_overlap: deepest,
         accepted_overlaps: accepted,
+        overlapping: {
+            let mut v: Vec<(usize, usize)> = before.iter().map(|o| (o.i, o.j)).collect();
+            v.sort_unstable();
+            v
+        },
         vanished_pieces: vanished,
         max_shift: (max_shift * h).max(eps),
     });

@@ -889,7 +889,20 @@ pub fn holds_without_tolerance(
             None => groups.push((moving, *among, vec![k])),
         }
     }
+    let overlapping = asm
+        .tolerance
+        .as_ref()
+        .map_or(&[][..], |t| &t.overlapping[..]);
     for (moving, among, ks) in groups {
+        // A moving part whose interior overlapped a part of the rest before shrinking
+        // starts inside it: nothing holds without the tolerance (as the query below would
+        // find, after building it).
+        let takes_part = |k: usize| among.is_none_or(|a| a.contains(&k));
+        if overlapping.iter().any(|&(i, j)| {
+            takes_part(i) && takes_part(j) && (moving.contains(&i) != moving.contains(&j))
+        }) {
+            continue;
+        }
         // Two sides, each the union of its parts' unshrunk pieces.
         let mut sides = [Vec::new(), Vec::new()];
         for (k, p) in asm.parts.iter().enumerate() {
