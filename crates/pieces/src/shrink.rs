@@ -258,7 +258,9 @@ pub fn max_face_shift(original: &Polytope, shrunk: &Polytope) -> f64 {
 /// floating point, never trusted): a damped Newton method on the log barrier of the
 /// facets, started at the vertex centroid.
 fn inner_centre(p: &Polytope) -> [f64; 3] {
-    let (verts, units): (Vec<[f64; 3]>, Vec<([f64; 3], f64)>) = match p.shadow() {
+    // The vertices and each facet's unit normal `u` and level `h` (`u · x <= h`).
+    type Facets = Vec<([f64; 3], f64)>;
+    let (verts, units): (Vec<[f64; 3]>, Facets) = match p.shadow() {
         Some(s) => (
             s.points.clone(),
             s.facet_units
