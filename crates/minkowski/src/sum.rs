@@ -60,6 +60,11 @@ pub struct Summand {
     lexmin: Vec<u32>,
     /// Facet index by (primitive) normal.
     by_normal: HashMap<Vec3, u32>,
+    /// Each vertex as `y / w` in lowest terms (`w > 0`), made on first use, when the
+    /// polytope's denominator is not 1: a piece cut out of a tessellated part stores
+    /// every vertex over the least common multiple of its vertices' denominators,
+    /// several times longer than each vertex's own (see [`PairPoints::direction`]).
+    reduced: Option<Vec<std::sync::OnceLock<(Vec3, Int)>>>,
 }
 
 impl Summand {
@@ -134,6 +139,8 @@ impl Summand {
             .enumerate()
             .map(|(i, f)| (f.normal.clone(), i as u32))
             .collect();
+        let reduced = (*polytope.den() != Int::ONE)
+            .then(|| (0..vs.len()).map(|_| std::sync::OnceLock::new()).collect());
         Summand {
             polytope,
             arcs,
@@ -144,12 +151,37 @@ impl Summand {
             facet_edges,
             lexmin,
             by_normal,
+            reduced,
         }
     }
 
     /// The polytope.
     pub fn polytope(&self) -> &Polytope {
         &self.polytope
+    }
+
+    /// Vertex `k` as `(y, w)` in lowest terms (`y / w`, `w > 0`); `None` when the
+    /// polytope's denominator is 1 (the vertex itself).
+    fn reduced(&self, k: u32) -> Option<&(Vec3, Int)> {
+        let cell = &self.reduced.as_ref()?[k as usize];
+        Some(cell.get_or_init(|| {
+            let (v, den) = (&self.polytope.vertices()[k as usize], self.polytope.den());
+            // The denominator's gcd with one coordinate first: usually 1 already, or
+            // small, which makes the others cheap.
+            let c = v.to_ints();
+            let mut g = apart_kernel::int::gcd(den, &c[0]);
+            for x in &c[1..] {
+                if g == Int::ONE {
+                    break;
+                }
+                g = apart_kernel::int::gcd(&g, x);
+            }
+            if g == Int::ONE {
+                (v.clone(), den.clone())
+            } else {
+                (Vec3::from_ints(c.map(|x| x / &g)), den / &g)
+            }
+        }))
     }
 
     /// Facet `f` as a polygon: vertices and edges counter-clockwise around its normal
@@ -327,33 +359,66 @@ fn den_factors(p: &Polytope, q: &Polytope) -> Option<(Int, Int)> {
 /// Minkowski sum decomposes uniquely into vertices of the summands, so the index pair
 /// `(i, j)` names it.
 struct PairPoints<'a> {
-    pv: &'a [Vec3],
-    qv: &'a [Vec3],
-    /// The summands' vertices times `kp` and `kq` when the denominators differ.
-    scaled: Option<[Vec<[Int; 3]>; 2]>,
+    sp: &'a Summand,
+    sq: &'a Summand,
+    /// The factors that bring each summand to the common denominator, when they differ.
+    k: Option<(Int, Int)>,
+    /// The summands' vertices times `kp` and `kq` when the denominators differ (made on
+    /// first use: a projection needs only [`PairPoints::direction`]).
+    scaled: std::cell::OnceCell<[Vec<[Int; 3]>; 2]>,
 }
 
 impl<'a> PairPoints<'a> {
-    fn new(p: &'a Polytope, q: &'a Polytope, k: &Option<(Int, Int)>) -> PairPoints<'a> {
-        let scale =
-            |vs: &[Vec3], k: &Int| -> Vec<[Int; 3]> { vs.iter().map(|v| scaled(v, k)).collect() };
+    fn new(sp: &'a Summand, sq: &'a Summand) -> PairPoints<'a> {
         PairPoints {
-            pv: p.vertices(),
-            qv: q.vertices(),
-            scaled: k
-                .as_ref()
-                .map(|(kp, kq)| [scale(p.vertices(), kp), scale(q.vertices(), kq)]),
+            sp,
+            sq,
+            k: den_factors(&sp.polytope, &sq.polytope),
+            scaled: std::cell::OnceCell::new(),
         }
     }
 
+    /// The sum's denominator.
+    fn den(&self) -> Int {
+        match &self.k {
+            None => self.sp.polytope.den().clone(),
+            Some((kp, _)) => self.sp.polytope.den() * kp,
+        }
+    }
+
+    /// Vertex `(i, j)` of the sum, over [`PairPoints::den`].
     fn get(&self, i: u32, j: u32) -> Vec3 {
         let (i, j) = (i as usize, j as usize);
-        match &self.scaled {
-            None => self.pv[i].add(&self.qv[j]),
-            Some([sp, sq]) => {
+        let (pv, qv) = (self.sp.polytope.vertices(), self.sq.polytope.vertices());
+        match &self.k {
+            None => pv[i].add(&qv[j]),
+            Some((kp, kq)) => {
+                let [sp, sq] = self.scaled.get_or_init(|| {
+                    let scale = |vs: &[Vec3], k: &Int| -> Vec<[Int; 3]> {
+                        vs.iter().map(|v| scaled(v, k)).collect()
+                    };
+                    [scale(pv, kp), scale(qv, kq)]
+                });
                 let (x, y) = (&sp[i], &sq[j]);
                 Vec3::from_ints([&x[0] + &y[0], &x[1] + &y[1], &x[2] + &y[2]])
             }
+        }
+    }
+
+    /// A positive multiple of vertex `(i, j)`: `yi wj + yj wi` for the summands'
+    /// vertices `yi / wi` and `yj / wj` in lowest terms, whose sum is that over `wi wj`.
+    /// Everything a central projection asks of a point (signs of dot products and
+    /// determinants, the primitive direction) is the same for every positive multiple,
+    /// and this one is far shorter than [`PairPoints::get`] for pieces cut out of a
+    /// tessellated part, where the common denominator is the product of many.
+    fn direction(&self, i: u32, j: u32) -> Vec3 {
+        match (self.sp.reduced(i), self.sq.reduced(j)) {
+            (None, None) => self.sp.polytope.vertices()[i as usize]
+                .add(&self.sq.polytope.vertices()[j as usize]),
+            (Some((yi, wi)), None) => yi.add(&self.sq.polytope.vertices()[j as usize].scale(wi)),
+            (None, Some((yj, wj))) => self.sp.polytope.vertices()[i as usize].scale(wj).add(yj),
+            (Some((yi, wi)), Some((yj, wj))) if wi == wj => yi.add(yj),
+            (Some((yi, wi)), Some((yj, wj))) => yi.scale(wj).add(&yj.scale(wi)),
         }
     }
 }
@@ -492,16 +557,11 @@ fn facets_where(
 
 /// The Minkowski sum of two prepared polytopes.
 pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeError> {
-    let (p, q) = (&sp.polytope, &sq.polytope);
     // Different denominators: the sum's vertices are `kp vp + kq vq` over the least
     // common multiple (everything else is scale-invariant).
-    let k = den_factors(p, q);
-    let den = match &k {
-        None => p.den().clone(),
-        Some((kp, _)) => p.den() * kp,
-    };
-    let pairs = PairPoints::new(p, q, &k);
-    let mut numbers = Numbering::new(&pairs);
+    let pairs = PairPoints::new(sp, sq);
+    let den = pairs.den();
+    let mut numbers = Numbering::new(&pairs, false);
     let mut facets: Vec<(Vec3, Vec<u32>)> = Vec::new();
     let all = &mut |_: &Vec3, _, _| true;
     facets_where(
@@ -516,18 +576,21 @@ pub fn sum_prepared(sp: &Summand, sq: &Summand) -> Result<Polytope, PolytopeErro
     Ok(Polytope::from_facets(&numbers.points, facets)?.with_den(den))
 }
 
-/// The vertices of some facets of a sum, numbered as they first appear in their cycles.
+/// The vertices of some facets of a sum, numbered as they first appear in their cycles
+/// (as [`PairPoints::direction`] gives them when `directions` is set).
 struct Numbering<'a> {
     pairs: &'a PairPoints<'a>,
+    directions: bool,
     ids: HashMap<u64, u32>,
     /// The vertices' points, by number.
     points: Vec<Vec3>,
 }
 
 impl<'a> Numbering<'a> {
-    fn new(pairs: &'a PairPoints<'a>) -> Numbering<'a> {
+    fn new(pairs: &'a PairPoints<'a>, directions: bool) -> Numbering<'a> {
         Numbering {
             pairs,
+            directions,
             ids: HashMap::default(),
             points: Vec::new(),
         }
@@ -535,12 +598,17 @@ impl<'a> Numbering<'a> {
 
     /// A cycle of vertex pairs ([`facets_where`]) as vertex numbers, counter-clockwise.
     fn cycle(&mut self, cycle: &[(u32, u32)], reversed: bool) -> Vec<u32> {
-        let nq = self.pairs.qv.len() as u64;
+        let nq = self.pairs.sq.polytope.vertices().len() as u64;
+        let (pairs, directions) = (self.pairs, self.directions);
         let mut c: Vec<u32> = cycle
             .iter()
             .map(|&(i, j)| {
                 *self.ids.entry(i as u64 * nq + j as u64).or_insert_with(|| {
-                    self.points.push(self.pairs.get(i, j));
+                    self.points.push(if directions {
+                        pairs.direction(i, j)
+                    } else {
+                        pairs.get(i, j)
+                    });
                     (self.points.len() - 1) as u32
                 })
             })
@@ -560,10 +628,10 @@ impl<'a> Numbering<'a> {
 /// but seen from a point just outside it only a few face that point.
 pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolygon, PolygonError>> {
     let (p, q) = (&sp.polytope, &sq.polytope);
-    let k = den_factors(p, q);
-    let pairs = PairPoints::new(p, q, &k);
-    // The facing facets' vertices and cycles, counter-clockwise.
-    let mut numbers = Numbering::new(&pairs);
+    let pairs = PairPoints::new(sp, sq);
+    // The facing facets' vertices and cycles, counter-clockwise; only their directions
+    // matter (see `PairPoints::direction`).
+    let mut numbers = Numbering::new(&pairs, true);
     let mut cycles: Vec<Vec<u32>> = Vec::new();
     // A facet of one summand plus a face of the other faces the origin only when its
     // level plus the other's support value is negative, and a parallelogram on an edge
@@ -586,7 +654,18 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
         &pairs,
         &maybe,
         [live_p.as_deref(), live_q.as_deref()],
-        &mut |n, i, j| dot_sign(n, &pairs.get(i, j)) == Sign::Negative,
+        &mut |n, i, j| {
+            // Floats first (as `clearly_positive` measures), then the exact sign.
+            if let (Some(sx), Some(sy)) = (p.shadow(), q.shadow()) {
+                let u = n.unit_f64();
+                let v = fvec::dot(u, sx.points[i as usize]) + fvec::dot(u, sy.points[j as usize]);
+                let margin = 2.0 * (sx.error() + sy.error());
+                if v.is_finite() && v.abs() > margin {
+                    return v < 0.0;
+                }
+            }
+            dot_sign(n, &pairs.direction(i, j)) == Sign::Negative
+        },
         &mut |_, cycle, reversed| cycles.push(numbers.cycle(cycle, reversed)),
     );
     if let Err(e) = found {

@@ -62,6 +62,25 @@ fn mapped(pts: &[[i64; 3]], m: &[[i64; 3]; 3], t: &[Int; 3]) -> Option<Polytope>
     Polytope::hull_of_points(&v).ok()
 }
 
+/// The points `pts[k] / dens[k % dens.len()]` (each vertex with its own denominator, as
+/// where cut planes meet), stored over the least common multiple of those; `None` when
+/// flat.
+fn own_denominators(pts: &[[i64; 3]], dens: &[u64]) -> Option<Polytope> {
+    let d = |k: usize| Int::from(dens[k % dens.len()]);
+    let common = (0..pts.len()).fold(Int::ONE, |l, k| apart_kernel::int::lcm(&l, &d(k)));
+    let v: Vec<Vec3> = pts
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let f = &common / d(k);
+            Vec3::from_ints(c.map(|x| Int::from(x) * &f))
+        })
+        .collect();
+    Polytope::hull_of_points(&v)
+        .ok()
+        .map(|p| p.with_den(common))
+}
+
 fn det(m: &[[i64; 3]; 3]) -> i128 {
     let m = m.map(|r| r.map(|x| x as i128));
     m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
@@ -253,5 +272,21 @@ proptest! {
         let b = mapped(&boxed, &m, &zero).expect("a box under an invertible map");
         check(&p, &b)?;
         check(&b, &p)?;
+    }
+    /// Vertices with their own denominators (small primes, and big ones as long as
+    /// a cut plane's), so that the common denominator is far longer than any vertex's:
+    /// the projection from lowest terms per vertex is the whole difference's.
+    #[test]
+    fn vertices_with_their_own_denominators(
+        a in points(),
+        b in points(),
+        da in prop::collection::vec(prop::sample::select(vec![1u64, 2, 3, 5, 7, 11, 13, (1 << 61) - 1, 1_000_000_007]), 1..6),
+        db in prop::collection::vec(prop::sample::select(vec![1u64, 2, 3, 5, 7, 11, 13, (1 << 61) - 1, 1_000_000_007]), 1..6),
+    ) {
+        let (Some(p), Some(q)) = (own_denominators(&a, &da), own_denominators(&b, &db)) else {
+            return Ok(());
+        };
+        check(&p, &q)?;
+        check(&q, &p)?;
     }
 }
