@@ -71,6 +71,7 @@ fn silhouette(m: &Polytope, signs: &[Sign]) -> Result<SphericalPolygon, PolygonE
         arcs.push(silhouette_side(
             m.vertices(),
             e.ends,
+            None,
             front,
             &mut primitive,
         )?);
@@ -124,15 +125,18 @@ pub(crate) fn polygon_of_sides(
 /// vertices `vs`, whose facet facing the origin has the cycle `front`, with the numbers
 /// of its start and end vertex; `None` when the edge's line passes through the origin
 /// (it projects to a point). `primitive` caches each vertex made primitive (it ends two
-/// silhouette edges).
+/// silhouette edges). The points may be any positive multiples of the vertices; `dir`,
+/// when given, is a direction of the edge (either sign), whose cross product with the
+/// first end spans the same plane as the two ends' and is shorter.
 pub(crate) fn silhouette_side(
     vs: &[Vec3],
     ends: [u32; 2],
+    dir: Option<&Vec3>,
     front: &[u32],
     primitive: &mut [Option<Vec3>],
 ) -> Result<Option<([u32; 2], Arc)>, PolygonError> {
     let (v0, v1) = (&vs[ends[0] as usize], &vs[ends[1] as usize]);
-    let n = v0.cross(v1);
+    let n = v0.cross(dir.unwrap_or(v1));
     if n.is_zero() {
         return Ok(None);
     }

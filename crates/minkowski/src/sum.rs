@@ -195,6 +195,16 @@ impl Summand {
         )
     }
 
+    /// The primitive direction of the edge between vertices `a` and `b` (either
+    /// sign), or `None` when they span no edge.
+    fn edge_dir(&self, a: u32, b: u32) -> Option<&Vec3> {
+        let nv = self.polytope.vertices().len() as u64;
+        let e = *self
+            .edge_of
+            .get(&(a.min(b) as u64 * nv + a.max(b) as u64))?;
+        Some(&self.dirs[e as usize])
+    }
+
     /// The edge between vertices `a` and `b` as a polygon in a plane of normal `n`: its
     /// two vertices from the lexicographically smallest one (in the plane's projection)
     /// and its two directed edges. `None` when `a b` is not an edge.
@@ -584,6 +594,8 @@ struct Numbering<'a> {
     ids: HashMap<u64, u32>,
     /// The vertices' points, by number.
     points: Vec<Vec3>,
+    /// The vertices' pairs, by number.
+    pairs_of: Vec<(u32, u32)>,
 }
 
 impl<'a> Numbering<'a> {
@@ -593,6 +605,7 @@ impl<'a> Numbering<'a> {
             directions,
             ids: HashMap::default(),
             points: Vec::new(),
+            pairs_of: Vec::new(),
         }
     }
 
@@ -609,6 +622,7 @@ impl<'a> Numbering<'a> {
                     } else {
                         pairs.get(i, j)
                     });
+                    self.pairs_of.push((i, j));
                     (self.points.len() - 1) as u32
                 })
             })
@@ -682,14 +696,24 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
             *uses.entry(key(c[t], c[(t + 1) % c.len()])).or_default() += 1;
         }
     }
-    let points = numbers.points;
+    let (points, pairs_of) = (numbers.points, numbers.pairs_of);
     let mut primitive: Vec<Option<Vec3>> = vec![None; points.len()];
     let mut arcs = Vec::new();
     for c in &cycles {
         for t in 0..c.len() {
             let (a, b) = (c[t], c[(t + 1) % c.len()]);
             if uses[&key(a, b)] == 1 {
-                match silhouette_side(&points, [a, b], c, &mut primitive) {
+                // A side of the sum is a vertex of one summand plus an edge of the
+                // other: that edge's (short, primitive) direction spans its plane.
+                let ((i0, j0), (i1, j1)) = (pairs_of[a as usize], pairs_of[b as usize]);
+                let dir = if i0 == i1 {
+                    sq.edge_dir(j0, j1)
+                } else if j0 == j1 {
+                    sp.edge_dir(i0, i1)
+                } else {
+                    None
+                };
+                match silhouette_side(&points, [a, b], dir, c, &mut primitive) {
                     Ok(side) => arcs.push(side),
                     Err(e) => return Some(Err(e)),
                 }
