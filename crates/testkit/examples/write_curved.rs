@@ -6,7 +6,8 @@
 //! same tessellation), `nut:SEGMENTS` (nut on a 3-ring bolt), `joint:SEGMENTS` (the
 //! five-part bolted joint, each part a different segment count near SEGMENTS, as
 //! separate CAD exports have), `joint-same:SEGMENTS` (the joint with one tessellation
-//! for every part: its curved fits touch exactly).
+//! for every part: its curved fits touch exactly), `rack:N` (an N by N rack of 64-segment
+//! pins in blocks under a plate, `2 N² + 1` parts).
 use apart_testkit::{curved, joints};
 
 fn main() -> std::io::Result<()> {
@@ -16,7 +17,7 @@ fn main() -> std::io::Result<()> {
         Some((kind.to_string(), size.parse::<usize>().ok()?))
     });
     let (Some((kind, size)), Some(dir)) = (parsed, args.get(2)) else {
-        eprintln!("usage: write_curved plug|pin|nut|joint|joint-same:SIZE DIR");
+        eprintln!("usage: write_curved plug|pin|nut|joint|joint-same|rack:SIZE DIR");
         std::process::exit(2);
     };
     let parts = match kind.as_str() {
@@ -28,8 +29,9 @@ fn main() -> std::io::Result<()> {
             joints::bolted_joint([n, n - n / 25, n + n / 25, n - n / 12, n + n / 12])
         }
         "joint-same" => joints::bolted_joint([size.max(8); 5]),
+        "rack" => curved::pin_rack(size.max(1), 64),
         _ => {
-            eprintln!("unknown kind {kind}: expected plug, pin, nut, joint or joint-same");
+            eprintln!("unknown kind {kind}: expected plug, pin, nut, joint, joint-same or rack");
             std::process::exit(2);
         }
     };

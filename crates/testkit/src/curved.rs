@@ -128,6 +128,31 @@ pub fn pin_in_hole(n: usize, m: usize, phase: f64) -> Vec<NamedSoup> {
     vec![("block".into(), block), ("pin".into(), pin)]
 }
 
+/// An `n` by `n` rack of [`pin_in_hole`] pairs (`m` segments, matching tessellations)
+/// under a plate: block `(i, j)` stands at `(16 i, 16 j)`, so neighbouring blocks touch
+/// along a vertical edge, and the plate (`"plate"`, z from 10 to 11) covers every pin and
+/// touches its top. `2 n² + 1` parts of curved pieces, for many-part benchmarks.
+///
+/// Known answer: only the plate can leave first (along `+z`, or any direction of the
+/// open upper hemisphere); every pin leaves its block along `+z` only.
+pub fn pin_rack(n: usize, m: usize) -> Vec<NamedSoup> {
+    let mut parts = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let at = [16.0 * i as f64, 16.0 * j as f64, 0.0];
+            for (name, soup) in pin_in_hole(m, m, 0.0) {
+                parts.push((format!("{name}_{i}_{j}"), soup.translated(at)));
+            }
+        }
+    }
+    let far = 16.0 * n.saturating_sub(1) as f64 + 8.0;
+    parts.push((
+        "plate".into(),
+        crate::defects::box_soup([-8.0, -8.0, 10.0], [far, far, 11.0]),
+    ));
+    parts
+}
+
 /// How far a regular `n`-gon pin of circumradius `r` (vertices at `phase + 2πk/n`) pokes
 /// out of a regular `m`-gon hole of the same circumradius (vertices at `2πj/m`): the
 /// largest distance from a point of the pin's cross-section to the hole's.
