@@ -48,3 +48,6 @@ row joint-5k joint:128 sequence --tolerance auto
 row joint-5k joint:128 sequence --first --tolerance auto
 row joint-50k joint:1250 sequence --tolerance auto
 row joint-50k joint:1250 sequence --first --tolerance auto
+row rack-4 rack:4 partition
+row rack-4 rack:4 sequence
+row rack-4 rack:4 sequence --first
