@@ -395,3 +395,52 @@ fn a_bolted_joint_of_five_differently_tessellated_parts_comes_apart_along_its_ax
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_rack_of_pins_in_blocks_under_a_plate_comes_apart_as_its_geometry_says() {
+    // 2 x 2 pins in blocks that touch their neighbours along a vertical edge, under a
+    // plate resting on every pin; no tolerance. The oracle checks the faces and the
+    // isolated directions (the many sliding arcs would take it a minute).
+    let dir = folder("rack");
+    write_parts(&dir, &curved::pin_rack(2, 12));
+    let loaded = load_with(&dir, Tolerance::None);
+    assert!(loaded.is_valid(), "{:#?}", loaded.problems);
+    let parts = parts_of(&loaded.assembly).unwrap().to_vec();
+    let p = partition(&loaded.assembly, &Options::default()).unwrap();
+    for s in p.solutions.iter().filter(|s| s.cell != CellKind::Edge) {
+        assert!(oracle_free(&parts, &s.moving, &s.direction), "{s:?}");
+    }
+    let name = |k: &usize| p.names[*k].as_str();
+    let mut sets: Vec<Vec<&str>> = p
+        .sets
+        .iter()
+        .map(|s| s.moving.iter().map(name).collect())
+        .collect();
+    sets.sort();
+    // Known answer (see `pin_rack`): the plate, each block alone, each block with its
+    // pin (every block is at a corner); no pin alone, nothing bigger.
+    let mut want: Vec<Vec<String>> = vec![vec!["plate".to_string()]];
+    for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+        want.push(vec![format!("block_{i}_{j}")]);
+        want.push(vec![format!("block_{i}_{j}"), format!("pin_{i}_{j}")]);
+    }
+    want.sort();
+    assert_eq!(sets, want);
+    let plate = index(&p, "plate");
+    assert!(leaves_through_a_face(&p, plate, 2));
+    for (i, j) in [(0i64, 0i64), (0, 1), (1, 0), (1, 1)] {
+        let block = index(&p, &format!("block_{i}_{j}"));
+        let pin = index(&p, &format!("pin_{i}_{j}"));
+        // Alone, the block slides off its pin straight down, and only so.
+        for s in p.solutions.iter().filter(|s| s.moving == [block]) {
+            assert_eq!(s.cell, CellKind::Vertex, "{s:?}");
+            assert_eq!(s.direction, Vec3::new(0, 0, -1));
+        }
+        // With its pin it leaves downwards and away from the rack's centre.
+        let out = [2 * i - 1, 2 * j - 1];
+        assert!(p.solutions.iter().any(|s| s.moving == [block, pin]
+            && s.cell == CellKind::Face
+            && s.unit[2] < 0.0
+            && (0..2).all(|k| s.unit[k] * out[k] as f64 > 0.0)));
+    }
+}

@@ -133,8 +133,10 @@ pub fn pin_in_hole(n: usize, m: usize, phase: f64) -> Vec<NamedSoup> {
 /// along a vertical edge, and the plate (`"plate"`, z from 10 to 11) covers every pin and
 /// touches its top. `2 n² + 1` parts of curved pieces, for many-part benchmarks.
 ///
-/// Known answer: only the plate can leave first (along `+z`, or any direction of the
-/// open upper hemisphere); every pin leaves its block along `+z` only.
+/// Known answer: the plate leaves through the open upper hemisphere; each block alone
+/// leaves its pin along `−z` only (the pin fills the hole, so that direction is
+/// isolated); a block at a corner of the rack leaves with its pin outwards and
+/// downwards; no pin moves alone (the plate is on it).
 pub fn pin_rack(n: usize, m: usize) -> Vec<NamedSoup> {
     let mut parts = Vec::new();
     for i in 0..n {
