@@ -55,13 +55,21 @@ impl std::hash::Hash for BigVec {
 /// shadows stay far from underflow).
 fn scaled_shadow(raw: &[f64; 3]) -> ([f64; 3], bool) {
     let m = raw.iter().fold(0f64, |m, v| m.max(v.abs()));
-    if m == 0.0 || !m.is_finite() {
+    if m == 0.0 || !m.is_finite() || !m.is_normal() {
         return (*raw, m == 0.0);
     }
-    let e = m.log2().floor() as i32;
-    let out = raw.map(|v| v * 2f64.powi(-e));
-    let ok = out.iter().all(|v| *v == 0.0 || v.abs() >= 2f64.powi(-300));
+    // ⌊log2 m⌋ from the exponent field (m is normal).
+    let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let out = raw.map(|v| v * pow2(-e));
+    let ok = out.iter().all(|v| *v == 0.0 || v.abs() >= pow2(-300));
     (out, ok)
+}
+
+/// `2^k` exactly, for `k` in the normal range `-1022..=1023` (without `powi`'s loop).
+#[inline]
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
 }
 
 #[inline]
@@ -144,7 +152,7 @@ impl Vec3 {
             }
             let s = (bl - 64).max(0);
             let m = int::to_f64(&(v >> s as usize));
-            m * 2f64.powi((s - (bits - 1)).max(-1000))
+            m * pow2((s - (bits - 1)).max(-1000))
         });
         let wide = match [
             int::to_i128(&c[0]),
