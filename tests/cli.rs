@@ -280,37 +280,19 @@ fn bad_input_fails_with_a_message_and_no_panic() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// An axis-aligned box as OFF text.
-fn box_off(lo: [f64; 3], hi: [f64; 3]) -> String {
-    let mut s = String::from("OFF\n8 12 0\n");
-    for k in 0..8 {
-        let c = |i: usize| if k >> i & 1 == 1 { hi[i] } else { lo[i] };
-        s += &format!("{} {} {}\n", c(0), c(1), c(2));
-    }
-    // Outward triangles of the six faces (corner k has bit i set on the high side).
-    for f in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        s += &format!(
-            "3 {} {} {}\n3 {} {} {}\n",
-            f[0], f[1], f[2], f[0], f[2], f[3]
-        );
-    }
-    s
-}
-
 #[test]
 fn holding_without_tolerance_concerns_only_the_parts_that_overlapped() {
     // A lid 1e-6 into its box, and a block beside the box, apart from both: under the
     // tolerance the lid lifts off the box, which does not hold for the parts as given;
     // the block leaves the box (the pair without an overlap) as it would anyway.
     let dir = Scratch::new("cli-holds");
-    let write = |name: &str, lo, hi| std::fs::write(dir.join(name), box_off(lo, hi)).unwrap();
+    let write = |name: &str, lo, hi| {
+        std::fs::write(
+            dir.join(name),
+            apart_testkit::defects::box_soup(lo, hi).to_off(),
+        )
+        .unwrap()
+    };
     write("box.off", [0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
     write("lid.off", [0.0, 0.0, 1.0 - 1e-6], [1.0, 1.0, 1.2]);
     write("block.off", [2.0, 0.0, 0.0], [3.0, 1.0, 1.0]);
