@@ -58,8 +58,15 @@ fn between(inner: &HPoint, outer: &HPoint, vi: &Int, vo: &Int) -> HPoint {
     HPoint::from_big(y, w)
 }
 
-/// Pieces of at most this many facets are cut plane by plane; bigger ones are scaled.
+/// Pieces of at most this many facets are cut plane by plane when the float cut fails;
+/// bigger ones are scaled.
 const EXACT_CUT_FACETS: usize = 32;
+
+/// Pieces of at most this many facets try the float cut first (its cost grows with the
+/// square of the facets). Scaling moves the faces far from the inner point by up to
+/// their distance over the nearest face's times `eps`: 56 times `eps` on a gear's hub
+/// pieces of 33 to 128 facets, which the float cut brings to `eps` plus a step.
+const FLOAT_CUT_FACETS: usize = 128;
 
 /// How close to a plane (grid steps) a vertex of the float cut counts as on it.
 const FLOAT_ON: f64 = 1e-4;
@@ -397,11 +404,11 @@ impl Polytope {
     /// step), with its vertices on the grid again. `None` when nothing of positive volume
     /// is left.
     ///
-    /// The piece is cut by `eps` plus one grid step. When it has at most 32 facets, the
-    /// cut is made in floating point first and kept when an exact test confirms it, else
-    /// exactly ([`Polytope::shrunk_exact`]); a bigger piece (each plane's cut costs a
-    /// pass over all its vertices) is scaled about an inner point
-    /// ([`Polytope::shrunk_by_scaling`], which moves some faces more). Each vertex of the
+    /// The piece is cut by `eps` plus one grid step. When it has at most 128 facets, the
+    /// cut is made in floating point first and kept when an exact test confirms it;
+    /// else, up to 32 facets, exactly ([`Polytope::shrunk_exact`]), and a bigger piece
+    /// (each plane's exact cut costs a pass over all its vertices) is scaled about an
+    /// inner point ([`Polytope::shrunk_by_scaling`], which moves some faces more). Each vertex of the
     /// cut is then rounded to the nearest grid point, and the result is the convex hull
     /// of those points ([`Polytope::hull`]). A rounded point lies less than one step from
     /// the cut, so every face still lies at least `eps` inside the piece's, and the
@@ -410,7 +417,7 @@ impl Polytope {
     /// projection and arrangement paid for.
     pub fn shrunk(&self, eps_num: &Int, eps_den: &Int) -> Option<Polytope> {
         let margin = eps_num + eps_den; // eps + 1 step
-        if self.facets().len() <= EXACT_CUT_FACETS {
+        if self.facets().len() <= FLOAT_CUT_FACETS {
             if let Some(p) = self.shrunk_in_floats(&margin, eps_num, eps_den) {
                 return Some(p);
             }
