@@ -21,7 +21,7 @@ use apart_kernel::predicates::{det3_sign, dot_sign};
 use apart_kernel::spherical::{arc_position, ArcPosition};
 use apart_kernel::{Aabb, Components, Int, Sign, Vec3};
 use apart_pieces::hull2d::{hull_in_plane, plane_axes};
-use apart_pieces::{Polytope, PolytopeError};
+use apart_pieces::{Polytope, PolytopeError, Shadow};
 use apart_sphere::polygon::PolygonError;
 use apart_sphere::SphericalPolygon;
 use rustc_hash::FxHashMap as HashMap;
@@ -662,6 +662,10 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
         }
     };
     let (live_p, live_q) = (live_edges(sp, &bp), live_edges(sq, &bq));
+    let floats = p
+        .shadow()
+        .zip(q.shadow())
+        .map(|(sx, sy)| (sx, sy, sum_margin(sx, sy)));
     let found = facets_where(
         sp,
         sq,
@@ -670,10 +674,9 @@ pub fn project_apart(sp: &Summand, sq: &Summand) -> Option<Result<SphericalPolyg
         [live_p.as_deref(), live_q.as_deref()],
         &mut |n, i, j| {
             // Floats first (as `clearly_positive` measures), then the exact sign.
-            if let (Some(sx), Some(sy)) = (p.shadow(), q.shadow()) {
+            if let Some((sx, sy, margin)) = floats {
                 let u = n.unit_f64();
                 let v = fvec::dot(u, sx.points[i as usize]) + fvec::dot(u, sy.points[j as usize]);
-                let margin = 2.0 * (sx.error() + sy.error());
                 if v.is_finite() && v.abs() > margin {
                     return v < 0.0;
                 }
@@ -741,7 +744,7 @@ fn clear_of(x: &Polytope, y: &Polytope) -> Option<Vec<u64>> {
     } else {
         &sy.points
     };
-    let margin = 2.0 * (sx.error() + sy.error());
+    let margin = sum_margin(sx, sy);
     Some(
         sx.facet_units
             .iter()
@@ -772,7 +775,14 @@ fn clearly_positive(x: &Polytope, fi: usize, y: &Polytope) -> bool {
         .iter()
         .map(|y| fvec::dot(u, *y))
         .fold(f64::NEG_INFINITY, f64::max);
-    sx.facet_levels[fi] + top > 2.0 * (sx.error() + sy.error())
+    sx.facet_levels[fi] + top > sum_margin(sx, sy)
+}
+
+/// The error bound of a float value `u · x + u · y` (or a facet level plus `u · y`) for a
+/// unit axis `u` and shadow points of `x` and `y`: each term is within its shadow's
+/// [`Shadow::error`], doubled for the sum's rounding and a wide margin.
+fn sum_margin(sx: &Shadow, sy: &Shadow) -> f64 {
+    2.0 * (sx.error() + sy.error())
 }
 
 /// The edges of `sx` (in its `by_low_x` order) whose parallelograms may face the
