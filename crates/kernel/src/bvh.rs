@@ -302,6 +302,24 @@ impl<T: Coord> Bvh<T> {
         &self.order[lo as usize..hi as usize]
     }
 
+    /// The positions in the build's order of the boxes under node `n` (what
+    /// [`Bvh::items`] lists): nested for a node and its children, so that a caller can
+    /// keep per-position data (counts of boxes still alive) in a range tree.
+    #[inline]
+    pub fn span(&self, n: usize) -> std::ops::Range<usize> {
+        let [lo, hi] = self.spans[n];
+        lo as usize..hi as usize
+    }
+
+    /// The position in the build's order of every box (the inverse of the order).
+    pub fn positions(&self) -> Vec<u32> {
+        let mut at = vec![0u32; self.order.len()];
+        for (k, &b) in self.order.iter().enumerate() {
+            at[b as usize] = k as u32;
+        }
+        at
+    }
+
     /// Calls `f(i)` for every box `i` that meets the closed box `q`, in the build's order
     /// (Morton or median splits).
     #[inline]

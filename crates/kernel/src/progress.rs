@@ -43,6 +43,10 @@ use std::sync::{Arc, Mutex};
 /// A callback receiving `(phase, done, total)`.
 pub type ProgressCallback = Arc<dyn Fn(&'static str, usize, usize) + Send + Sync>;
 
+/// A callback asked `(phase, bytes)` before a planner builds something whose memory it
+/// estimated: true when it may go ahead (see [`Progress::affordable`]).
+pub type BudgetCallback = Arc<dyn Fn(&'static str, u64) -> bool + Send + Sync>;
+
 /// The names of the phases reported, in the order a run meets them.
 pub mod phases {
     /// apart-plan's `BlockingRegions::compute_with`: pairs of parts whose blocked region
@@ -71,6 +75,7 @@ pub mod phases {
 pub struct Progress {
     callback: Option<ProgressCallback>,
     stop: Arc<AtomicBool>,
+    budget: Option<BudgetCallback>,
 }
 
 impl std::fmt::Debug for Progress {
@@ -95,6 +100,7 @@ impl Progress {
         Progress {
             callback: Some(Arc::new(callback)),
             stop: Arc::default(),
+            budget: None,
         }
     }
 
@@ -111,7 +117,25 @@ impl Progress {
         Progress {
             callback: None,
             stop: self.stop.clone(),
+            budget: self.budget.clone(),
         }
+    }
+
+    /// The same, asking `budget(phase, bytes)` before a planner builds something of an
+    /// estimated size (a memory budget's keeper answers whether it fits).
+    pub fn with_budget(
+        mut self,
+        budget: impl Fn(&'static str, u64) -> bool + Send + Sync + 'static,
+    ) -> Progress {
+        self.budget = Some(Arc::new(budget));
+        self
+    }
+
+    /// Whether `bytes`, estimated for what `phase` is about to build, may be spent: true
+    /// without a budget callback. A planner told no stops as if the flag rose, with
+    /// what it has (the callback records why).
+    pub fn affordable(&self, phase: &'static str, bytes: u64) -> bool {
+        self.budget.as_ref().is_none_or(|f| f(phase, bytes))
     }
 
     /// The stop flag: storing `true` asks every planner watching it to return what it
