@@ -139,6 +139,167 @@ pub(crate) fn ray_meets_int_box(lo: [i128; 3], hi: [i128; 3], x: &[i64; 3]) -> b
     }
 }
 
+/// For two axis-aligned boxes `a`, `b` (bounds `ia`, `ib`, denominators `da`, `db`),
+/// whose sum `b ⊕ −a` is their box of differences: whether the open ray `{t x : t > 0}`
+/// meets that box's interior, i.e. whether `x` lies in the open projection `P_ab` (`a`
+/// moving along `x` hits `b`). `None` when the interior holds the origin (the pieces
+/// overlap: the polygon's computation reports it). Exact, as [`ray_meets_box`].
+pub(crate) fn open_box_blocks(
+    ia: &PieceInfo,
+    da: &Int,
+    ib: &PieceInfo,
+    db: &Int,
+    x: &Vec3,
+) -> Option<bool> {
+    if let (Some(a), Some(b), Some(x)) = (&ia.small, &ib.small, x.as_small()) {
+        return open_small_box_blocks(a, b, x);
+    }
+    // Scaled bounds of the box of differences (by da db > 0) and of t (by the same).
+    let (mut lo, mut hi): ([Int; 3], [Int; 3]) = Default::default();
+    for k in 0..3 {
+        lo[k] = &ib.bounds.min[k] * da - &ia.bounds.max[k] * db;
+        hi[k] = &ib.bounds.max[k] * da - &ia.bounds.min[k] * db;
+    }
+    if (0..3).all(|k| lo[k] < Int::ZERO && hi[k] > Int::ZERO) {
+        return None;
+    }
+    // The open intervals of t, as fractions with positive denominators: t > 0, and
+    // lo_k < t x_k < hi_k for every k.
+    let mut lower: (Int, Int) = (Int::ZERO, Int::ONE);
+    let mut upper: Option<(Int, Int)> = None;
+    for k in 0..3 {
+        let xk = x.get(k);
+        let (l, u, den) = match xk.cmp(&Int::ZERO) {
+            Ordering::Equal => {
+                if lo[k] >= Int::ZERO || hi[k] <= Int::ZERO {
+                    return Some(false);
+                }
+                continue;
+            }
+            Ordering::Greater => (lo[k].clone(), hi[k].clone(), xk),
+            Ordering::Less => (-hi[k].clone(), -lo[k].clone(), -xk),
+        };
+        if cmp_fractions(&l, &den, &lower.0, &lower.1) == Ordering::Greater {
+            lower = (l, den.clone());
+        }
+        if upper
+            .as_ref()
+            .is_none_or(|(n, d)| cmp_fractions(&u, &den, n, d) == Ordering::Less)
+        {
+            upper = Some((u, den));
+        }
+    }
+    Some(match upper {
+        None => false,
+        Some((u, du)) => cmp_fractions(&lower.0, &lower.1, &u, &du) == Ordering::Less,
+    })
+}
+
+/// For two axis-aligned boxes (as [`open_box_blocks`]) whose box of differences the ray
+/// along `x` touches only on its boundary, at one point away from the origin: a normal
+/// `c` (square to `x`) such that `a` moving along `x + εy` (`ε → 0⁺`) hits `b` only if
+/// `c · y > 0`. The ray enters the box through a face of axis `k` and leaves it through
+/// a face of axis `m` at the same point; tilting it (`x_k → x_k + ε y_k`) moves the
+/// entry to `t (1 − ε y_k / x_k)` and the exit to `t (1 − ε y_m / x_m)`, so it crosses
+/// the interior only when `y_k / x_k > y_m / x_m`. `None` otherwise (the ray meets the
+/// box along a segment or at the origin, or a face parallel to `x` holds the point).
+pub(crate) fn box_graze_normal(
+    ia: &PieceInfo,
+    da: &Int,
+    ib: &PieceInfo,
+    db: &Int,
+    x: &Vec3,
+) -> Option<Vec3> {
+    // The latest entry and earliest exit of the line, as fractions with positive
+    // denominators (scaled by da db > 0), with their axes.
+    let mut entry: Option<(Int, Int, usize)> = None;
+    let mut exit: Option<(Int, Int, usize)> = None;
+    for k in 0..3 {
+        let lo = &ib.bounds.min[k] * da - &ia.bounds.max[k] * db;
+        let hi = &ib.bounds.max[k] * da - &ia.bounds.min[k] * db;
+        let xk = x.get(k);
+        let (l, u, den) = match xk.cmp(&Int::ZERO) {
+            Ordering::Equal => {
+                if lo >= Int::ZERO || hi <= Int::ZERO {
+                    return None;
+                }
+                continue;
+            }
+            Ordering::Greater => (lo, hi, xk),
+            Ordering::Less => (-hi, -lo, -xk),
+        };
+        if entry
+            .as_ref()
+            .is_none_or(|(n, d, _)| cmp_fractions(&l, &den, n, d) == Ordering::Greater)
+        {
+            entry = Some((l, den.clone(), k));
+        }
+        if exit
+            .as_ref()
+            .is_none_or(|(n, d, _)| cmp_fractions(&u, &den, n, d) == Ordering::Less)
+        {
+            exit = Some((u, den, k));
+        }
+    }
+    let ((l, dl, k), (u, du, m)) = (entry?, exit?);
+    if l <= Int::ZERO || k == m || cmp_fractions(&l, &dl, &u, &du) != Ordering::Equal {
+        return None;
+    }
+    // c = e_k / x_k − e_m / x_m, times |x_k x_m|.
+    let (xk, xm) = (x.get(k), x.get(m));
+    let abs = |v: &Int| {
+        if *v < Int::ZERO {
+            -v.clone()
+        } else {
+            v.clone()
+        }
+    };
+    let with_sign_of = |v: Int, s: &Int| if *s < Int::ZERO { -v } else { v };
+    let mut c = [Int::ZERO, Int::ZERO, Int::ZERO];
+    c[k] = with_sign_of(abs(&xm), &xk);
+    c[m] = -with_sign_of(abs(&xk), &xm);
+    Some(Vec3::from_ints(c).primitive())
+}
+
+/// [`open_box_blocks`] for pieces on the grid with bounds below 2^61 and a direction
+/// below 2^62, in `i128` (as [`ray_meets_small_box`]).
+fn open_small_box_blocks(a: &Aabb, b: &Aabb, x: &[i64; 3]) -> Option<bool> {
+    let lo: [i128; 3] = std::array::from_fn(|k| b.min[k] as i128 - a.max[k] as i128);
+    let hi: [i128; 3] = std::array::from_fn(|k| b.max[k] as i128 - a.min[k] as i128);
+    if (0..3).all(|k| lo[k] < 0 && hi[k] > 0) {
+        return None;
+    }
+    let mut lower: (i128, i128) = (0, 1);
+    let mut upper: Option<(i128, i128)> = None;
+    for k in 0..3 {
+        let xk = x[k] as i128;
+        let (l, u, den) = match xk.cmp(&0) {
+            Ordering::Equal => {
+                if lo[k] >= 0 || hi[k] <= 0 {
+                    return Some(false);
+                }
+                continue;
+            }
+            Ordering::Greater => (lo[k], hi[k], xk),
+            Ordering::Less => (-hi[k], -lo[k], -xk),
+        };
+        if l * lower.1 > lower.0 * den {
+            lower = (l, den);
+        }
+        if upper.is_none_or(|(n, d)| u * d < n * den) {
+            upper = Some((u, den));
+        }
+    }
+    Some(upper.is_some_and(|(u, du)| lower.0 * du < u * lower.1))
+}
+
+/// True when `p` is an axis-aligned box: eight vertices and six facets, each normal
+/// along a coordinate axis.
+pub(crate) fn is_axis_box(p: &Polytope) -> bool {
+    let axis = |n: &Vec3| (0..3).filter(|&k| n.get(k) != Int::ZERO).count() == 1;
+    p.vertices().len() == 8 && p.facets().len() == 6 && p.facets().iter().all(|f| axis(&f.normal))
+}
+
 /// [`ray_meets_box`] in arbitrary precision.
 fn ray_meets_box_exact(ia: &PieceInfo, da: &Int, ib: &PieceInfo, db: &Int, x: &Vec3) -> bool {
     // Bounds on t (scaled), as fractions with positive denominators: the largest lower
@@ -201,11 +362,31 @@ pub(crate) enum Sep {
 /// The separating axes of a piece pair at rest (coordinate axes and facet normals), each
 /// oriented from `a` to `b`.
 pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -> Vec<Axis> {
+    let mut out: Vec<Axis> = coordinate_axes(a, ia, b, ib).collect();
+    if out.iter().any(|x| x.strict) {
+        return out; // strictly apart: nothing more to learn at rest
+    }
+    // Facet normals of a, and negated ones of b (exact, behind a float filter).
+    out.extend(
+        facet_axes(a, b)
+            .into_iter()
+            .map(|(n, strict)| Axis { n, strict }),
+    );
+    out
+}
+
+/// The coordinate axes of [`axes`] (which lists them first, in this order: `+e_0`,
+/// `−e_0`, `+e_1`, ...).
+fn coordinate_axes<'a>(
+    a: &'a Polytope,
+    ia: &'a PieceInfo,
+    b: &'a Polytope,
+    ib: &'a PieceInfo,
+) -> impl Iterator<Item = Axis> + 'a {
     let (da, db) = (a.den(), b.den());
     let ((fa_lo, fa_hi), (fb_lo, fb_hi)) = (ia.float_bounds, ib.float_bounds);
     let (ia, ib) = (&ia.bounds, &ib.bounds);
-    let mut out = Vec::new();
-    for k in 0..3 {
+    (0..3).flat_map(move |k| {
         // a below b along +e_k: hi_a <= lo_b; b below a along -e_k likewise.
         let below = [
             (
@@ -217,27 +398,72 @@ pub(crate) fn axes(a: &Polytope, ia: &PieceInfo, b: &Polytope, ib: &PieceInfo) -
                 cmp_bound(fb_hi[k], &ib.max[k], db, fa_lo[k], &ia.min[k], da),
             ),
         ];
-        for (sign, order) in below {
-            if order != Ordering::Greater {
+        below
+            .into_iter()
+            .filter(|(_, order)| *order != Ordering::Greater)
+            .map(move |(sign, order)| {
                 let mut e = [0i64; 3];
                 e[k] = sign;
-                out.push(Axis {
+                Axis {
                     n: Vec3::from_i64(e),
                     strict: order == Ordering::Less,
-                });
+                }
+            })
+    })
+}
+
+/// [`classify`] of a pair of axis-aligned boxes, from their coordinate axes alone (their
+/// facet axes are the same axes again), without making the list; and whether some axis
+/// is not strict (the boxes may touch).
+pub(crate) fn classify_boxes(
+    a: &Polytope,
+    ia: &PieceInfo,
+    b: &Polytope,
+    ib: &PieceInfo,
+    x: &Vec3,
+) -> (Sep, bool) {
+    let (mut outside, mut free, mut touching) = (false, false, false);
+    for ax in coordinate_axes(a, ia, b, ib) {
+        touching |= !ax.strict;
+        match apart_kernel::predicates::dot_sign(&ax.n, x) {
+            apart_kernel::Sign::Negative => outside = true,
+            apart_kernel::Sign::Zero => {
+                outside |= ax.strict;
+                free = true;
             }
+            apart_kernel::Sign::Positive => {}
         }
     }
-    if out.iter().any(|x| x.strict) {
-        return out; // strictly apart: nothing more to learn at rest
+    let sep = if outside {
+        Sep::Outside
+    } else if free {
+        Sep::Free
+    } else {
+        Sep::Unknown
+    };
+    (sep, touching)
+}
+
+/// [`touching_normal`] of [`axes`], without making the facet axes when a coordinate axis
+/// already answers: a touching coordinate axis comes first in the list, and a strict
+/// one leaves only coordinate axes in it.
+pub(crate) fn first_touching_axis(
+    a: &Polytope,
+    ia: &PieceInfo,
+    b: &Polytope,
+    ib: &PieceInfo,
+) -> Option<Vec3> {
+    let mut strict = false;
+    for ax in coordinate_axes(a, ia, b, ib) {
+        if !ax.strict {
+            return Some(ax.n);
+        }
+        strict = true;
     }
-    // Facet normals of a, and negated ones of b (exact, behind a float filter).
-    out.extend(
-        facet_axes(a, b)
-            .into_iter()
-            .map(|(n, strict)| Axis { n, strict }),
-    );
-    out
+    if strict {
+        return None;
+    }
+    touching_normal(&axes(a, ia, b, ib)).cloned()
 }
 
 /// `x / dx` against `y / dy` (positive denominators), exactly: by their floats `fx` and
@@ -801,6 +1027,10 @@ mod tests {
                                     Sep::Unknown => {}
                                 }
                             }
+                            assert_eq!(
+                                first_touching_axis(a, &ia, b, &ib).as_ref(),
+                                touching_normal(&ax)
+                            );
                             let Some(n) = touching_normal(&ax) else {
                                 continue;
                             };
@@ -856,5 +1086,89 @@ mod tests {
             }
         }
         assert!(seen[0] > 500 && seen[1] > 200, "{seen:?}");
+    }
+
+    /// For boxes the open box of differences decides blocking exactly: the open ray meets
+    /// its interior exactly when the open projection holds the direction, and the
+    /// interior holds the origin exactly when the pieces overlap (random boxes with
+    /// denominators, touching, apart and overlapping, directions with zero components).
+    #[test]
+    fn the_open_box_decides_blocking_for_boxes() {
+        let mut rng = apart_testkit::solids::Lcg(11u64);
+        let mut next = |m: i64| rng.below(m as u64) as i64;
+        let mut seen = [0usize; 4];
+        for _ in 0..400 {
+            let cuboid = |next: &mut dyn FnMut(i64) -> i64| {
+                let den = 1 + next(3);
+                let lo = [next(13) - 6, next(13) - 6, next(13) - 6];
+                let hi = [
+                    lo[0] + 1 + next(4),
+                    lo[1] + 1 + next(4),
+                    lo[2] + 1 + next(4),
+                ];
+                Polytope::cuboid(lo, hi).unwrap().with_den(Int::from(den))
+            };
+            let (a, b) = (cuboid(&mut next), cuboid(&mut next));
+            assert!(is_axis_box(&a) && is_axis_box(&b));
+            let (ia, ib) = (PieceInfo::new(&a), PieceInfo::new(&b));
+            let full = full_polygon(&a, &ia, &b, &ib).unwrap();
+            for _ in 0..12 {
+                let d = Vec3::new(next(5) - 2, next(5) - 2, next(5) - 2);
+                if d.is_zero() {
+                    continue;
+                }
+                let got = open_box_blocks(&ia, a.den(), &ib, b.den(), &d);
+                if let (Some(c), PairPolygon::Polygon(p, _)) =
+                    (box_graze_normal(&ia, a.den(), &ib, b.den(), &d), &full)
+                {
+                    // Grazing: on the polygon's boundary, and every perturbed direction
+                    // inside it on the positive side of c.
+                    assert!(p.contains_closed(&d) && !p.contains_open(&d));
+                    assert_eq!(c.dot(&d), Int::ZERO);
+                    for y in (0..27).map(|i| Vec3::new(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1)) {
+                        if p.contains_open_perturbed(&d, &y) {
+                            assert!(c.dot(&y) > Int::ZERO, "{a:?} {b:?} {d:?} {y:?} {c:?}");
+                        }
+                    }
+                    seen[3] += 1;
+                }
+                let ax = axes(&a, &ia, &b, &ib);
+                assert_eq!(
+                    classify_boxes(&a, &ia, &b, &ib, &d),
+                    (classify(&ax, &d), ax.iter().any(|x| !x.strict))
+                );
+                if let (Some(sa), Some(sb), Some(x)) = (&ia.small, &ib.small, d.as_small()) {
+                    // The i128 path (taken above) and the exact one agree.
+                    let (big_a, big_b) = (
+                        PieceInfo {
+                            small: None,
+                            ..PieceInfo::new(&a)
+                        },
+                        PieceInfo {
+                            small: None,
+                            ..PieceInfo::new(&b)
+                        },
+                    );
+                    assert_eq!(
+                        open_small_box_blocks(sa, sb, x),
+                        open_box_blocks(&big_a, a.den(), &big_b, b.den(), &d)
+                    );
+                }
+                match &full {
+                    PairPolygon::Polygon(p, _) => {
+                        assert_eq!(got, Some(p.contains_open(&d)), "{a:?} {b:?} {d:?}");
+                        seen[usize::from(p.contains_open(&d))] += 1;
+                    }
+                    PairPolygon::Overlap => {
+                        assert_eq!(got, None);
+                        seen[2] += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            seen[..3].iter().all(|&k| k > 50) && seen[3] > 20,
+            "{seen:?}"
+        );
     }
 }

@@ -246,3 +246,153 @@ fn first_solutions_are_verified() {
         check_first(name, &parts);
     }
 }
+
+/// Subsets of `0..n`: everything, and `count` random ones of at least two parts (each
+/// part kept with probability 1/2), increasing.
+fn random_subsets(n: usize, count: usize, seed: u64) -> Vec<Vec<usize>> {
+    let mut rng = apart_testkit::solids::Lcg(seed);
+    let mut out = vec![(0..n).collect::<Vec<usize>>()];
+    while out.len() <= count {
+        let sub: Vec<usize> = (0..n).filter(|_| rng.below(2) == 1).collect();
+        if sub.len() >= 2 {
+            out.push(sub);
+        }
+    }
+    out
+}
+
+/// The coordinate axes, face and space diagonals (both signs) and random directions of
+/// coordinates in `[-3, 3]`.
+fn test_directions(seed: u64) -> Vec<Vec3> {
+    let mut out: Vec<Vec3> = [
+        [1, 0, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 1, 0],
+        [0, 1, -1],
+        [1, 1, 1],
+        [1, -1, 1],
+    ]
+    .into_iter()
+    .flat_map(|d| [Vec3::from_i64(d), Vec3::from_i64(d.map(|c| -c))])
+    .collect();
+    let mut rng = apart_testkit::solids::Lcg(seed);
+    while out.len() < 22 {
+        let d = Vec3::new(rng.range(-3, 4), rng.range(-3, 4), rng.range(-3, 4));
+        if !d.is_zero() {
+            out.push(d);
+        }
+    }
+    out
+}
+
+/// `answer_in` on subassemblies of generated assemblies (a block of touching unit cubes,
+/// cubes a gap apart, random boxes, cubes cut into prisms; at axes, diagonals, random directions and vertices
+/// and edges of the subassembly's motion space) looks only at the pairs of parts near
+/// the line along `±d`: its blocking graph must still be the brute force's (every ordered pair of the
+/// subassembly by the LP oracle, and by the pair regions' polygons), its moving sets
+/// those of that graph, its cell kind the one the subassembly's full motion space gives,
+/// and a face solution's clearance the distance to every piece pair's polygon.
+#[test]
+fn subassemblies_agree_with_brute_force() {
+    // Cubes of side 2 each cut along a diagonal plane into two triangular prisms (pieces
+    // that are no boxes: their sums are made), some a gap apart.
+    let prisms = |n: i64| -> Vec<Part> {
+        let mut parts = Vec::new();
+        for x in 0..n {
+            for y in 0..n {
+                for z in 0..n {
+                    let o = [2 * x + x / 2, 2 * y, 2 * z];
+                    let prism = |corners: [[i64; 2]; 3]| {
+                        let pts: Vec<[i64; 3]> = corners
+                            .iter()
+                            .flat_map(|&[u, v]| [0, 2].map(|w| [o[0] + u, o[1] + v, o[2] + w]))
+                            .collect();
+                        common::hull(&pts)
+                    };
+                    let pieces = vec![
+                        prism([[0, 0], [2, 0], [0, 2]]),
+                        prism([[2, 0], [2, 2], [0, 2]]),
+                    ];
+                    parts.push(common::part(&format!("p{x}{y}{z}"), pieces));
+                }
+            }
+        }
+        parts
+    };
+    let assemblies = [
+        ("block", common::lattice(4, 0)),
+        ("loose", common::lattice(3, 1)),
+        ("boxes", common::random_box_parts(40, 12, 7)),
+        ("prisms", prisms(3)),
+    ];
+    for (name, parts) in assemblies {
+        let regions = BlockingRegions::compute(&parts).unwrap();
+        let oracle = common::oracle::Oracle::new(&parts);
+        let q = DirectionQuery::new(&parts).unwrap();
+        let dirs = test_directions(parts.len() as u64);
+        let mut faces = 0;
+        let mut kinds = std::collections::BTreeSet::new();
+        for (s, sub) in random_subsets(parts.len(), 3, 17).into_iter().enumerate() {
+            let ms = MotionSpace::build(&regions, &sub);
+            // And a few vertices and edges of the subassembly's motion space.
+            let arr = ms.arrangement();
+            let mut dirs = dirs.clone();
+            dirs.extend(
+                ms.real_vertices()
+                    .take(8)
+                    .map(|v| arr.vertices()[v].point.clone()),
+            );
+            dirs.extend(
+                ms.edge_cells()
+                    .iter()
+                    .take(8)
+                    .map(|c| arr.edge_arc(c[0]).interior_point().primitive()),
+            );
+            for d in &dirs {
+                let got = q.answer_in(&sub, d).unwrap();
+                let mut arcs = Vec::new();
+                for (li, &i) in sub.iter().enumerate() {
+                    for (lj, &j) in sub.iter().enumerate() {
+                        if i != j && !oracle.free(&[i], &[j], d) {
+                            arcs.push((li, lj));
+                        }
+                    }
+                }
+                let want = apart_plan::Dbg::new(sub.len(), arcs);
+                let at = format!("{name}, subset {s} at {:?}", d.to_strings());
+                assert_eq!(got.dbg.arcs(), want.arcs(), "{at}: oracle");
+                assert_eq!(
+                    got.dbg.arcs(),
+                    dbg_at(&regions, &sub, d).arcs(),
+                    "{at}: regions"
+                );
+                let moving: Vec<Vec<usize>> = want
+                    .minimal_moving_sets()
+                    .into_iter()
+                    .map(|m| m.into_iter().map(|k| sub[k]).collect())
+                    .collect();
+                assert_eq!(got.moving, moving, "{at}: moving sets");
+                assert_eq!(got.cell, ms.locate(d).0, "{at}: cell kind");
+                kinds.insert(got.cell);
+                if got.cell == CellKind::Face && !got.moving.is_empty() && faces < 6 {
+                    faces += 1;
+                    let m = &got.moving[0];
+                    let rest: Vec<usize> = sub.iter().copied().filter(|k| !m.contains(k)).collect();
+                    let c = q.clearance_against(d, m, &rest).unwrap();
+                    let want = common::exhaustive_clearance(&parts, m, &rest, d);
+                    assert!(
+                        (c - want).abs() <= 1e-6 * want.max(1.0),
+                        "{at}: clearance {c} vs {want}"
+                    );
+                }
+            }
+        }
+        // The cases that matter were met: faces with a clearance, edges and vertices.
+        println!("{name}: {kinds:?}, {faces} clearances");
+        assert!(
+            faces > 0 && kinds.len() == 3,
+            "{name}: {kinds:?}, {faces} clearances"
+        );
+    }
+}
