@@ -36,7 +36,7 @@ const LEAF: usize = 1;
 /// Integer bounds holding a piece: its coordinates' floats, widened by 2 (a float of a
 /// coordinate below 2^62 is within 1 of it; the widening also gives every box volume).
 /// `None` when a coordinate does not fit.
-fn piece_box(p: &Polytope) -> Option<Aabb> {
+pub(crate) fn piece_box(p: &Polytope) -> Option<Aabb> {
     let den = to_f64(p.den());
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -451,7 +451,7 @@ pub(crate) fn uncovered_pairs(
 
 /// True when the open projection of the box `b` (not holding the origin) lies in the
 /// cover.
-fn box_projection_covered(b: &Aabb, cover: &Cover) -> bool {
+pub(crate) fn box_projection_covered(b: &Aabb, cover: &Cover) -> bool {
     let Ok(b) = Polytope::cuboid(b.min, b.max) else {
         return false;
     };

@@ -55,6 +55,7 @@ pub mod progress;
 pub mod regions;
 pub mod separate;
 pub mod sequence;
+pub mod store;
 
 pub use along::{dbg_along, partition_first, DirectionAnswer, DirectionQuery, QueryStats};
 pub use dbg::{BitGraph, Dbg};
@@ -68,9 +69,10 @@ pub use regions::parts_of;
 pub use regions::{BlockingRegions, Part};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{
-    sequence, sequence_first, sequence_with, KeepSolutions, Sequence, SequenceOptions, Step,
-    Tolerance,
+    sequence, sequence_first, sequence_first_with, sequence_parts, sequence_with, KeepSolutions,
+    Ranking, Rule, Sequence, SequenceOptions, Step, Tolerance,
 };
+pub use store::PairStore;
 
 /// Why planning could not run.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -390,8 +390,19 @@ pub(crate) fn face_solutions(
     ms: &MotionSpace,
     quota: &mut Quota,
 ) -> Vec<Solution> {
+    face_solutions_of(regions, ms, quota, &|_| true)
+}
+
+/// [`face_solutions`] of the (local) moving sets `wanted` accepts only.
+pub(crate) fn face_solutions_of(
+    regions: &BlockingRegions,
+    ms: &MotionSpace,
+    quota: &mut Quota,
+    wanted: &dyn Fn(&[usize]) -> bool,
+) -> Vec<Solution> {
     let progress = quota.progress.clone();
-    let (free_regions, cut) = free_regions(ms, quota.first, &progress);
+    let (mut free_regions, cut) = free_regions(ms, quota.first, &progress);
+    free_regions.retain(|r| wanted(&r.moving));
     let counter = progress.counter(phases::DIRECTIONS, free_regions.len());
     let directions: Vec<Option<(Vec3, f64)>> = free_regions
         .par_iter()

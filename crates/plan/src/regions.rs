@@ -101,6 +101,22 @@ pub struct RegionStats {
     pub unions_seconds: f64,
 }
 
+/// What computing a pair's region needs of one part: its pieces' data for the exact
+/// culls and its box tree over its pieces.
+pub(crate) struct PartData {
+    pub(crate) info: Vec<PieceInfo>,
+    pub(crate) tree: Option<Bvh>,
+}
+
+impl PartData {
+    pub(crate) fn new(p: &Part) -> PartData {
+        PartData {
+            info: p.pieces.iter().map(PieceInfo::new).collect(),
+            tree: piece_tree(&p.pieces),
+        }
+    }
+}
+
 /// A touching piece pair's contact cone, and whether the pieces touch.
 type Cone = (SphericalPolygon, bool);
 
@@ -124,7 +140,7 @@ const PAIR_BATCH: usize = 1 << 16;
 
 impl RegionStats {
     /// Adds the counts of another computation, and its times scaled by `scale`.
-    fn add(&mut self, o: &RegionStats, scale: f64) {
+    pub(crate) fn add(&mut self, o: &RegionStats, scale: f64) {
         self.sums += o.sums;
         self.contact_cones += o.contact_cones;
         self.skipped += o.skipped;
@@ -135,7 +151,7 @@ impl RegionStats {
     }
 
     /// The time of the three phases.
-    fn seconds(&self) -> f64 {
+    pub(crate) fn seconds(&self) -> f64 {
         self.sums_seconds + self.projection_seconds + self.unions_seconds
     }
 }
@@ -188,11 +204,7 @@ impl BlockingRegions {
             pieces: parts.iter().map(|p| p.pieces.len()).sum(),
             ..Default::default()
         };
-        let info: Vec<Vec<PieceInfo>> = parts
-            .par_iter()
-            .map(|p| p.pieces.iter().map(PieceInfo::new).collect())
-            .collect();
-        let trees: Vec<Option<Bvh>> = parts.par_iter().map(|p| piece_tree(&p.pieces)).collect();
+        let data: Vec<PartData> = parts.par_iter().map(PartData::new).collect();
         // Pairs of parts in batches of at most PAIR_BATCH piece pairs (a bigger pair
         // alone), each pair's piece pairs in parallel: only a batch's piece-pair data is
         // alive at once, and what is kept is each pair's pruned polygons and union.
@@ -227,7 +239,7 @@ impl BlockingRegions {
                         return Err(stopped());
                     }
                     let mut s = RegionStats::default();
-                    let r = pair_region(parts, &info, &trees, i, j, &mut s, progress);
+                    let r = pair_region(parts, (&data[i], &data[j]), i, j, &mut s, progress);
                     counter.add(1);
                     r.map(|r| (r, s))
                 })
@@ -255,49 +267,26 @@ impl BlockingRegions {
         })
     }
 
-    /// Regions from given piece-pair polygons per unordered pair of parts (in the order
-    /// `(0,1), (0,2), …, (1,2), …`), without pieces: enough for a [`crate::MotionSpace`]
-    /// (used to build the motion space near one direction from the polygons that matter
-    /// there).
-    pub(crate) fn from_polygons(
+    /// Regions of the parts `names` (with their `pieces`) from the regions of every
+    /// unordered pair `(i, j)`, `i < j`, in local indices, in any order.
+    pub(crate) fn from_pairs(
         names: Vec<String>,
-        polygons: Vec<Vec<SphericalPolygon>>,
+        pieces: Vec<Vec<Polytope>>,
+        mut pairs: Vec<PairRegion>,
+        stats: RegionStats,
     ) -> BlockingRegions {
         let n = names.len();
-        let pairs: Vec<(usize, usize)> = (0..n)
-            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-            .collect();
+        pairs.sort_by_key(|r| (r.i, r.j));
         let mut index = vec![usize::MAX; n * n];
-        let regions: Vec<PairRegion> = pairs
-            .iter()
-            .zip(polygons)
-            .enumerate()
-            .map(|(k, (&(i, j), polygons))| {
-                index[i * n + j] = k;
-                let polygons = pruned(polygons);
-                let region = if polygons.is_empty() {
-                    RegionMap {
-                        arcs: Vec::new(),
-                        points: Vec::new(),
-                    }
-                } else {
-                    union_of_pruned(&polygons)
-                };
-                PairRegion {
-                    i,
-                    j,
-                    polygons,
-                    region,
-                    contact: false,
-                }
-            })
-            .collect();
+        for (k, r) in pairs.iter().enumerate() {
+            index[r.i * n + r.j] = k;
+        }
         BlockingRegions {
-            pieces: vec![Vec::new(); n],
             names,
-            pairs: regions,
+            pieces,
+            pairs,
             index,
-            stats: RegionStats::default(),
+            stats,
         }
     }
 
@@ -347,10 +336,9 @@ impl BlockingRegions {
 /// touching ones, full sums for the rest except those a face contact's hemisphere
 /// already covers, then the pruned polygons' union (timings added to `stats`). The stop
 /// flag is checked between culling rounds and between chunks of sums.
-fn pair_region(
+pub(crate) fn pair_region(
     parts: &[Part],
-    info: &[Vec<PieceInfo>],
-    trees: &[Option<Bvh>],
+    (di, dj): (&PartData, &PartData),
     i: usize,
     j: usize,
     stats: &mut RegionStats,
@@ -391,11 +379,11 @@ fn pair_region(
         .with_min_len(16)
         .filter_map(|k| {
             let (a, b) = jobs[k];
-            let ax = axes(&pi[a], &info[i][a], &pj[b], &info[j][b]);
+            let ax = axes(&pi[a], &di.info[a], &pj[b], &dj.info[b]);
             let Some(n) = crate::pairs::touching_normal(&ax) else {
                 return (!ax.iter().any(|x| x.strict)).then_some(Ok((k, First::Near(ax))));
             };
-            match contact_polygon(&pi[a], &info[i][a], &pj[b], &info[j][b], n) {
+            match contact_polygon(&pi[a], &di.info[a], &pj[b], &dj.info[b], n) {
                 None => Some(Ok((k, First::Near(ax)))),
                 Some(Ok(PairPolygon::Polygon(p, touch))) => Some(Ok((k, First::Cone((p, touch))))),
                 Some(Ok(PairPolygon::Overlap)) => Some(Err(overlap(a, b))),
@@ -436,7 +424,7 @@ fn pair_region(
         let in_union = |ax: &[Axis]| ax.iter().any(|ax| hemispheres.contains(&ax.n.primitive()));
         let by_axes = match near.get(&k) {
             Some(ax) => in_union(ax),
-            None => in_union(&axes(&pi[a], &info[i][a], &pj[b], &info[j][b])),
+            None => in_union(&axes(&pi[a], &di.info[a], &pj[b], &dj.info[b])),
         };
         by_axes || below_along_any(&pi[a], &pj[b], &hemispheres)
     };
@@ -455,7 +443,7 @@ fn pair_region(
     let polygon_of = |k: usize| -> Result<Cone, PlanError> {
         let (a, b) = jobs[k];
         let t0 = Instant::now();
-        let (sb, sa) = (info[j][b].fixed(&pj[b]), info[i][a].reflected(&pi[a]));
+        let (sb, sa) = (dj.info[b].fixed(&pj[b]), di.info[a].reflected(&pi[a]));
         // Apart: the projection from the facets facing the origin, without the sum.
         if let Some(p) = project_apart(sb, sa) {
             sum_ns.fetch_add(cpu(t0), std::sync::atomic::Ordering::Relaxed);
@@ -509,7 +497,7 @@ fn pair_region(
     // polygons inside that union are dropped, the rest extend it.
     let mut united: Option<RegionMap> = None;
     let mut prune_seconds = 0.0;
-    let todo = match (&trees[i], &trees[j]) {
+    let todo = match (&di.tree, &dj.tree) {
         (Some(ti), Some(tj)) if todo.len() >= CULL_MIN => {
             let mut need = vec![false; jobs.len()];
             for &k in &todo {
@@ -796,7 +784,7 @@ impl Approx {
 /// `split` `Some(s)`, the polygons before `s` and those from `s` on are each pruned
 /// already (none lies in another of its group), so only pairs across the two groups are
 /// compared: the same indices, as no pair within a group is contained.
-fn prune_contained(polygons: &[SphericalPolygon], split: Option<usize>) -> Vec<usize> {
+pub(crate) fn prune_contained(polygons: &[SphericalPolygon], split: Option<usize>) -> Vec<usize> {
     let approx: Vec<Approx> = polygons.par_iter().map(Approx::new).collect();
     let mut keep: Vec<usize> = Vec::with_capacity(polygons.len());
     // Larger polygons (fewer, more permissive constraints) first: hemispheres, lunes.
@@ -821,7 +809,7 @@ fn prune_contained(polygons: &[SphericalPolygon], split: Option<usize>) -> Vec<u
 /// The polygons not contained in another, in the union's order: the same open union,
 /// and the same answers to every blocking test (an open polygon inside another adds
 /// no direction), with less to store.
-fn pruned(polygons: Vec<SphericalPolygon>) -> Vec<SphericalPolygon> {
+pub(crate) fn pruned(polygons: Vec<SphericalPolygon>) -> Vec<SphericalPolygon> {
     pruned_split(polygons, None)
 }
 
@@ -846,7 +834,7 @@ const UNION_LEAF: usize = 16;
 /// halves' simplified unions are overlaid (their boundaries only, which are far smaller
 /// than all the polygons' when the polygons overlap), and the overlay's cells take their
 /// status from the two maps' labels, from one cell evaluated exactly on the polygons.
-fn union_of_pruned(polygons: &[SphericalPolygon]) -> RegionMap {
+pub(crate) fn union_of_pruned(polygons: &[SphericalPolygon]) -> RegionMap {
     if polygons.len() <= UNION_LEAF {
         return union_in_one_arrangement(polygons);
     }

@@ -11,13 +11,17 @@ use crate::partition::free_clearance;
 use crate::partition::{cell_solutions, dbg_at, face_solutions, Quota, Solution};
 use crate::progress::{phases, Progress, Stopped};
 use crate::regions::BlockingRegions;
+use crate::PlanError;
 use apart_kernel::Vec3;
 use apart_minkowski::minkowski_difference;
 use std::time::Instant;
 
 mod first;
+mod local;
+mod part_tree;
 mod rank;
-pub use first::sequence_first;
+pub use first::{sequence_first, sequence_first_with};
+pub use local::{LocalStats, RANKED_ARCS, RANKED_PARTS, RANKED_PIECE_PAIRS};
 pub use rank::{Choice, Criterion, Keys, Rival};
 
 /// Choices a planner wants.
@@ -39,6 +43,61 @@ pub struct SequenceOptions {
     /// Which steps keep every solution of their motion space in [`Step::solutions`]
     /// (to draw them; costs the edge and vertex solutions' enumeration and memory).
     pub keep_solutions: KeepSolutions,
+    /// How [`sequence_parts`] chooses each subassembly's step (the other planners
+    /// always rank over the full motion space).
+    pub ranking: Ranking,
+}
+
+/// How [`sequence_parts`] chooses a subassembly's step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Ranking {
+    /// The full ranking ([`best_step`]) for a subassembly of at most [`RANKED_PARTS`]
+    /// parts, [`RANKED_PIECE_PAIRS`] piece pairs and a motion space of at most
+    /// [`RANKED_ARCS`] arcs; the local rules otherwise.
+    #[default]
+    Auto,
+    /// The full ranking for every subassembly: every pair region of the subassembly
+    /// and its whole motion space, at every step.
+    Full,
+    /// The local rules for every subassembly of three or more parts (see [`Rule`]).
+    Local,
+}
+
+/// Which rule chose a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Rule {
+    /// Ranked over every candidate of the subassembly's full motion space ([`best_step`]):
+    /// the widest-clearance face over every minimal moving set, with the preferences.
+    #[default]
+    Ranked,
+    /// A single part, from its own free directions: the widest-clearance face among
+    /// single parts (else an edge, else a vertex); a set of several parts may have had
+    /// a wider one.
+    Single,
+    /// Two touching parts together, from their own free directions (when no single part
+    /// leaves along a face): the widest-clearance face among such pairs.
+    Pair,
+    /// A likely direction (an axis, a tessellated cylinder's axis, a touching plane's
+    /// normal) that frees a subset: the first in a face, else the first at all, and the
+    /// smallest minimal moving set there.
+    Likely,
+    /// Ranked over the full motion space after no single part and no likely direction
+    /// split the subassembly (the check that says "interlocked" when nothing is found).
+    Full,
+}
+
+impl Rule {
+    /// The rule's key in JSON answers: `"ranked"`, `"single"`, `"pair"`, `"likely"`,
+    /// `"full"`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Rule::Ranked => "ranked",
+            Rule::Single => "single",
+            Rule::Pair => "pair",
+            Rule::Likely => "likely",
+            Rule::Full => "full",
+        }
+    }
 }
 
 /// Which steps of a plan keep their solutions ([`SequenceOptions::keep_solutions`]).
@@ -91,6 +150,8 @@ pub struct Step {
     /// (faces by decreasing clearance, then edges, then vertices); `None` unless
     /// [`SequenceOptions::keep_solutions`] asks for them.
     pub solutions: Option<Vec<Solution>>,
+    /// The rule that chose it.
+    pub rule: Rule,
 }
 
 impl Step {
@@ -136,9 +197,16 @@ pub struct Sequence {
     /// Seconds spent overlaying regions and analysing graphs for the steps (the shared
     /// pair regions are computed before, once); for [`sequence_first`], the whole plan.
     pub step_seconds: f64,
-    /// Subassemblies that [`sequence_first`] split (or found interlocked) from their own
-    /// pair regions because no likely direction freed a subset; 0 for [`sequence`].
+    /// Subassemblies that [`sequence_first`] or [`sequence_parts`] split (or found
+    /// interlocked) from their full motion space because no simpler move split them; 0
+    /// for [`sequence`].
     pub full_searches: usize,
+    /// The work of [`sequence_parts`]: singles computed, likely directions tried, steps
+    /// by rule (zero for the other planners).
+    pub local: LocalStats,
+    /// Pair regions made by [`sequence_parts`] (the others take them made), and their
+    /// counts and times.
+    pub regions: Option<(usize, crate::regions::RegionStats)>,
 }
 
 impl Sequence {
@@ -174,6 +242,8 @@ impl Sequence {
             stopped: false,
             step_seconds: 0.0,
             full_searches: 0,
+            local: LocalStats::default(),
+            regions: None,
         }
     }
 
@@ -211,12 +281,59 @@ pub fn sequence_with(
 ) -> Sequence {
     // Steps found so far: the index of the next one, for `keep_solutions`.
     let mut found_steps = 0;
-    let Ok(plan) = split_recursively(regions.names().to_vec(), opts, progress, |sub, inner| {
+    let Ok(plan) = split_recursively(
+        regions.names().to_vec(),
+        opts,
+        progress,
+        &mut |_| {},
+        |sub, inner| {
+            let keep = opts.keep_solutions.keeps(found_steps);
+            let found = best_step_with(regions, sub, opts, keep, inner).map(|found| {
+                found.map(|mut step| {
+                    if opts.tolerance {
+                        step.tolerance = Some(growth_tolerance(regions, &step));
+                    }
+                    step
+                })
+            });
+            if matches!(found, Ok(Some(_))) {
+                found_steps += 1;
+            }
+            Ok::<_, std::convert::Infallible>(found)
+        },
+    );
+    plan
+}
+
+/// A complete disassembly plan of `parts` whose cost per step follows what the step
+/// changes: pair regions are made when first needed, each part's free directions alone
+/// are kept and recomputed only when a part its union used leaves, and a subassembly's
+/// full motion space is built only when [`SequenceOptions::ranking`] asks for the full
+/// ranking or nothing simpler splits it ([`Rule`]; the [module docs of the planner]
+/// give the rules). Each step is handed to `on_step` as it is found; the stop flag of
+/// `progress` is watched before each step and between its phases, and
+/// [`Progress::affordable`] is asked before a motion space is built (refused, the run
+/// stops as if the flag rose, with the steps found so far).
+///
+/// With [`Ranking::Full`] the plan is [`sequence_with`]'s, step for step.
+///
+/// [module docs of the planner]: local
+pub fn sequence_parts(
+    parts: &[crate::regions::Part],
+    opts: &SequenceOptions,
+    progress: &Progress,
+    on_step: &mut dyn FnMut(&Step),
+) -> Result<Sequence, PlanError> {
+    let mut planner = local::Planner::new(parts, opts)?;
+    let names = parts.iter().map(|p| p.name.clone()).collect();
+    let mut found_steps = 0;
+    let mut plan = split_recursively(names, opts, progress, on_step, |sub, inner| {
         let keep = opts.keep_solutions.keeps(found_steps);
-        let found = best_step_with(regions, sub, opts, keep, inner).map(|found| {
-            found.map(|mut step| {
+        let found = planner.step(sub, keep, inner)?;
+        let found = found.map(|f| {
+            f.map(|mut step| {
                 if opts.tolerance {
-                    step.tolerance = Some(growth_tolerance(regions, &step));
+                    step.tolerance = Some(growth_of(&|k| parts[k].pieces.as_slice(), &step));
                 }
                 step
             })
@@ -224,20 +341,25 @@ pub fn sequence_with(
         if matches!(found, Ok(Some(_))) {
             found_steps += 1;
         }
-        Ok::<_, std::convert::Infallible>(found)
-    });
-    plan
+        Ok::<_, PlanError>(found)
+    })?;
+    plan.local = planner.stats;
+    plan.full_searches = planner.stats.full_searches;
+    plan.regions = Some((planner.regions_made(), planner.region_stats()));
+    Ok(plan)
 }
 
 /// The recursion of both planners: splits the whole assembly of parts `names`, then
 /// depth-first the side that moved before the side that stayed, each subassembly by
 /// `step` (given it and the silent progress for its own phases; `Ok(None)`:
-/// interlocked, `Err(Stopped)`: the flag rose), honouring `opts.max_depth`, reporting
+/// interlocked, `Err(Stopped)`: the flag rose), handing each step found to `on_step`
+/// as it is found (the order of [`Sequence::steps`]), honouring `opts.max_depth`, reporting
 /// the splits made ([`phases::SEQUENCE`]) and watching the stop flag before each step.
 fn split_recursively<E>(
     names: Vec<String>,
     opts: &SequenceOptions,
     progress: &Progress,
+    on_step: &mut dyn FnMut(&Step),
     mut step: impl FnMut(&[usize], &Progress) -> Result<Result<Option<Step>, Stopped>, E>,
 ) -> Result<Sequence, E> {
     let t = Instant::now();
@@ -275,6 +397,7 @@ fn split_recursively<E>(
                 step.depth = depth;
                 let rest = step.staying();
                 let moving = step.moving.clone();
+                on_step(&step);
                 plan.steps.push(step);
                 done += 1;
                 progress.report(phases::SEQUENCE, done, total);
@@ -382,11 +505,12 @@ fn best_step_with(
         tolerance: None,
         choice,
         solutions,
+        rule: Rule::Ranked,
     }))
 }
 
 /// The six axis directions +x, +y, +z, -x, -y, -z.
-fn axes() -> impl Iterator<Item = Vec3> {
+pub(crate) fn axes() -> impl Iterator<Item = Vec3> {
     (0..6).map(|k| {
         let mut c = [0i64; 3];
         c[k % 3] = if k < 3 { 1 } else { -1 };
@@ -396,7 +520,12 @@ fn axes() -> impl Iterator<Item = Vec3> {
 
 /// A solution of the (global) set `moving` along `d`, where it is free: its cell kind
 /// and clearance in `ms`.
-fn solution_at(ms: &MotionSpace, moving: Vec<usize>, local: &[usize], d: Vec3) -> Solution {
+pub(crate) fn solution_at(
+    ms: &MotionSpace,
+    moving: Vec<usize>,
+    local: &[usize],
+    d: Vec3,
+) -> Solution {
     let (cell, _) = ms.locate(&d);
     let clearance = if cell == CellKind::Face {
         free_clearance(ms, local, &d.unit_f64())
@@ -459,13 +588,18 @@ fn set_along_axes(regions: &BlockingRegions, ms: &MotionSpace, moving: &[usize])
 /// floating point (a tolerance to compare with manufacturing accuracy, not a
 /// combinatorial decision), to about 1e-9 relative.
 pub fn growth_tolerance(regions: &BlockingRegions, step: &Step) -> Tolerance {
+    growth_of(&|k| regions.pieces(k), step)
+}
+
+/// [`growth_tolerance`] with the pieces of part `k` given by `pieces(k)`.
+fn growth_of<'p>(pieces: &dyn Fn(usize) -> &'p [apart_pieces::Polytope], step: &Step) -> Tolerance {
     let d = step.unit;
     let rest: Vec<usize> = step.staying();
     let mut best = f64::INFINITY;
     for &i in &step.moving {
         for &j in &rest {
-            for a in regions.pieces(i) {
-                for b in regions.pieces(j) {
+            for a in pieces(i) {
+                for b in pieces(j) {
                     let Ok(m) = minkowski_difference(b, a) else {
                         continue;
                     };

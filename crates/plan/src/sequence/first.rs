@@ -41,18 +41,32 @@ pub fn sequence_first(
     opts: &SequenceOptions,
     progress: &Progress,
 ) -> Result<Sequence, PlanError> {
+    sequence_first_with(parts, opts, progress, &mut |_| {})
+}
+
+/// [`sequence_first`], handing each step to `on_step` as it is found.
+pub fn sequence_first_with(
+    parts: &[Part],
+    opts: &SequenceOptions,
+    progress: &Progress,
+    on_step: &mut dyn FnMut(&Step),
+) -> Result<Sequence, PlanError> {
     let query = DirectionQuery::new(parts)?;
     let names = parts.iter().map(|p| p.name.clone()).collect();
     let mut full_searches = 0;
-    let mut plan = split_recursively(names, opts, progress, |sub, inner| {
-        match likely_step(&query, sub, opts)? {
+    let mut plan = split_recursively(
+        names,
+        opts,
+        progress,
+        on_step,
+        |sub, inner| match likely_step(&query, sub, opts)? {
             Some(step) => Ok(Ok(Some(step))),
             None => {
                 full_searches += 1;
                 full_step(parts, sub, opts, inner)
             }
-        }
-    })?;
+        },
+    )?;
     plan.full_searches = full_searches;
     Ok(plan)
 }
@@ -66,64 +80,80 @@ fn likely_step(
 ) -> Result<Option<Step>, PlanError> {
     let candidates = query.candidates_in(sub);
     for (tried, d) in candidates.iter().enumerate() {
-        let ans = query.answer_in(sub, d)?;
-        // Each minimal set moves along d, or, holding the base, its complement moves
-        // along −d (the same relative motion). The motion space of a subassembly is
-        // symmetric under d -> −d, so both lie in cells of the same kind.
-        let Some((moving, direction)) = ans
-            .moving
-            .iter()
-            .map(|s| match opts.base {
-                Some(b) if s.contains(&b) => (
-                    sub.iter().copied().filter(|k| !s.contains(k)).collect(),
-                    ans.direction.neg(),
-                ),
-                _ => (s.clone(), ans.direction.clone()),
-            })
-            .min_by(|a: &(Vec<usize>, Vec3), b| {
-                a.0.len().cmp(&b.0.len()).then_with(|| a.0.cmp(&b.0))
-            })
-        else {
-            continue;
-        };
-        let rest: Vec<usize> = sub
-            .iter()
-            .copied()
-            .filter(|k| !moving.contains(k))
-            .collect();
-        let clearance_deg = if ans.cell == CellKind::Face {
-            query
-                .clearance_against(&direction, &moving, &rest)?
-                .to_degrees()
-        } else {
-            0.0
-        };
-        let keys = Keys {
-            connected: None,
-            single: moving.len() == 1,
-            axis: rank::is_axis(&direction),
-            cell: ans.cell,
-            clearance_deg,
-            parts: moving.len(),
-        };
-        return Ok(Some(Step {
-            subassembly: sub.to_vec(),
-            moving,
-            unit: direction.unit_f64(),
-            direction,
-            cell: ans.cell,
-            clearance_deg,
-            depth: 0,
-            tolerance: None,
-            choice: Choice {
-                keys,
-                candidates: tried + 1,
-                runner_up: None,
-            },
-            solutions: None,
-        }));
+        if let Some(mut step) = step_along(query, sub, opts, d)? {
+            step.choice.candidates = tried + 1;
+            return Ok(Some(step));
+        }
     }
     Ok(None)
+}
+
+/// The step of `sub` along `d` when `d` frees a subset of it: the smallest minimal
+/// moving set there (then the lowest part indices), or, holding the base, its
+/// complement along `−d`; `None` when nothing moves along `d`. A face step's clearance
+/// is the exact query's, an edge or vertex step's 0. (The step's
+/// [`Choice::candidates`] is 1: the caller counts the directions it tried.)
+pub(super) fn step_along(
+    query: &DirectionQuery,
+    sub: &[usize],
+    opts: &SequenceOptions,
+    d: &Vec3,
+) -> Result<Option<Step>, PlanError> {
+    let ans = query.answer_in(sub, d)?;
+    // Each minimal set moves along d, or, holding the base, its complement moves
+    // along −d (the same relative motion). The motion space of a subassembly is
+    // symmetric under d -> −d, so both lie in cells of the same kind.
+    let Some((moving, direction)) = ans
+        .moving
+        .iter()
+        .map(|s| match opts.base {
+            Some(b) if s.contains(&b) => (
+                sub.iter().copied().filter(|k| !s.contains(k)).collect(),
+                ans.direction.neg(),
+            ),
+            _ => (s.clone(), ans.direction.clone()),
+        })
+        .min_by(|a: &(Vec<usize>, Vec3), b| a.0.len().cmp(&b.0.len()).then_with(|| a.0.cmp(&b.0)))
+    else {
+        return Ok(None);
+    };
+    let rest: Vec<usize> = sub
+        .iter()
+        .copied()
+        .filter(|k| !moving.contains(k))
+        .collect();
+    let clearance_deg = if ans.cell == CellKind::Face {
+        query
+            .clearance_against(&direction, &moving, &rest)?
+            .to_degrees()
+    } else {
+        0.0
+    };
+    let keys = Keys {
+        connected: None,
+        single: moving.len() == 1,
+        axis: rank::is_axis(&direction),
+        cell: ans.cell,
+        clearance_deg,
+        parts: moving.len(),
+    };
+    Ok(Some(Step {
+        subassembly: sub.to_vec(),
+        moving,
+        unit: direction.unit_f64(),
+        direction,
+        cell: ans.cell,
+        clearance_deg,
+        depth: 0,
+        tolerance: None,
+        choice: Choice {
+            keys,
+            candidates: 1,
+            runner_up: None,
+        },
+        solutions: None,
+        rule: super::Rule::Likely,
+    }))
 }
 
 /// The ranked step of `sub` from its own pair regions (global indices in the step), or
@@ -156,6 +186,7 @@ fn full_step(
                 if let Some(r) = step.choice.runner_up.as_mut() {
                     r.moving = global(&r.moving);
                 }
+                step.rule = super::Rule::Full;
                 step
             })
         }),
