@@ -130,7 +130,7 @@ const CULL_MIN: usize = 1 << 8;
 const CULL_ROUND: usize = 1 << 10;
 
 /// The largest pieces of each part whose pairwise sums seed the culling union.
-const CULL_SEEDS_PER_PART: usize = 24;
+const CULL_SEEDS_PER_PART: usize = 8;
 
 /// Full sums whose polygons are made before those inside another are dropped.
 const PRUNE_CHUNK: usize = 1 << 14;
