@@ -1,34 +1,52 @@
 //! Bounds on a run: the phase it is in (named by every message that stops it), the
-//! `--timeout` watchdog, the `--max-memory` budget (a counting global allocator), and the
-//! parsers that check every numeric option, with its range, before any work starts.
+//! `--timeout` watchdog, the memory budget (a counting global allocator), Ctrl-C, and
+//! the parsers that check every numeric option, with its range, before any work starts.
 //!
-//! - `--timeout S`: a watchdog thread sleeps until the deadline. If a planner that
-//!   returns partial answers has started (pair regions and the motion space of
-//!   `partition`, the steps of `sequence`, the placements of `stack`: each is handed an
-//!   `apart::plan::Progress` by `output::planner`), the watchdog raises the shared stop
-//!   flag ([`stop_flag`]). The planners check it between units of work (part pairs,
-//!   culling rounds, batches of faces and cells, steps, candidates) and return what
-//!   they have, marked as stopped; the command prints that partial answer with the
-//!   status line "stopped by --timeout after S s during PHASE: partial answer" (in the
-//!   JSON `"status": "timeout"`, `"complete": false` and a `"stopped"` object), writes no
-//!   picture or export, and exits with [`EXIT_PARTIAL`] (3). Hard fallback: when no
-//!   answer is being printed [`grace`] seconds after the flag (a tenth of the timeout,
-//!   at least 5 s: one indivisible step such as the overlay's build may run on), the
-//!   watchdog prints "stopped after S s: PHASE" and ends the process with exit code 1,
-//!   as it does at once while the run is still loading (no answer yet) or in a command
-//!   without a partial answer (`check`, `decompose`, `place`, `separate`, `partition
-//!   --first` and `--direction`). Files being written then may be incomplete.
-//! - `--max-memory SIZE`: [`Budget`] wraps the system allocator and counts the bytes of
-//!   live heap allocations (not stack, code or mapped files, so the resident size is a
-//!   few MB larger). An allocation that would pass the budget prints "out of memory
-//!   budget (--max-memory SIZE) during PHASE" with a raw write (no allocation inside the
-//!   allocator) and exits with code 1 instead of allocating. Each thread settles its
-//!   count with the shared one every 256 KiB of traffic, so the budget holds to within
-//!   that much per thread. Without the flag nothing is counted: the allocator adds one
-//!   relaxed atomic load per call.
+//! Three things raise the planners' shared stop flag ([`stop_flag`]) once a planner
+//! that returns partial answers has started (pair regions and the motion space of
+//! `partition`, the steps of `sequence`, the placements of `stack`: each is handed an
+//! `apart::plan::Progress` by `output::planner`): the `--timeout` deadline, the memory
+//! budget's soft limit (or a motion space the planner estimates over what the budget
+//! leaves) and Ctrl-C. The first of them is recorded as the reason ([`Stopped`]). The
+//! planners check the flag between units of work (part pairs, culling rounds, batches
+//! of faces and cells, steps, candidates) and return what they have, marked as
+//! stopped; the command prints that partial answer with its status line ("stopped by
+//! --timeout after S s during PHASE: partial answer", and in the JSON `"complete":
+//! false`, `"status"` "timeout", "out of memory" or "interrupted" and a `"stopped"`
+//! object), writes no picture or export, and exits with [`EXIT_PARTIAL`] (3) after a
+//! timeout, 1 after the memory budget (with the error line "out of memory budget
+//! (--max-memory SIZE) during PHASE" after the answer), [`EXIT_INTERRUPTED`] (130)
+//! after Ctrl-C.
+//!
+//! - `--timeout S`: a watchdog thread sleeps until the deadline and raises the flag.
+//!   Hard fallback: when no answer is being printed [`grace`] seconds after the flag (a
+//!   tenth of the timeout, at least 5 s: one indivisible step such as the overlay's
+//!   build may run on), the watchdog prints "stopped after S s: PHASE" and ends the
+//!   process with exit code 1, as it does at once while the run is still loading (no
+//!   answer yet) or in a command without a partial answer (`check`, `decompose`,
+//!   `place`, `separate`, `partition --first` and `--direction`). Files being written
+//!   then may be incomplete.
+//! - The memory budget: `--max-memory SIZE`, or by default 80 % of the machine's memory
+//!   (the smaller of the physical memory and the cgroup's limit, [`machine_budget`]);
+//!   `--max-memory none` (or 0) sets none. [`Budget`] wraps the system allocator and
+//!   counts the bytes of live heap allocations (not stack, code or mapped files, so the
+//!   resident size is a few MB larger). Past 90 % of the budget while a planner runs
+//!   (the soft limit) it raises the stop flag (an atomic store, nothing allocated) for
+//!   the partial answer; an allocation that would pass the budget itself prints "out of
+//!   memory budget (--max-memory SIZE) during PHASE" with a raw write (no allocation
+//!   inside the allocator) and exits with code 1 instead of allocating. Each thread
+//!   settles its count with the shared one every 256 KiB of traffic, so the budget
+//!   holds to within that much per thread. Without a budget nothing is counted: the
+//!   allocator adds one relaxed atomic load per call.
+//! - Ctrl-C: while a planner with partial answers runs, the first Ctrl-C raises the
+//!   stop flag ([`install_interrupt`]); a second one, or one at any other time once the
+//!   handler is installed, ends the process at once with exit code 130. Before a
+//!   planner starts (loading), Ctrl-C keeps the system's default: the run ends at once.
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicIsize, AtomicUsize, Ordering, Ordering::Relaxed};
+use std::sync::atomic::{
+    AtomicBool, AtomicIsize, AtomicU64, AtomicU8, AtomicUsize, Ordering, Ordering::Relaxed,
+};
 use std::sync::{Arc, Mutex, OnceLock};
 
 /// What the run is doing now, for the messages that stop it.
@@ -51,8 +69,9 @@ pub fn phase() -> &'static str {
 /// Set once a limit has stopped the run: a second report (another thread passing the
 /// budget meanwhile) stays silent.
 static STOPPING: AtomicBool = AtomicBool::new(false);
-/// With `--json`, a stopped run also prints a JSON error object on standard output.
-static JSON: AtomicBool = AtomicBool::new(false);
+/// With `--json` (1), a stopped run also prints a JSON error object on standard output;
+/// with `sequence --jsonl` (2), a last line `{"event": "end", "valid": false, ...}`.
+static JSON: AtomicU8 = AtomicU8::new(0);
 
 /// A fixed buffer that formats without allocating (the allocator itself uses it).
 struct Buf {
@@ -122,9 +141,14 @@ fn stop(message: std::fmt::Arguments) -> ! {
     let _ = err.write_str("error: ");
     let _ = err.write_str(std::str::from_utf8(text.as_bytes()).unwrap_or("stopped"));
     let _ = err.write_str("\n");
-    if JSON.load(Relaxed) {
+    let json = JSON.load(Relaxed);
+    if json != 0 {
         let mut out = Buf::new();
-        let _ = out.write_str("\n{\"valid\": false, \"error\": \"");
+        let _ = out.write_str(if json == 2 {
+            "\n{\"event\": \"end\", \"valid\": false, \"error\": \""
+        } else {
+            "\n{\"valid\": false, \"error\": \""
+        });
         let _ = out.write_str(std::str::from_utf8(text.as_bytes()).unwrap_or("stopped"));
         let _ = out.write_str("\"}\n");
         raw_write(1, out.as_bytes());
@@ -138,9 +162,274 @@ fn claim_stop() -> bool {
     !STOPPING.swap(true, Relaxed)
 }
 
-/// Notes whether stopped runs also print a JSON error object.
+/// Notes whether stopped runs also print a JSON error object (`--json`).
 pub fn set_json(json: bool) {
-    JSON.store(json, Relaxed);
+    JSON.store(u8::from(json), Relaxed);
+}
+
+/// Notes that the answer is printed as JSON lines (`sequence --jsonl`): a stopped or
+/// failed run ends them with an "end" event holding the error.
+pub fn set_json_lines() {
+    JSON.store(2, Relaxed);
+}
+
+/// Whether the answer is printed as JSON lines ([`set_json_lines`]).
+pub fn json_lines() -> bool {
+    JSON.load(Relaxed) == 2
+}
+
+// ---------------------------------------------------------------------------
+// The stop flag and why it was raised
+
+/// Exit code of a run stopped by `--timeout` that printed its partial answer.
+pub const EXIT_PARTIAL: u8 = 3;
+
+/// Exit code of a run ended by Ctrl-C (128 + SIGINT, as a shell reports a run killed by
+/// it), with or without a partial answer.
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// When the run started, for the times of stops ([`start_clock`]).
+static START: OnceLock<std::time::Instant> = OnceLock::new();
+
+/// Starts the run's clock (first thing in `main`).
+pub fn start_clock() {
+    let _ = START.get_or_init(std::time::Instant::now);
+}
+
+/// Milliseconds since [`start_clock`] (0 before it); allocates nothing, so the allocator
+/// and the Ctrl-C handler may call it.
+fn elapsed_ms() -> u64 {
+    START.get().map_or(0, |t| {
+        u64::try_from(t.elapsed().as_millis()).unwrap_or(u64::MAX)
+    })
+}
+
+/// The stop flag every planner of the run watches.
+static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+
+/// The stop flag every planner of the run watches (raised by the `--timeout` watchdog,
+/// the memory budget and Ctrl-C). `main` makes it before the budget is set, so that
+/// the allocator and the signal handler only read it ([`raise_stop_flag`]).
+pub fn stop_flag() -> Arc<AtomicBool> {
+    FLAG.get_or_init(Arc::default).clone()
+}
+
+/// Raises the stop flag if it exists, without allocating (the allocator and the Ctrl-C
+/// handler call it).
+fn raise_stop_flag() {
+    if let Some(f) = FLAG.get() {
+        f.store(true, Ordering::Release);
+    }
+}
+
+/// Why the stop flag was raised: nothing yet, `--timeout`, the memory budget, Ctrl-C.
+const BY_NONE: u8 = 0;
+const BY_TIMEOUT: u8 = 1;
+const BY_MEMORY: u8 = 2;
+const BY_INTERRUPT: u8 = 3;
+/// The first reason to raise the stop flag (the one the answer names).
+static STOP_BY: AtomicU8 = AtomicU8::new(BY_NONE);
+/// Milliseconds after the start at which the reason was recorded.
+static STOP_AT_MS: AtomicU64 = AtomicU64::new(0);
+
+/// Records `by` as the reason for the stop unless another came first; true when it is
+/// the reason. Atomic stores only (the allocator and the signal handler call it).
+fn claim_reason(by: u8) -> bool {
+    let first = STOP_BY
+        .compare_exchange(BY_NONE, by, Relaxed, Relaxed)
+        .is_ok();
+    if first {
+        STOP_AT_MS.store(elapsed_ms(), Relaxed);
+    }
+    first
+}
+
+/// What the watchdog and the budget keeper note about a stop, beside its reason: the
+/// seconds to report, the phase, and a detail (the estimate refused).
+#[derive(Clone, Debug)]
+struct Note {
+    seconds: f64,
+    phase: &'static str,
+    detail: Option<String>,
+}
+
+static NOTE: Mutex<Option<Note>> = Mutex::new(None);
+
+fn note(n: Note) {
+    *NOTE.lock().unwrap_or_else(|e| e.into_inner()) = Some(n);
+}
+
+/// Set once a planner that returns partial answers has started: from then on the
+/// deadline raises the stop flag instead of ending the process at once.
+static PLANNING: AtomicBool = AtomicBool::new(false);
+/// Set while a planner that returns partial answers runs, until the command has its
+/// answer ([`end_planning`]): Ctrl-C then asks for the partial answer.
+static INTERRUPTIBLE: AtomicBool = AtomicBool::new(false);
+/// Set when the command starts printing an answer after the stop flag: the watchdog's
+/// hard fallback then stays silent.
+static ANSWERING: AtomicBool = AtomicBool::new(false);
+
+/// Notes that a planner returning partial answers has started (see the module comment),
+/// and installs the Ctrl-C handler.
+pub fn begin_planning() {
+    PLANNING.store(true, Relaxed);
+    INTERRUPTIBLE.store(true, Relaxed);
+    install_interrupt();
+}
+
+/// Notes that the planners are done: from here on Ctrl-C ends the run at once.
+pub fn end_planning() {
+    INTERRUPTIBLE.store(false, Relaxed);
+}
+
+/// What stopped a planner early.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopBy {
+    /// The `--timeout` deadline.
+    Timeout,
+    /// The memory budget: its soft limit, or an estimate over what it leaves.
+    Memory,
+    /// Ctrl-C.
+    Interrupt,
+}
+
+/// Why a planner stopped early, when, and in which phase.
+#[derive(Clone, Debug)]
+pub struct Stopped {
+    pub by: StopBy,
+    /// For a timeout, the `--timeout` given; otherwise the seconds since the start.
+    pub seconds: f64,
+    pub phase: &'static str,
+    /// For the memory budget: what was refused or how much was in use.
+    pub detail: Option<String>,
+}
+
+impl Stopped {
+    /// The answer's `"status"`: "timeout", "out of memory" or "interrupted".
+    pub fn status(&self) -> &'static str {
+        match self.by {
+            StopBy::Timeout => "timeout",
+            StopBy::Memory => "out of memory",
+            StopBy::Interrupt => "interrupted",
+        }
+    }
+
+    /// Who stopped the run, in the JSON's `"stopped"`: "--timeout", "--max-memory" (the
+    /// memory budget, given or by default) or "Ctrl-C".
+    pub fn by_key(&self) -> &'static str {
+        match self.by {
+            StopBy::Timeout => "--timeout",
+            StopBy::Memory => "--max-memory",
+            StopBy::Interrupt => "Ctrl-C",
+        }
+    }
+
+    /// The words for what is left unsplit: "stopped by --timeout".
+    pub fn short(&self) -> &'static str {
+        match self.by {
+            StopBy::Timeout => "stopped by --timeout",
+            StopBy::Memory => "stopped by the memory budget",
+            StopBy::Interrupt => "interrupted",
+        }
+    }
+
+    /// The exit code of the partial answer: 3 (timeout), 1 (memory), 130 (Ctrl-C).
+    pub fn exit_code(&self) -> u8 {
+        match self.by {
+            StopBy::Timeout => EXIT_PARTIAL,
+            StopBy::Memory => 1,
+            StopBy::Interrupt => EXIT_INTERRUPTED,
+        }
+    }
+
+    /// The error line printed after the partial answer, for a run that fails: "out of
+    /// memory budget (--max-memory SIZE) during PHASE".
+    pub fn error(&self) -> Option<String> {
+        (self.by == StopBy::Memory).then(|| {
+            let mut e = format!(
+                "out of memory budget (--max-memory {}) during {}",
+                limit_text(),
+                self.phase
+            );
+            if let Some(d) = &self.detail {
+                e.push_str(": ");
+                e.push_str(d);
+            }
+            e
+        })
+    }
+}
+
+impl std::fmt::Display for Stopped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.by {
+            StopBy::Timeout => write!(
+                f,
+                "stopped by --timeout after {} s during {}: partial answer",
+                self.seconds, self.phase
+            ),
+            StopBy::Memory => write!(
+                f,
+                "stopped by the memory budget (--max-memory {}) during {}: partial answer",
+                limit_text(),
+                self.phase
+            ),
+            StopBy::Interrupt => write!(
+                f,
+                "interrupted (Ctrl-C) after {:.1} s during {}: partial answer",
+                self.seconds, self.phase
+            ),
+        }
+    }
+}
+
+/// Why a planner returned stopped (which limit raised its flag, when, in which phase),
+/// called by the command before it prints the partial answer: from then on the
+/// watchdog's hard fallback stays silent.
+pub fn partial_answer(global: &crate::Global) -> Stopped {
+    ANSWERING.store(true, Relaxed);
+    // (Acquire: pairs with the release of the flag, after the reason was noted.)
+    let _ = stop_flag().load(Ordering::Acquire);
+    let noted = NOTE.lock().unwrap_or_else(|e| e.into_inner()).clone();
+    let since_start = STOP_AT_MS.load(Relaxed) as f64 / 1e3;
+    match STOP_BY.load(Relaxed) {
+        BY_MEMORY => {
+            let n = noted.unwrap_or_else(|| Note {
+                seconds: since_start,
+                phase: phase(),
+                detail: Some(format!(
+                    "{} MiB of heap in use, past 90 % of the budget",
+                    SOFT_LIVE.load(Relaxed) >> 20
+                )),
+            });
+            Stopped {
+                by: StopBy::Memory,
+                seconds: n.seconds,
+                phase: n.phase,
+                detail: n.detail,
+            }
+        }
+        BY_INTERRUPT => Stopped {
+            by: StopBy::Interrupt,
+            seconds: since_start,
+            phase: phase(),
+            detail: None,
+        },
+        // The watchdog's, or a flag raised by nobody known (taken as the timeout's).
+        _ => {
+            let n = noted.unwrap_or_else(|| Note {
+                seconds: global.timeout.unwrap_or(0.0),
+                phase: phase(),
+                detail: None,
+            });
+            Stopped {
+                by: StopBy::Timeout,
+                seconds: n.seconds,
+                phase: n.phase,
+                detail: None,
+            }
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -148,58 +437,6 @@ pub fn set_json(json: bool) {
 
 /// Largest `--timeout`, in seconds (one week).
 pub const MAX_TIMEOUT: f64 = 604_800.0;
-
-/// Exit code of a run stopped by `--timeout` that printed its partial answer.
-pub const EXIT_PARTIAL: u8 = 3;
-
-/// The stop flag every planner of the run watches (raised by the `--timeout` watchdog).
-pub fn stop_flag() -> Arc<AtomicBool> {
-    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(Arc::default).clone()
-}
-
-/// Set once a planner that returns partial answers has started: from then on the
-/// deadline raises the stop flag instead of ending the process at once.
-static PLANNING: AtomicBool = AtomicBool::new(false);
-/// Set when the command starts printing an answer after the stop flag: the watchdog's
-/// hard fallback then stays silent.
-static ANSWERING: AtomicBool = AtomicBool::new(false);
-/// The timeout and the phase the run was in when the watchdog raised the stop flag.
-static TIMED_OUT: Mutex<Option<(f64, &'static str)>> = Mutex::new(None);
-
-/// Notes that a planner returning partial answers has started (see the module comment).
-pub fn begin_planning() {
-    PLANNING.store(true, Relaxed);
-}
-
-/// Why a planner stopped early: `--timeout` after `seconds`, during `phase`.
-#[derive(Clone, Copy, Debug)]
-pub struct TimedOut {
-    pub seconds: f64,
-    pub phase: &'static str,
-}
-
-impl std::fmt::Display for TimedOut {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "stopped by --timeout after {} s during {}: partial answer",
-            self.seconds, self.phase
-        )
-    }
-}
-
-/// Why a planner returned stopped (the `--timeout` watchdog raised its flag, and when),
-/// called by the command before it prints the partial answer: from then on the
-/// watchdog's hard fallback stays silent.
-pub fn partial_answer(global: &crate::Global) -> TimedOut {
-    ANSWERING.store(true, Relaxed);
-    // (Acquire: pairs with the watchdog's release of the flag, after it noted the phase.)
-    let _ = stop_flag().load(Ordering::Acquire);
-    let noted = *TIMED_OUT.lock().unwrap_or_else(|e| e.into_inner());
-    let (seconds, phase) = noted.unwrap_or((global.timeout.unwrap_or(0.0), phase()));
-    TimedOut { seconds, phase }
-}
 
 /// Seconds a planner has, after the stop flag, to return its partial answer before the
 /// process is ended anyway: a tenth of the timeout, at least 5 s.
@@ -222,9 +459,15 @@ pub fn start_watchdog(seconds: f64) {
         .spawn(move || {
             sleep_until(deadline);
             if PLANNING.load(Relaxed) {
-                // Ask the planners for what they have.
-                *TIMED_OUT.lock().unwrap_or_else(|e| e.into_inner()) = Some((seconds, phase()));
-                stop_flag().store(true, Ordering::Release);
+                // Ask the planners for what they have (unless another limit already did).
+                if claim_reason(BY_TIMEOUT) {
+                    note(Note {
+                        seconds,
+                        phase: phase(),
+                        detail: None,
+                    });
+                }
+                raise_stop_flag();
                 let grace = grace(seconds);
                 sleep_until(deadline + std::time::Duration::from_secs_f64(grace));
                 if !ANSWERING.load(Relaxed) && claim_stop() {
@@ -250,15 +493,75 @@ pub fn start_watchdog(seconds: f64) {
 }
 
 // ---------------------------------------------------------------------------
-// --max-memory
+// Ctrl-C
+
+/// Ctrl-C presses seen by the handler.
+static INTERRUPTS: AtomicUsize = AtomicUsize::new(0);
+
+/// Installs the SIGINT handler (once): while a planner with partial answers runs, the
+/// first Ctrl-C records the reason and raises the stop flag; a second one, or one when
+/// no planner runs, ends the process at once with exit code 130. The handler only
+/// stores atomics, reads the clock and, to end the run, writes a fixed line and calls
+/// `_exit`: all async-signal-safe.
+#[cfg(unix)]
+#[allow(unsafe_code)]
+pub fn install_interrupt() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    extern "C" fn on_interrupt(_signal: libc::c_int) {
+        let first = INTERRUPTS.fetch_add(1, Relaxed) == 0;
+        if first && INTERRUPTIBLE.load(Relaxed) && !ANSWERING.load(Relaxed) {
+            claim_reason(BY_INTERRUPT);
+            raise_stop_flag();
+            const ASK: &[u8] = b"\ninterrupted: stopping for the partial answer (Ctrl-C again ends the run at once)\n";
+            // SAFETY: writing a static buffer to fd 2 is async-signal-safe.
+            unsafe { libc::write(2, ASK.as_ptr().cast(), ASK.len()) };
+            return;
+        }
+        const END: &[u8] = b"\nerror: interrupted (Ctrl-C)\n";
+        // SAFETY: write and _exit are async-signal-safe.
+        unsafe {
+            libc::write(2, END.as_ptr().cast(), END.len());
+            libc::_exit(EXIT_INTERRUPTED.into());
+        }
+    }
+    ONCE.call_once(|| {
+        // SAFETY: a zeroed sigaction is a valid value to fill in; the handler is an
+        // `extern "C"` function of the signature SIGINT expects.
+        unsafe {
+            let mut action: libc::sigaction = std::mem::zeroed();
+            action.sa_sigaction = on_interrupt as extern "C" fn(libc::c_int) as libc::sighandler_t;
+            action.sa_flags = libc::SA_RESTART;
+            libc::sigemptyset(&raw mut action.sa_mask);
+            libc::sigaction(libc::SIGINT, &raw const action, std::ptr::null_mut());
+        }
+    });
+}
+
+/// Without Unix signals, Ctrl-C keeps the system's default.
+#[cfg(not(unix))]
+pub fn install_interrupt() {}
+
+// ---------------------------------------------------------------------------
+// The memory budget
 
 /// The budget in bytes; 0: no budget, nothing counted.
 static LIMIT: AtomicUsize = AtomicUsize::new(0);
+/// The soft limit, 90 % of the budget: past it while planning, the stop flag is raised.
+static SOFT: AtomicUsize = AtomicUsize::new(usize::MAX);
+/// Set once the soft limit raised the stop flag.
+static SOFT_FIRED: AtomicBool = AtomicBool::new(false);
+/// The live bytes when the soft limit fired.
+static SOFT_LIVE: AtomicUsize = AtomicUsize::new(0);
 /// Live heap bytes allocated since the budget was set (frees of earlier allocations
 /// can make it slightly negative).
 static LIVE: AtomicIsize = AtomicIsize::new(0);
-/// The budget as a size (`4G`), for the message.
+/// The budget as a size (`4G`, or `19280M by default`), for the messages.
 static LIMIT_TEXT: OnceLock<String> = OnceLock::new();
+
+/// The budget as the messages name it.
+fn limit_text() -> &'static str {
+    LIMIT_TEXT.get().map_or("?", String::as_str)
+}
 
 /// A size in bytes as `4G`, `1536M`, `100K`, or bytes.
 pub fn size_text(bytes: u64) -> String {
@@ -273,15 +576,65 @@ pub fn size_text(bytes: u64) -> String {
 /// Smallest accepted `--max-memory`: below this even loading a small assembly fails.
 pub const MIN_MEMORY: u64 = 1 << 20;
 
-/// Sets the heap budget.
-pub fn set_memory_budget(bytes: u64) {
-    let _ = LIMIT_TEXT.set(size_text(bytes));
+/// The share of the machine's memory the default budget takes.
+pub const DEFAULT_SHARE: f64 = 0.8;
+
+/// The default budget: [`DEFAULT_SHARE`] of the smaller of the physical memory
+/// (`/proc/meminfo`'s MemTotal) and the cgroup's memory limit if one is set (v2
+/// `memory.max`, not "max"; v1 `memory.limit_in_bytes`), rounded down to a whole MiB;
+/// `None` where neither can be read.
+pub fn machine_budget() -> Option<u64> {
+    let read = |p: &str| std::fs::read_to_string(p).ok();
+    let total = read("/proc/meminfo").and_then(|t| {
+        t.lines()
+            .find_map(|l| l.strip_prefix("MemTotal:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+            .map(|kb| kb.saturating_mul(1024))
+    });
+    // The cgroup's own folder (v2: the line "0::/path" of /proc/self/cgroup), and the
+    // root of the cgroup namespace, which a container sees as its own.
+    let own = read("/proc/self/cgroup").and_then(|t| {
+        t.lines()
+            .find_map(|l| l.strip_prefix("0::"))
+            .map(|p| p.trim().to_string())
+    });
+    let mut files = vec!["/sys/fs/cgroup/memory.max".to_string()];
+    if let Some(p) = own.filter(|p| p != "/" && !p.contains("..")) {
+        files.push(format!("/sys/fs/cgroup{p}/memory.max"));
+    }
+    files.push("/sys/fs/cgroup/memory/memory.limit_in_bytes".into());
+    let cgroup = files
+        .iter()
+        .filter_map(|f| read(f))
+        .filter_map(|t| t.trim().parse::<u64>().ok())
+        // v1 says "no limit" with a huge number.
+        .filter(|&b| b > 0 && b < 1 << 60)
+        .min();
+    let memory = match (total, cgroup) {
+        (Some(t), Some(c)) => t.min(c),
+        (t, c) => t.or(c)?,
+    };
+    let budget = (memory as f64 * DEFAULT_SHARE) as u64 >> 20 << 20;
+    (budget >= MIN_MEMORY).then_some(budget)
+}
+
+/// Sets the heap budget: `bytes` from `--max-memory`, or the machine's default
+/// (`default`, named so in the messages).
+pub fn set_memory_budget(bytes: u64, default: bool) {
+    let text = if default {
+        format!("{} by default", size_text(bytes))
+    } else {
+        size_text(bytes)
+    };
+    let _ = LIMIT_TEXT.set(text);
     LIVE.store(0, Relaxed);
-    LIMIT.store(usize::try_from(bytes).unwrap_or(usize::MAX), Relaxed);
+    let limit = usize::try_from(bytes).unwrap_or(usize::MAX);
+    SOFT.store(limit / 10 * 9, Relaxed);
+    LIMIT.store(limit, Relaxed);
 }
 
 /// The global allocator: the system allocator, counting live bytes against the
-/// `--max-memory` budget when one is set.
+/// memory budget when one is set.
 pub struct Budget;
 
 /// Bytes a thread may allocate or free before it settles with the shared count: the
@@ -297,7 +650,8 @@ thread_local! {
 }
 
 /// Counts `delta` bytes (allocated: positive, freed: negative) when a budget is set,
-/// and ends the run when the live bytes pass it.
+/// raises the stop flag past the soft limit, and ends the run when the live bytes pass
+/// the budget.
 #[inline]
 fn account(delta: isize) {
     let limit = LIMIT.load(Relaxed);
@@ -318,10 +672,29 @@ fn account(delta: isize) {
         .unwrap_or(Some(delta));
     if let Some(d) = settle {
         let live = LIVE.fetch_add(d, Relaxed).saturating_add(d);
-        if d > 0 && live > 0 && live as usize > limit && claim_stop() {
-            over_budget(live as usize);
+        if d > 0 && live > 0 {
+            let live = live as usize;
+            if live > limit && claim_stop() {
+                over_budget(live);
+            }
+            if live > SOFT.load(Relaxed) {
+                soft_limit(live);
+            }
         }
     }
+}
+
+/// Past the soft limit: while a planner runs, asks it for its partial answer (once).
+/// Atomic operations only: it runs inside the allocator.
+#[cold]
+fn soft_limit(live: usize) {
+    if !INTERRUPTIBLE.load(Relaxed) || SOFT_FIRED.swap(true, Relaxed) {
+        return;
+    }
+    if claim_reason(BY_MEMORY) {
+        SOFT_LIVE.store(live, Relaxed);
+    }
+    raise_stop_flag();
 }
 
 #[inline]
@@ -331,18 +704,43 @@ fn charge(bytes: usize) {
 
 #[cold]
 fn over_budget(live: usize) -> ! {
-    let text = LIMIT_TEXT.get().map_or("?", String::as_str);
     stop(format_args!(
-        "out of memory budget (--max-memory {text}) during {}: {} MiB of heap asked for",
+        "out of memory budget (--max-memory {}) during {}: {} MiB of heap asked for",
+        limit_text(),
         phase(),
         live >> 20
     ))
 }
 
-/// Heap bytes still free under the `--max-memory` budget (`None`: no budget).
+/// Heap bytes still free under the memory budget (`None`: no budget).
 pub fn memory_left() -> Option<u64> {
     let limit = LIMIT.load(Relaxed);
     (limit != 0).then(|| (limit as i64 - LIVE.load(Relaxed).max(0) as i64).max(0) as u64)
+}
+
+/// The planners' budget question ([`apart::plan::Progress::with_budget`]): whether
+/// `bytes`, estimated for what `phase` is about to build, fit in what the budget
+/// leaves. When they do not, the reason and the estimate are recorded (the planner
+/// then raises the stop flag and returns its partial answer).
+pub fn affordable(phase: &'static str, bytes: u64) -> bool {
+    let Some(left) = memory_left() else {
+        return true;
+    };
+    if bytes <= left {
+        return true;
+    }
+    if claim_reason(BY_MEMORY) {
+        note(Note {
+            seconds: elapsed_ms() as f64 / 1e3,
+            phase,
+            detail: Some(format!(
+                "the {phase} needs at least {} MiB, {} MiB are left",
+                bytes >> 20,
+                left >> 20
+            )),
+        });
+    }
+    false
 }
 
 /// An estimate of the motion space below this many bytes builds without a word.
@@ -350,8 +748,8 @@ const QUIET_ESTIMATE: u64 = 2 << 30;
 
 /// Before the motion space of `subset` is built: refuses it when its estimated memory
 /// (a lower bound: the arcs and the cells' blocking statuses, measured to be 1.5–3 times
-/// below the real peak on lattices of 200–1000 cubes) exceeds what `--max-memory` leaves,
-/// and warns when it is large and no budget is set.
+/// below the real peak on lattices of 200–1000 cubes) exceeds what the memory budget
+/// leaves, and warns when it is large and no budget is set (`--max-memory none`).
 pub fn check_motion_space(
     regions: &apart::plan::BlockingRegions,
     subset: &[usize],
@@ -367,9 +765,9 @@ pub fn check_motion_space(
     );
     match memory_left() {
         Some(left) if e.bytes > left => {
-            let text = LIMIT_TEXT.get().map_or("?", String::as_str);
             anyhow::bail!(
-                "out of memory budget (--max-memory {text}): {what}, {} MiB are left",
+                "out of memory budget (--max-memory {}): {what}, {} MiB are left",
+                limit_text(),
                 left >> 20
             )
         }
@@ -527,6 +925,22 @@ pub fn memory_size(text: &str) -> Result<u64, String> {
         return Err(format!("is too large: {text}"));
     }
     Ok(bytes as u64)
+}
+
+/// `--max-memory`: a size as [`memory_size`] reads it, or `none` (or `0`) for no
+/// budget, given as 0.
+pub fn memory_budget(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    if t.eq_ignore_ascii_case("none") || t.parse::<f64>().is_ok_and(|v| v == 0.0) {
+        return Ok(0);
+    }
+    memory_size(text).map_err(|e| {
+        if e.starts_with("must be a size") {
+            format!("{e} (or none: no budget)")
+        } else {
+            e
+        }
+    })
 }
 
 /// `--limit`: 1 or more moving sets.
@@ -695,6 +1109,12 @@ mod tests {
         assert_eq!(memory_size("1048576"), Ok(1 << 20));
         for bad in ["", "G", "4X", "-1G", "nan", "inf", "0", "1K", "1e300T"] {
             assert!(memory_size(bad).is_err(), "{bad}");
+        }
+        assert_eq!(memory_budget("none"), Ok(0));
+        assert_eq!(memory_budget("0"), Ok(0));
+        assert_eq!(memory_budget("2M"), Ok(2 << 20));
+        for bad in ["", "4X", "1K", "-1"] {
+            assert!(memory_budget(bad).is_err(), "{bad}");
         }
         assert_eq!(threads("1"), Ok(1));
         assert_eq!(threads("1024"), Ok(1024));

@@ -9,7 +9,8 @@ mod output;
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
 
-/// Counts live heap bytes against `--max-memory` (nothing is counted without it).
+/// Counts live heap bytes against the memory budget (`--max-memory`, 80 % of the
+/// machine's memory by default; nothing is counted with `--max-memory none`).
 #[global_allocator]
 static ALLOCATOR: limits::Budget = limits::Budget;
 
@@ -19,11 +20,15 @@ Exit codes:
   0  the answer is yes (valid, comes apart, fits, every part stacked), or there is
      nothing to separate (an assembly of one part)
   1  usage error (unknown command or option, missing path, option value out of its
-     range), invalid input, a failure, or a run stopped by --max-memory, or by
-     --timeout before it had a partial answer
+     range), invalid input, a failure, or a run stopped by the memory budget (after
+     the partial answer of partition, sequence and stack, status \"out of memory\"),
+     or by --timeout before it had a partial answer
   2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete
   3  stopped by --timeout with a partial answer (partition, sequence, stack): what was
-     found until then, with status \"timeout\" in the JSON";
+     found until then, with status \"timeout\" in the JSON
+130  interrupted by Ctrl-C: partition, sequence and stack print their partial answer
+     (status \"interrupted\"); a second Ctrl-C, or one while loading, ends the run
+     at once";
 
 /// Exact assembly partitioning of polyhedral parts.
 #[derive(Parser)]
@@ -92,10 +97,15 @@ pub struct Global {
     /// the run ends with "stopped after S s: PHASE" and exit code 1.
     #[arg(long, global = true, value_name = "SECONDS", value_parser = limits::timeout, allow_negative_numbers = true)]
     pub timeout: Option<f64>,
-    /// Stop the run, with exit code 1, when its live heap memory would pass SIZE (4G,
-    /// 500M, 1.5G or bytes; K, M, G, T are powers of 1024; at least 1M). Counts heap
-    /// allocations only (the resident size is a few MB more). Default: no limit.
-    #[arg(long, global = true, value_name = "SIZE", value_parser = limits::memory_size, allow_negative_numbers = true)]
+    /// The memory budget: SIZE of live heap memory (4G, 500M, 1.5G or bytes; K, M, G, T
+    /// are powers of 1024; at least 1M), or none (or 0) for no budget. Default: 80 % of
+    /// the machine's memory (the smaller of the physical memory and the cgroup's limit).
+    /// Past 90 % of it partition, sequence and stack stop their planner and print the
+    /// answer found so far (status "out of memory"); a run that would pass the budget
+    /// itself ends at once. Either way the run ends with "out of memory budget
+    /// (--max-memory SIZE) during PHASE" and exit code 1. Counts heap allocations only
+    /// (the resident size is a few MB more).
+    #[arg(long, global = true, value_name = "SIZE|none", value_parser = limits::memory_budget, allow_negative_numbers = true)]
     pub max_memory: Option<u64>,
 }
 
@@ -134,6 +144,9 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    limits::start_clock();
+    // Made now, so that the allocator and the Ctrl-C handler only read it.
+    let _ = limits::stop_flag();
     apart::formats::quiet_parser_panics();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -148,8 +161,15 @@ fn main() -> ExitCode {
         output::fail(&cli.global, &e);
         return ExitCode::FAILURE;
     }
-    if let Some(bytes) = cli.global.max_memory {
-        limits::set_memory_budget(bytes);
+    match cli.global.max_memory {
+        // --max-memory none
+        Some(0) => {}
+        Some(bytes) => limits::set_memory_budget(bytes, false),
+        None => {
+            if let Some(bytes) = limits::machine_budget() {
+                limits::set_memory_budget(bytes, true);
+            }
+        }
     }
     if let Some(s) = cli.global.timeout {
         limits::start_watchdog(s);

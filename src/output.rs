@@ -1,7 +1,7 @@
 //! Output shared by the commands: numbers in input units, tables, problems, JSON, the
 //! progress bars, the status of a partial answer, and the one-line failure message.
 
-use crate::limits::TimedOut;
+use crate::limits::Stopped;
 use crate::Global;
 use apart::assembly::{LoadSeconds, Progress, ProgressFn};
 use apart::kernel::Aabb;
@@ -236,6 +236,17 @@ pub fn counter(global: &Global, label: &'static str, total: u64) -> ProgressBar 
 /// A phase of a run, from [`phase`] until dropped.
 pub struct Phase(Option<ProgressBar>);
 
+impl Phase {
+    /// Runs `f` (which prints on standard output) with the phase's bar, if any, hidden
+    /// meanwhile, so that lines printed while it runs are not drawn over.
+    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+        match &self.0 {
+            Some(bar) => bar.suspend(f),
+            None => f(),
+        }
+    }
+}
+
 impl Drop for Phase {
     fn drop(&mut self) {
         if let Some(bar) = &self.0 {
@@ -267,8 +278,10 @@ pub fn phase(global: &Global, label: &'static str) -> Phase {
 /// [`Progress`](apart::plan::Progress) to give the planner. Its callback names each of
 /// the planner's own phases to the `--timeout` and `--max-memory` messages and, on a
 /// terminal, drives a bar with the counts ("pair regions [=====>    ] 5120/11175 3s");
-/// its stop flag is the run's ([`crate::limits::stop_flag`]), which `--timeout` raises:
-/// from here on a timeout asks for the partial answer instead of ending the process.
+/// its stop flag is the run's ([`crate::limits::stop_flag`]), which `--timeout`, the
+/// memory budget's soft limit and Ctrl-C raise: from here on they ask for the partial
+/// answer instead of ending the process; and it asks the memory budget before it builds
+/// a motion space whose memory it estimated ([`crate::limits::affordable`]).
 pub fn planner(global: &Global, label: &'static str) -> (Phase, apart::plan::Progress) {
     set_quiet(global.quiet);
     crate::limits::set_phase(label);
@@ -293,42 +306,47 @@ pub fn planner(global: &Global, label: &'static str) -> (Phase, apart::plan::Pro
             b.set_position(done as u64);
         }
     })
-    .with_stop_flag(crate::limits::stop_flag());
+    .with_stop_flag(crate::limits::stop_flag())
+    .with_budget(crate::limits::affordable);
     (Phase(bar), progress)
 }
 
 /// Where a partial answer stopped, in the JSON (`"stopped"`).
 #[derive(serde::Serialize)]
 pub struct StoppedJson {
-    /// What stopped it: "--timeout".
+    /// What stopped it: "--timeout", "--max-memory" (the memory budget, given or by
+    /// default) or "Ctrl-C".
     pub by: &'static str,
+    /// The `--timeout` given; otherwise the seconds from the start of the run.
     pub after_seconds: f64,
     pub phase: &'static str,
+    /// For the memory budget: the estimate refused, or the heap in use.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
 }
 
-/// The status of an answer in the JSON: "done", or "timeout" for a partial answer.
-pub fn status(stop: &Option<TimedOut>) -> &'static str {
-    if stop.is_some() {
-        "timeout"
-    } else {
-        "done"
-    }
+/// The status of an answer in the JSON: "done", or for a partial answer "timeout",
+/// "out of memory" or "interrupted".
+pub fn status(stop: &Option<Stopped>) -> &'static str {
+    stop.as_ref().map_or("done", Stopped::status)
 }
 
 /// The `"stopped"` object of a partial answer.
-pub fn stopped_json(stop: &Option<TimedOut>) -> Option<StoppedJson> {
-    stop.map(|t| StoppedJson {
-        by: "--timeout",
+pub fn stopped_json(stop: &Option<Stopped>) -> Option<StoppedJson> {
+    stop.as_ref().map(|t| StoppedJson {
+        by: t.by_key(),
         after_seconds: t.seconds,
         phase: t.phase,
+        detail: t.detail.clone(),
     })
 }
 
 /// The status of a planner's answer: `None` when it ran to its end; for a partial
 /// answer (`stopped`), why, announced on standard error ("warning: stopped by --timeout
 /// after 2 s during sequence steps: partial answer", and that the pictures and exports
-/// asked for, when `files`, are not written).
-pub fn partial(global: &Global, stopped: bool, files: bool) -> Option<TimedOut> {
+/// asked for, when `files`, are not written). From here on Ctrl-C ends the run at once.
+pub fn partial(global: &Global, stopped: bool, files: bool) -> Option<Stopped> {
+    crate::limits::end_planning();
     if !stopped {
         return None;
     }
@@ -340,8 +358,26 @@ pub fn partial(global: &Global, stopped: bool, files: bool) -> Option<TimedOut> 
     Some(t)
 }
 
+/// The exit code of an answer printed: for a partial answer its stop's (3 after
+/// `--timeout`, 130 after Ctrl-C, 1 after the memory budget, whose error line "out of
+/// memory budget (--max-memory SIZE) during PHASE" is printed now, after the answer);
+/// otherwise `answer`.
+pub fn exit_code(stop: &Option<Stopped>, answer: std::process::ExitCode) -> std::process::ExitCode {
+    match stop {
+        None => answer,
+        Some(t) => {
+            if let Some(e) = t.error() {
+                use std::io::Write;
+                let _ = std::io::stdout().flush();
+                eline(format_args!("error: {e}"));
+            }
+            std::process::ExitCode::from(t.exit_code())
+        }
+    }
+}
+
 /// Reports a failure that stopped a command: one clear line on standard error (and a
-/// JSON object on standard output with `--json`).
+/// JSON object on standard output with `--json`, an "end" line with `sequence --jsonl`).
 pub fn fail(global: &Global, e: &anyhow::Error) {
     // The chain of causes, skipping a cause whose text its parent already shows.
     let mut msg = e.to_string();
@@ -351,9 +387,14 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
             msg = format!("{msg}: {c}");
         }
     }
+    use std::io::Write;
     if global.json {
         let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
+    } else if crate::limits::json_lines() {
+        let mut out = std::io::stdout().lock();
+        let end = serde_json::json!({ "event": "end", "valid": false, "error": msg });
+        let _ = writeln!(out, "{end}");
+        let _ = out.flush();
     }
-    use std::io::Write;
     let _ = writeln!(std::io::stderr().lock(), "error: {msg}");
 }

@@ -104,7 +104,8 @@ fn numeric_options_are_checked_with_their_range_before_any_work() {
         (&["check", "nowhere", "--timeout", "nan"], "finite"),
         (&["check", "nowhere", "--timeout", "1e9"], "at most 604800"),
         (&["check", "nowhere", "--max-memory", "4X"], "such as 4G"),
-        (&["check", "nowhere", "--max-memory", "0"], "at least 1M"),
+        (&["check", "nowhere", "--max-memory", "100K"], "at least 1M"),
+        (&["check", "nowhere", "--max-memory", "nothing"], "or none"),
         (
             &["stack", "nowhere.off", "--count", "1000000000"],
             "from 1 to 1000",
@@ -498,18 +499,6 @@ fn decompose_keeps_parts_whose_file_names_collide_and_never_writes_into_its_inpu
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `n × n × n` touching unit cubes, one file each in `dir`: a block that comes apart a
-/// corner cube at a time, `n³ − 1` steps (5: 7 s of steps on the 2-core machine).
-fn block_of_cubes(dir: &Path, n: i64) {
-    for x in 0..n {
-        for y in 0..n {
-            for z in 0..n {
-                std::fs::write(dir.join(format!("c{x}{y}{z}.off")), cube_off([x, y, z])).unwrap();
-            }
-        }
-    }
-}
-
 /// Runs `args` with `--timeout T` for growing T until the run is stopped after loading
 /// (exit code 3) and `accept`s its output: a loaded machine may still be loading at a
 /// short timeout, which ends the run at once (exit code 1, "stopped after T s:
@@ -540,7 +529,9 @@ fn stopped_after_loading(
 #[test]
 fn timeout_returns_the_partial_plan_with_its_status() {
     let dir = scratch("timeout-sequence");
-    block_of_cubes(&dir, 5);
+    // The full ranking (an overlay of every pair left, per step) keeps 216 cubes busy
+    // for tens of seconds, whatever the machine: the timeouts below stop it mid-plan.
+    lattice(&dir, 6);
     let path = dir.display().to_string();
     let names: Vec<String> = {
         let mut n: Vec<String> = std::fs::read_dir(&dir)
@@ -565,10 +556,14 @@ fn timeout_returns_the_partial_plan_with_its_status() {
             "sequence",
             &path,
             "--json",
+            "--ranking",
+            "full",
+            "--threads",
+            "1",
             "--glb",
             dir.join("x.glb").to_str().unwrap(),
         ],
-        &["1.5", "3", "6"],
+        &["1", "2", "4"],
         has_steps,
     );
     assert!(start.elapsed().as_secs_f64() < 60.0);
@@ -607,7 +602,7 @@ fn timeout_returns_the_partial_plan_with_its_status() {
         v
     };
     let steps = v["steps"].as_array().unwrap();
-    assert!(!steps.is_empty() && steps.len() < 124, "{}", steps.len());
+    assert!(!steps.is_empty() && steps.len() < 999, "{}", steps.len());
     let mut open: Vec<Vec<String>> = vec![names.clone()];
     for s in steps {
         let sub = set(&s["subassembly"]);
@@ -653,9 +648,11 @@ fn timeout_returns_the_partial_plan_with_its_status() {
     assert!(v["stuck"].as_array().unwrap().is_empty());
 
     // In text: the status line, the steps, and what is not yet split.
-    let (out, t) = stopped_after_loading(&["sequence", &path], &["1.5", "3", "6"], |out| {
-        stdout(out).contains("1. split")
-    });
+    let (out, t) = stopped_after_loading(
+        &["sequence", &path, "--ranking", "full", "--threads", "1"],
+        &["1", "2", "4"],
+        |out| stdout(out).contains("1. split"),
+    );
     let text = stdout(&out);
     assert!(
         text.contains(&format!("stopped by --timeout after {t} s during ")),
@@ -817,19 +814,349 @@ fn max_memory_refuses_a_motion_space_estimated_over_budget_before_building_it() 
     // about 50 MiB more: refused with the estimate, before the arrangement is built.
     let dir = scratch("estimate");
     loose_cubes(&dir, 150);
-    for command in ["partition", "sequence"] {
-        let out = run(&[command, dir.to_str().unwrap(), "--max-memory", "45M"]);
-        let err = stderr(&out);
-        assert_eq!(out.status.code(), Some(1), "{err}");
-        assert!(
-            err.contains("out of memory budget (--max-memory 45M): the motion space of 150 parts"),
-            "{err}"
+    let out = run(&["partition", dir.to_str().unwrap(), "--max-memory", "45M"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("out of memory budget (--max-memory 45M): the motion space of 150 parts"),
+        "{err}"
+    );
+    assert!(
+        err.contains("needs at least") && err.contains("MiB are left"),
+        "{err}"
+    );
+    // The full ranking of sequence asks the budget before it builds the motion space of
+    // all 150 parts (its pair regions, kept for later steps, fit in 64M): refused, the
+    // run returns its partial answer (no step yet), then the error with the estimate.
+    let out = run(&[
+        "sequence",
+        dir.to_str().unwrap(),
+        "--ranking",
+        "full",
+        "--max-memory",
+        "64M",
+        "--json",
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "error: out of memory budget (--max-memory 64M) during motion space: the motion space needs at least"
+        ) && err.contains("MiB are left"),
+        "{err}"
+    );
+    let v = json(&out);
+    assert_eq!(v["status"], "out of memory");
+    assert_eq!(v["complete"], false);
+    assert_eq!(v["stopped"]["by"], "--max-memory");
+    assert_eq!(v["stopped"]["phase"], "motion space");
+    assert_eq!(v["steps"].as_array().map(Vec::len), Some(0));
+    assert_eq!(v["not_yet_split"][0].as_array().map(Vec::len), Some(150));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// An `n × n × n` lattice of touching unit cubes `c_X_Y_Z`, one file each in `dir`: a
+/// block that comes apart a corner cube at a time, `n³ − 1` steps (10: about 8 s on one
+/// thread of the 2-core machine).
+fn lattice(dir: &Path, n: i64) {
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                let name = format!("c_{x}_{y}_{z}.off");
+                std::fs::write(dir.join(name), cube_off([x, y, z])).unwrap();
+            }
+        }
+    }
+}
+
+/// The lines of a `sequence --jsonl` answer: the step events (checked to be numbered
+/// 1, 2, ... in order) and the end event, if the run printed one.
+fn json_lines(out: &Output) -> (Vec<Value>, Option<Value>) {
+    let text = stdout(out);
+    let mut steps = Vec::new();
+    let mut end = None;
+    for line in text.lines().filter(|l| !l.trim().is_empty()) {
+        let v: Value = serde_json::from_str(line)
+            .unwrap_or_else(|e| panic!("not a JSON line ({e}): {line}\n{}", stderr(out)));
+        assert!(end.is_none(), "a line after the end event: {line}");
+        match v["event"].as_str() {
+            Some("step") => {
+                assert_eq!(v["index"].as_u64(), Some(steps.len() as u64 + 1), "{line}");
+                steps.push(v);
+            }
+            Some("end") => end = Some(v),
+            _ => panic!("not an event: {line}"),
+        }
+    }
+    (steps, end)
+}
+
+/// The names of a JSON list, sorted.
+fn name_set(x: &Value) -> Vec<String> {
+    let mut v: Vec<String> = x
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap().to_string())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Checks that `steps` split open subassemblies of `parts` in turn and that what is left
+/// open (singletons aside) is exactly `pending`.
+fn check_partial_plan(parts: &Value, steps: &[Value], pending: &Value) {
+    let mut open: Vec<Vec<String>> = vec![name_set(parts)];
+    for s in steps {
+        let sub = name_set(&s["subassembly"]);
+        let moving = name_set(&s["moving"]);
+        let k = open
+            .iter()
+            .position(|o| *o == sub)
+            .unwrap_or_else(|| panic!("splits no open subassembly: {s}"));
+        open.remove(k);
+        assert!(!moving.is_empty() && moving.len() < sub.len(), "{s}");
+        assert!(moving.iter().all(|m| sub.contains(m)), "{s}");
+        assert!(s["rule"].is_string(), "{s}");
+        open.push(
+            sub.iter()
+                .filter(|p| !moving.contains(p))
+                .cloned()
+                .collect(),
         );
-        assert!(
-            err.contains("needs at least") && err.contains("MiB are left"),
-            "{err}"
+        open.push(moving);
+    }
+    let mut left: Vec<Vec<String>> = open.into_iter().filter(|o| o.len() > 1).collect();
+    let mut pending: Vec<Vec<String>> = pending.as_array().unwrap().iter().map(name_set).collect();
+    left.sort();
+    pending.sort();
+    assert_eq!(left, pending);
+}
+
+#[test]
+fn a_sequence_over_its_memory_budget_keeps_the_steps_it_streamed() {
+    // 216 touching cubes on one thread (so the heap counts do not depend on the machine):
+    // the budget is bisected between one too small for any step and one the whole plan
+    // fits in, until a run is stopped by the budget after some steps. Every run over its
+    // budget ends with exit code 1 and the error naming the budget and the phase, after
+    // the steps it found (each printed as a JSON line as it was found).
+    let dir = scratch("memory-sequence");
+    lattice(&dir, 6);
+    let path = dir.display().to_string();
+    let attempt = |bytes: u64| -> Output {
+        run(&[
+            "sequence",
+            &path,
+            "--jsonl",
+            "--threads",
+            "1",
+            "--max-memory",
+            &bytes.to_string(),
+        ])
+    };
+    let (mut lo, mut hi) = (1u64 << 20, 1u64 << 30);
+    let mut found = None;
+    for _ in 0..24 {
+        if hi - lo < 4096 {
+            break;
+        }
+        let mid = (lo + hi) / 2;
+        let out = attempt(mid);
+        let err = stderr(&out);
+        match out.status.code() {
+            Some(0) => {
+                let (steps, end) = json_lines(&out);
+                let end = end.expect("an end line");
+                assert_eq!(end["complete"], true, "{end}");
+                assert_eq!(steps.len(), 215);
+                hi = mid;
+            }
+            Some(1) => {
+                assert!(
+                    err.contains("error: out of memory budget (--max-memory ")
+                        && err.contains(") during "),
+                    "{err}"
+                );
+                assert!(!err.contains("panicked"), "{err}");
+                let (steps, end) = json_lines(&out);
+                if let Some(end) = &end {
+                    // The soft limit's partial answer, or the hard limit's error object.
+                    if end["valid"] == false {
+                        assert!(end["error"]
+                            .as_str()
+                            .unwrap()
+                            .contains("out of memory budget"));
+                    } else {
+                        assert_eq!(end["status"], "out of memory", "{end}");
+                        assert_eq!(end["complete"], false, "{end}");
+                        assert_eq!(end["stopped"]["by"], "--max-memory", "{end}");
+                        assert_eq!(end["step_count"].as_u64(), Some(steps.len() as u64));
+                        check_partial_plan(&end["parts"], &steps, &end["not_yet_split"]);
+                        if !steps.is_empty() {
+                            found = Some((mid, steps.len()));
+                            break;
+                        }
+                    }
+                }
+                lo = mid;
+            }
+            code => panic!("--max-memory {mid}: exit code {code:?}: {err}"),
+        }
+    }
+    let (bytes, steps) = found.expect("a budget that stops the plan after some steps");
+    assert!(steps < 215, "{steps}");
+    // The same budget with --json: the whole partial answer at the end, marked
+    // incomplete, then the error.
+    let out = run(&[
+        "sequence",
+        &path,
+        "--json",
+        "--threads",
+        "1",
+        "--max-memory",
+        &bytes.to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let v = json(&out);
+    if v["valid"] != false {
+        assert_eq!(v["status"], "out of memory");
+        assert_eq!(v["complete"], false);
+        check_partial_plan(
+            &v["parts"],
+            v["steps"].as_array().unwrap(),
+            &v["not_yet_split"],
         );
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_sequence_stopped_by_timeout_keeps_the_steps_it_streamed() {
+    // 1000 touching cubes on one thread take seconds: --timeout stops the plan after
+    // some steps, which were printed as they were found (JSON lines, then text). A
+    // loaded machine may still be loading at a short timeout, a fast one may finish
+    // the plan: longer timeouts are tried, and a complete plan is accepted as such.
+    let dir = scratch("timeout-stream");
+    lattice(&dir, 10);
+    let path = dir.display().to_string();
+    for t in ["1", "2", "4", "8"] {
+        let out = run(&[
+            "sequence",
+            &path,
+            "--jsonl",
+            "--threads",
+            "1",
+            "--timeout",
+            t,
+        ]);
+        let err = stderr(&out);
+        match out.status.code() {
+            // Still loading.
+            Some(1) => assert!(err.contains(&format!("stopped after {t} s: ")), "{err}"),
+            Some(0) => {
+                let (steps, end) = json_lines(&out);
+                assert_eq!(end.unwrap()["complete"], true);
+                assert_eq!(steps.len(), 999);
+                return;
+            }
+            Some(3) => {
+                let (steps, end) = json_lines(&out);
+                let end = end.expect("an end line");
+                assert_eq!(end["status"], "timeout");
+                assert_eq!(end["complete"], false);
+                assert_eq!(end["stopped"]["by"], "--timeout");
+                assert_eq!(end["step_count"].as_u64(), Some(steps.len() as u64));
+                assert!(end.get("steps").is_none());
+                check_partial_plan(&end["parts"], &steps, &end["not_yet_split"]);
+                if steps.is_empty() {
+                    continue;
+                }
+                // In text: the header first, each step numbered, the summary at the end.
+                let out = run(&["sequence", &path, "--threads", "1", "--timeout", t]);
+                if out.status.code() != Some(3) {
+                    return;
+                }
+                let text = stdout(&out);
+                assert!(
+                    text.starts_with(&format!(
+                        "disassembly of \"{}\" (1000 parts):\n",
+                        dir.file_name().unwrap().to_str().unwrap()
+                    )),
+                    "{text}"
+                );
+                // (This second run may have stopped before its first step.)
+                if text.contains("\n1. split {") {
+                    assert!(text.contains("\n1. split {c_0_0_0, c_0_0_1, "), "{text}");
+                    assert!(text.contains("… and 99"), "long lists abbreviated: {text}");
+                }
+                assert!(
+                    text.contains("not yet split (stopped by --timeout): {"),
+                    "{text}"
+                );
+                let summary = text
+                    .lines()
+                    .find(|l| l.contains(", stopped by --timeout after"))
+                    .unwrap_or_else(|| panic!("no summary line: {text}"));
+                let (count, status) = summary.split_once(", ").unwrap();
+                let n: usize = count.split(' ').next().unwrap().parse().unwrap();
+                assert_eq!(text.matches(" split {").count(), n, "{text}");
+                assert_eq!(
+                    status,
+                    format!(
+                        "stopped by --timeout after {t} s during sequence steps: partial answer"
+                    )
+                );
+                return;
+            }
+            code => panic!("--timeout {t}: exit code {code:?}: {err}"),
+        }
+    }
+    panic!("no partial answer with a step within 8 s");
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_returns_the_partial_plan_and_exit_code_130() {
+    // Ctrl-C (SIGINT) once the first step is printed: the plan stops with the steps
+    // found, the end line says "interrupted", and the exit code is 130.
+    use std::io::BufRead;
+    let dir = scratch("interrupt");
+    lattice(&dir, 10);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_apart"))
+        .args([
+            "sequence",
+            dir.to_str().unwrap(),
+            "--jsonl",
+            "--threads",
+            "1",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = std::io::BufReader::new(child.stdout.take().unwrap()).lines();
+    let first = lines.next().unwrap().unwrap();
+    assert!(first.starts_with("{\"event\":\"step\""), "{first}");
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let rest: Vec<String> = lines.map(Result::unwrap).collect();
+    let status = child.wait().unwrap();
+    let end: Value = serde_json::from_str(rest.last().unwrap()).unwrap();
+    if status.code() == Some(0) {
+        // Finished before the signal came.
+        assert_eq!(end["complete"], true);
+        return;
+    }
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(end["event"], "end");
+    assert_eq!(end["status"], "interrupted");
+    assert_eq!(end["complete"], false);
+    assert_eq!(end["stopped"]["by"], "Ctrl-C");
+    assert_eq!(end["step_count"].as_u64(), Some(rest.len() as u64));
+    assert!(!end["not_yet_split"].as_array().unwrap().is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

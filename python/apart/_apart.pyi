@@ -50,6 +50,7 @@ class Assembly:
         growth: bool,
         progress: Optional[ProgressCallback],
         timeout: Optional[float],
+        ranking: Optional[str] = None,
     ) -> Tuple[str, Optional["Plan"]]:
         """A disassembly plan, as JSON, with the plan for its pictures (None when
         stopped)."""

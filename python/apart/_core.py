@@ -358,23 +358,35 @@ class Assembly:
                  prefer_single: bool = False,
                  prefer_connected: bool = False, prefer_axes: bool = False,
                  max_depth: Optional[int] = None, growth: bool = False,
+                 ranking: str = "auto",
                  progress: ProgressArg = None, timeout: Optional[float] = None) -> Sequence:
         """A complete disassembly plan by recursive two-handed partitioning
         (``apart sequence``): ``base`` never moves; the ``prefer_*`` options rank the
         steps as the command line's flags do; ``max_depth`` leaves subassemblies below
-        whole; ``growth`` computes each step's largest uniform growth. ``first``
+        whole; ``growth`` computes each step's largest uniform growth. ``ranking``
+        (``apart sequence --ranking``) says how each step is chosen: ``"auto"`` ranks
+        small subassemblies over their full motion space and larger ones by the local
+        rules (a single part's widest-clearance face, then sets along likely
+        directions, the full motion space only when nothing simpler splits them),
+        ``"full"`` ranks every subassembly in full, ``"local"`` always takes the local
+        rules; each step's ``rule`` says which chose it. ``first``
         (``apart sequence --first``) splits each subassembly along the first likely
         direction that frees a subset, without ranking (much faster on tessellated
-        parts; not with ``prefer_*`` or ``growth``). Iterate the result for its steps."""
+        parts; not with ``prefer_*``, ``growth`` or ``ranking``). Iterate the result for
+        its steps."""
         if max_depth is not None and (isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < 1):
             raise InputError(f"max_depth must be an integer of 1 or more, not {max_depth!r}")
+        if ranking not in ("auto", "full", "local"):
+            raise InputError(f"ranking must be 'auto', 'full' or 'local', not {ranking!r}")
         if first and (prefer_single or prefer_connected or prefer_axes or growth):
             raise InputError("first=True ranks no steps: it takes no prefer_* options and no growth")
+        if first and ranking != "auto":
+            raise InputError("first=True ranks no steps: it takes no ranking")
         text, plan = _run(self._inner.sequence_json, progress, base=base, first=bool(first),
                           prefer_single=bool(prefer_single),
                           prefer_connected=bool(prefer_connected),
                           prefer_axes=bool(prefer_axes), max_depth=max_depth,
-                          growth=bool(growth), timeout=_timeout(timeout))
+                          growth=bool(growth), timeout=_timeout(timeout), ranking=ranking)
         return Sequence(json.loads(text), plan)
 
     def render(self, path: PathLike, *, format: Optional[str] = None,

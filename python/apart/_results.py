@@ -334,6 +334,15 @@ class Step(_Answer):
         runner-up."""
         return self._raw["choice"]
 
+    @property
+    def rule(self) -> str:
+        """The rule that chose the step: ``"ranked"`` (over the subassembly's full
+        motion space), ``"single"`` (a single part from its own free directions),
+        ``"pair"`` (two touching parts together), ``"likely"`` (a set along a likely
+        direction) or ``"full"`` (the full motion space after nothing simpler split the
+        subassembly)."""
+        return self._raw["rule"]
+
     def __repr__(self) -> str:
         verb = "moves" if len(self.moving) == 1 else "move"
         return (f"<Step {self.index + 1}: {', '.join(self.moving)} {verb} along "

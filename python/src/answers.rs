@@ -319,9 +319,11 @@ fn direction_json(
     Ok(with_facts(v, loaded, units))
 }
 
-/// A disassembly plan, and the plan itself (for its pictures); with `first`, each step
-/// along the first likely direction that frees a subset ([`apart_plan::sequence_first`]).
-/// A run stopped by the flag has `"status": "stopped"`.
+/// A disassembly plan, and the plan itself (for its pictures): by
+/// [`apart_plan::sequence_parts`] (its `opts.ranking`), or with `first` along the first
+/// likely direction that frees a subset ([`apart_plan::sequence_first_with`]). The JSON
+/// is the command line's `--json`, field for field. A run stopped by the flag has
+/// `"status": "stopped"`.
 pub fn sequence(
     loaded: &Loaded,
     units: Option<&str>,
@@ -334,15 +336,9 @@ pub fn sequence(
     let plan = if asm.parts.len() < 2 {
         apart_plan::Sequence::empty(asm.parts.iter().map(|p| p.name.clone()).collect())
     } else if first {
-        apart_plan::sequence_first(parts_of(asm)?, opts, progress)?
+        apart_plan::sequence_first_with(parts_of(asm)?, opts, progress, &mut |_| {})?
     } else {
-        match BlockingRegions::compute_with(parts_of(asm)?, progress) {
-            Ok(regions) => apart_plan::sequence_with(&regions, opts, progress),
-            Err(PlanError::Stopped { .. }) => apart_plan::Sequence::stopped_before_steps(
-                asm.parts.iter().map(|p| p.name.clone()).collect(),
-            ),
-            Err(e) => return Err(e),
-        }
+        apart_plan::sequence_parts(parts_of(asm)?, opts, progress, &mut |_| {})?
     };
     let regions_and_steps = t.elapsed().as_secs_f64();
     let motions = plan.motions();
@@ -382,6 +378,7 @@ pub fn sequence(
                 "cell": s.cell.name(),
                 "clearance_deg": s.clearance_deg,
                 "depth": s.depth,
+                "rule": s.rule.key(),
                 "choice": choice,
             });
             if let Some(t) = s.tolerance {
@@ -396,6 +393,25 @@ pub fn sequence(
             v
         })
         .collect();
+    let region_seconds = plan.regions.as_ref().map_or(0.0, |(_, s)| {
+        s.sums_seconds + s.projection_seconds + s.unions_seconds
+    });
+    let l = &plan.local;
+    let work = json!({
+        "singles": l.singles,
+        "pairs": l.pairs,
+        "likely_directions": l.likely_directions,
+        "single_steps": l.single_steps,
+        "pair_steps": l.pair_steps,
+        "likely_steps": l.likely_steps,
+        "ranked_steps": l.ranked,
+        "full_searches": l.full_searches,
+    });
+    let ranking = match opts.ranking {
+        apart_plan::Ranking::Auto => "auto",
+        apart_plan::Ranking::Full => "full",
+        apart_plan::Ranking::Local => "local",
+    };
     let v = json!({
         "status": if plan.stopped { "stopped" } else { "done" },
         "interlocked": !plan.stuck.is_empty(),
@@ -407,7 +423,10 @@ pub fn sequence(
         "unsplit": plan.unsplit.iter().map(|s| names(s)).collect::<Vec<_>>(),
         "not_yet_split": plan.pending.iter().map(|s| names(s)).collect::<Vec<_>>(),
         "full_searches": first.then_some(plan.full_searches),
-        "seconds": {"total": regions_and_steps, "steps": plan.step_seconds},
+        "ranking": (!first).then_some(ranking),
+        "pair_regions": (!first).then(|| plan.regions.as_ref().map_or(0, |(n, _)| *n)),
+        "work": if first { Value::Null } else { work },
+        "seconds": {"total": regions_and_steps, "regions": region_seconds, "steps": plan.step_seconds},
     });
     Ok((with_facts(v, loaded, units), plan))
 }

@@ -256,7 +256,7 @@ impl Assembly {
     /// A disassembly plan (`apart sequence --json`), as JSON text, with the plan for
     /// its pictures (`None` when the run stopped: the command line draws no partial
     /// plan either).
-    #[pyo3(signature = (*, base, first, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout))]
+    #[pyo3(signature = (*, base, first, prefer_single, prefer_connected, prefer_axes, max_depth, growth, progress, timeout, ranking = None))]
     #[allow(clippy::too_many_arguments)]
     fn sequence_json(
         &self,
@@ -270,6 +270,7 @@ impl Assembly {
         growth: bool,
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
+        ranking: Option<String>,
     ) -> PyResult<(String, Option<Plan>)> {
         errors::require_valid(py, &self.loaded)?;
         let base = match base {
@@ -290,6 +291,17 @@ impl Assembly {
             max_depth,
             tolerance: growth,
             keep_solutions: apart_plan::KeepSolutions::Nothing,
+            ranking: match ranking.as_deref() {
+                None | Some("auto") => apart_plan::Ranking::Auto,
+                Some("full") => apart_plan::Ranking::Full,
+                Some("local") => apart_plan::Ranking::Local,
+                Some(other) => {
+                    return Err(errors::value_error(
+                        py,
+                        format!("ranking must be 'auto', 'full' or 'local', not {other:?}"),
+                    ))
+                }
+            },
         };
         let loaded = self.loaded.clone();
         let units = self.units.clone();

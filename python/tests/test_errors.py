@@ -94,6 +94,10 @@ def test_bad_arguments():
         asm.partition(direction=(1, 2))
     with pytest.raises(apart.InputError):
         asm.sequence(max_depth=0)
+    with pytest.raises(apart.InputError):
+        asm.sequence(ranking="best")
+    with pytest.raises(apart.InputError):
+        asm.sequence(first=True, ranking="full")
     for bad in [dict(tolerance=-1), dict(tolerance="5um"), dict(tolerance="3parsecs", units="mm"),
                 dict(grid_bits=3), dict(units="furlong")]:
         with pytest.raises(apart.InputError):

@@ -119,6 +119,26 @@ def test_first_sequence_matches_the_command_line(example, base, cli):
         apart.load(EXAMPLES / example).sequence(first=True, growth=True)
 
 
+@pytest.mark.parametrize("ranking", ["auto", "full", "local"])
+def test_sequence_rankings_match_the_command_line(ranking, cli):
+    asm = apart.load(EXAMPLES / "tray-of-cubes")
+    plan = asm.sequence(base="tray", ranking=ranking)
+    code, j = cli("sequence", str(EXAMPLES / "tray-of-cubes"), "--base", "tray",
+                  "--ranking", ranking)
+    assert code == 0 and plan.complete and len(plan) == len(plan.parts) - 1
+    assert [(s.moving, s.subassembly, s.exact_direction, s.cell, s.rule) for s in plan] == [
+        (tuple(t["moving"]), tuple(t["subassembly"]), tuple(int(c) for c in t["exact_direction"]),
+         t["cell"], t["rule"]) for t in j["steps"]]
+    mine = plan.to_dict()
+    for key in ("ranking", "pair_regions", "work", "full_searches"):
+        assert mine[key] == j[key], key
+    assert mine["ranking"] == ranking
+    if ranking == "full":
+        assert {s.rule for s in plan} == {"ranked"}
+    if ranking == "local":
+        assert all(s.rule != "ranked" for s in plan if len(s.subassembly) > 2)
+
+
 def test_sequence_preferences_match_the_command_line(cli):
     asm = apart.load(EXAMPLES / "tray-of-cubes")
     plan = asm.sequence(base="tray", prefer_single=True, prefer_axes=True, growth=True)

@@ -189,6 +189,7 @@ fn run_one(exe: &Path, command: BatchCommand, asm: &Path, key: String, extra: &[
         Some(0) => "ok",
         Some(2) => "interlocked",
         Some(3) => "timeout",
+        Some(130) => "interrupted",
         Some(1) if stderr.contains("out of memory budget") => "out of memory",
         Some(1) if stderr.contains("stopped after") => "timeout",
         Some(1) => "invalid input",

@@ -2,13 +2,14 @@
 //! assembly by one infinite translation; or, with `--direction`, the blocking graph of
 //! one direction. Exit code 0 when some subset can move (or the assembly has one part:
 //! nothing to separate), 2 when the assembly is interlocked, 3 when `--timeout` stopped
-//! the run and the solutions found until then are printed, 1 on error. The listing is
+//! the run and the solutions found until then are printed (130 after Ctrl-C, 1 after
+//! the memory budget, with the same partial answer), 1 on error. The listing is
 //! grouped by moving set and bounded (`--limit`, `--all`): assemblies of many loose
 //! parts have millions of solutions.
 
 use crate::commands::load::load_valid;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts, Motion};
-use crate::limits::TimedOut;
+use crate::limits::Stopped;
 use crate::output;
 use crate::{limits, Global};
 use anyhow::Context;
@@ -159,15 +160,15 @@ struct GroupJson<'a> {
 struct PartitionJson<'a> {
     #[serde(flatten)]
     input: InputFacts,
-    /// "done", or "timeout": --timeout stopped the run and the solutions are those
-    /// found until then.
+    /// "done", or "timeout", "out of memory", "interrupted": --timeout, the memory
+    /// budget or Ctrl-C stopped the run and the solutions are those found until then.
     status: &'static str,
-    /// Every solution was searched for (false after --timeout).
+    /// Every solution was searched for (false after a stop).
     complete: bool,
-    /// Where --timeout stopped the run; absent when it ran to its end.
+    /// What stopped the run, and where; absent when it ran to its end.
     #[serde(skip_serializing_if = "Option::is_none")]
     stopped: Option<output::StoppedJson>,
-    /// No subset can move (false when --timeout stopped the search: unknown).
+    /// No subset can move (false when the search was stopped: unknown).
     interlocked: bool,
     /// The assembly has one part: there is nothing to separate (exit code 0).
     nothing_to_separate: bool,
@@ -277,13 +278,12 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
         }
     }
     report(&p, &loaded, args, global, load_seconds, &stop)?;
-    Ok(if stop.is_some() {
-        ExitCode::from(limits::EXIT_PARTIAL)
-    } else if p.interlocked {
+    let answer = if p.interlocked {
         ExitCode::from(2)
     } else {
         ExitCode::SUCCESS
-    })
+    };
+    Ok(output::exit_code(&stop, answer))
 }
 
 /// The answer for an assembly of one part: nothing to separate, which is not "no"
@@ -412,7 +412,7 @@ fn report(
     args: &PartitionArgs,
     global: &Global,
     load: f64,
-    stop: &Option<TimedOut>,
+    stop: &Option<Stopped>,
 ) -> anyhow::Result<()> {
     let asm = &loaded.assembly;
     let limit = if args.all {
@@ -528,7 +528,7 @@ fn to_json<'a>(
     (load, stages): (f64, &apart::assembly::LoadSeconds),
     input: InputFacts,
     holds: &'a Option<Vec<bool>>,
-    stop: &Option<TimedOut>,
+    stop: &Option<Stopped>,
 ) -> PartitionJson<'a> {
     let s = &p.stats;
     PartitionJson {
@@ -593,7 +593,7 @@ fn print_text(
     global: &Global,
     load: String,
     holds: &Option<Vec<bool>>,
-    stop: &Option<TimedOut>,
+    stop: &Option<Stopped>,
 ) {
     let s = &p.stats;
     if !global.quiet {

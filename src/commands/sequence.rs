@@ -1,29 +1,65 @@
 //! `apart sequence <assembly>`: a complete disassembly plan by recursive two-handed
 //! partitioning (its reverse is an assembly plan), with pictures and animated exports.
-//! Exit code 0 when every part comes apart (an assembly of one part: nothing to
-//! separate, no step), 2 when a subassembly is interlocked (the partial plan is printed
-//! and names it), 3 when `--timeout` stopped the run (the steps found until then are
-//! printed, and the subassemblies not yet split), 1 on error.
+//! Each step is printed as soon as it is found (text, or `--jsonl`: one JSON object per
+//! line); `--json` prints the whole answer at the end. Exit code 0 when every part
+//! comes apart (an assembly of one part: nothing to separate, no step), 2 when a
+//! subassembly is interlocked (the partial plan is printed and names it), 3 when
+//! `--timeout` stopped the run (the steps found until then are printed, and the
+//! subassemblies not yet split), 130 when Ctrl-C did, 1 when the memory budget did (the
+//! same partial answer, then the error line) and on error.
 
 use crate::commands::load::{load_valid, part_index};
 use crate::commands::partition::Projection;
 use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
-use crate::limits::TimedOut;
+use crate::limits::Stopped;
 use crate::output;
 use crate::{limits, Global};
 use apart::draw::{
     assembly_png, disassembly_glb, disassembly_html, motion_space_png, motion_space_svg,
     step_motion_space_png, step_motion_space_svg, step_pngs, SphereSvgOptions, View,
 };
-use apart::plan::sequence::{Choice, Keys};
+use apart::plan::sequence::{Choice, Keys, LocalStats};
 use apart::plan::{
-    parts_of, sequence_first, sequence_with, BlockingRegions, CellKind, KeepSolutions, MotionSpace,
-    PlanError, Sequence, SequenceOptions, Step, Tolerance,
+    partition_subset, parts_of, sequence_first_with, sequence_parts, BlockingRegions, CellKind,
+    KeepSolutions, MotionSpace, Options, Part, Progress, Ranking, Rule, Sequence, SequenceOptions,
+    Solution, Step, Tolerance,
 };
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
+
+/// How each subassembly's step is chosen (`--ranking`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RankingArg {
+    /// Rank small subassemblies over their full motion space, larger ones by the local
+    /// rules.
+    Auto,
+    /// Rank every subassembly over its full motion space.
+    Full,
+    /// Always the local rules.
+    Local,
+}
+
+impl From<RankingArg> for Ranking {
+    fn from(r: RankingArg) -> Ranking {
+        match r {
+            RankingArg::Auto => Ranking::Auto,
+            RankingArg::Full => Ranking::Full,
+            RankingArg::Local => Ranking::Local,
+        }
+    }
+}
+
+impl RankingArg {
+    fn key(self) -> &'static str {
+        match self {
+            RankingArg::Auto => "auto",
+            RankingArg::Full => "full",
+            RankingArg::Local => "local",
+        }
+    }
+}
 
 /// Arguments of `apart sequence`.
 #[derive(clap::Args, Debug)]
@@ -38,6 +74,24 @@ pub struct SequenceArgs {
     /// plan is as complete as without --first. Steps are not ranked by clearance.
     #[arg(long, conflicts_with_all = ["prefer_single", "prefer_connected", "prefer_axes", "explain", "growth", "svg", "png"])]
     pub first: bool,
+    /// How each subassembly's step is chosen. auto: a subassembly of at most 24 parts is
+    /// ranked over its full motion space when that is cheap (few piece pairs, a small
+    /// motion space), a larger one by the local rules: a single part along its own
+    /// widest-clearance face, then two touching parts along their widest face, then a
+    /// set of parts along the first likely direction (an axis, a tessellated cylinder's
+    /// axis, a touching plane's normal) that frees one, then edges and vertices of
+    /// those, and the full motion space only when nothing simpler splits the subassembly (so a
+    /// subassembly is called interlocked only when no translation splits it). full:
+    /// every subassembly ranked over its full motion space, as before (the pair regions
+    /// of every pair; slow on many parts). local: always the local rules.
+    #[arg(long, value_enum, value_name = "RULES", default_value_t = RankingArg::Auto, conflicts_with = "first")]
+    pub ranking: RankingArg,
+    /// Print the answer as JSON lines, each flushed as it is written: one object
+    /// {"event": "step", "index": K, ...} per step as it is found (K from 1), then one
+    /// {"event": "end", ...} with the rest of the --json answer (status, counts, times;
+    /// "complete": false when the run was stopped). Not with --json.
+    #[arg(long)]
+    pub jsonl: bool,
     /// Prefer steps that move a single part.
     #[arg(long)]
     pub prefer_single: bool,
@@ -49,8 +103,9 @@ pub struct SequenceArgs {
     /// clearance; after --prefer-connected and --prefer-single).
     #[arg(long)]
     pub prefer_axes: bool,
-    /// Print, under each step, why it was chosen: its ranking keys, how many candidates
-    /// were ranked, and the runner-up with the key it lost on (in the JSON: `choice`).
+    /// Print, under each step, the rule that chose it and why: its ranking keys, how
+    /// many candidates were ranked, and the runner-up with the key it lost on (in the
+    /// JSON: `choice`).
     ///
     /// Candidates (a moving set and a direction along which it is free) are compared by
     /// these keys in order, the first difference deciding: (1) with --prefer-connected,
@@ -61,7 +116,9 @@ pub struct SequenceArgs {
     /// the lowest part indices, then the direction. The candidates are the deepest
     /// direction of each free region of each minimal moving set, with --prefer-axes
     /// also the six axis directions (tested exactly), and edges and vertices when no
-    /// face meets --prefer-single or --prefer-connected.
+    /// face meets --prefer-single or --prefer-connected. A step chosen by the local
+    /// rules (see --ranking) was ranked among single parts, or is the first likely
+    /// direction that frees a set.
     #[arg(long)]
     pub explain: bool,
     /// A part that never moves (the other side moves instead).
@@ -107,6 +164,11 @@ struct StepJson {
     cell: &'static str,
     clearance_deg: f64,
     depth: usize,
+    /// The rule that chose the step: "ranked" (over the subassembly's full motion
+    /// space), "single" (a single part from its own free directions), "likely" (a set
+    /// along a likely direction), "full" (the full motion space after nothing simpler
+    /// split the subassembly).
+    rule: &'static str,
     /// Largest uniform growth in input units (--growth); null when unbounded.
     #[serde(skip_serializing_if = "Option::is_none")]
     growth: Option<Option<f64>>,
@@ -151,12 +213,75 @@ struct ChoiceJson {
     runner_up: Option<RivalJson>,
 }
 
+/// The planner's work (not with --first).
 #[derive(Serialize)]
-struct SequenceJson {
-    /// "done", or "timeout": --timeout stopped the run; `steps` are the steps found
-    /// until then and `not_yet_split` the subassemblies still to split.
+struct WorkJson {
+    /// Parts whose free directions alone were computed (recomputations included).
+    singles: usize,
+    /// Pairs of touching parts whose free directions together were computed.
+    pairs: usize,
+    /// Likely directions tested over a whole subassembly.
+    likely_directions: usize,
+    /// Steps by rule.
+    single_steps: usize,
+    pair_steps: usize,
+    likely_steps: usize,
+    ranked_steps: usize,
+    /// Subassemblies searched over their full motion space because no single part and
+    /// no likely direction split them.
+    full_searches: usize,
+}
+
+impl From<&LocalStats> for WorkJson {
+    fn from(s: &LocalStats) -> WorkJson {
+        WorkJson {
+            singles: s.singles,
+            pairs: s.pairs,
+            likely_directions: s.likely_directions,
+            single_steps: s.single_steps,
+            pair_steps: s.pair_steps,
+            likely_steps: s.likely_steps,
+            ranked_steps: s.ranked,
+            full_searches: s.full_searches,
+        }
+    }
+}
+
+/// Every step of a plan as JSON, each made as it is written (a plan of thousands of
+/// steps is never held as JSON values at once).
+struct StepsJson<'a> {
+    plan: &'a Sequence,
+    args: &'a SequenceArgs,
+    step_unit: f64,
+    holds: &'a Option<Vec<bool>>,
+}
+
+impl Serialize for StepsJson<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeSeq;
+        let steps = &self.plan.steps;
+        let mut seq = serializer.serialize_seq(Some(steps.len()))?;
+        for (k, s) in steps.iter().enumerate() {
+            let holds = self.holds.as_ref().map(|h| h[k]);
+            seq.serialize_element(&step_json(
+                &self.plan.names,
+                s,
+                self.args,
+                self.step_unit,
+                holds,
+            ))?;
+        }
+        seq.end()
+    }
+}
+
+#[derive(Serialize)]
+struct SequenceJson<'a> {
+    /// "done", or "timeout", "out of memory", "interrupted": --timeout, the memory
+    /// budget or Ctrl-C stopped the run; `steps` are the steps found until then and
+    /// `not_yet_split` the subassemblies still to split.
     status: &'static str,
-    /// Where --timeout stopped the run; absent when it ran to its end.
+    /// What stopped the run, and where; absent when it ran to its end.
     #[serde(skip_serializing_if = "Option::is_none")]
     stopped: Option<output::StoppedJson>,
     interlocked: bool,
@@ -164,17 +289,28 @@ struct SequenceJson {
     /// The assembly has one part: there is nothing to separate (complete, no step).
     nothing_to_separate: bool,
     parts: Vec<String>,
-    steps: Vec<StepJson>,
+    /// Every step (absent from the "end" line of --jsonl, whose step lines came before).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    steps: Option<StepsJson<'a>>,
+    /// The number of steps (in the "end" line of --jsonl only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    step_count: Option<usize>,
     /// Subassemblies no single translation can split.
     stuck: Vec<Vec<String>>,
     /// Subassemblies left whole by --max-depth.
     unsplit: Vec<Vec<String>>,
-    /// Subassemblies not yet split when --timeout stopped the run (empty otherwise), in
-    /// the order they would have been split.
+    /// Subassemblies not yet split when the run was stopped (empty otherwise), in the
+    /// order they would have been split.
     not_yet_split: Vec<Vec<String>>,
     /// With --first: subassemblies that no likely direction split, searched in full
-    /// (their own pair regions); null without --first.
+    /// (their own pair regions); null without --first (see `work`).
     full_searches: Option<usize>,
+    /// How steps were chosen (--ranking); null with --first.
+    ranking: Option<&'static str>,
+    /// Pair regions made (lazily, as steps needed them); null with --first.
+    pair_regions: Option<usize>,
+    /// The planner's work; null with --first.
+    work: Option<WorkJson>,
     seconds: SecondsJson,
     #[serde(flatten)]
     input: InputFacts,
@@ -183,12 +319,138 @@ struct SequenceJson {
 #[derive(Serialize)]
 struct SecondsJson {
     load: f64,
+    /// Making the pair regions (their sums, projections and unions), a part of `steps`.
     regions: f64,
     steps: f64,
 }
 
+/// One line of --jsonl: an event and its fields.
+#[derive(Serialize)]
+struct Event<'a, T: Serialize> {
+    event: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    index: Option<usize>,
+    #[serde(flatten)]
+    body: &'a T,
+}
+
+/// Writes one JSON line on standard output and flushes it; a closed pipe is ignored.
+fn json_line<T: Serialize>(value: &T) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if serde_json::to_writer(&mut out, value).is_ok() {
+        let _ = out.write_all(b"\n");
+    }
+    let _ = out.flush();
+}
+
+/// How the answer is printed.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Text,
+    Json,
+    JsonLines,
+}
+
+/// Indentation stops growing at this depth (the depth is then written out).
+const MAX_INDENT: usize = 20;
+/// Part lists longer than this are abbreviated in text ...
+const LIST_MAX: usize = 12;
+/// ... to their first this many names.
+const LIST_HEAD: usize = 8;
+
+/// The names of `set`, comma-separated; more than [`LIST_MAX`] abbreviated to the first
+/// [`LIST_HEAD`] and "… and N more" (the JSON keeps every name).
+fn list(all: &[String], set: &[usize]) -> String {
+    if set.len() <= LIST_MAX {
+        return names_of(all, set).join(", ");
+    }
+    format!(
+        "{}, … and {} more",
+        names_of(all, &set[..LIST_HEAD]).join(", "),
+        set.len() - LIST_HEAD
+    )
+}
+
+/// Prints each step as the planner finds it, and keeps what the answer needs of it.
+struct Printer<'a> {
+    mode: Mode,
+    args: &'a SequenceArgs,
+    asm: &'a apart::assembly::Assembly,
+    names: &'a [String],
+    step_unit: f64,
+    /// Per step found: whether it holds without the tolerance (`None`: no tolerance).
+    holds: Vec<Option<bool>>,
+    /// The first error met while checking a step without the tolerance.
+    error: Option<anyhow::Error>,
+}
+
+impl Printer<'_> {
+    fn step(&mut self, s: &Step) {
+        let k = self.holds.len();
+        let motion = [(
+            s.moving.as_slice(),
+            Some(s.subassembly.as_slice()),
+            &s.direction,
+        )];
+        let holds = match holds_without_tolerance(self.asm, &motion) {
+            Ok(h) => h.map(|h| h[0]),
+            Err(e) => {
+                self.error.get_or_insert(e);
+                None
+            }
+        };
+        self.holds.push(holds);
+        match self.mode {
+            Mode::Json => {}
+            Mode::JsonLines => json_line(&Event {
+                event: "step",
+                index: Some(k + 1),
+                body: &step_json(self.names, s, self.args, self.step_unit, holds),
+            }),
+            Mode::Text => self.text(k, s, holds),
+        }
+    }
+
+    fn text(&self, k: usize, s: &Step, holds: Option<bool>) {
+        let names = self.names;
+        let pad = "  ".repeat(s.depth.min(MAX_INDENT));
+        let deep = if s.depth > MAX_INDENT {
+            format!("[depth {}] ", s.depth)
+        } else {
+            String::new()
+        };
+        output::line(format_args!(
+            "{pad}{}. {deep}split {{{}}}",
+            k + 1,
+            list(names, &s.subassembly)
+        ));
+        let only = if holds == Some(false) {
+            " (only under the tolerance)"
+        } else {
+            ""
+        };
+        output::line(format_args!(
+            "{pad}   {}{only}",
+            describe(names, s, self.step_unit)
+        ));
+        if self.args.explain {
+            output::line(format_args!("{pad}   rule: {}", rule_text(s.rule)));
+            output::line(format_args!("{pad}   {}", explain(names, s)));
+        }
+    }
+}
+
 /// Runs the command.
 pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
+    if args.jsonl && global.json {
+        anyhow::bail!("--jsonl and --json are two forms of the answer: give one of them");
+    }
+    // Before loading, so that a run ended by the memory budget while loading ends its
+    // JSON lines with an "end" event too.
+    if args.jsonl {
+        limits::set_json_lines();
+    }
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let load = t.elapsed().as_secs_f64();
@@ -198,18 +460,13 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         Some(name) => Some(part_index(asm, name, "--base")?),
         None => None,
     };
-    let t = Instant::now();
-    let regions = if args.first {
-        None
+    let mode = if global.json {
+        Mode::Json
+    } else if args.jsonl {
+        Mode::JsonLines
     } else {
-        let (_phase, progress) = output::planner(global, "pair regions");
-        match BlockingRegions::compute_with(parts_of(asm)?, &progress) {
-            Ok(r) => Some(r),
-            Err(PlanError::Stopped { .. }) => None,
-            Err(e) => return Err(e.into()),
-        }
+        Mode::Text
     };
-    let regions_s = t.elapsed().as_secs_f64();
     let opts = SequenceOptions {
         prefer_single: args.prefer_single,
         prefer_connected: args.prefer_connected,
@@ -217,76 +474,150 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         base,
         max_depth: args.max_depth,
         tolerance: args.growth,
-        // The step the sphere pictures draw keeps its solutions: drawing plans nothing.
+        // The step the sphere pictures draw keeps its solutions if it was ranked over
+        // its full motion space (the picture lists them again otherwise).
         keep_solutions: if args.svg.is_some() || args.png.is_some() {
             KeepSolutions::Step(args.step.saturating_sub(1))
         } else {
             KeepSolutions::Nothing
         },
+        ranking: args.ranking.into(),
     };
-    let plan = match &regions {
-        None if args.first => {
-            let (_phase, progress) = output::planner(global, "sequence steps");
-            sequence_first(parts_of(asm)?, &opts, &progress)?
-        }
-        // Stopped while the pair regions were computed: no step yet.
-        None => Sequence::stopped_before_steps(asm.parts.iter().map(|p| p.name.clone()).collect()),
-        Some(regions) => {
-            // The first step's motion space, of every part, is the largest.
-            let all: Vec<usize> = (0..regions.names().len()).collect();
-            crate::limits::check_motion_space(regions, &all, global)?;
-            let (_phase, progress) = output::planner(global, "sequence steps");
-            sequence_with(regions, &opts, &progress)
+    let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
+    let step_unit = asm.grid.step();
+    if mode == Mode::Text && names.len() >= 2 {
+        output::line(format_args!(
+            "disassembly of \"{}\" ({} parts):",
+            asm.name,
+            names.len()
+        ));
+        output::line("");
+    }
+    let mut printer = Printer {
+        mode,
+        args,
+        asm,
+        names: &names,
+        step_unit,
+        holds: Vec::new(),
+        error: None,
+    };
+    let plan = if names.len() < 2 {
+        Sequence::empty(names.clone())
+    } else {
+        let parts = parts_of(asm)?;
+        let (phase, progress) = output::planner(global, "sequence steps");
+        let mut on_step = |s: &Step| phase.suspend(|| printer.step(s));
+        if args.first {
+            sequence_first_with(parts, &opts, &progress, &mut on_step)?
+        } else {
+            sequence_parts(parts, &opts, &progress, &mut on_step)?
         }
     };
+    if let Some(e) = printer.error.take() {
+        return Err(e);
+    }
     let files = args.svg.is_some()
         || args.png.is_some()
         || args.glb.is_some()
         || args.html.is_some()
         || args.renders.is_some();
     let stop = output::partial(global, plan.stopped, files);
-    if stop.is_none() && (regions.is_some() || args.first) {
+    if stop.is_none() && plan.names.len() >= 2 {
         let _phase = output::phase(global, "pictures and exports");
-        pictures(args, asm, regions.as_ref(), &plan)?;
+        pictures(args, asm, &plan)?;
     }
-    let step_unit = asm.grid.step();
-    let motions = plan.motions();
-    let holds = {
-        let _phase = output::phase(global, "checking the steps without the tolerance");
-        holds_without_tolerance(asm, &motions)?
-    };
-    if global.json {
-        let input = InputFacts::of(&loaded, global);
-        let times = (load, regions_s);
-        output::json(&to_json(
-            &plan, args, step_unit, times, input, &holds, &stop,
-        ))?;
-    } else {
-        let times = (output::load_time(load, &loaded.seconds), regions_s);
-        print_text(&plan, args, asm, global, step_unit, times, &holds, &stop);
-        if let Some(t) = tolerance_statement(asm, global) {
-            output::line(t);
+    let holds: Option<Vec<bool>> = printer.holds.iter().copied().collect();
+    match mode {
+        Mode::Json | Mode::JsonLines => {
+            let input = InputFacts::of(&loaded, global);
+            let mut answer = to_json(&plan, args, step_unit, load, input, &holds, &stop);
+            if mode == Mode::Json {
+                output::json(&answer)?;
+            } else {
+                answer.step_count = answer.steps.take().map(|s| s.plan.steps.len());
+                crate::limits::set_phase("writing the answer");
+                json_line(&Event {
+                    event: "end",
+                    index: None,
+                    body: &answer,
+                });
+            }
+        }
+        Mode::Text => {
+            let load = output::load_time(load, &loaded.seconds);
+            print_tail(&plan, args, asm, global, &load, &stop);
+            if let Some(t) = tolerance_statement(asm, global) {
+                output::line(t);
+            }
         }
     }
-    Ok(if stop.is_some() {
-        ExitCode::from(limits::EXIT_PARTIAL)
-    } else if plan.stuck.is_empty() {
+    let answer = if plan.stuck.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
-    })
+    };
+    Ok(output::exit_code(&stop, answer))
 }
 
-/// The files asked for; the sphere pictures need the pair regions (`None` with
-/// --first, which clap keeps apart from --svg and --png).
+/// The pair regions of the parts `sub` (global indices, increasing) alone, in local
+/// indices: what the sphere picture of a step of `sub` needs.
+fn regions_of(asm: &apart::assembly::Assembly, sub: &[usize]) -> anyhow::Result<BlockingRegions> {
+    let parts = parts_of(asm)?;
+    let own: Vec<Part> = sub.iter().map(|&k| parts[k].clone()).collect();
+    Ok(BlockingRegions::compute_with(&own, &Progress::new())?)
+}
+
+/// `step` in the local indices of its subassembly (`regions`, made by [`regions_of`]),
+/// with every solution of that motion space: its own when it kept them (a step ranked
+/// over the full motion space), else [`partition_subset`]'s.
+fn local_step(step: &Step, regions: &BlockingRegions) -> Step {
+    let sub = &step.subassembly;
+    let local = |s: &[usize]| -> Vec<usize> {
+        s.iter()
+            .map(|k| {
+                sub.binary_search(k)
+                    .expect("a part of the step's subassembly")
+            })
+            .collect()
+    };
+    let all: Vec<usize> = (0..sub.len()).collect();
+    let solutions: Vec<Solution> = match &step.solutions {
+        Some(sols) => sols
+            .iter()
+            .map(|s| Solution {
+                moving: local(&s.moving),
+                ..s.clone()
+            })
+            .collect(),
+        None => {
+            partition_subset(regions, &all, &Options::default())
+                .0
+                .solutions
+        }
+    };
+    let mut choice = step.choice.clone();
+    if let Some(r) = choice.runner_up.as_mut() {
+        r.moving = local(&r.moving);
+    }
+    Step {
+        subassembly: all,
+        moving: local(&step.moving),
+        solutions: Some(solutions),
+        choice,
+        ..step.clone()
+    }
+}
+
+/// The files asked for. The sphere pictures (not with --first, which clap keeps apart
+/// from --svg and --png) are drawn from the pair regions of the pictured subassembly
+/// alone.
 fn pictures(
     args: &SequenceArgs,
     asm: &apart::assembly::Assembly,
-    regions: Option<&BlockingRegions>,
     plan: &Sequence,
 ) -> anyhow::Result<()> {
-    if let Some(regions) = regions.filter(|_| args.svg.is_some() || args.png.is_some()) {
-        let names = regions.names();
+    if args.svg.is_some() || args.png.is_some() {
         let base = SphereSvgOptions {
             projection: args.projection.into(),
             ..Default::default()
@@ -296,24 +627,30 @@ fn pictures(
             plan.stuck.first(),
         ) {
             (Some(step), _) => {
+                let regions = regions_of(asm, &step.subassembly)?;
+                let step = local_step(step, &regions);
+                let names = regions.names();
                 // One motion space for both pictures, cut at the equator (the planner's is not).
-                let ms = MotionSpace::build_split_at_equator(regions, &step.subassembly);
+                let ms = MotionSpace::build_split_at_equator(&regions, &step.subassembly);
                 if let Some(p) = &args.svg {
-                    output::write_file(p, step_motion_space_svg(&ms, names, step, &base))?;
+                    output::write_file(p, step_motion_space_svg(&ms, names, &step, &base))?;
                 }
                 if let Some(p) = &args.png {
-                    output::write_file(p, step_motion_space_png(&ms, names, step, &base))?;
+                    output::write_file(p, step_motion_space_png(&ms, names, &step, &base))?;
                 }
             }
             // No step at all: the whole assembly is interlocked. Its motion space, blocked
             // everywhere, is the picture of that answer.
             (None, Some(stuck)) if plan.steps.is_empty() && args.step == 1 => {
-                let ms = MotionSpace::build_split_at_equator(regions, stuck);
+                let regions = regions_of(asm, stuck)?;
+                let names = regions.names();
+                let all: Vec<usize> = (0..stuck.len()).collect();
+                let ms = MotionSpace::build_split_at_equator(&regions, &all);
                 let opts = SphereSvgOptions {
                     title: format!(
                         "{}: interlocked, no subset of {{{}}} can move",
                         asm.name,
-                        names_of(regions.names(), stuck).join(", ")
+                        names.join(", ")
                     ),
                     ..base
                 };
@@ -353,10 +690,6 @@ fn pictures(
     Ok(())
 }
 
-fn names(plan: &Sequence, set: &[usize]) -> Vec<String> {
-    names_of(&plan.names, set)
-}
-
 fn names_of(all: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| all[k].clone()).collect()
 }
@@ -379,12 +712,12 @@ fn keys_json(k: &Keys) -> KeysJson {
     }
 }
 
-fn choice_json(plan: &Sequence, c: &Choice) -> ChoiceJson {
+fn choice_json(names: &[String], c: &Choice) -> ChoiceJson {
     ChoiceJson {
         candidates: c.candidates,
         keys: keys_json(&c.keys),
         runner_up: c.runner_up.as_ref().map(|r| RivalJson {
-            moving: names(plan, &r.moving),
+            moving: names_of(names, &r.moving),
             exact_direction: r.direction.to_strings(),
             keys: keys_json(&r.keys),
             lost_on: r.lost_on.key(),
@@ -392,53 +725,82 @@ fn choice_json(plan: &Sequence, c: &Choice) -> ChoiceJson {
     }
 }
 
-fn to_json(
-    plan: &Sequence,
+fn step_json(
+    names: &[String],
+    s: &Step,
     args: &SequenceArgs,
     step_unit: f64,
-    (load, regions): (f64, f64),
+    holds: Option<bool>,
+) -> StepJson {
+    StepJson {
+        holds_without_tolerance: holds,
+        subassembly: names_of(names, &s.subassembly),
+        moving: names_of(names, &s.moving),
+        direction: s.unit,
+        exact_direction: s.direction.to_strings(),
+        cell: s.cell.name(),
+        clearance_deg: s.clearance_deg,
+        depth: s.depth,
+        rule: s.rule.key(),
+        growth: tolerance_units(&s.tolerance, step_unit),
+        choice: args.explain.then(|| choice_json(names, &s.choice)),
+    }
+}
+
+/// The seconds spent making pair regions (their sums, projections and unions).
+fn region_seconds(plan: &Sequence) -> f64 {
+    plan.regions.as_ref().map_or(0.0, |(_, s)| {
+        s.sums_seconds + s.projection_seconds + s.unions_seconds
+    })
+}
+
+fn to_json<'a>(
+    plan: &'a Sequence,
+    args: &'a SequenceArgs,
+    step_unit: f64,
+    load: f64,
     input: InputFacts,
-    holds: &Option<Vec<bool>>,
-    stop: &Option<TimedOut>,
-) -> SequenceJson {
+    holds: &'a Option<Vec<bool>>,
+    stop: &Option<Stopped>,
+) -> SequenceJson<'a> {
+    let names = &plan.names;
+    let sets =
+        |s: &[Vec<usize>]| -> Vec<Vec<String>> { s.iter().map(|s| names_of(names, s)).collect() };
     SequenceJson {
         input,
         status: output::status(stop),
         stopped: output::stopped_json(stop),
-        not_yet_split: plan.pending.iter().map(|s| names(plan, s)).collect(),
+        not_yet_split: sets(&plan.pending),
         interlocked: !plan.stuck.is_empty(),
         complete: plan.complete(),
         nothing_to_separate: plan.names.len() < 2,
         parts: plan.names.clone(),
-        steps: plan
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(k, s)| StepJson {
-                holds_without_tolerance: holds.as_ref().map(|h| h[k]),
-                subassembly: names(plan, &s.subassembly),
-                moving: names(plan, &s.moving),
-                direction: s.unit,
-                exact_direction: s.direction.to_strings(),
-                cell: s.cell.name(),
-                clearance_deg: s.clearance_deg,
-                depth: s.depth,
-                growth: tolerance_units(&s.tolerance, step_unit),
-                choice: args.explain.then(|| choice_json(plan, &s.choice)),
-            })
-            .collect(),
-        stuck: plan.stuck.iter().map(|s| names(plan, s)).collect(),
-        unsplit: plan.unsplit.iter().map(|s| names(plan, s)).collect(),
+        steps: Some(StepsJson {
+            plan,
+            args,
+            step_unit,
+            holds,
+        }),
+        step_count: None,
+        stuck: sets(&plan.stuck),
+        unsplit: sets(&plan.unsplit),
         full_searches: args.first.then_some(plan.full_searches),
+        ranking: (!args.first).then(|| args.ranking.key()),
+        pair_regions: if args.first {
+            None
+        } else {
+            Some(plan.regions.as_ref().map_or(0, |(n, _)| *n))
+        },
+        work: (!args.first).then(|| WorkJson::from(&plan.local)),
         seconds: SecondsJson {
             load,
-            regions,
+            regions: region_seconds(plan),
             steps: plan.step_seconds,
         },
     }
 }
 
-fn describe(plan: &Sequence, s: &Step, step_unit: f64) -> String {
+fn describe(names: &[String], s: &Step, step_unit: f64) -> String {
     let d = s.direction.to_strings();
     let kind = match s.cell.name() {
         "face" => format!("face, clearance {:.2}°", s.clearance_deg),
@@ -452,13 +814,32 @@ fn describe(plan: &Sequence, s: &Step, step_unit: f64) -> String {
     };
     format!(
         "{} {} along ({}, {}, {}) ≈ {} ({kind}{tol})",
-        names(plan, &s.moving).join(", "),
+        list(names, &s.moving),
         if s.moving.len() == 1 { "moves" } else { "move" },
         d[0],
         d[1],
         d[2],
         output::unit(&s.unit)
     )
+}
+
+/// The rule that chose a step, in words (--explain).
+fn rule_text(r: Rule) -> &'static str {
+    match r {
+        Rule::Ranked => "ranked over the subassembly's full motion space",
+        Rule::Single => {
+            "a single part, from its own free directions (the widest-clearance face first)"
+        }
+        Rule::Pair => {
+            "two touching parts together, from their own free directions (no single part leaves along a face)"
+        }
+        Rule::Likely => {
+            "a set of parts along a likely direction (an axis, a cylinder's axis, a contact normal): the first that frees one"
+        }
+        Rule::Full => {
+            "the full motion space, after no single part, touching pair or likely direction split the subassembly"
+        }
+    }
 }
 
 /// A candidate's keys in words: "single part, axis direction, face with clearance
@@ -496,8 +877,16 @@ fn keys_text(k: &Keys) -> String {
 }
 
 /// Why a step was chosen, in one sentence.
-fn explain(plan: &Sequence, c: &Choice) -> String {
+fn explain(names: &[String], s: &Step) -> String {
+    let c = &s.choice;
     let mut out = format!("why: {}", keys_text(&c.keys));
+    if s.rule == Rule::Likely {
+        out.push_str(&format!(
+            "; the first likely direction that frees a set ({} tried)",
+            c.candidates
+        ));
+        return out;
+    }
     match &c.runner_up {
         None => out.push_str("; the only candidate"),
         Some(r) => {
@@ -506,7 +895,7 @@ fn explain(plan: &Sequence, c: &Choice) -> String {
             out.push_str(&format!(
                 "; preferred over {others} other candidate{}: the runner-up, {{{}}} along ({}, {}, {}) ({}), lost on {}",
                 if others == 1 { "" } else { "s" },
-                names(plan, &r.moving).join(", "),
+                list(names, &r.moving),
                 d[0],
                 d[1],
                 d[2],
@@ -518,17 +907,26 @@ fn explain(plan: &Sequence, c: &Choice) -> String {
     out
 }
 
-#[allow(clippy::too_many_arguments)]
-fn print_text(
+/// What text prints after the steps (printed as they were found): the subassemblies
+/// left interlocked, whole or not yet split, the assembly sequence, the summary line
+/// with the count and the status, and the times.
+fn print_tail(
     plan: &Sequence,
     args: &SequenceArgs,
     asm: &apart::assembly::Assembly,
     global: &Global,
-    step_unit: f64,
-    (load, regions): (String, f64),
-    holds: &Option<Vec<bool>>,
-    stop: &Option<TimedOut>,
+    load: &str,
+    stop: &Option<Stopped>,
 ) {
+    let names = &plan.names;
+    if names.len() < 2 {
+        output::line(format_args!(
+            "disassembly of \"{}\" ({} part): nothing to separate",
+            asm.name,
+            names.len()
+        ));
+        return;
+    }
     let status = if let Some(t) = stop {
         t.to_string()
     } else if plan.complete() {
@@ -538,58 +936,23 @@ fn print_text(
     } else {
         "stopped at the depth limit".to_string()
     };
-    if plan.names.len() < 2 {
-        output::line(format_args!(
-            "disassembly of \"{}\" ({} part): nothing to separate",
-            asm.name,
-            plan.names.len()
-        ));
-        return;
-    }
-    output::line(format_args!(
-        "disassembly of \"{}\" ({} part{}): {} step{}, {status}",
-        asm.name,
-        plan.names.len(),
-        if plan.names.len() == 1 { "" } else { "s" },
-        plan.steps.len(),
-        if plan.steps.len() == 1 { "" } else { "s" }
-    ));
-    output::line("");
-    for (k, s) in plan.steps.iter().enumerate() {
-        let pad = "  ".repeat(s.depth);
-        output::line(format_args!(
-            "{pad}{}. split {{{}}}",
-            k + 1,
-            names(plan, &s.subassembly).join(", ")
-        ));
-        let only = match holds {
-            Some(h) if !h[k] => " (only under the tolerance)",
-            _ => "",
-        };
-        output::line(format_args!(
-            "{pad}   {}{only}",
-            describe(plan, s, step_unit)
-        ));
-        if args.explain {
-            output::line(format_args!("{pad}   {}", explain(plan, &s.choice)));
-        }
-    }
     for s in &plan.stuck {
         output::line(format_args!(
             "interlocked: {{{}}} cannot be split by one translation",
-            names(plan, s).join(", ")
+            list(names, s)
         ));
     }
     for s in &plan.unsplit {
         output::line(format_args!(
             "left whole (depth limit): {{{}}}",
-            names(plan, s).join(", ")
+            list(names, s)
         ));
     }
     for s in &plan.pending {
         output::line(format_args!(
-            "not yet split (stopped by --timeout): {{{}}}",
-            names(plan, s).join(", ")
+            "not yet split ({}): {{{}}}",
+            stop.as_ref().map_or("stopped", Stopped::short),
+            list(names, s)
         ));
     }
     if !plan.steps.is_empty() {
@@ -605,16 +968,21 @@ fn print_text(
             output::line(format_args!(
                 "{}. bring {{{}}} to {{{}}} along ({}, {}, {})",
                 k + 1,
-                names(plan, &s.moving).join(", "),
-                names(plan, &rest).join(", "),
+                list(names, &s.moving),
+                list(names, &rest),
                 d[0],
                 d[1],
                 d[2]
             ));
         }
     }
+    output::line("");
+    output::line(format_args!(
+        "{} step{}, {status}",
+        plan.steps.len(),
+        if plan.steps.len() == 1 { "" } else { "s" }
+    ));
     if args.first {
-        output::line("");
         output::line(format_args!(
             "--first: each step along the first likely direction that frees a subset, not ranked by clearance; {} subassembl{} searched in full",
             plan.full_searches,
@@ -622,10 +990,15 @@ fn print_text(
         ));
     }
     if !global.quiet {
-        output::line("");
+        let regions = match &plan.regions {
+            Some((n, _)) => format!(
+                "pair regions {:.1} ms ({n} made)",
+                region_seconds(plan) * 1e3
+            ),
+            None => "pair regions 0.0 ms".to_string(),
+        };
         output::line(format_args!(
-            "time: {load}, pair regions {:.1} ms, steps {:.1} ms",
-            regions * 1e3,
+            "time: {load}, {regions}, steps {:.1} ms",
             plan.step_seconds * 1e3
         ));
     }

@@ -3,14 +3,15 @@
 //! part placed by the exact placement engine with the cost of eq. (1), accepted only if
 //! stable, grippable from above and lowerable along −z. Exit code 0 when every part was
 //! placed, 2 when the stack is incomplete, 3 when `--timeout` stopped the run (the parts
-//! placed until then are printed).
+//! placed until then are printed; 130 after Ctrl-C, 1 after the memory budget, with
+//! the same partial answer).
 
 use crate::commands::load::load_valid;
 use crate::commands::placement_args::{
     exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, percent,
     qunits, stats_json, write_pictures, PictureArgs, StatsJson,
 };
-use crate::limits::TimedOut;
+use crate::limits::Stopped;
 use crate::output;
 use crate::{limits, Global};
 use apart::kernel::Rational;
@@ -98,10 +99,10 @@ struct PlacementJson {
 
 #[derive(Serialize)]
 struct StackJson {
-    /// "done", or "timeout": --timeout stopped the run and `placements` are the parts
-    /// placed until then.
+    /// "done", or "timeout", "out of memory", "interrupted": --timeout, the memory
+    /// budget or Ctrl-C stopped the run and `placements` are the parts placed until then.
     status: &'static str,
-    /// Where --timeout stopped the run; absent when it ran to its end.
+    /// What stopped the run, and where; absent when it ran to its end.
     #[serde(skip_serializing_if = "Option::is_none")]
     stopped: Option<output::StoppedJson>,
     part: String,
@@ -187,13 +188,12 @@ pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     } else {
         print_text(&plan, &part.name, args.count, h, &stop);
     }
-    Ok(if stop.is_some() {
-        ExitCode::from(limits::EXIT_PARTIAL)
-    } else if plan.complete {
+    let answer = if plan.complete {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
-    })
+    };
+    Ok(output::exit_code(&stop, answer))
 }
 
 fn to_json(
@@ -201,7 +201,7 @@ fn to_json(
     name: &str,
     count: usize,
     h: f64,
-    stop: &Option<TimedOut>,
+    stop: &Option<Stopped>,
 ) -> StackJson {
     StackJson {
         status: output::status(stop),
@@ -243,7 +243,7 @@ fn to_json(
     }
 }
 
-fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<TimedOut>) {
+fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<Stopped>) {
     if let Some(t) = stop {
         output::line(t);
     }
