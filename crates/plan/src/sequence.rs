@@ -1,10 +1,17 @@
 //! Disassembly sequences by recursive two-handed partitioning.
 //!
 //! A subassembly splits into two at each step: one side translates to infinity along a
-//! direction, the other stays. The pair regions are computed once for the whole assembly
-//! ([`BlockingRegions`]); each step only overlays the regions of the parts involved.
-//! Reversing the steps (each side moving back along the opposite direction) gives an
-//! assembly sequence.
+//! direction, the other stays. Reversing the steps (each side moving back along the
+//! opposite direction) gives an assembly sequence.
+//!
+//! - [`sequence_parts`] (what `apart sequence` runs) makes pair regions as it needs them
+//!   and keeps each part's own free directions from step to step, so a step costs what
+//!   the parts it touches cost; small subassemblies get the full ranking ([`Ranking`],
+//!   [`Rule`]).
+//! - [`sequence`] and [`sequence_with`] take the pair regions of the whole assembly
+//!   ([`BlockingRegions`]) and rank every step over the overlay of the regions of the
+//!   parts involved.
+//! - [`sequence_first`] takes the first likely direction that frees a subset.
 
 use crate::motion_space::{CellKind, MotionSpace};
 use crate::partition::free_clearance;
