@@ -461,6 +461,42 @@ impl Polytope {
         &self.den
     }
 
+    /// The smallest integer box holding the polytope (a rational vertex's coordinates
+    /// rounded outward), or `None` when a bound exceeds 2^60 in magnitude.
+    pub fn integer_box(&self) -> Option<apart_kernel::Aabb> {
+        let mut b: apart_kernel::Aabb = apart_kernel::Aabb::EMPTY;
+        for v in &self.vertices {
+            for k in 0..3 {
+                let x = v.get(k);
+                let (lo, hi) = if self.den == Int::ONE {
+                    (x.clone(), x)
+                } else {
+                    // The truncated quotient, moved outward when inexact.
+                    let q = &x / &self.den;
+                    let exact = &q * &self.den == x;
+                    let lo = if !exact && x < Int::ZERO {
+                        &q - Int::ONE
+                    } else {
+                        q.clone()
+                    };
+                    let hi = if !exact && x > Int::ZERO {
+                        &q + Int::ONE
+                    } else {
+                        q
+                    };
+                    (lo, hi)
+                };
+                let (lo, hi) = (int::to_i64(&lo)?, int::to_i64(&hi)?);
+                if lo.unsigned_abs() > 1 << 60 || hi.unsigned_abs() > 1 << 60 {
+                    return None;
+                }
+                b.min[k] = b.min[k].min(lo);
+                b.max[k] = b.max[k].max(hi);
+            }
+        }
+        Some(b)
+    }
+
     /// The same polytope declared to have denominator `den` (its stored integers are
     /// `den` times its coordinates). `den` must be positive.
     pub fn with_den(mut self, den: Int) -> Polytope {

@@ -355,42 +355,9 @@ fn shard(i: usize, j: usize) -> usize {
 /// The exact integer box of a part's pieces (a rational vertex's coordinates rounded
 /// outward), or `None` when a bound exceeds 2^60 in magnitude.
 fn exact_box(p: &Part) -> Option<Aabb> {
-    use apart_kernel::int::to_i64;
-    use apart_kernel::Int;
-    let mut b: Aabb = Aabb::EMPTY;
-    for piece in &p.pieces {
-        let den = piece.den();
-        for v in piece.vertices() {
-            for k in 0..3 {
-                let x = v.get(k);
-                let (lo, hi) = if *den == Int::ONE {
-                    (x.clone(), x)
-                } else {
-                    // Truncated quotient, then moved outward when inexact.
-                    let q = &x / den;
-                    let exact = &q * den == x;
-                    let lo = if !exact && x < Int::ZERO {
-                        &q - Int::ONE
-                    } else {
-                        q.clone()
-                    };
-                    let hi = if !exact && x > Int::ZERO {
-                        &q + Int::ONE
-                    } else {
-                        q
-                    };
-                    (lo, hi)
-                };
-                let (lo, hi) = (to_i64(&lo)?, to_i64(&hi)?);
-                if lo.unsigned_abs() > 1 << 60 || hi.unsigned_abs() > 1 << 60 {
-                    return None;
-                }
-                b.min[k] = b.min[k].min(lo);
-                b.max[k] = b.max[k].max(hi);
-            }
-        }
-    }
-    Some(b)
+    p.pieces
+        .iter()
+        .try_fold(Aabb::EMPTY, |b, q| Some(b.union(&q.integer_box()?)))
 }
 
 /// A box holding every point of the grid that a part without integer piece boxes may

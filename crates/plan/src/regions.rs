@@ -151,7 +151,7 @@ impl RegionStats {
     }
 
     /// The time of the three phases.
-    pub(crate) fn seconds(&self) -> f64 {
+    fn seconds(&self) -> f64 {
         self.sums_seconds + self.projection_seconds + self.unions_seconds
     }
 }
@@ -205,54 +205,19 @@ impl BlockingRegions {
             ..Default::default()
         };
         let data: Vec<PartData> = parts.par_iter().map(PartData::new).collect();
-        // Pairs of parts in batches of at most PAIR_BATCH piece pairs (a bigger pair
-        // alone), each pair's piece pairs in parallel: only a batch's piece-pair data is
-        // alive at once, and what is kept is each pair's pruned polygons and union.
         let mut regions = Vec::with_capacity(pairs.len());
-        let mut rest = &pairs[..];
         let counter = progress.counter(phases::PAIR_REGIONS, pairs.len());
-        let stopped = || PlanError::Stopped {
-            phase: phases::PAIR_REGIONS,
-        };
-        while !rest.is_empty() {
-            if progress.stopped() {
-                return Err(stopped());
-            }
-            let mut take = 0;
-            let mut load = 0;
-            while take < rest.len() {
-                let (i, j) = rest[take];
-                let jobs = parts[i].pieces.len() * parts[j].pieces.len();
-                if take > 0 && load + jobs > PAIR_BATCH {
-                    break;
-                }
-                load += jobs;
-                take += 1;
-            }
-            let (batch, tail) = rest.split_at(take);
-            rest = tail;
-            let t = Instant::now();
-            let done: Vec<(PairRegion, RegionStats)> = batch
-                .par_iter()
-                .map(|&(i, j)| {
-                    if progress.stopped() {
-                        return Err(stopped());
-                    }
-                    let mut s = RegionStats::default();
-                    let r = pair_region(parts, (&data[i], &data[j]), i, j, &mut s, progress);
-                    counter.add(1);
-                    r.map(|r| (r, s))
-                })
-                .collect::<Result<_, _>>()?;
-            // Pairs ran side by side: their phase times are shares of the batch's.
-            let wall = t.elapsed().as_secs_f64();
-            let busy: f64 = done.iter().map(|(_, s)| s.seconds()).sum();
-            let scale = if busy > wall { wall / busy } else { 1.0 };
-            for (r, s) in done {
-                stats.add(&s, scale);
+        regions_in_batches(
+            parts,
+            &|k| &data[k],
+            &pairs,
+            progress,
+            &|| counter.add(1),
+            &mut |r, s, scale| {
+                stats.add(s, scale);
                 regions.push(r);
-            }
-        }
+            },
+        )?;
         stats.region_arcs = regions.iter().map(|r| r.region.arcs.len()).sum();
         let mut index = vec![usize::MAX; n * n];
         for (k, r) in regions.iter().enumerate() {
@@ -330,6 +295,66 @@ impl BlockingRegions {
             r.blocks(&d.neg())
         }
     }
+}
+
+/// Makes the regions of the unordered pairs `pairs` (`i < j`), `data(k)` giving part
+/// `k`'s data, in batches of at most [`PAIR_BATCH`] piece pairs (a bigger pair alone),
+/// each batch's pairs in parallel: only a batch's piece-pair data is alive at once, and
+/// what is kept is each pair's pruned polygons and union. Each region goes to
+/// `keep(region, stats, scale)` (the pairs of a batch ran side by side: their phase
+/// times are shares of the batch's, `scale` times theirs), in the order of `pairs`,
+/// and `done()` is called as each pair is made. The stop flag is watched between
+/// batches and pairs: stopped, nothing of the unfinished batch is kept.
+pub(crate) fn regions_in_batches<'d>(
+    parts: &[Part],
+    data: &(dyn Fn(usize) -> &'d PartData + Sync),
+    pairs: &[(usize, usize)],
+    progress: &Progress,
+    done: &(dyn Fn() + Sync),
+    keep: &mut dyn FnMut(PairRegion, &RegionStats, f64),
+) -> Result<(), PlanError> {
+    let stopped = || PlanError::Stopped {
+        phase: phases::PAIR_REGIONS,
+    };
+    let mut rest = pairs;
+    while !rest.is_empty() {
+        if progress.stopped() {
+            return Err(stopped());
+        }
+        let mut take = 0;
+        let mut load = 0;
+        while take < rest.len() {
+            let (i, j) = rest[take];
+            let jobs = parts[i].pieces.len() * parts[j].pieces.len();
+            if take > 0 && load + jobs > PAIR_BATCH {
+                break;
+            }
+            load += jobs;
+            take += 1;
+        }
+        let (batch, tail) = rest.split_at(take);
+        rest = tail;
+        let t = Instant::now();
+        let made: Vec<(PairRegion, RegionStats)> = batch
+            .par_iter()
+            .map(|&(i, j)| {
+                if progress.stopped() {
+                    return Err(stopped());
+                }
+                let mut s = RegionStats::default();
+                let r = pair_region(parts, (data(i), data(j)), i, j, &mut s, progress);
+                done();
+                r.map(|r| (r, s))
+            })
+            .collect::<Result<_, _>>()?;
+        let wall = t.elapsed().as_secs_f64();
+        let busy: f64 = made.iter().map(|(_, s)| s.seconds()).sum();
+        let scale = if busy > wall { wall / busy } else { 1.0 };
+        for (r, s) in made {
+            keep(r, &s, scale);
+        }
+    }
+    Ok(())
 }
 
 /// The region of parts `i < j`: separating axes of every piece pair, contact cones of

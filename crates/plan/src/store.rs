@@ -8,17 +8,15 @@
 //! (and the far ones in their free directions). Each part's box is kept for the
 //! planner's broad phase.
 
-use crate::progress::{phases, Progress};
-use crate::regions::{pair_region, BlockingRegions, PairRegion, Part, PartData, RegionStats};
+use crate::progress::Progress;
+use crate::regions::{
+    regions_in_batches, BlockingRegions, PairRegion, Part, PartData, RegionStats,
+};
 use crate::PlanError;
 use apart_kernel::Aabb;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use std::sync::{Arc, Mutex, OnceLock, RwLock};
-
-/// Piece pairs whose pair regions are computed side by side at most (as in
-/// [`BlockingRegions::compute_with`]: only a batch's piece-pair data is alive at once).
-const PAIR_BATCH: usize = 1 << 16;
 
 /// Pair regions made on demand and kept, with each part's box.
 pub struct PairStore<'a> {
@@ -122,48 +120,26 @@ impl<'a> PairStore<'a> {
         };
         todo.sort_unstable();
         todo.dedup();
-        let stopped = || PlanError::Stopped {
-            phase: phases::PAIR_REGIONS,
-        };
-        let mut rest = &todo[..];
-        while !rest.is_empty() {
-            if progress.stopped() {
-                return Err(stopped());
-            }
-            let mut take = 0;
-            let mut load = 0;
-            while take < rest.len() {
-                let (i, j) = rest[take];
-                let jobs = self.parts[i].pieces.len() * self.parts[j].pieces.len();
-                if take > 0 && load + jobs > PAIR_BATCH {
-                    break;
-                }
-                load += jobs;
-                take += 1;
-            }
-            let (batch, tail) = rest.split_at(take);
-            rest = tail;
-            let t = std::time::Instant::now();
-            let done: Vec<(PairRegion, RegionStats)> = batch
-                .par_iter()
-                .map(|&(i, j)| {
-                    if progress.stopped() {
-                        return Err(stopped());
-                    }
-                    let mut s = RegionStats::default();
-                    let pair = (self.data(i), self.data(j));
-                    pair_region(self.parts, pair, i, j, &mut s, progress).map(|r| (r, s))
-                })
-                .collect::<Result<_, _>>()?;
-            let wall = t.elapsed().as_secs_f64();
-            let busy: f64 = done.iter().map(|(_, s)| s.seconds()).sum();
-            let scale = if busy > wall { wall / busy } else { 1.0 };
-            let mut stats = self.stats.lock().unwrap_or_else(|e| e.into_inner());
-            let mut map = self.map.write().unwrap_or_else(|e| e.into_inner());
-            for (r, s) in done {
-                stats.add(&s, scale);
-                map.insert((r.i as u32, r.j as u32), Arc::new(r));
-            }
+        let mut made = Vec::new();
+        let mut stats = RegionStats::default();
+        regions_in_batches(
+            self.parts,
+            &|k| self.data(k),
+            &todo,
+            progress,
+            &|| {},
+            &mut |r, s, scale| {
+                stats.add(s, scale);
+                made.push(r);
+            },
+        )?;
+        self.stats
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .add(&stats, 1.0);
+        let mut map = self.map.write().unwrap_or_else(|e| e.into_inner());
+        for r in made {
+            map.insert((r.i as u32, r.j as u32), Arc::new(r));
         }
         Ok(())
     }
@@ -213,44 +189,13 @@ impl<'a> PairStore<'a> {
 }
 
 /// The exact integer box of `p`'s pieces (a rational vertex's coordinates rounded
-/// outward), or one holding everything when a coordinate is too large for `i64`.
+/// outward), or one holding everything when a coordinate is too large for it.
 fn part_box(p: &Part) -> Aabb {
-    use apart_kernel::int::to_i64;
-    use apart_kernel::Int;
-    let mut b: Aabb = Aabb::EMPTY;
-    for piece in &p.pieces {
-        let den = piece.den();
-        for v in piece.vertices() {
-            for k in 0..3 {
-                let x = v.get(k);
-                let q = &x / den;
-                let exact = &q * den == x;
-                let lo = if !exact && x < Int::ZERO {
-                    &q - Int::ONE
-                } else {
-                    q.clone()
-                };
-                let hi = if !exact && x > Int::ZERO {
-                    &q + Int::ONE
-                } else {
-                    q
-                };
-                match (to_i64(&lo), to_i64(&hi)) {
-                    (Some(lo), Some(hi))
-                        if lo.unsigned_abs() < 1 << 61 && hi.unsigned_abs() < 1 << 61 =>
-                    {
-                        b.min[k] = b.min[k].min(lo);
-                        b.max[k] = b.max[k].max(hi);
-                    }
-                    _ => {
-                        return Aabb {
-                            min: [-(1 << 62); 3],
-                            max: [1 << 62; 3],
-                        }
-                    }
-                }
-            }
-        }
-    }
-    b
+    p.pieces
+        .iter()
+        .try_fold(Aabb::EMPTY, |b, q| Some(b.union(&q.integer_box()?)))
+        .unwrap_or(Aabb {
+            min: [-(1 << 62); 3],
+            max: [1 << 62; 3],
+        })
 }
