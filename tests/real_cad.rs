@@ -444,3 +444,53 @@ fn a_rack_of_pins_in_blocks_under_a_plate_comes_apart_as_its_geometry_says() {
             && (0..2).all(|k| s.unit[k] * out[k] as f64 > 0.0)));
     }
 }
+
+/// A 3 x 3 rack of 12-segment pins in blocks under a plate, sequenced by the local rules
+/// (and by the default ranking): every step is checked by the oracle against the rest of
+/// its subassembly, the plan is complete, the plate leaves first through the upper
+/// hemisphere, and blocks leave with their pins as touching pairs.
+#[test]
+fn a_rack_is_sequenced_step_by_step_by_the_local_rules() {
+    use apart::plan::{sequence_parts, Progress, Ranking, Rule, SequenceOptions};
+    let dir = folder("rack-sequence");
+    write_parts(&dir, &curved::pin_rack(3, 12));
+    let loaded = load_with(&dir, Tolerance::None);
+    assert!(loaded.is_valid(), "{:#?}", loaded.problems);
+    let parts = parts_of(&loaded.assembly).unwrap().to_vec();
+    for ranking in [Ranking::Local, Ranking::Auto] {
+        let opts = SequenceOptions {
+            ranking,
+            ..SequenceOptions::default()
+        };
+        let plan = sequence_parts(&parts, &opts, &Progress::new(), &mut |_| {}).unwrap();
+        assert!(plan.complete(), "{ranking:?}: {:?}", plan.stuck);
+        for s in &plan.steps {
+            let sub: Vec<Part> = s.subassembly.iter().map(|&k| parts[k].clone()).collect();
+            let moving: Vec<usize> = (0..sub.len())
+                .filter(|&k| s.moving.contains(&s.subassembly[k]))
+                .collect();
+            assert!(
+                oracle_free(&sub, &moving, &s.direction),
+                "{ranking:?}: {s:?}"
+            );
+        }
+        let first = &plan.steps[0];
+        assert_eq!(plan.names[first.moving[0]], "plate");
+        assert_eq!((first.moving.len(), first.cell), (1, CellKind::Face));
+        assert!(first.unit[2] > 0.0);
+        if ranking == Ranking::Local {
+            assert_eq!(first.rule, Rule::Single);
+            assert_eq!(plan.local.full_searches, 0);
+            let pairs: Vec<&apart::plan::Step> =
+                plan.steps.iter().filter(|s| s.rule == Rule::Pair).collect();
+            assert!(!pairs.is_empty());
+            for s in pairs {
+                let mut names: Vec<&str> =
+                    s.moving.iter().map(|&k| plan.names[k].as_str()).collect();
+                names.sort();
+                assert!(names[0].starts_with("block_") && names[1].starts_with("pin_"));
+                assert_eq!(names[0]["block_".len()..], names[1]["pin_".len()..]);
+            }
+        }
+    }
+}
