@@ -146,10 +146,24 @@ impl Root {
             false => self.given.as_path(),
         };
         Err(format!(
-            "lies outside the assembly folder {}{target}; mesh files must be inside it (--allow-outside lifts this)",
+            "lies outside the assembly folder {}{target}; the files and folders an assembly reads must be inside it (--allow-outside lifts this)",
             escaped(folder)
         ))
     }
+}
+
+/// Fails when the manifest at `m` resolves outside `dir` (a symbolic link to a manifest
+/// elsewhere), unless `allow_outside`.
+fn manifest_inside(m: &Path, dir: &Path, allow_outside: bool) -> Result<(), LoadError> {
+    if allow_outside {
+        return Ok(());
+    }
+    Root::new(dir)
+        .inside(m)
+        .map_err(|detail| LoadError::Manifest {
+            path: m.to_path_buf(),
+            detail,
+        })
 }
 
 /// Decides what `path` is and lists its parts.
@@ -164,10 +178,11 @@ pub(crate) fn plan(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
                 return Err(LoadError::NotAFile { path: m, kind });
             }
             if meta.is_file() {
+                manifest_inside(&m, path, read.allow_outside)?;
                 return from_manifest(&m);
             }
         }
-        return from_folder(path);
+        return from_folder(path, read.allow_outside);
     }
     if let Some(kind) = std::fs::metadata(path).ok().and_then(|m| special_kind(&m)) {
         return Err(LoadError::NotAFile {
@@ -179,6 +194,11 @@ pub(crate) fn plan(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
     if is_json {
+        manifest_inside(
+            path,
+            path.parent().unwrap_or(Path::new(".")),
+            read.allow_outside,
+        )?;
         return from_manifest(path);
     }
     from_file(path, read)
@@ -310,14 +330,28 @@ fn not_a_mesh(p: &Path, gltf: bool) -> Option<String> {
 /// here; an entry with a mesh extension that is not a regular file (a named pipe, a
 /// socket, a link to a device) becomes a part whose reading fails with an error naming
 /// it, and entries without a mesh extension are ignored whatever they are.
-fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
+/// A sub-folder that resolves outside the folder (a symbolic link) is not listed: it
+/// becomes an error of the part it would hold, unless `allow_outside`.
+fn from_folder(dir: &Path, allow_outside: bool) -> Result<Plan, LoadError> {
     let mut files: HashMap<String, Vec<PathBuf>> = HashMap::new();
     let mut folders: HashMap<String, PathBuf> = HashMap::new();
     let mut skipped = Vec::new();
+    let mut problems = Vec::new();
+    let root = Root::new(dir);
     let entries = list(dir)?;
     let gltf = has_gltf(&entries);
     for p in entries {
         if p.is_dir() {
+            if let Err(e) = root
+                .inside(&p)
+                .or_else(|e| allow_outside.then_some(()).ok_or(e))
+            {
+                problems.push(
+                    Problem::error(format!("its piece folder {} {e}", escaped(&p)))
+                        .in_part(stem(&p)),
+                );
+                continue;
+            }
             folders.insert(stem(&p), p);
         } else if Format::from_path(&p).is_some() {
             files.entry(stem(&p)).or_default().push(p);
@@ -325,7 +359,6 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
             skipped.push(Skipped { path: p, reason });
         }
     }
-    let mut problems = Vec::new();
     let mut names: Vec<String> = files.keys().cloned().collect();
     let mut piece_lists: HashMap<String, Vec<PathBuf>> = HashMap::new();
     let mut folder_names: Vec<&String> = folders.keys().collect();
@@ -381,7 +414,14 @@ fn from_folder(dir: &Path) -> Result<Plan, LoadError> {
         });
     }
     if parts.is_empty() {
-        return Err(LoadError::NoParts(dir.to_path_buf()));
+        return Err(match problems.first() {
+            // The only parts were behind a refused folder: say why, not "no parts".
+            Some(p) => LoadError::Folder {
+                path: dir.to_path_buf(),
+                cause: std::io::Error::other(p.to_string()),
+            },
+            None => LoadError::NoParts(dir.to_path_buf()),
+        });
     }
     skipped.sort_by(|a, b| a.path.cmp(&b.path));
     let name = dir

@@ -14,7 +14,8 @@
 //! `{"translation": [x, y, z], "rotation": ...}` with the rotation given as
 //! `{"axis": [x, y, z], "angle_deg": a}` or `{"quaternion": [x, y, z, w]}`; the rotation
 //! is applied first. Matrix entries within 4 ulps of 0, ±1/2 or ±1 are snapped to those
-//! values. Unknown keys are ignored.
+//! values. Unknown keys are ignored, except inside `transform`, where an unknown key or
+//! both a matrix and a translation or rotation is an error.
 
 use apart_formats::transform::{Affine, TOL_F64};
 use serde_json::Value;
@@ -66,9 +67,35 @@ pub(crate) fn join(dir: &Path, name: &Path) -> PathBuf {
     }
 }
 
+/// Fails on a key of `obj` not in `known`: in a transform, a misspelt or unsupported key
+/// (a `scale`, say) would otherwise change the geometry without a word.
+fn only_keys(
+    obj: &serde_json::Map<String, Value>,
+    what: &str,
+    known: &[&str],
+) -> Result<(), String> {
+    match obj.keys().find(|k| !known.contains(&k.as_str())) {
+        None => Ok(()),
+        Some(k) => Err(format!(
+            "{what} has an unknown key {k:?}; its keys are {}",
+            known
+                .iter()
+                .map(|k| format!("{k:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
 /// Parses a `transform` object.
 pub fn parse_transform(v: &Value) -> Result<Affine, String> {
     let obj = v.as_object().ok_or("transform must be an object")?;
+    only_keys(obj, "transform", &["matrix", "translation", "rotation"])?;
+    if obj.contains_key("matrix")
+        && (obj.contains_key("translation") || obj.contains_key("rotation"))
+    {
+        return Err("transform gives both \"matrix\" and \"translation\" or \"rotation\"; give the matrix alone, or the translation and rotation".into());
+    }
     let affine = if let Some(m) = obj.get("matrix") {
         let m: [f64; 16] = numbers(m, "transform.matrix")?;
         let rows = [0, 1, 2, 3].map(|i| [m[4 * i], m[4 * i + 1], m[4 * i + 2], m[4 * i + 3]]);
@@ -84,6 +111,16 @@ pub fn parse_transform(v: &Value) -> Result<Affine, String> {
                 let r = r
                     .as_object()
                     .ok_or("transform.rotation must be an object")?;
+                only_keys(
+                    r,
+                    "transform.rotation",
+                    &["quaternion", "axis", "angle_deg"],
+                )?;
+                if r.contains_key("quaternion")
+                    && (r.contains_key("axis") || r.contains_key("angle_deg"))
+                {
+                    return Err("transform.rotation gives both \"quaternion\" and \"axis\"/\"angle_deg\"; give one of them".into());
+                }
                 if let Some(q) = r.get("quaternion") {
                     let q: [f64; 4] = numbers(q, "transform.rotation.quaternion")?;
                     Affine::quaternion(q).ok_or("transform.rotation.quaternion must not be zero")?

@@ -194,7 +194,7 @@ fn manifest_paths_must_stay_inside_the_assembly_folder() {
                 .starts_with(&format!("lies outside the assembly folder {}", d.display()))
                 && e[0]
                     .message
-                    .ends_with("mesh files must be inside it (--allow-outside lifts this)"),
+                    .ends_with("must be inside it (--allow-outside lifts this)"),
             "{}",
             e[0]
         );
@@ -251,6 +251,113 @@ fn manifest_naming_a_device_is_refused_even_when_outside_is_allowed() {
     assert_eq!(z.len(), 1, "{:?}", l.problems);
     assert_eq!(z[0].file.as_deref(), Some(Path::new("/dev/zero")));
     assert!(z[0].message.starts_with("is a character device"));
+}
+
+/// A manifest that is a symbolic link to one elsewhere, and a piece folder that is a
+/// link to a folder elsewhere, are not read (nor listed) unless outside files are allowed.
+#[cfg(unix)]
+#[test]
+fn a_linked_manifest_or_piece_folder_leading_outside_is_not_read() {
+    let elsewhere = tmp("linked-elsewhere");
+    unit_cube(&elsewhere.join("far.off"), 0.0);
+    unit_cube(&elsewhere.join("secret-name.off"), 0.0);
+    std::fs::write(
+        elsewhere.join("assembly.json"),
+        r#"{"parts": [{"name": "far", "mesh": "far.off"}]}"#,
+    )
+    .unwrap();
+    // The manifest of a folder, and a manifest named directly.
+    let d = tmp("linked-manifest");
+    unit_cube(&d.join("a.off"), 0.0);
+    std::os::unix::fs::symlink(elsewhere.join("assembly.json"), d.join("assembly.json")).unwrap();
+    for path in [d.to_path_buf(), d.join("assembly.json")] {
+        let e = load_guarded(&path, LoadOptions::default()).err().unwrap();
+        let e = e.to_string();
+        assert!(
+            e.contains("assembly.json: lies outside the assembly folder")
+                && e.contains("--allow-outside"),
+            "{e}"
+        );
+    }
+    let opts = LoadOptions {
+        allow_outside: true,
+        ..LoadOptions::default()
+    };
+    assert!(load_guarded(&d, opts).is_ok());
+
+    // A piece folder linked outside: an error of its part, and nothing in it is named.
+    let d = tmp("linked-pieces");
+    unit_cube(&d.join("a.off"), 0.0);
+    unit_cube(&d.join("b.off"), 1.0);
+    std::os::unix::fs::symlink(&*elsewhere, d.join("a")).unwrap();
+    let l = load_guarded(&d, LoadOptions::default()).unwrap();
+    let e = errors_of(&l, "a");
+    assert_eq!(e.len(), 1, "{:?}", l.problems);
+    assert!(
+        e[0].message.contains("lies outside the assembly folder"),
+        "{}",
+        e[0]
+    );
+    let all = format!("{:?}{:?}", l.problems, l.skipped);
+    assert!(!all.contains("secret-name"), "{all}");
+    assert!(errors_of(&l, "b").is_empty());
+    // Only the linked folder: the error says why rather than "no parts".
+    let d = tmp("linked-only");
+    std::os::unix::fs::symlink(&*elsewhere, d.join("a")).unwrap();
+    let e = load_guarded(&d, LoadOptions::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("lies outside the assembly folder") && !e.contains("secret"),
+        "{e}"
+    );
+    let opts = LoadOptions {
+        allow_outside: true,
+        ..LoadOptions::default()
+    };
+    let l = load_guarded(&d, opts).unwrap();
+    assert_eq!(l.assembly.parts.len(), 1);
+}
+
+/// A transform with both a matrix and a translation, or with a key apart does not know,
+/// would lose part of what was meant: it is an error naming the keys.
+#[test]
+fn conflicting_or_unknown_transform_keys_are_errors() {
+    for (transform, expect) in [
+        (
+            r#"{"matrix": [1,0,0,5, 0,1,0,0, 0,0,1,0, 0,0,0,1], "translation": [1, 0, 0]}"#,
+            "both \"matrix\" and",
+        ),
+        (
+            r#"{"rotation": {"quaternion": [0, 0, 0, 1], "axis": [0, 0, 1], "angle_deg": 90}}"#,
+            "both \"quaternion\" and",
+        ),
+        (
+            r#"{"translation": [1, 0, 0], "scale": 2}"#,
+            "unknown key \"scale\"",
+        ),
+        (
+            r#"{"rotation": {"axis": [0, 0, 1], "angle_deg": 90, "center": [1, 1, 1]}}"#,
+            "unknown key \"center\"",
+        ),
+    ] {
+        let d = tmp("transform-keys");
+        unit_cube(&d.join("a.off"), 0.0);
+        std::fs::write(
+            d.join("assembly.json"),
+            format!(r#"{{"parts": [{{"name": "a", "mesh": "a.off", "transform": {transform}}}]}}"#),
+        )
+        .unwrap();
+        let e = load_guarded(&d, LoadOptions::default())
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("assembly.json") && e.contains(expect),
+            "{transform}: {e}"
+        );
+    }
 }
 
 /// An ASCII STL of one tetrahedron per name, the k-th at x = 2k.
