@@ -14,6 +14,7 @@ use apart_formats::{read_file_with, RawObject, ReadOptions};
 use apart_kernel::grid::{GridError, MAX_BITS, MIN_BITS};
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Int, Rational};
+use apart_mesh::locate::Locator;
 use apart_mesh::repair::{bodies, repair, RepairOptions};
 use apart_mesh::validate::{validate, MeshInfo};
 use apart_mesh::{Mesh, Problem, ProblemKind};
@@ -731,6 +732,18 @@ fn build_part(
             let sum = part.pieces.iter().fold(Rational::zero(), |s, p| {
                 &s + &Rational::new(p.volume6(), Int::from(6))
             });
+            if let (true, false, Some(mesh)) = (mesh_ok, part.decomposed, &part.mesh) {
+                problems.extend(
+                    pieces::pieces_outside_mesh(
+                        &part.pieces,
+                        &part.piece_sources,
+                        &Locator::new(mesh),
+                        grid,
+                    )
+                    .into_iter()
+                    .map(|p| p.in_part(name)),
+                );
+            }
             if mesh_ok && sum != part.volume {
                 problems.push(
                     Problem::error(format!(

@@ -662,3 +662,136 @@ fn a_part_collapsed_by_the_grid_says_why_and_who_set_the_step() {
         e[0]
     );
 }
+
+/// Writes a folder with a manifest of one part `a` (`mesh`, pieces `pieces`) and a
+/// neighbour `b`, the unit cube at (3, 0, 0).
+fn declared(name: &str, mesh: &RawObject, pieces: &[RawObject]) -> Scratch {
+    let d = tmp(name);
+    write_off(&d.join("a.off"), mesh);
+    unit_cube(&d.join("b.off"), 3.0);
+    let mut list = Vec::new();
+    for (k, p) in pieces.iter().enumerate() {
+        write_off(&d.join(format!("a/p{k}.off")), p);
+        list.push(format!("\"a/p{k}.off\""));
+    }
+    std::fs::write(
+        d.join("assembly.json"),
+        format!(
+            r#"{{"parts": [{{"name": "a", "mesh": "a.off", "pieces": [{}]}}, {{"name": "b", "mesh": "b.off"}}]}}"#,
+            list.join(", ")
+        ),
+    )
+    .unwrap();
+    d
+}
+
+/// An L-shaped prism: [0,2]x[0,1] and [0,1]x[1,2], 1 high.
+fn l_prism() -> RawObject {
+    let p = |x: f64, y: f64, z: f64| [x, y, z];
+    let outline = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)];
+    let mut vertices = Vec::new();
+    for z in [0.0, 1.0] {
+        for (x, y) in outline {
+            vertices.push(p(x, y, z));
+        }
+    }
+    let mut faces: Vec<Vec<u32>> = vec![(0..6).rev().collect(), (6..12).collect()];
+    for k in 0..6u32 {
+        let j = (k + 1) % 6;
+        faces.push(vec![k, j, j + 6, k + 6]);
+    }
+    RawObject {
+        name: None,
+        vertices,
+        faces: Polygons::from(faces),
+    }
+}
+
+/// Declared pieces are checked against the part's mesh as solids, not by volume alone:
+/// a piece elsewhere, a piece that the surface passes through, and a piece in the notch
+/// of a non-convex part (volumes all adding up) are refused, naming the piece.
+#[test]
+fn declared_pieces_must_lie_within_their_part() {
+    let cube = |lo: [f64; 3]| boxed(lo, [lo[0] + 1.0, lo[1] + 1.0, lo[2] + 1.0]);
+    let cases = [
+        (
+            "piece-far",
+            cube([0.0; 3]),
+            vec![cube([10.0, 10.0, 10.0])],
+            "a/p0.off",
+            "lies outside the part's mesh",
+        ),
+        (
+            "piece-crossing",
+            boxed([0.0; 3], [2.0, 1.0, 1.0]),
+            vec![cube([0.0; 3]), boxed([1.5, 0.0, 0.0], [2.5, 1.0, 1.0])],
+            "a/p1.off",
+            "passes through its interior",
+        ),
+        (
+            "piece-notch",
+            l_prism(),
+            vec![
+                boxed([0.0; 3], [1.0, 2.0, 1.0]),
+                boxed([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]),
+            ],
+            "a/p1.off",
+            "lies outside the part's mesh",
+        ),
+    ];
+    for (name, mesh, pieces, piece, expect) in cases {
+        let d = declared(name, &mesh, &pieces);
+        let l = load_guarded(&d, LoadOptions::default()).unwrap();
+        assert!(!l.is_valid(), "{name}");
+        let e = errors_of(&l, "a");
+        assert_eq!(e.len(), 1, "{name}: {:?}", l.problems);
+        assert!(e[0].message.contains(expect), "{name}: {}", e[0]);
+        assert!(
+            e[0].element
+                .as_deref()
+                .is_some_and(|el| el.ends_with(piece)),
+            "{name}: {:?}",
+            e[0]
+        );
+    }
+    // The same meshes with pieces that make them up are accepted.
+    for (name, mesh, pieces) in [
+        (
+            "piece-good-bar",
+            boxed([0.0; 3], [2.0, 1.0, 1.0]),
+            vec![cube([0.0; 3]), cube([1.0, 0.0, 0.0])],
+        ),
+        (
+            "piece-good-l",
+            l_prism(),
+            vec![
+                boxed([0.0; 3], [2.0, 1.0, 1.0]),
+                boxed([0.0, 1.0, 0.0], [1.0, 2.0, 1.0]),
+            ],
+        ),
+    ] {
+        let d = declared(name, &mesh, &pieces);
+        let l = load_guarded(&d, LoadOptions::default()).unwrap();
+        assert!(l.is_valid(), "{name}: {:?}", l.problems);
+    }
+}
+
+/// Thousands of copies of one piece: the overlaps are listed up to a bound, quickly,
+/// rather than every pair.
+#[test]
+fn many_copies_of_one_piece_are_refused_without_a_quadratic_list() {
+    let d = tmp("piece-copies");
+    unit_cube(&d.join("a.off"), 0.0);
+    unit_cube(&d.join("p.off"), 0.0);
+    let list = vec!["\"p.off\""; 10_000].join(", ");
+    std::fs::write(
+        d.join("assembly.json"),
+        format!(r#"{{"parts": [{{"name": "a", "mesh": "a.off", "pieces": [{list}]}}]}}"#),
+    )
+    .unwrap();
+    let l = load_guarded(&d, LoadOptions::default()).unwrap();
+    let e = errors_of(&l, "a");
+    assert!(e.len() <= 25, "{}", e.len());
+    assert!(e.iter().any(|p| p.message.contains("the pieces overlap")));
+    assert!(e.iter().any(|p| p.message.contains("the list stops at")));
+}
