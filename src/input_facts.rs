@@ -165,6 +165,7 @@ pub struct InputFacts {
 /// A file not read, as JSON.
 #[derive(Serialize)]
 pub struct SkippedJson {
+    #[serde(serialize_with = "apart::mesh::path_text")]
     file: std::path::PathBuf,
     reason: String,
 }
@@ -172,6 +173,7 @@ pub struct SkippedJson {
 /// The repairs of one mesh file, as JSON.
 #[derive(Serialize)]
 pub struct RepairJson {
+    #[serde(serialize_with = "apart::mesh::path_text")]
     file: std::path::PathBuf,
     parts: Vec<String>,
     #[serde(flatten)]

@@ -34,6 +34,7 @@ struct BoxJson {
 #[derive(Serialize)]
 struct PartJson {
     name: String,
+    #[serde(serialize_with = "apart::mesh::path_text")]
     source: PathBuf,
     vertices: Option<usize>,
     faces: Option<usize>,
@@ -47,6 +48,7 @@ struct PartJson {
     declared_pieces: bool,
     /// The pieces come from the exact convex decomposition of a non-convex part.
     decomposed: bool,
+    #[serde(serialize_with = "apart::mesh::path_texts")]
     piece_sources: Vec<PathBuf>,
     bbox: Option<BoxJson>,
 }

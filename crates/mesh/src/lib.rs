@@ -39,4 +39,4 @@ pub mod validate;
 mod weld;
 
 pub use mesh::{fmt_point, Mesh};
-pub use problem::{Problem, ProblemKind, Severity};
+pub use problem::{optional_path_text, path_text, path_texts, Problem, ProblemKind, Severity};

@@ -1,8 +1,28 @@
 //! Problems found while reading and validating: values with context, never panics.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+/// Serializes a path as text, escaped as in messages (see `apart_formats::escape`): a
+/// file name that is not UTF-8 keeps its bytes as `\xNN` escapes rather than failing
+/// the whole JSON answer (serde's own path serializer refuses such a name).
+pub fn path_text<S: Serializer>(p: &Path, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&apart_formats::escape::path(p))
+}
+
+/// [`path_text`] of an optional path (`null` for none).
+pub fn optional_path_text<S: Serializer>(p: &Option<PathBuf>, s: S) -> Result<S::Ok, S::Error> {
+    match p {
+        Some(p) => path_text(p, s),
+        None => s.serialize_none(),
+    }
+}
+
+/// [`path_text`] of each path of a list.
+pub fn path_texts<S: Serializer>(ps: &[PathBuf], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_seq(ps.iter().map(|p| apart_formats::escape::path(p)))
+}
 
 /// How bad a problem is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -80,6 +100,7 @@ pub struct Problem {
     /// How bad it is.
     pub severity: Severity,
     /// The file it was found in.
+    #[serde(serialize_with = "optional_path_text")]
     pub file: Option<PathBuf>,
     /// The part it belongs to.
     pub part: Option<String>,

@@ -134,6 +134,25 @@ pub(crate) fn self_intersections_counted(
     };
     let bvh = own_bvh.as_ref().unwrap_or(bvh);
     let boxes_of = bvh.boxes();
+    // Certified planar faces: their triangles are never tested against each other,
+    // and nodes holding one such face alone are skipped against each other.
+    let group = certified_groups(mesh, &distinct, &flats);
+    let same_group =
+        |t: u32, u: u32| group[t as usize] != NONE && group[t as usize] == group[u as usize];
+    let group_labels = bvh.node_labels(
+        |prims| {
+            let g = group[owner[prims[0] as usize] as usize];
+            match prims
+                .iter()
+                .all(|&p| group[owner[p as usize] as usize] == g)
+            {
+                true => g,
+                false => NONE,
+            }
+        },
+        |a, b| if a == b { *a } else { NONE },
+        NONE,
+    );
 
     // Every node's vertices common to all its triangles (sorted, `NONE` padding;
     // all `NONE` when some triangle has a repeated index).
@@ -208,18 +227,186 @@ pub(crate) fn self_intersections_counted(
             if distinct[t as usize] && distinct[u as usize] && shares(tt, uu) {
                 return; // around their shared vertex
             }
+            if same_group(t, u) {
+                return; // one certified planar face
+            }
             if first_meeting(t, p, u, q) {
                 found.test_filtered(mesh, &flats, t, u, limit);
             }
         },
         |a, b| a.merge(b, limit),
         // Empty nodes have no common vertex, so they are never pruned (nothing to skip).
-        |x, y| shares(&labels[x], &labels[y]),
+        |x, y| {
+            shares(&labels[x], &labels[y])
+                || (group_labels[x] != NONE && group_labels[x] == group_labels[y])
+        },
     );
     let all = boxes.merge(around, limit);
     let mut found = all.kept;
     found.sort_by_key(|&(t, u, _)| (t, u));
     (found, all.count, all.tests)
+}
+
+/// Faces of at least this many triangles are tried for a planar certificate.
+const CERTIFY_MIN: usize = 16;
+
+/// For each triangle, its input face when that face's triangles are certified to have
+/// pairwise disjoint interiors and to meet only at shared edges and vertices, else
+/// `NONE`. The certificate, exact and independent of how the face was split: the
+/// triangles are coplanar and turn the same way, no directed edge is used twice, and
+/// the edges used in one direction only form one simple closed polygon (each of its
+/// vertices has one edge in and one out, one cycle, and no two of its sides meet
+/// beyond the vertex they share). The triangles then form a 2-chain whose boundary is
+/// that polygon, so each point is covered as often as the polygon winds around it:
+/// once inside, never twice. A large non-convex cap (a star's) is thus not tested
+/// against itself, which would cost the square of its triangles.
+fn certified_groups(mesh: &Mesh, distinct: &[bool], flats: &[Flat]) -> Vec<u32> {
+    let mut group = vec![NONE; mesh.triangles.len()];
+    let mut by_face: std::collections::HashMap<u32, Vec<u32>> = Default::default();
+    for (t, &f) in mesh.source_faces.iter().enumerate() {
+        by_face.entry(f).or_default().push(t as u32);
+    }
+    let certified: Vec<(u32, Vec<u32>)> = by_face
+        .into_par_iter()
+        .filter(|(_, ts)| ts.len() >= CERTIFY_MIN && certify_planar(mesh, ts, distinct, flats))
+        .collect();
+    for (f, ts) in certified {
+        for t in ts {
+            group[t as usize] = f;
+        }
+    }
+    group
+}
+
+/// The certificate of [`certified_groups`] for the triangles `ts`.
+fn certify_planar(mesh: &Mesh, ts: &[u32], distinct: &[bool], flats: &[Flat]) -> bool {
+    if ts
+        .iter()
+        .any(|&t| !distinct[t as usize] || !flats[t as usize].ok)
+    {
+        return false;
+    }
+    let first = &flats[ts[0] as usize];
+    let [a, b, c] = mesh.corners(ts[0] as usize).map(|p| *p);
+    let axis = first.axis as usize;
+    let turn = orient::orient2d(&first.flat[0], &first.flat[1], &first.flat[2]);
+    let mut edges = std::collections::HashSet::with_capacity(3 * ts.len());
+    for &t in ts {
+        let tri = mesh.triangles[t as usize];
+        let corners = mesh.corners(t as usize);
+        if corners
+            .iter()
+            .any(|p| orient::orient3d(&a, &b, &c, p) != Sign::Zero)
+        {
+            return false;
+        }
+        let q = corners.map(|p| orient::project(p, axis));
+        if orient::orient2d(&q[0], &q[1], &q[2]) != turn {
+            return false;
+        }
+        for k in 0..3 {
+            if !edges.insert((tri[k], tri[(k + 1) % 3])) {
+                return false;
+            }
+        }
+    }
+    // The edges used in one direction only, as `next[from] = to`.
+    let mut next: std::collections::HashMap<u32, u32> = Default::default();
+    for &(u, v) in &edges {
+        if !edges.contains(&(v, u)) && next.insert(u, v).is_some() {
+            return false;
+        }
+    }
+    let Some((&start, _)) = next.iter().min() else {
+        return false;
+    };
+    let mut cycle = vec![start];
+    let mut at = start;
+    while let Some(&v) = next.get(&at) {
+        if v == start {
+            break;
+        }
+        if cycle.len() > next.len() {
+            return false;
+        }
+        cycle.push(v);
+        at = v;
+    }
+    if next.get(&at) != Some(&start) || cycle.len() != next.len() {
+        return false;
+    }
+    simple_polygon_2d(
+        &cycle
+            .iter()
+            .map(|&v| orient::project(&mesh.vertices[v as usize], axis))
+            .collect::<Vec<_>>(),
+    )
+}
+
+/// True when the closed polygon `q` (distinct points, at least 3) is simple: sides meet
+/// only at the vertex two consecutive sides share, and there they do not fold back.
+/// Sides are paired through a hierarchy of their boxes; each meeting pair is decided by
+/// exact orientation tests (points of sides whose boxes meet differ by less than 2^33,
+/// so the products fit `i128`).
+fn simple_polygon_2d(q: &[[i64; 2]]) -> bool {
+    let n = q.len();
+    if n < 3 {
+        return false;
+    }
+    let side = |k: usize| (&q[k], &q[(k + 1) % n]);
+    let boxes: Vec<Aabb> = (0..n)
+        .map(|k| {
+            let (a, b) = side(k);
+            Aabb::of([&[a[0], a[1], 0], &[b[0], b[1], 0]])
+        })
+        .collect();
+    if boxes
+        .iter()
+        .any(|b| (0..2).any(|k| b.max[k] - b.min[k] >= 1 << 31))
+    {
+        return false;
+    }
+    let bvh = Bvh::new(boxes);
+    let bad = bvh.self_pairs(
+        || false,
+        |bad, i, j| {
+            if *bad {
+                return;
+            }
+            let (i, j) = (i as usize, j as usize);
+            let ((a, b), (c, d)) = (side(i), side(j));
+            *bad = if (i + 1) % n == j || (j + 1) % n == i {
+                // Consecutive: they share one vertex `m`; the others `x`, `y`.
+                let (x, m, y) = if (i + 1) % n == j {
+                    (a, b, d)
+                } else {
+                    (c, d, b)
+                };
+                let back = [0, 1].map(|k| (x[k] - m[k]) as i128 * (y[k] - m[k]) as i128);
+                orient::orient2d(x, m, y) == Sign::Zero && back[0] + back[1] > 0
+            } else {
+                segments_meet(a, b, c, d)
+            };
+        },
+        |x, y| x || y,
+    );
+    !bad
+}
+
+/// True when the closed segments `ab` and `cd` share a point (exact).
+fn segments_meet(a: &[i64; 2], b: &[i64; 2], c: &[i64; 2], d: &[i64; 2]) -> bool {
+    let within = |p: &[i64; 2], q: &[i64; 2], r: &[i64; 2]| {
+        (0..2).all(|k| r[k] >= p[k].min(q[k]) && r[k] <= p[k].max(q[k]))
+    };
+    let (o1, o2) = (orient::orient2d(a, b, c), orient::orient2d(a, b, d));
+    let (o3, o4) = (orient::orient2d(c, d, a), orient::orient2d(c, d, b));
+    if o1 != Sign::Zero && o2 != Sign::Zero && o3 != Sign::Zero && o4 != Sign::Zero {
+        return o1 != o2 && o3 != o4;
+    }
+    (o1 == Sign::Zero && within(a, b, c))
+        || (o2 == Sign::Zero && within(a, b, d))
+        || (o3 == Sign::Zero && within(c, d, a))
+        || (o4 == Sign::Zero && within(c, d, b))
 }
 
 /// A triangle's plane `n · (x − a) = 0`, `n = (b − a) × (c − a)`, kept when the edge
@@ -601,6 +788,87 @@ mod tests {
             }
         }
         mesh(v, t)
+    }
+
+    /// A fan around the origin whose rim turns `turns` times (radius 1000 on the first
+    /// turn, 1200 on the second), every triangle from input face 0.
+    fn one_face_fan(rim: usize, turns: usize) -> Mesh {
+        let mut v = vec![[0, 0, 0]];
+        for k in 0..rim {
+            let a = turns as f64 * std::f64::consts::TAU * k as f64 / rim as f64;
+            let r = if k < rim / turns { 1000.0 } else { 1200.0 };
+            v.push([
+                (r * a.cos()).round() as i64,
+                (r * a.sin()).round() as i64,
+                0,
+            ]);
+        }
+        let t: Vec<[u32; 3]> = (1..=rim as u32)
+            .map(|k| [0, k, k % rim as u32 + 1])
+            .collect();
+        let mut m = mesh(v, t);
+        m.source_faces.fill(0);
+        m
+    }
+
+    #[test]
+    fn a_planar_face_is_certified_only_when_its_triangles_cover_it_once() {
+        let certified = |m: &Mesh| {
+            let distinct = vec![true; m.triangles.len()];
+            let flats: Vec<Flat> = m.triangles.iter().map(|t| Flat::of(m, t)).collect();
+            certified_groups(m, &distinct, &flats)
+        };
+        // One turn: a 2-chain bounded by a simple polygon, certified, nothing crosses.
+        let m = one_face_fan(32, 1);
+        assert!(certified(&m).iter().all(|&g| g == 0));
+        agrees(&m).unwrap();
+        // Two turns: the same edge rules hold, but the rim crosses itself and the
+        // triangles overlap; not certified, and every pair is found as by the oracle.
+        let m = one_face_fan(32, 2);
+        assert!(certified(&m).iter().all(|&g| g == NONE));
+        agrees(&m).unwrap();
+        assert!(!brute_force(&m).is_empty());
+        // A triangle flipped, or an edge used twice: not certified.
+        let mut m = one_face_fan(32, 1);
+        m.triangles[3].swap(1, 2);
+        assert!(certified(&m).iter().all(|&g| g == NONE));
+        let mut m = one_face_fan(32, 1);
+        m.triangles[5] = m.triangles[4];
+        assert!(certified(&m).iter().all(|&g| g == NONE));
+    }
+
+    #[test]
+    fn a_star_cap_is_checked_in_near_linear_time() {
+        // A prism over a non-convex star of 4000 sides: its caps' triangles span the
+        // star (quadratically many meeting boxes); certified, they are not paired.
+        let n = 4000usize;
+        let mut v = Vec::new();
+        for z in [0, 1000] {
+            for k in 0..n {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                let r = if k % 2 == 0 { 1.0e6 } else { 0.7e6 };
+                v.push([(r * a.cos()).round(), (r * a.sin()).round(), z as f64]);
+            }
+        }
+        let mut faces: Vec<Vec<u32>> = vec![
+            (0..n as u32).rev().collect(),
+            (n as u32..2 * n as u32).collect(),
+        ];
+        for k in 0..n as u32 {
+            let j = (k + 1) % n as u32;
+            faces.push(vec![k, j, j + n as u32, k + n as u32]);
+        }
+        let raw = apart_formats::RawObject {
+            name: None,
+            vertices: v,
+            faces: apart_formats::Polygons::from(faces),
+        };
+        let (m, problems) = Mesh::from_raw(&raw, &apart_kernel::Grid::unit(40));
+        let m = m.unwrap();
+        assert!(problems.is_empty(), "{problems:?}");
+        let (found, count, tests) = self_intersections_counted(&m, &bvh(&m), 10);
+        assert!(found.is_empty() && count == 0, "{found:?}");
+        assert!(tests < 40 * n, "{tests} exact tests");
     }
 
     #[test]
