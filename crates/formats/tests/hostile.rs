@@ -2,7 +2,9 @@
 //! ends quickly with a clear error naming the file and the element, or reads right.
 //! The inputs are built here, small; nothing big is committed.
 
-use apart_formats::{read_file, read_file_with, ReadOptions, MAX_FILE_BYTES};
+use apart_formats::{
+    read_bytes, read_file, read_file_with, stl, Format, ReadOptions, MAX_FILE_BYTES,
+};
 use apart_testkit::Scratch;
 use std::path::Path;
 use std::sync::mpsc;
@@ -113,7 +115,9 @@ fn huge_declared_counts_fail_fast() {
     std::fs::write(d.join("t.stl"), &stl).unwrap();
     let e = error_within(&d.join("t.stl"), ReadOptions::default());
     assert!(
-        e.contains("declares 4000000000 triangles but holds only 0"),
+        e.contains(
+            "it declares 4000000000 triangles (200000000084 bytes) but the file has 84 bytes"
+        ),
         "{e}"
     );
     std::fs::write(d.join("t.off"), b"OFF\n4000000000 1 0\n").unwrap();
@@ -198,4 +202,136 @@ fn gltf_buffers_stay_in_the_folder_of_the_file() {
         }
     }
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The message of reading `bytes` as `format`, failing the test if they are read.
+fn refused(bytes: &[u8], format: Format) -> String {
+    match read_bytes(bytes, format, None) {
+        Ok(o) => panic!(
+            "read {} objects from {:?}",
+            o.len(),
+            String::from_utf8_lossy(bytes)
+        ),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// A binary STL of `n` triangles, whose header starts with `solid`.
+fn binary_stl(n: usize) -> Vec<u8> {
+    let v = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut b = Vec::new();
+    stl::write(&mut b, &v, &vec![[0, 1, 2]; n]).unwrap();
+    b[..11].copy_from_slice(b"solid part ");
+    b
+}
+
+#[test]
+fn binary_stl_counts_must_match_the_size() {
+    let good = binary_stl(3);
+    assert_eq!(
+        read_bytes(&good, Format::Stl, None).unwrap()[0].faces.len(),
+        3
+    );
+    // A count one less than the records held: the last record would be dropped.
+    let mut fewer = good.clone();
+    fewer[80..84].copy_from_slice(&2u32.to_le_bytes());
+    let e = refused(&fewer, Format::Stl);
+    assert!(
+        e.contains(
+            "not binary STL: it declares 2 triangles (184 bytes) but the file has 234 bytes"
+        ),
+        "{e}"
+    );
+    // Trailing bytes after the declared records.
+    let mut trailing = good.clone();
+    trailing.extend_from_slice(b"junk");
+    let e = refused(&trailing, Format::Stl);
+    assert!(
+        e.contains(
+            "not binary STL: it declares 3 triangles (234 bytes) but the file has 238 bytes"
+        ),
+        "{e}"
+    );
+    // The header starts with "solid": the message also says why it is not ASCII STL.
+    assert!(e.contains("not ASCII STL: line 1: "), "{e}");
+    // Truncated, with a header that does not start with "solid".
+    let mut cut = good[..good.len() - 1].to_vec();
+    cut[..5].copy_from_slice(b"hello");
+    let e = refused(&cut, Format::Stl);
+    assert!(
+        e.contains("malformed STL file: not binary STL: it declares 3 triangles (234 bytes) but the file has 233 bytes; and not ASCII STL: it does not start with \"solid\""),
+        "{e}"
+    );
+    let e = refused(b"\0\0\0", Format::Stl);
+    assert!(
+        e.contains(
+            "not binary STL: it has 3 bytes, fewer than the 84 of a binary STL's header and count"
+        ),
+        "{e}"
+    );
+}
+
+const FACET: &str = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
+
+#[test]
+fn ascii_stl_facets_have_three_vertices() {
+    let two = format!(
+        "solid a\n{FACET}facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n endloop\nendfacet\nendsolid a\n"
+    );
+    let e = refused(two.as_bytes(), Format::Stl);
+    assert!(
+        e.contains("line 13: facet 2 has 2 vertices; an STL facet has 3"),
+        "{e}"
+    );
+    let four = format!(
+        "solid a\n{}endsolid a\n",
+        FACET.replace("endloop", "  vertex 1 1 0\n endloop")
+    );
+    let e = refused(four.as_bytes(), Format::Stl);
+    assert!(
+        e.contains("not ASCII STL: line 8: facet 1 has 4 vertices; an STL facet has 3; and not binary STL: it declares"),
+        "{e}"
+    );
+    let cut = format!("solid a\n{}", &FACET[..60]);
+    let e = refused(cut.as_bytes(), Format::Stl);
+    assert!(e.contains("line 5: the file ends inside facet 1"), "{e}");
+    let e = refused(
+        b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 x 0\n",
+        Format::Stl,
+    );
+    assert!(e.contains("line 4: \"x\" is not a number"), "{e}");
+}
+
+#[test]
+fn ascii_stl_in_upper_case_with_a_mark_or_a_latin1_name_is_read() {
+    let upper = "SOLID CUBE\r\n FACET NORMAL 0 0 1\r\n  OUTER LOOP\r\n   VERTEX 0 0 0\r\n   VERTEX 1 0 0\r\n   VERTEX 0 0.1 0\r\n  ENDLOOP\r\n ENDFACET\r\nENDSOLID CUBE\r\n";
+    let mut bom = b"\xef\xbb\xbf".to_vec();
+    bom.extend_from_slice(format!("solid bom\n{FACET}endsolid bom\n").as_bytes());
+    let mut latin1 = b"solid W\xfcrfel\n".to_vec();
+    latin1.extend_from_slice(FACET.as_bytes());
+    latin1.extend_from_slice(b"endsolid W\xfcrfel\n");
+    for (bytes, name, y) in [
+        (upper.as_bytes(), "CUBE", 0.1),
+        (&bom[..], "bom", 1.0),
+        (&latin1[..], "W\u{fc}rfel", 1.0),
+    ] {
+        let o = read_bytes(bytes, Format::Stl, None).unwrap();
+        assert_eq!(o.len(), 1);
+        assert_eq!(o[0].name.as_deref(), Some(name));
+        assert_eq!(
+            o[0].vertices,
+            vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, y, 0.0]]
+        );
+        assert_eq!(o[0].faces.get(0), &[0, 1, 2]);
+    }
+    // Not ASCII STL after all: the line where it stopped, and the binary reading.
+    let mut bad =
+        b"\xef\xbb\xbf\n\nSOLID x\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\n\xff\xfe 1 2 3\n"
+            .to_vec();
+    bad.resize(120, b' ');
+    let e = refused(&bad, Format::Stl);
+    assert!(
+        e.contains("not ASCII STL: line 7: unexpected \"\u{fffd}\u{fffd}\"; and not binary STL: it declares 538976288 triangles (26948814484 bytes) but the file has 120 bytes"),
+        "{e}"
+    );
 }
