@@ -335,3 +335,88 @@ fn ascii_stl_in_upper_case_with_a_mark_or_a_latin1_name_is_read() {
         "{e}"
     );
 }
+
+/// Eight vertices of a unit cube, as OBJ `v` lines (lines 1 to 8).
+const CUBE_VERTICES: &str =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+
+#[test]
+fn obj_face_indices_out_of_range_name_the_line_and_face() {
+    for (reference, want) in [
+        ("0", "line 13: face 3 refers to vertex 0; OBJ indices start at 1"),
+        ("9", "line 13: face 3 refers to vertex 9 but only 8 vertices are defined before it"),
+        (
+            "4294967298",
+            "line 13: face 3 refers to vertex 4294967298 but only 8 vertices are defined before it",
+        ),
+        (
+            "-9223372036854775808",
+            "line 13: face 3 refers to vertex -9223372036854775808 but only 8 vertices are defined before it",
+        ),
+        (
+            "99999999999999999999999",
+            "line 13: face 3 refers to vertex 99999999999999999999999 but only 8 vertices are defined before it",
+        ),
+        ("-9", "line 13: face 3 refers to vertex -9 but only 8 vertices are defined before it"),
+        ("-0/1", "line 13: face 3 refers to vertex -0; OBJ indices start at 1"),
+        (
+            "1/x",
+            "line 13: face 3 \"1/x\" is not a vertex reference (v, v/vt, v//vn or v/vt/vn)",
+        ),
+        ("1/2/3/4", "line 13: face 3 \"1/2/3/4\" is not a vertex reference"),
+    ] {
+        let text = format!("{CUBE_VERTICES}o box\nf 1 2 3\n# third face next\nf 1 3 {reference}\n");
+        let text = text.replacen("o box\n", "o box\nf 1 3 4\n", 1);
+        let e = refused(text.as_bytes(), Format::Obj);
+        assert!(e.contains(want), "{reference}: {e}");
+    }
+    // Only vertices defined before the face count.
+    let e = refused(b"v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n", Format::Obj);
+    assert!(
+        e.contains("line 3: face 1 refers to vertex 3 but only 2 vertices are defined before it"),
+        "{e}"
+    );
+    let e = refused(b"v 0 0 0\nf -1 -1 -2\n", Format::Obj);
+    assert!(
+        e.contains("line 2: face 1 refers to vertex -2 but only 1 vertex is defined before it"),
+        "{e}"
+    );
+    let e = refused(b"v 0 0 0\nv 1 0 0\nf 1 2\n", Format::Obj);
+    assert!(
+        e.contains("line 3: face 1 has 2 vertices; a face needs at least 3"),
+        "{e}"
+    );
+    for (line, want) in [
+        ("v 0 0", "line 2: vertex 2 has 2 coordinates, not 3"),
+        ("v 0 0 x", "line 2: vertex 2: \"x\" is not a number"),
+        ("v 0 0 0 0", "line 2: vertex 2 has a weight w of 0"),
+        ("v 0 0 0 1 1", "line 2: vertex 2 has 5 numbers"),
+    ] {
+        let e = refused(format!("v 0 0 0\n{line}\n").as_bytes(), Format::Obj);
+        assert!(e.contains(want), "{line}: {e}");
+    }
+}
+
+#[test]
+fn obj_texture_and_normal_indices_are_ignored() {
+    // Relative indices, texture and normal indices beyond their lists (not read), vertex
+    // colours, inline comments, and a name that is not UTF-8.
+    let mut text = CUBE_VERTICES
+        .replace("v 0 0 0\n", "v 0 0 0 1 0 0 # red\n")
+        .into_bytes();
+    text.extend_from_slice(b"vt 0 0\nvn 0 0 1\no caf\xe9\nf 1/7/9 2/1/1 3//99\nf -8/5 -6/99999999999999999999 -5/-7\nl 1 2\n");
+    let o = read_bytes(&text, Format::Obj, None).unwrap();
+    assert_eq!(o.len(), 1);
+    assert_eq!(o[0].name.as_deref(), Some("caf\u{fffd}"));
+    assert_eq!(o[0].faces.len(), 2);
+    let corners: Vec<[f64; 3]> = o[0]
+        .faces
+        .get(1)
+        .iter()
+        .map(|&i| o[0].vertices[i as usize])
+        .collect();
+    assert_eq!(
+        corners,
+        vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
+    );
+}
