@@ -420,3 +420,58 @@ fn obj_texture_and_normal_indices_are_ignored() {
         vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
     );
 }
+
+/// A triangle as OFF: the header (line 1), the counts (line 2), three vertices (lines 3
+/// to 5) and then `faces` from line 6.
+fn off_triangle(counts: &str, faces: &str) -> Vec<u8> {
+    format!("OFF\n{counts}\n0 0 0\n1 0 0\n0 1 0\n{faces}").into_bytes()
+}
+
+#[test]
+fn off_counts_must_match_the_data() {
+    assert_eq!(
+        read_bytes(
+            &off_triangle("3 1 0", "3 0 1 2 # one\n\n# done\n"),
+            Format::Off,
+            None
+        )
+        .unwrap()[0]
+            .faces
+            .len(),
+        1
+    );
+    for (counts, faces, want) in [
+        (
+            "3 1 0",
+            "3 0 1 2\n3 0 2 1\n",
+            "line 7: data after the 1 declared face",
+        ),
+        ("3 2 0", "3 0 1 2\n", "line 6: expected 2 faces, found 1"),
+        ("2 1 0", "3 0 1 2\n", "line 5: face 0 has 0 vertices"),
+        ("4 1 0", "3 0 1 2\n", "line 6: expected 1 face, found 0"),
+        ("4 1 0", "", "line 5: expected 4 vertices, found 3"),
+        (
+            "3 1 0",
+            "2 0 1\n",
+            "line 6: face 0 has 2 vertices; a face needs at least 3",
+        ),
+        (
+            "3 1 0",
+            "4 0 1 2\n",
+            "line 6: face 0 declares 4 vertices but lists 3",
+        ),
+        (
+            "3 1 0",
+            "3 0 1 2 0 1\n",
+            "line 6: face 0 declares 3 vertices but the line holds 2 more values",
+        ),
+        (
+            "3 1 0",
+            "3 0 1 2 x\n",
+            "line 6: face 0: \"x\" after its indices is not a number",
+        ),
+    ] {
+        let e = refused(&off_triangle(counts, faces), Format::Off);
+        assert!(e.contains(want), "{counts} / {faces}: {e}");
+    }
+}
