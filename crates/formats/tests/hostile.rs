@@ -475,3 +475,100 @@ fn off_counts_must_match_the_data() {
         assert!(e.contains(want), "{counts} / {faces}: {e}");
     }
 }
+
+const PLY_HEADER: &str = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+
+#[test]
+fn ply_counts_must_match_the_data() {
+    // The header takes lines 1 to 9; the vertices 10 to 12, the face 13.
+    let ply = |vertices: &str, faces: &str| format!("{PLY_HEADER}{vertices}{faces}").into_bytes();
+    let xyz = "0 0 0\n1 0 0\n0 1 0\n";
+    assert_eq!(
+        read_bytes(&ply(xyz, "3 0 1 2\n\n"), Format::Ply, None).unwrap()[0]
+            .faces
+            .len(),
+        1
+    );
+    for (vertices, faces, want) in [
+        (
+            xyz,
+            "3 0 1 2\n3 0 2 1\n",
+            "line 14: data after the declared elements",
+        ),
+        (
+            "0.000000000 0 0\n1 0 0\n0 1 0\n",
+            "",
+            "line 12: the file ends after 0 of the 1 declared entries of element \"face\"",
+        ),
+        (
+            "0.000000000000000 0 0\n1.000000000000000 0 0\n",
+            "",
+            "line 11: the file ends after 2 of the 3 declared entries of element \"vertex\"",
+        ),
+        (
+            xyz,
+            "2 0 1\n",
+            "line 13: face 0 has 2 vertices; a face needs at least 3",
+        ),
+        (
+            xyz,
+            "3 0 1 2 1\n",
+            "line 13: face 0 has 5 values, but its properties (and list lengths) call for 4",
+        ),
+        (
+            xyz,
+            "4 0 1 2\n",
+            "line 13: face 0 has 4 values, but its properties (and list lengths) call for 5",
+        ),
+        (
+            "0 0 0 0\n1 0 0\n0 1 0\n",
+            "3 0 1 2\n",
+            "line 10: vertex 0 has 4 values, but its properties (and list lengths) call for 3",
+        ),
+        (
+            xyz,
+            "3 0 1 3\n",
+            "line 13: face 0 refers to vertex 3, but there are only 3 vertices",
+        ),
+        (
+            xyz,
+            "3 0 1 -1\n",
+            "line 13: face 0 has a negative vertex index",
+        ),
+    ] {
+        let e = refused(&ply(vertices, faces), Format::Ply);
+        assert!(e.contains(want), "{vertices} / {faces}: {e}");
+    }
+    // Binary: trailing bytes, and a face of two vertices, named by element.
+    let mut b = PLY_HEADER
+        .replace("ascii", "binary_little_endian")
+        .into_bytes();
+    for c in [0f64, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        b.extend_from_slice(&c.to_le_bytes());
+    }
+    let mut two = b.clone();
+    two.push(2);
+    two.extend([0i32, 1].iter().flat_map(|i| i.to_le_bytes()));
+    let e = refused(&two, Format::Ply);
+    assert!(
+        e.contains("malformed PLY file: face 0 has 2 vertices; a face needs at least 3"),
+        "{e}"
+    );
+    b.push(3);
+    b.extend([0i32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    assert_eq!(read_bytes(&b, Format::Ply, None).unwrap()[0].faces.len(), 1);
+    let len = b.len();
+    b.extend_from_slice(b"junk");
+    let e = refused(&b, Format::Ply);
+    assert!(
+        e.contains(&format!(
+            "4 bytes after the declared elements, from byte offset {len}"
+        )),
+        "{e}"
+    );
+    let e = refused(&b[..len - 2], Format::Ply);
+    assert!(
+        e.contains("binary element 'face'") && !e.contains("Line"),
+        "{e}"
+    );
+}
