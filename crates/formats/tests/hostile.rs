@@ -572,3 +572,117 @@ fn ply_counts_must_match_the_data() {
         "{e}"
     );
 }
+
+/// The JSON of a one-triangle glTF whose buffer 0 (`byte_length`, no URI) is the BIN
+/// chunk, with `index_count` indices.
+fn glb_json(byte_length: usize, index_count: usize) -> String {
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
+"buffers":[{{"byteLength":{byte_length}}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":6}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5123,"count":{index_count},"type":"SCALAR"}}]}}"#
+    )
+}
+
+/// A GLB of `json` and `bin`, each padded to 4 bytes as the format wants.
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    let mut bin = bin.to_vec();
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(bin);
+    out
+}
+
+/// Positions of one triangle and its three u16 indices: 42 bytes.
+fn triangle_bin_with_indices() -> Vec<u8> {
+    let mut b = triangle_bin();
+    b.extend([0u16, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    b
+}
+
+#[test]
+fn glb_lengths_must_match_the_file() {
+    let bin = triangle_bin_with_indices();
+    let good = glb(&glb_json(42, 3), &bin);
+    let o = read_bytes(&good, Format::Gltf, None).unwrap();
+    assert_eq!(o[0].vertices[2], [0.0, 1.0, 0.0]);
+    let n = good.len();
+    let json_len = u32::from_le_bytes(good[12..16].try_into().unwrap()) as usize;
+    let bin_at = 20 + json_len;
+    let with = |at: usize, value: usize| {
+        let mut b = good.clone();
+        b[at..at + 4].copy_from_slice(&(value as u32).to_le_bytes());
+        b
+    };
+    let cases = [
+        (
+            with(8, n - 4),
+            format!("the GLB header declares {} bytes but the file has {n}", n - 4),
+        ),
+        (
+            with(8, n + 4),
+            format!("the GLB header declares {} bytes but the file has {n}", n + 4),
+        ),
+        (
+            with(12, n),
+            format!(
+                "GLB chunk 0 (JSON) at byte offset 12 declares {n} bytes of data, but only {} are left in the file",
+                n - 20
+            ),
+        ),
+        (
+            with(12, json_len - 4),
+            format!(") at byte offset {} declares", bin_at - 4),
+        ),
+        (
+            with(bin_at, 48),
+            format!("GLB chunk 1 (BIN) at byte offset {bin_at} declares 48 bytes of data, but only 44 are left"),
+        ),
+        (
+            with(bin_at, 40),
+            format!("4 bytes at byte offset {}, after chunk 1, are too few for a chunk header", n - 4),
+        ),
+        (
+            glb(&glb_json(42, 3), &[&bin[..], &[0; 8]].concat()),
+            "buffer 0 is the BIN chunk of 52 bytes, more than its byteLength 42 and at most 3 bytes of padding".to_string(),
+        ),
+        (
+            glb(&glb_json(41, 3), &bin),
+            "buffer view 1 (bytes 36 to 42) lies beyond the end of buffer 0 (41 bytes)".to_string(),
+        ),
+        (
+            glb(&glb_json(42, 2), &bin),
+            "mesh 0, primitive 0: 2 indices for TRIANGLES, not a multiple of 3".to_string(),
+        ),
+        (
+            [&with(8, 16)[..12], b"JSON"].concat(),
+            "4 bytes at byte offset 12, after the header, are too few for a chunk header".to_string(),
+        ),
+        (
+            good[..11].to_vec(),
+            "the GLB file has 11 bytes, fewer than its 12-byte header".to_string(),
+        ),
+    ];
+    for (bytes, want) in cases {
+        let e = refused(&bytes, Format::Gltf);
+        assert!(e.contains(&want), "{want}\n{e}");
+    }
+    // A chunk of another type after BIN is allowed (the format reserves them).
+    let mut extra = good.clone();
+    extra.extend(4u32.to_le_bytes());
+    extra.extend(b"XTRA\0\0\0\0");
+    let len = extra.len() as u32;
+    extra[8..12].copy_from_slice(&len.to_le_bytes());
+    assert_eq!(read_bytes(&extra, Format::Gltf, None).unwrap().len(), 1);
+}
