@@ -674,6 +674,26 @@ fn check_hierarchy(
     Ok(below.iter().map(Option::is_some).collect())
 }
 
+/// Checks that every primitive's `POSITION` names an accessor that exists (the gltf
+/// crate's validation indexes it without checking, and panics).
+fn check_position_indices(root: &gltf::json::Root) -> Result<(), ReadError> {
+    let positions = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(a) = prim.attributes.get(&positions) {
+                if a.value() >= root.accessors.len() {
+                    return Err(malformed(format!(
+                        "mesh {m}, primitive {p}: POSITION is accessor {}, but there are only {} accessors",
+                        a.value(),
+                        root.accessors.len()
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The name of a GLB chunk type, as a message shows it.
 fn chunk_type(ty: &[u8]) -> String {
     match ty {
@@ -743,8 +763,11 @@ pub fn read(
     if bytes.starts_with(b"glTF") {
         check_glb(bytes)?;
     }
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| malformed(e.to_string()))?;
-    let document = gltf.document;
+    let gltf =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| malformed(e.to_string()))?;
+    check_position_indices(gltf.document.as_json())?;
+    let document = gltf::Document::from_json(gltf.document.into_json())
+        .map_err(|e| malformed(e.to_string()))?;
     let buffers = load_buffers(&document, gltf.blob, base_dir, options)?;
     let data = Data {
         budget: bytes.len() as u128 + buffers.iter().map(|b| b.len() as u128).sum::<u128>(),
