@@ -13,10 +13,14 @@
 //!   are not regular or larger than [`crate::MAX_FILE_BYTES`]; URI schemes other than
 //!   `data:` and `file:`. Images are never opened (only geometry is read), so their
 //!   URIs are not looked at;
-//! - a buffer shorter than its declared `byteLength`, a buffer view beyond its buffer,
+//! - a GLB whose header length is not the file's, whose chunks (JSON, then BIN if any)
+//!   do not tile the file exactly, or whose BIN chunk is more than 3 bytes (padding)
+//!   longer than buffer 0's `byteLength`;
+//! - a buffer shorter than its declared `byteLength`, a buffer view beyond it,
 //!   an accessor whose `count` elements (at its stride) do not fit its buffer view, an
 //!   accessor without a buffer view (all zeros, or sparse) declaring more bytes than
-//!   the file and its buffers hold;
+//!   the file and its buffers hold; a `TRIANGLES` primitive whose index (or vertex)
+//!   count is not a multiple of 3;
 //! - `POSITION` accessors other than `FLOAT` (5126) `VEC3`: quantized positions
 //!   (KHR_mesh_quantization) are not read; index accessors other than
 //!   `UNSIGNED_BYTE` (5121), `UNSIGNED_SHORT` (5123) or `UNSIGNED_INT` (5125) `SCALAR`;
@@ -400,6 +404,17 @@ fn mesh_object(
                 "{what} refers to vertex {bad}, but the primitive has {n} vertices"
             )));
         }
+        if mode == Mode::Triangles && idx.len() % 3 != 0 {
+            return Err(malformed(format!(
+                "{what}: {} {} for TRIANGLES, not a multiple of 3",
+                idx.len(),
+                if prim.indices().is_some() {
+                    "indices"
+                } else {
+                    "vertices (without indices)"
+                }
+            )));
+        }
         let mut push = |a: u32, b: u32, c: u32| object.faces.push(&[base + a, base + b, base + c]);
         match mode {
             Mode::Triangles => idx.chunks_exact(3).for_each(|t| push(t[0], t[1], t[2])),
@@ -517,7 +532,7 @@ fn load_buffers(
     let mut out = Vec::new();
     for b in document.buffers() {
         let i = b.index();
-        let data = match b.source() {
+        let mut data = match b.source() {
             gltf::buffer::Source::Bin => blob.take().ok_or_else(|| {
                 malformed(format!(
                     "buffer {i} is the binary chunk, which the file does not have"
@@ -549,6 +564,16 @@ fn load_buffers(
                 b.length()
             )));
         }
+        // The BIN chunk is the buffer padded to a multiple of 4 bytes, no more.
+        if matches!(b.source(), gltf::buffer::Source::Bin) && data.len() > b.length() + 3 {
+            return Err(malformed(format!(
+                "buffer {i} is the BIN chunk of {} bytes, more than its byteLength {} and at most 3 bytes of padding",
+                data.len(),
+                b.length()
+            )));
+        }
+        // Buffer views are checked against the declared length.
+        data.truncate(b.length());
         out.push(data);
     }
     Ok(out)
@@ -649,6 +674,85 @@ fn check_hierarchy(
     Ok(below.iter().map(Option::is_some).collect())
 }
 
+/// Checks that every primitive's `POSITION` names an accessor that exists (the gltf
+/// crate's validation indexes it without checking, and panics).
+fn check_position_indices(root: &gltf::json::Root) -> Result<(), ReadError> {
+    let positions = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(a) = prim.attributes.get(&positions) {
+                if a.value() >= root.accessors.len() {
+                    return Err(malformed(format!(
+                        "mesh {m}, primitive {p}: POSITION is accessor {}, but there are only {} accessors",
+                        a.value(),
+                        root.accessors.len()
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The name of a GLB chunk type, as a message shows it.
+fn chunk_type(ty: &[u8]) -> String {
+    match ty {
+        b"JSON" => "JSON".to_string(),
+        b"BIN\0" => "BIN".to_string(),
+        _ => quoted(&String::from_utf8_lossy(ty)),
+    }
+}
+
+/// Checks the GLB container before the gltf crate reads it: the header's length is the
+/// file's, and the chunks (JSON first, then BIN if any, then any others) tile the rest
+/// exactly.
+fn check_glb(bytes: &[u8]) -> Result<(), ReadError> {
+    let word =
+        |at: usize| u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    if bytes.len() < 12 {
+        return Err(malformed(format!(
+            "the GLB file has {} bytes, fewer than its 12-byte header",
+            bytes.len()
+        )));
+    }
+    let declared = word(8) as usize;
+    if declared != bytes.len() {
+        return Err(malformed(format!(
+            "the GLB header declares {declared} bytes but the file has {}",
+            bytes.len()
+        )));
+    }
+    let mut at = 12;
+    for k in 0.. {
+        let left = bytes.len() - at;
+        if left == 0 {
+            break;
+        }
+        if left < 8 {
+            let after = match k {
+                0 => "the header".to_string(),
+                k => format!("chunk {}", k - 1),
+            };
+            return Err(malformed(format!(
+                "{left} bytes at byte offset {at}, after {after}, are too few for a chunk header (8 bytes)"
+            )));
+        }
+        let (length, ty) = (word(at) as usize, &bytes[at + 4..at + 8]);
+        let what = format!("GLB chunk {k} ({}) at byte offset {at}", chunk_type(ty));
+        if k == 0 && ty != b"JSON" {
+            return Err(malformed(format!("{what}: the first chunk must be JSON")));
+        }
+        if length > left - 8 {
+            return Err(malformed(format!(
+                "{what} declares {length} bytes of data, but only {} are left in the file",
+                left - 8
+            )));
+        }
+        at += 8 + length;
+    }
+    Ok(())
+}
+
 /// Parses a glTF or GLB file; `base_dir` (the file's folder) resolves external buffer
 /// files, which must lie inside it unless `options` allow otherwise.
 pub fn read(
@@ -656,8 +760,14 @@ pub fn read(
     base_dir: Option<&Path>,
     options: &ReadOptions,
 ) -> Result<Vec<RawObject>, ReadError> {
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| malformed(e.to_string()))?;
-    let document = gltf.document;
+    if bytes.starts_with(b"glTF") {
+        check_glb(bytes)?;
+    }
+    let gltf =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| malformed(e.to_string()))?;
+    check_position_indices(gltf.document.as_json())?;
+    let document = gltf::Document::from_json(gltf.document.into_json())
+        .map_err(|e| malformed(e.to_string()))?;
     let buffers = load_buffers(&document, gltf.blob, base_dir, options)?;
     let data = Data {
         budget: bytes.len() as u128 + buffers.iter().map(|b| b.len() as u128).sum::<u128>(),

@@ -39,7 +39,11 @@
 //! - files: only regular files, at most [`MAX_FILE_BYTES`] (4 GiB), through the one
 //!   function that opens files, [`read_regular`];
 //! - declared counts (PLY elements, OFF header, binary STL triangles, glTF accessors)
-//!   are compared with what the bytes could hold ([`ply`], [`off`], [`stl`], [`gltf`]);
+//!   are compared with what the bytes could hold ([`ply`], [`off`], [`stl`], [`gltf`]),
+//!   and then with what the file holds: data missing or left over after the declared
+//!   counts (binary STL records, OFF and PLY entries, GLB chunks) is an error, as is a
+//!   face of fewer than three vertices;
+//! - errors name the line (text formats) or the element and byte offset (binary ones);
 //! - glTF: referenced files stay in the file's folder ([`resolve_inside`], lifted by
 //!   [`ReadOptions::allow_outside`]), node hierarchies are acyclic and expand to at
 //!   most [`gltf::MAX_MESH_INSTANCES`] meshes, transforms are finite and rotations unit

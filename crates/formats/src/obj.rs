@@ -1,11 +1,155 @@
 //! Wavefront OBJ, read with tobj (positions as `f64`, polygons kept as written).
 //! Every `o` or `g` statement starts a new object; groups of the same name (tobj also
 //! splits a group where its material changes) are merged back into one object.
-//! Materials, normals and texture coordinates are ignored.
+//! Materials, normals, texture coordinates, vertex colours, points and lines are
+//! ignored.
+//!
+//! Before tobj sees the file, every line is checked here, so that errors name the line
+//! and the vertex or face: a vertex has three coordinates (and then nothing, a `w`
+//! other than 0, or three colour values); a face has at least three vertices, each a
+//! `v`, `v/vt`, `v//vn` or `v/vt/vn` reference whose vertex index (from 1, or negative,
+//! counting back from the last vertex) names a vertex defined before the face. What
+//! tobj is given is the file rewritten: absolute vertex indices, the ignored statements
+//! left out (so that texture and normal indices, which are not read, cannot fail), and
+//! bytes that are not UTF-8 replaced in names and comments.
 
+use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
 use crate::{Format, ReadError};
+use std::fmt::Write as _;
 use std::io::Write;
+
+fn bad(line: usize, detail: impl std::fmt::Display) -> ReadError {
+    ReadError::malformed(Format::Obj, format!("line {line}: {detail}"))
+}
+
+/// `8 vertices are`, `1 vertex is`.
+fn defined(n: usize) -> String {
+    match n {
+        1 => "only 1 vertex is".to_string(),
+        n => format!("only {n} vertices are"),
+    }
+}
+
+/// The 1-based index of the vertex that `token` (`v`, `v/vt`, `v//vn`, `v/vt/vn`) names
+/// in a face, when `count` vertices are defined before it.
+fn vertex_reference(token: &str, count: usize) -> Result<usize, String> {
+    let not_a_reference = || {
+        format!(
+            "{} is not a vertex reference (v, v/vt, v//vn or v/vt/vn)",
+            quoted(token)
+        )
+    };
+    let is_integer = |t: &str| {
+        let digits = t.strip_prefix('-').unwrap_or(t);
+        !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit())
+    };
+    let mut parts = token.split('/');
+    let v = parts.next().unwrap_or("");
+    let rest: Vec<&str> = parts.collect();
+    if !is_integer(v) || rest.len() > 2 || rest.iter().any(|t| !t.is_empty() && !is_integer(t)) {
+        return Err(not_a_reference());
+    }
+    let beyond = || {
+        format!(
+            "refers to vertex {v} but {} defined before it",
+            defined(count)
+        )
+    };
+    match v.parse::<i64>() {
+        Ok(0) => Err(format!("refers to vertex {v}; OBJ indices start at 1")),
+        Ok(i) if i > 0 && i as u64 <= count as u64 => Ok(i as usize),
+        // Relative: -1 is the last vertex defined.
+        Ok(i) if i < 0 && i.unsigned_abs() <= count as u64 => {
+            Ok(count + 1 - i.unsigned_abs() as usize)
+        }
+        // Too far either way, also beyond the range of i64.
+        _ => Err(beyond()),
+    }
+}
+
+/// The tokens of a line before a `#` comment.
+fn tokens(line: &str) -> impl Iterator<Item = &str> {
+    line.split_whitespace().take_while(|t| !t.starts_with('#'))
+}
+
+/// The file checked line by line (see the module documentation) and rewritten for tobj.
+fn checked(bytes: &[u8]) -> Result<String, ReadError> {
+    let mut out = String::with_capacity(bytes.len());
+    let (mut vertices, mut faces) = (0usize, 0usize);
+    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let n = i + 1;
+        let line = String::from_utf8_lossy(raw);
+        let mut tok = tokens(&line);
+        match tok.next() {
+            Some("v") => {
+                vertices += 1;
+                let values: Vec<&str> = tok.collect();
+                let number = |t: &&str| t.parse::<f64>().is_ok();
+                if values.len() < 3 {
+                    return Err(bad(
+                        n,
+                        format!("vertex {vertices} has {} coordinates, not 3", values.len()),
+                    ));
+                }
+                if let Some(t) = values.iter().find(|t| !number(t)) {
+                    return Err(bad(
+                        n,
+                        format!("vertex {vertices}: {} is not a number", quoted(t)),
+                    ));
+                }
+                let keep = match values.len() {
+                    3 | 6 => 3, // colours are not read
+                    4 if values[3].parse::<f64>() == Ok(0.0) => {
+                        return Err(bad(n, format!("vertex {vertices} has a weight w of 0")))
+                    }
+                    4 => 4,
+                    k => {
+                        return Err(bad(
+                            n,
+                            format!(
+                                "vertex {vertices} has {k} numbers; a vertex is x y z, x y z w or x y z r g b"
+                            ),
+                        ))
+                    }
+                };
+                out.push('v');
+                for t in &values[..keep] {
+                    out.push(' ');
+                    out.push_str(t);
+                }
+                out.push('\n');
+            }
+            Some("f") => {
+                faces += 1;
+                let refs: Vec<&str> = tok.collect();
+                if refs.len() < 3 {
+                    return Err(bad(
+                        n,
+                        format!(
+                            "face {faces} has {} vertices; a face needs at least 3",
+                            refs.len()
+                        ),
+                    ));
+                }
+                out.push('f');
+                for t in refs {
+                    let v = vertex_reference(t, vertices)
+                        .map_err(|why| bad(n, format!("face {faces} {why}")))?;
+                    let _ = write!(out, " {v}");
+                }
+                out.push('\n');
+            }
+            Some(keyword @ ("o" | "g")) => {
+                let at = line.find(keyword).unwrap_or(0) + 1;
+                let _ = writeln!(out, "{keyword} {}", line[at..].trim());
+            }
+            // Comments and statements that are not read.
+            _ => {}
+        }
+    }
+    Ok(out)
+}
 
 /// Parses an OBJ file into one object per group.
 pub fn read(bytes: &[u8]) -> Result<Vec<RawObject>, ReadError> {
@@ -15,7 +159,8 @@ pub fn read(bytes: &[u8]) -> Result<Vec<RawObject>, ReadError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let mut reader = std::io::BufReader::new(bytes);
+    let text = checked(bytes)?;
+    let mut reader = std::io::BufReader::new(text.as_bytes());
     let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
         Err(tobj::LoadError::OpenFileFailed)
     })

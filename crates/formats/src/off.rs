@@ -1,6 +1,8 @@
 //! Object File Format (ASCII): `OFF` header (optional, with the usual `C`, `N`, `ST`
 //! prefixes), counts `vertices faces [edges]`, one vertex per line, one polygon per line
-//! (`n i1 ... in`, extra values such as colours ignored), `#` comments.
+//! (`n i1 ... in`, then nothing or a colour of 1, 3 or 4 numbers, which is ignored), `#`
+//! comments. The file holds exactly the declared vertices and faces (of at least three
+//! vertices each); every error names the line.
 
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
@@ -48,6 +50,33 @@ fn strip_header(first: &str, line: usize) -> Result<&str, ReadError> {
         return Err(bad(line, format!("unknown OFF header {}", quoted(word))));
     }
     Ok(rest)
+}
+
+/// Checks what follows the indices of face `k` (`count` of them) on line `n`: nothing,
+/// or a colour (a colour-map index, RGB or RGBA).
+fn check_face_colour<'a>(
+    rest: impl Iterator<Item = &'a str>,
+    k: usize,
+    count: usize,
+    n: usize,
+) -> Result<(), ReadError> {
+    let rest: Vec<&str> = rest.collect();
+    if let Some(t) = rest.iter().find(|t| t.parse::<f64>().is_err()) {
+        return Err(bad(
+            n,
+            format!("face {k}: {} after its indices is not a number", quoted(t)),
+        ));
+    }
+    if !matches!(rest.len(), 0 | 1 | 3 | 4) {
+        return Err(bad(
+            n,
+            format!(
+                "face {k} declares {count} vertices but the line holds {} more values (a colour after the indices is 1, 3 or 4 numbers)",
+                rest.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Parses an OFF file.
@@ -115,7 +144,10 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
         let (n, l) = lines.next().ok_or_else(|| {
             bad(
                 text.lines().count(),
-                format!("expected {nf} faces, found {k}"),
+                format!(
+                    "expected {nf} {}, found {k}",
+                    if nf == 1 { "face" } else { "faces" }
+                ),
             )
         })?;
         let mut tokens = l.split_whitespace();
@@ -123,11 +155,20 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
             .next()
             .and_then(|t| t.parse().ok())
             .ok_or_else(|| bad(n, "a face starts with its number of vertices"))?;
+        if count < 3 {
+            return Err(bad(
+                n,
+                format!("face {k} has {count} vertices; a face needs at least 3"),
+            ));
+        }
         poly.clear();
-        for _ in 0..count {
-            let t = tokens
-                .next()
-                .ok_or_else(|| bad(n, format!("face {k} lists fewer than {count} vertices")))?;
+        for listed in 0..count {
+            let t = tokens.next().ok_or_else(|| {
+                bad(
+                    n,
+                    format!("face {k} declares {count} vertices but lists {listed}"),
+                )
+            })?;
             let i: usize = t
                 .parse()
                 .map_err(|_| bad(n, format!("{} is not a vertex index", quoted(t))))?;
@@ -139,7 +180,17 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
             }
             poly.push(i as u32);
         }
+        check_face_colour(tokens, k, count, n)?;
         faces.push(&poly);
+    }
+    if let Some((n, _)) = lines.next() {
+        return Err(bad(
+            n,
+            format!(
+                "data after the {nf} declared {}",
+                if nf == 1 { "face" } else { "faces" }
+            ),
+        ));
     }
     Ok(RawObject {
         name: None,

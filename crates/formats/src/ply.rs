@@ -8,6 +8,11 @@
 //! the bytes after the header can hold (each entry at least its binary size, or one
 //! digit and one separator per ASCII value, and at least one byte even without
 //! properties), so a 250-byte file declaring four billion faces is an error at once.
+//!
+//! The data must then match the header exactly: in ASCII, one line per entry holding
+//! the values its properties take (a list its length and that many values), then only
+//! blank lines; in binary, no bytes after the last entry. Faces have at least three
+//! vertices. Errors name the line in ASCII, the element and entry in binary.
 
 use crate::escape::quoted;
 use crate::raw::{Polygons, RawObject};
@@ -147,6 +152,88 @@ fn check_counts(header: &Header, payload: usize) -> Result<(), ReadError> {
     Ok(())
 }
 
+/// `face 3`, `vertex 0`, or `entry 2 of element "junk"`.
+fn entry(element: &str, k: usize) -> String {
+    match element {
+        "vertex" | "face" => format!("{element} {k}"),
+        _ => format!("entry {k} of element {}", quoted(element)),
+    }
+}
+
+/// Checks that the ASCII `payload`, whose first line is line `first` of the file, holds
+/// one line per declared entry with exactly the values its properties take (a list
+/// takes its length and that many values), then nothing but blank lines. Returns the
+/// line of the first face. Values themselves are left to the parser.
+fn check_ascii_lines(header: &Header, payload: &[u8], first: usize) -> Result<usize, ReadError> {
+    let bad = |line: usize, detail: String| {
+        ReadError::malformed(Format::Ply, format!("line {line}: {detail}"))
+    };
+    // Lines end with a line break (the last may lack it); no bytes, no lines.
+    let body = payload.strip_suffix(b"\n").unwrap_or(payload);
+    let mut lines = (!payload.is_empty())
+        .then(|| body.split(|&b| b == b'\n'))
+        .into_iter()
+        .flatten();
+    let mut n = first - 1;
+    let mut face_line = 0;
+    for e in header.elements.values() {
+        if e.name == "face" {
+            face_line = n + 1;
+        }
+        for k in 0..e.count {
+            n += 1;
+            let line = lines.next().ok_or_else(|| {
+                bad(
+                    n - 1,
+                    format!(
+                        "the file ends after {k} of the {} declared entries of element {}",
+                        e.count,
+                        quoted(&e.name)
+                    ),
+                )
+            })?;
+            let tokens: Vec<&[u8]> = line
+                .split(|b| b.is_ascii_whitespace())
+                .filter(|t| !t.is_empty())
+                .collect();
+            let mut want = 0usize;
+            for p in e.properties.values() {
+                want = want.saturating_add(1);
+                if let PropertyType::List(..) = p.data_type {
+                    let Some(len) = tokens.get(want - 1) else {
+                        break;
+                    };
+                    let Some(len) = std::str::from_utf8(len)
+                        .ok()
+                        .and_then(|t| t.parse::<usize>().ok())
+                    else {
+                        // Not a length: the parser says why.
+                        return Ok(face_line);
+                    };
+                    want = want.saturating_add(len);
+                }
+            }
+            if tokens.len() != want {
+                return Err(bad(
+                    n,
+                    format!(
+                        "{} has {} values, but its properties (and list lengths) call for {want}",
+                        entry(&e.name, k),
+                        tokens.len()
+                    ),
+                ));
+            }
+        }
+    }
+    for line in lines {
+        n += 1;
+        if !line.trim_ascii().is_empty() {
+            return Err(bad(n, "data after the declared elements".to_string()));
+        }
+    }
+    Ok(face_line)
+}
+
 /// Parses a PLY file.
 pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     let bad = |e: ply_rs_bw::parser::ParseError| ReadError::malformed(Format::Ply, e.to_string());
@@ -154,7 +241,38 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     let header = Parser::<Skip>::new()
         .read_header(&mut reader)
         .map_err(bad)?;
-    check_counts(&header, reader.get_ref().len())?;
+    let payload = reader.get_ref().len();
+    let header_bytes = bytes.len() - payload;
+    check_counts(&header, payload)?;
+    // Where each face is, for messages: its line in ASCII.
+    let face_at = match header.encoding {
+        Encoding::Ascii => {
+            let first = bytes[..header_bytes]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count()
+                + 1;
+            let face_line = check_ascii_lines(&header, &bytes[header_bytes..], first)?;
+            Some(face_line)
+        }
+        _ => None,
+    };
+    let face = |k: usize| match face_at {
+        Some(line) => format!("line {}: face {k}", line + k),
+        None => format!("face {k}"),
+    };
+    // Binary data has no lines: the parser's line number would mislead.
+    let bad = |e: ply_rs_bw::parser::ParseError| {
+        let text = e.to_string();
+        let text = match (face_at, e.line()) {
+            (None, Some(l)) => text
+                .strip_prefix(&format!("Line {l}: "))
+                .unwrap_or(&text)
+                .to_string(),
+            _ => text,
+        };
+        ReadError::malformed(Format::Ply, text)
+    };
     let vertex = header
         .elements
         .get("vertex")
@@ -204,11 +322,32 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
     }
     let n = vertices.len();
     let mut faces = Polygons::new();
+    // Binary: nothing after the elements (ASCII was checked line by line).
+    let rest = reader.get_ref().len();
+    if face_at.is_none() && rest > 0 {
+        return Err(ReadError::malformed(
+            Format::Ply,
+            format!(
+                "{rest} bytes after the declared elements, from byte offset {}",
+                bytes.len() - rest
+            ),
+        ));
+    }
     for (k, f) in face_elems.iter().enumerate() {
         if f.negative_index {
             return Err(ReadError::malformed(
                 Format::Ply,
-                format!("face {k} has a negative vertex index"),
+                format!("{} has a negative vertex index", face(k)),
+            ));
+        }
+        if f.list.len() < 3 {
+            return Err(ReadError::malformed(
+                Format::Ply,
+                format!(
+                    "{} has {} vertices; a face needs at least 3",
+                    face(k),
+                    f.list.len()
+                ),
             ));
         }
         if let Some(&bad) = f.list.iter().find(|&&i| i as usize >= n) {
@@ -219,7 +358,7 @@ pub fn read(bytes: &[u8]) -> Result<RawObject, ReadError> {
             };
             return Err(ReadError::malformed(
                 Format::Ply,
-                format!("face {k} refers to vertex {bad}, but there {only}"),
+                format!("{} refers to vertex {bad}, but there {only}", face(k)),
             ));
         }
         faces.push(&f.list);
