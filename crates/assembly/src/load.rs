@@ -159,6 +159,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         .iter()
         .fold((0f64, None), |(m, f), &(n, g)| (m.max(n), f.or(g)));
     let grid = Grid::choose(std::iter::once(max_abs).chain(non_integer), opts.grid_bits)?;
+    let grid = finer_for_tolerance(grid, max_abs, opts)?;
     let largest = per_part
         .iter()
         .position(|&(m, _)| m == max_abs)
@@ -782,6 +783,28 @@ fn build_part(
         problems.push(Problem::error("the part has neither a mesh nor pieces").in_part(name));
     }
     (part, problems, raw_points)
+}
+
+/// A stated tolerance finer than the grid: integer inputs get the unit grid, and a
+/// piece shrunk by `eps` is cut by `eps` plus one step, so a tolerance of 0.001 on
+/// parts 2 units thick would leave nothing. The grid is then refined to a step of at
+/// most `eps / 64` (a power of two), or the finest that `bits` allow, whichever is
+/// coarser: any tolerance is honoured as long as a part is a few steps thick, and
+/// `bits` steps span the assembly (30 bits: 1e-9 of its size).
+fn finer_for_tolerance(grid: Grid, max_abs: f64, opts: &LoadOptions) -> Result<Grid, LoadError> {
+    let Tolerance::Fixed(eps) = opts.tolerance else {
+        return Ok(grid);
+    };
+    if !(eps.is_finite() && eps > 0.0) || eps >= 64.0 * grid.step() {
+        return Ok(grid);
+    }
+    // The finest grid the bits allow: as if some coordinate were not an integer.
+    let finest = Grid::choose([max_abs, 0.5], opts.grid_bits)?;
+    let want = eps.log2().floor() as i32 - 6;
+    Ok(Grid {
+        exp: want.clamp(finest.exp, grid.exp),
+        bits: grid.bits,
+    })
 }
 
 /// True when some face of `raw` has a non-zero area before snapping (its Newell normal

@@ -148,3 +148,51 @@ fn overlaps_carry_their_kind_and_the_other_part() {
         assert_eq!(l.problems.iter().filter(|p| overlap(p)).count(), by_text);
     }
 }
+
+/// A stated tolerance finer than the input's grid (integer coordinates get the unit
+/// grid) refines the grid: the shipped Split Star and peg in the hole take tolerances
+/// down to 1e-9 of their size with every piece kept, each shrunk by at least the
+/// tolerance and by little more.
+#[test]
+fn tolerances_finer_than_the_integer_grid_are_honoured() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for name in ["split-star", "peg-in-the-hole"] {
+        let plain = load(&root.join(name), &LoadOptions::default()).unwrap();
+        assert!(plain.is_valid(), "{name}");
+        assert_eq!(
+            plain.assembly.grid.exp, 0,
+            "{name}: integer input, unit grid"
+        );
+        let size = plain
+            .assembly
+            .parts
+            .iter()
+            .filter_map(|p| p.bbox)
+            .flat_map(|b| (0..3).map(move |k| (b.max[k] - b.min[k]) as f64))
+            .fold(0.0, f64::max);
+        for eps in [1e-2, 1e-3, 1e-6, 1e-9 * size] {
+            let l = load(&root.join(name), &with(Tolerance::Fixed(eps))).unwrap();
+            assert!(l.is_valid(), "{name} at {eps}: {:#?}", l.problems);
+            let a = &l.assembly;
+            let t = a.tolerance.as_ref().unwrap();
+            assert_eq!(t.eps, eps);
+            assert_eq!(t.vanished_pieces, 0, "{name} at {eps}");
+            // At least eps, and at most a few grid steps more (the grid is finer than
+            // eps / 64, or the finest that 30 bits allow).
+            let h = a.grid.step();
+            assert!(
+                h <= eps / 64.0 || h <= 4.0 * size / 2f64.powi(30),
+                "{name}: h {h}"
+            );
+            assert!(
+                t.max_shift >= eps && t.max_shift <= eps + 4.0 * h,
+                "{name}: {} vs {eps}",
+                t.max_shift
+            );
+            for (p, q) in a.parts.iter().zip(&plain.assembly.parts) {
+                assert_eq!(p.pieces.len(), p.unshrunk_pieces.len(), "{name}/{}", p.name);
+                assert!(!q.pieces.is_empty());
+            }
+        }
+    }
+}
