@@ -199,6 +199,8 @@ fn main() -> ExitCode {
         Command::Stack(args) => commands::stack::run(args, &cli.global),
         Command::Batch(args) => commands::batch::run(args, &cli.global),
     };
+    // An answer that could not be written is a failure, whatever it said.
+    let result = result.and_then(|code| output::stdout_result().map(|()| code));
     match result {
         Ok(code) => code,
         Err(e) => {
@@ -213,9 +215,18 @@ fn main() -> ExitCode {
 /// 2, which apart reserves for a "no" answer.
 fn usage_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
-    let _ = e.print();
+    let printed = e.print();
     match e.kind() {
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => ExitCode::SUCCESS,
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => match printed {
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                output::eline(format_args!(
+                    "error: cannot write to standard output: {}",
+                    output::io_text(&e)
+                ));
+                ExitCode::FAILURE
+            }
+            _ => ExitCode::SUCCESS,
+        },
         _ => {
             if std::env::args().any(|a| a == "--json") {
                 let text = e.render().to_string();

@@ -29,11 +29,51 @@ pub fn load_time(total: f64, s: &LoadSeconds) -> String {
     format!("load {:.1} ms ({})", total * 1e3, stages.join(", "))
 }
 
-/// Prints one line on standard output; a closed pipe (`apart check x | head`) is not
-/// an error worth a panic, so write failures are ignored.
+/// Prints one line on standard output (through [`to_stdout`]: a write error fails the
+/// run at its end, a closed pipe only drops the rest of the output).
 pub fn line(text: impl std::fmt::Display) {
     use std::io::Write;
-    let _ = writeln!(std::io::stdout().lock(), "{text}");
+    to_stdout(|out| writeln!(out, "{text}"));
+}
+
+/// The first error met writing standard output, if any: later writes are skipped.
+static STDOUT_ERROR: std::sync::Mutex<Option<std::io::Error>> = std::sync::Mutex::new(None);
+
+/// An I/O error's text without its "(os error N)": "No space left on device".
+pub fn io_text(e: &std::io::Error) -> String {
+    let text = e.to_string();
+    match text.find(" (os error ") {
+        Some(k) => text[..k].to_string(),
+        None => text,
+    }
+}
+
+/// Writes on standard output with `write`, unless an earlier write failed; an error is
+/// recorded for [`stdout_result`] (every answer written on standard output goes through
+/// here, so that none is lost silently).
+pub fn to_stdout(write: impl FnOnce(&mut std::io::StdoutLock) -> std::io::Result<()>) {
+    let mut failed = STDOUT_ERROR.lock().unwrap_or_else(|e| e.into_inner());
+    if failed.is_some() {
+        return;
+    }
+    if let Err(e) = write(&mut std::io::stdout().lock()) {
+        *failed = Some(e);
+    }
+}
+
+/// Flushes standard output, and fails with "cannot write to standard output: No space
+/// left on device" when a write to it failed (exit code 1). A closed pipe (`apart check
+/// x | head`) is not a failure: the reader wanted no more, and the run keeps the exit
+/// code of its answer.
+pub fn stdout_result() -> anyhow::Result<()> {
+    use std::io::Write;
+    to_stdout(|out| out.flush());
+    let failed = STDOUT_ERROR.lock().unwrap_or_else(|e| e.into_inner());
+    match failed.as_ref() {
+        None => Ok(()),
+        Some(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Some(e) => anyhow::bail!("cannot write to standard output: {}", io_text(e)),
+    }
 }
 
 /// Writes one line on standard error.
@@ -158,19 +198,28 @@ pub fn problems(global: &Global, problems: &[Problem]) {
 }
 
 /// Prints a value as pretty JSON on standard output, written as it is serialized (a
-/// large answer is never held in memory as one string). A closed pipe is not an error.
+/// large answer is never held in memory as one string), through [`to_stdout`].
 pub fn json<T: serde::Serialize>(value: &T) -> anyhow::Result<()> {
     use std::io::Write;
     crate::limits::set_phase("writing the answer");
-    let mut w = std::io::BufWriter::new(std::io::stdout().lock());
-    match serde_json::to_writer_pretty(&mut w, value) {
-        Ok(()) => {}
-        Err(e) if e.is_io() => return Ok(()),
-        Err(e) => return Err(e.into()),
+    let mut failed = None;
+    to_stdout(|out| {
+        let mut w = std::io::BufWriter::new(out);
+        match serde_json::to_writer_pretty(&mut w, value) {
+            Ok(()) => {}
+            Err(e) if e.is_io() => return Err(e.into()),
+            Err(e) => {
+                failed = Some(e);
+                return Ok(());
+            }
+        }
+        writeln!(w)?;
+        w.flush()
+    });
+    match failed {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
     }
-    let _ = writeln!(w);
-    let _ = w.flush();
-    Ok(())
 }
 
 /// Whether progress is drawn: standard error is a terminal, and neither `--quiet` nor
@@ -368,7 +417,7 @@ pub fn exit_code(stop: &Option<Stopped>, answer: std::process::ExitCode) -> std:
         Some(t) => {
             if let Some(e) = t.error() {
                 use std::io::Write;
-                let _ = std::io::stdout().flush();
+                to_stdout(|out| out.flush());
                 eline(format_args!("error: {e}"));
             }
             std::process::ExitCode::from(t.exit_code())
@@ -391,10 +440,8 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
     if global.json {
         let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
     } else if crate::limits::json_lines() {
-        let mut out = std::io::stdout().lock();
         let end = serde_json::json!({ "event": "end", "valid": false, "error": msg });
-        let _ = writeln!(out, "{end}");
-        let _ = out.flush();
+        to_stdout(|out| writeln!(out, "{end}").and_then(|()| out.flush()));
     }
     let _ = writeln!(std::io::stderr().lock(), "error: {msg}");
 }

@@ -334,14 +334,15 @@ struct Event<'a, T: Serialize> {
     body: &'a T,
 }
 
-/// Writes one JSON line on standard output and flushes it; a closed pipe is ignored.
+/// Writes one JSON line on standard output and flushes it (through
+/// [`output::to_stdout`]: a write error fails the run at its end).
 fn json_line<T: Serialize>(value: &T) {
     use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    if serde_json::to_writer(&mut out, value).is_ok() {
-        let _ = out.write_all(b"\n");
-    }
-    let _ = out.flush();
+    output::to_stdout(|out| {
+        serde_json::to_writer(&mut *out, value)?;
+        out.write_all(b"\n")?;
+        out.flush()
+    });
 }
 
 /// How the answer is printed.
