@@ -25,7 +25,7 @@ use apart::plan::{
     Solution, Step, Tolerance,
 };
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -150,7 +150,9 @@ pub struct SequenceArgs {
     #[arg(long, value_name = "FILE")]
     pub html: Option<PathBuf>,
     /// Write PNG renders (the assembly, then each step with its moving side highlighted)
-    /// into this folder.
+    /// into this folder, whole or not at all. An existing folder is replaced only when
+    /// it is empty or an earlier --renders wrote it (it holds the hidden file
+    /// .apart-output); any other is refused.
     #[arg(long, value_name = "FOLDER")]
     pub renders: Option<PathBuf>,
 }
@@ -455,6 +457,9 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let load = t.elapsed().as_secs_f64();
+    if let Some(dir) = &args.renders {
+        output::NewFolder::check(dir, RENDERS)?;
+    }
     let asm = &loaded.assembly;
     // A wrong name is told before the long work.
     let base = match &args.base {
@@ -610,6 +615,9 @@ fn local_step(step: &Step, regions: &BlockingRegions) -> Step {
     }
 }
 
+/// The command named in the marker of a `--renders` folder.
+const RENDERS: &str = "apart sequence --renders";
+
 /// The files asked for. The sphere pictures (not with --first, which clap keeps apart
 /// from --svg and --png) are drawn from the pair regions of the pictured subassembly
 /// alone.
@@ -677,16 +685,16 @@ fn pictures(
         output::write_file(p, disassembly_html(asm, plan))?;
     }
     if let Some(dir) = &args.renders {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", dir.display()))?;
+        // Put in place whole: no folder of some of the steps.
+        let mut out = output::NewFolder::create(dir, RENDERS)?;
         let view = View::default();
-        output::write_file(
-            &dir.join("assembly.png"),
-            assembly_png(asm, &[], &view, 1000, 750),
-        )?;
+        let png = assembly_png(asm, &[], &view, 1000, 750);
+        out.write(Path::new("assembly.png"), true, |w| w.write_all(&png))?;
         for (k, png) in step_pngs(asm, plan, &view, 1000, 750).iter().enumerate() {
-            output::write_file(&dir.join(format!("step-{}.png", k + 1)), png)?;
+            let name = format!("step-{}.png", k + 1);
+            out.write(Path::new(&name), true, |w| w.write_all(png))?;
         }
+        out.commit()?;
     }
     Ok(())
 }
