@@ -749,3 +749,141 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
     let _ = writeln!(std::io::stderr().lock(), "error: {msg}");
 }
 
+/// What a run reads, resolved (symbolic links and `..`): the files and folders that no
+/// output may overwrite, replace or be written into.
+#[derive(Default)]
+pub struct Inputs {
+    /// Files read: the manifest, every mesh and piece file, glTF buffers.
+    files: Vec<PathBuf>,
+    /// Folders read: the assembly's folder, piece folders.
+    folders: Vec<PathBuf>,
+}
+
+impl Inputs {
+    /// The inputs of the assembly loaded from `given`: `given` itself (and its manifest
+    /// when it is a folder), and every part's mesh and piece files (with the external
+    /// buffers of glTF files).
+    pub fn of(given: &Path, loaded: &apart::assembly::Loaded) -> Inputs {
+        let mut inputs = Inputs::default();
+        inputs.add(given);
+        // A folder's manifest is read, but named by no part.
+        inputs.add(&given.join("assembly.json"));
+        for part in &loaded.assembly.parts {
+            inputs.add(&part.source);
+            for p in &part.piece_sources {
+                inputs.add(p);
+            }
+        }
+        inputs
+    }
+
+    /// Adds the file or folder `path` (nothing when it does not exist).
+    pub fn add(&mut self, path: &Path) {
+        let Ok(c) = std::fs::canonicalize(path) else {
+            return;
+        };
+        if c.is_dir() {
+            self.folders.push(c);
+        } else {
+            for b in gltf_buffers(&c) {
+                self.add(&b);
+            }
+            self.files.push(c);
+        }
+    }
+
+    /// Refuses the output file `out` (`what` names its flag: "--svg") when it is an
+    /// input file, or an input folder or a folder holding an input.
+    pub fn check_file(&self, what: &str, out: &Path) -> anyhow::Result<()> {
+        self.check(what, out, false)
+    }
+
+    /// Refuses the output folder `out` as [`Inputs::check_file`] does, and also when it
+    /// lies inside an input folder.
+    pub fn check_folder(&self, what: &str, out: &Path) -> anyhow::Result<()> {
+        self.check(what, out, true)
+    }
+
+    fn check(&self, what: &str, out: &Path, folder: bool) -> anyhow::Result<()> {
+        let r = resolved(out)?;
+        let refuse = |how: &str, input: &Path| {
+            anyhow::anyhow!(
+                "refusing to write {what} {}: {how} {}; choose another path",
+                out.display(),
+                input.display()
+            )
+        };
+        if let Some(f) = self.files.iter().find(|f| **f == r) {
+            return Err(refuse("it is the input file", f));
+        }
+        if let Some(f) = self.folders.iter().find(|f| **f == r) {
+            return Err(refuse("it is the input folder", f));
+        }
+        if let Some(f) = self
+            .folders
+            .iter()
+            .chain(&self.files)
+            .find(|f| f.starts_with(&r))
+        {
+            return Err(refuse("it holds the input", f));
+        }
+        if folder {
+            if let Some(f) = self.folders.iter().find(|f| r.starts_with(f)) {
+                return Err(refuse("it is inside the input folder", f));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The external buffer files a glTF file (`.gltf`) names, next to it (none for a
+/// `.glb`, whose buffer is inside, or for `data:` URIs); read leniently: the loader has
+/// read the file already and reports its defects.
+fn gltf_buffers(file: &Path) -> Vec<PathBuf> {
+    let is_gltf = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
+    let Some(text) = is_gltf.then(|| std::fs::read(file).ok()).flatten() else {
+        return Vec::new();
+    };
+    let Ok(doc) = serde_json::from_slice::<serde_json::Value>(&text) else {
+        return Vec::new();
+    };
+    let folder = file.parent().unwrap_or(Path::new("."));
+    doc["buffers"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|b| b["uri"].as_str())
+        .filter(|u| !u.starts_with("data:"))
+        .map(|u| {
+            u.strip_prefix("file://")
+                .or(u.strip_prefix("file:"))
+                .unwrap_or(u)
+        })
+        .map(|u| folder.join(percent_decoded(u)))
+        .collect()
+}
+
+/// `%20` and the like decoded (bytes that do not decode are kept as written).
+fn percent_decoded(uri: &str) -> String {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut k = 0;
+    while k < b.len() {
+        let hex = b
+            .get(k + 1..k + 3)
+            .and_then(|h| u8::from_str_radix(std::str::from_utf8(h).ok()?, 16).ok());
+        match (b[k], hex) {
+            (b'%', Some(v)) => {
+                out.push(v);
+                k += 3;
+            }
+            (c, _) => {
+                out.push(c);
+                k += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}

@@ -177,6 +177,43 @@ fn cut_to(out: &Path, len: u64) -> anyhow::Result<()> {
     cut.map_err(|e| anyhow::anyhow!("cannot write {}: {}", out.display(), output::io_text(&e)))
 }
 
+/// Refuses an `--out` that would overwrite or join an input: an assembly's folder, a
+/// file in it that is read (a mesh file, a manifest, a piece file), or a file anywhere
+/// under `dir` that a later run would read as one (named like a mesh or a manifest).
+fn check_out(dir: &Path, assemblies: &[PathBuf], out: &Path) -> anyhow::Result<()> {
+    let mut inputs = output::Inputs::default();
+    inputs.add(dir);
+    let mut stack = assemblies.to_vec();
+    while let Some(d) = stack.pop() {
+        inputs.add(&d);
+        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if is_read(&p) {
+                inputs.add(&p);
+            }
+        }
+    }
+    // The batch folder itself may hold the output file, so it is checked as a file.
+    inputs.check_file("--out", out)?;
+    let (r, root) = (output::resolved(out)?, output::resolved(dir)?);
+    if r.starts_with(&root) && is_read(&r) {
+        anyhow::bail!(
+            "refusing to write --out {}: a file so named under {} is read as part of an assembly; choose another path",
+            out.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Whether a file so named is read as part of an assembly.
+fn is_read(p: &Path) -> bool {
+    p.file_name().is_some_and(|n| n == "assembly.json")
+        || apart::formats::Format::from_path(p).is_some()
+}
+
 /// The child's arguments beside the command and the folder: the loading options of
 /// this run, and the bounds of one assembly.
 fn child_args(args: &BatchArgs, global: &Global) -> Vec<String> {
@@ -293,6 +330,7 @@ pub fn run(args: &BatchArgs, global: &Global) -> anyhow::Result<ExitCode> {
     }
     let all = assemblies_under(&args.dir)
         .map_err(|e| anyhow::anyhow!("cannot list {}: {e}", args.dir.display()))?;
+    check_out(&args.dir, &all, &args.out)?;
     let before = done_before(&args.out)?;
     let todo: Vec<(PathBuf, String)> = all
         .iter()

@@ -82,7 +82,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let seconds = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
     let files = file_names(&asm.parts);
-    refuse_to_write_into_input(&args.assembly, &args.output, &asm.parts, &files)?;
+    output::Inputs::of(&args.assembly, &loaded).check_folder("-o", &args.output)?;
     for (part, file) in asm.parts.iter().zip(&files) {
         if *file != safe_name(&part.name) && !global.quiet {
             output::eline(format_args!(
@@ -236,56 +236,6 @@ fn file_names(parts: &[Part]) -> Vec<String> {
             name
         })
         .collect()
-}
-
-/// Refuses an output folder that would write into the input: the input folder itself
-/// or a folder inside it, the folder holding the manifest or a mesh or piece file, or a
-/// part's piece folder that is one of these (all compared as resolved paths).
-fn refuse_to_write_into_input(
-    input: &Path,
-    out: &Path,
-    parts: &[Part],
-    files: &[String],
-) -> anyhow::Result<()> {
-    let mut folders = Vec::new();
-    let mut inputs = Vec::new();
-    let sources = parts
-        .iter()
-        .flat_map(|p| std::iter::once(&p.source).chain(&p.piece_sources));
-    for src in std::iter::once(&input.to_path_buf()).chain(sources) {
-        if let Ok(c) = std::fs::canonicalize(src) {
-            if c.is_dir() {
-                folders.push(c);
-            } else {
-                inputs.push(c);
-            }
-        }
-    }
-    let out_dir = output::resolved(out)?;
-    let mut written = vec![out_dir.clone()];
-    for f in files {
-        written.push(output::resolved(&out.join(f))?);
-    }
-    for dir in &written {
-        if let Some(f) = folders.iter().find(|f| dir.starts_with(f)) {
-            anyhow::bail!(
-                "refusing to write to {}: {} is {}the input folder {}; choose another folder with -o",
-                out.display(),
-                dir.display(),
-                if dir == f { "" } else { "inside " },
-                f.display()
-            );
-        }
-        if let Some(f) = inputs.iter().find(|f| f.parent() == Some(dir.as_path())) {
-            anyhow::bail!(
-                "refusing to write to {}: {} holds the input file {}, which could be overwritten; choose another folder with -o",
-                out.display(),
-                dir.display(),
-                f.display()
-            );
-        }
-    }
-    Ok(())
 }
 
 /// A file-system-safe version of a part name.

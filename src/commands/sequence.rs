@@ -457,9 +457,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let load = t.elapsed().as_secs_f64();
-    if let Some(dir) = &args.renders {
-        output::NewFolder::check(dir, RENDERS)?;
-    }
+    check_outputs(args, &output::Inputs::of(&args.assembly, &loaded))?;
     let asm = &loaded.assembly;
     // A wrong name is told before the long work.
     let base = match &args.base {
@@ -617,6 +615,25 @@ fn local_step(step: &Step, regions: &BlockingRegions) -> Step {
 
 /// The command named in the marker of a `--renders` folder.
 const RENDERS: &str = "apart sequence --renders";
+
+/// Refuses, before any work, a file or folder to write that would overwrite an input.
+fn check_outputs(args: &SequenceArgs, inputs: &output::Inputs) -> anyhow::Result<()> {
+    for (flag, p) in [
+        ("--svg", &args.svg),
+        ("--png", &args.png),
+        ("--glb", &args.glb),
+        ("--html", &args.html),
+    ] {
+        if let Some(p) = p {
+            inputs.check_file(flag, p)?;
+        }
+    }
+    if let Some(dir) = &args.renders {
+        inputs.check_folder("--renders", dir)?;
+        output::NewFolder::check(dir, RENDERS)?;
+    }
+    Ok(())
+}
 
 /// The files asked for. The sphere pictures (not with --first, which clap keeps apart
 /// from --svg and --png) are drawn from the pair regions of the pictured subassembly
