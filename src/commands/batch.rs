@@ -47,7 +47,9 @@ pub struct BatchArgs {
     #[arg(long, value_enum, default_value_t = BatchCommand::Partition)]
     pub command: BatchCommand,
     /// The JSON lines file, one line per assembly; assemblies already in it are skipped
-    /// (a run can be resumed), new lines are appended.
+    /// (a run can be resumed), new lines are appended, each whole and synced. A last
+    /// line cut by an interrupted write is dropped with a warning, and its assembly
+    /// runs again. It may not be an input of an assembly.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Assemblies run at the same time (default: one per core).
