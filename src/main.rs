@@ -20,9 +20,11 @@ Exit codes:
   0  the answer is yes (valid, comes apart, fits, every part stacked), or there is
      nothing to separate (an assembly of one part)
   1  usage error (unknown command or option, missing path, option value out of its
-     range), invalid input, a failure, or a run stopped by the memory budget (after
-     the partial answer of partition, sequence and stack, status \"out of memory\"),
-     or by --timeout before it had a partial answer
+     range), invalid input, an output that would overwrite an input, a write error
+     (standard output included; a closed pipe is not one), a failure, or a run
+     stopped by the memory budget (after the partial answer of partition, sequence
+     and stack, status \"out of memory\"), or by --timeout before it had a partial
+     answer
   2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete
   3  stopped by --timeout with a partial answer (partition, sequence, stack): what was
      found until then, with status \"timeout\" in the JSON
