@@ -20,9 +20,11 @@ Exit codes:
   0  the answer is yes (valid, comes apart, fits, every part stacked), or there is
      nothing to separate (an assembly of one part)
   1  usage error (unknown command or option, missing path, option value out of its
-     range), invalid input, a failure, or a run stopped by the memory budget (after
-     the partial answer of partition, sequence and stack, status \"out of memory\"),
-     or by --timeout before it had a partial answer
+     range), invalid input, an output that would overwrite an input, a write error
+     (standard output included; a closed pipe is not one), a failure, or a run
+     stopped by the memory budget (after the partial answer of partition, sequence
+     and stack, status \"out of memory\"), or by --timeout before it had a partial
+     answer
   2  the answer is no: interlocked, inseparable, fits nowhere, stack incomplete
   3  stopped by --timeout with a partial answer (partition, sequence, stack): what was
      found until then, with status \"timeout\" in the JSON
@@ -199,6 +201,8 @@ fn main() -> ExitCode {
         Command::Stack(args) => commands::stack::run(args, &cli.global),
         Command::Batch(args) => commands::batch::run(args, &cli.global),
     };
+    // An answer that could not be written is a failure, whatever it said.
+    let result = result.and_then(|code| output::stdout_result().map(|()| code));
     match result {
         Ok(code) => code,
         Err(e) => {
@@ -213,9 +217,18 @@ fn main() -> ExitCode {
 /// 2, which apart reserves for a "no" answer.
 fn usage_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
-    let _ = e.print();
+    let printed = e.print();
     match e.kind() {
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => ExitCode::SUCCESS,
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => match printed {
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                output::eline(format_args!(
+                    "error: cannot write to standard output: {}",
+                    output::io_text(&e)
+                ));
+                ExitCode::FAILURE
+            }
+            _ => ExitCode::SUCCESS,
+        },
         _ => {
             if std::env::args().any(|a| a == "--json") {
                 let text = e.render().to_string();

@@ -9,7 +9,6 @@ use crate::{limits, output, Global};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, HashSet};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -48,7 +47,9 @@ pub struct BatchArgs {
     #[arg(long, value_enum, default_value_t = BatchCommand::Partition)]
     pub command: BatchCommand,
     /// The JSON lines file, one line per assembly; assemblies already in it are skipped
-    /// (a run can be resumed), new lines are appended.
+    /// (a run can be resumed), new lines are appended, each whole and synced. A last
+    /// line cut by an interrupted write is dropped with a warning, and its assembly
+    /// runs again. It may not be an input of an assembly.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Assemblies run at the same time (default: one per core).
@@ -109,18 +110,110 @@ fn key(dir: &Path, asm: &Path) -> String {
         .into_owned()
 }
 
-/// The assemblies a previous run already answered (their "assembly" keys).
+/// The "assembly" key of a results line, when it is one.
+fn line_key(line: &[u8]) -> Option<String> {
+    let v: Value = serde_json::from_slice(line).ok()?;
+    v["assembly"].as_str().map(str::to_string)
+}
+
+/// The assemblies a previous run already answered (their "assembly" keys). A last
+/// line cut by an interrupted write (no newline at its end, or not a results line) is
+/// dropped with a warning: the file is cut back to its last whole line, and that
+/// assembly runs again. Another line that is not a results line is ignored with a
+/// warning.
 fn done_before(out: &Path) -> anyhow::Result<HashSet<String>> {
-    let text = match std::fs::read_to_string(out) {
+    let text = match std::fs::read(out) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(HashSet::new()),
-        Err(e) => anyhow::bail!("cannot read {}: {e}", out.display()),
+        Err(e) => anyhow::bail!("cannot read {}: {}", out.display(), output::io_text(&e)),
     };
-    Ok(text
-        .lines()
-        .filter_map(|l| serde_json::from_str::<Value>(l).ok())
-        .filter_map(|v| v["assembly"].as_str().map(str::to_string))
-        .collect())
+    let mut done = HashSet::new();
+    let mut start = 0;
+    let mut number = 0;
+    while start < text.len() {
+        number += 1;
+        let end = text[start..].iter().position(|&b| b == b'\n');
+        let line = &text[start..end.map_or(text.len(), |e| start + e)];
+        let key = line_key(line);
+        let last = end.is_none_or(|e| start + e + 1 == text.len());
+        if last && (end.is_none() || key.is_none()) {
+            output::eline(format_args!(
+                "warning: {} line {number} is cut (an interrupted write?): dropped, and its assembly runs again: {}",
+                out.display(),
+                excerpt(line)
+            ));
+            cut_to(out, start as u64)?;
+            break;
+        }
+        match key {
+            Some(k) => {
+                done.insert(k);
+            }
+            None if line.iter().all(u8::is_ascii_whitespace) => {}
+            None => output::eline(format_args!(
+                "warning: {} line {number} is not a results line: ignored: {}",
+                out.display(),
+                excerpt(line)
+            )),
+        }
+        start = end.map_or(text.len(), |e| start + e + 1);
+    }
+    Ok(done)
+}
+
+/// The start of a line, for a warning.
+fn excerpt(line: &[u8]) -> String {
+    let text = String::from_utf8_lossy(line);
+    match text.char_indices().nth(60) {
+        Some((k, _)) => format!("{}...", &text[..k]),
+        None => text.into_owned(),
+    }
+}
+
+/// Cuts the file `out` to its first `len` bytes, synced.
+fn cut_to(out: &Path, len: u64) -> anyhow::Result<()> {
+    let cut = std::fs::OpenOptions::new()
+        .write(true)
+        .open(out)
+        .and_then(|f| f.set_len(len).and_then(|()| f.sync_all()));
+    cut.map_err(|e| anyhow::anyhow!("cannot write {}: {}", out.display(), output::io_text(&e)))
+}
+
+/// Refuses an `--out` that would overwrite or join an input: an assembly's folder, a
+/// file in it that is read (a mesh file, a manifest, a piece file), or a file anywhere
+/// under `dir` that a later run would read as one (named like a mesh or a manifest).
+fn check_out(dir: &Path, assemblies: &[PathBuf], out: &Path) -> anyhow::Result<()> {
+    let mut inputs = output::Inputs::default();
+    inputs.add(dir);
+    let mut stack = assemblies.to_vec();
+    while let Some(d) = stack.pop() {
+        inputs.add(&d);
+        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if is_read(&p) {
+                inputs.add(&p);
+            }
+        }
+    }
+    // The batch folder itself may hold the output file, so it is checked as a file.
+    inputs.check_file("--out", out)?;
+    let (r, root) = (output::resolved(out)?, output::resolved(dir)?);
+    if r.starts_with(&root) && is_read(&r) {
+        anyhow::bail!(
+            "refusing to write --out {}: a file so named under {} is read as part of an assembly; choose another path",
+            out.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Whether a file so named is read as part of an assembly.
+fn is_read(p: &Path) -> bool {
+    p.file_name().is_some_and(|n| n == "assembly.json")
+        || apart::formats::Format::from_path(p).is_some()
 }
 
 /// The child's arguments beside the command and the folder: the loading options of
@@ -239,6 +332,7 @@ pub fn run(args: &BatchArgs, global: &Global) -> anyhow::Result<ExitCode> {
     }
     let all = assemblies_under(&args.dir)
         .map_err(|e| anyhow::anyhow!("cannot list {}: {e}", args.dir.display()))?;
+    check_out(&args.dir, &all, &args.out)?;
     let before = done_before(&args.out)?;
     let todo: Vec<(PathBuf, String)> = all
         .iter()
@@ -252,31 +346,50 @@ pub fn run(args: &BatchArgs, global: &Global) -> anyhow::Result<ExitCode> {
         .create(true)
         .append(true)
         .open(&args.out)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", args.out.display()))?;
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "cannot write {}: {}",
+                args.out.display(),
+                output::io_text(&e)
+            )
+        })?;
     let jobs = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
         .min(todo.len().max(1));
     let bar = output::counter(global, "assemblies", todo.len() as u64);
     let next = AtomicUsize::new(0);
-    let sink = Mutex::new((&mut file, Vec::<Value>::new()));
+    // The file, the lines written, and the first write error (which stops the run).
+    let sink = Mutex::new((&mut file, Vec::<Value>::new(), None::<anyhow::Error>));
     let t = Instant::now();
     std::thread::scope(|s| {
         for _ in 0..jobs {
             s.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
                 let Some((asm, key)) = todo.get(k) else { break };
+                if sink.lock().expect("no panic holds the lock").2.is_some() {
+                    break;
+                }
                 let line = run_one(&exe, args.command, asm, key.clone(), &extra);
                 let mut g = sink.lock().expect("no panic holds the lock");
-                // One whole line per write, so that an interrupted run leaves whole lines.
-                let _ = writeln!(g.0, "{line}").and_then(|()| g.0.flush());
-                g.1.push(line);
+                if g.2.is_some() {
+                    break;
+                }
+                // One whole line per write, synced, so that an interrupted run leaves
+                // whole lines (a cut one is dropped when the run is resumed).
+                match output::append_line(g.0, &args.out, &line.to_string()) {
+                    Ok(()) => g.1.push(line),
+                    Err(e) => g.2 = Some(e),
+                }
                 bar.inc(1);
             });
         }
     });
     bar.finish_and_clear();
-    let (_, lines) = sink.into_inner().expect("no panic holds the lock");
+    let (_, lines, failed) = sink.into_inner().expect("no panic holds the lock");
+    if let Some(e) = failed {
+        return Err(e);
+    }
     let mut counts: BTreeMap<String, usize> = BTreeMap::new();
     for l in &lines {
         *counts

@@ -1,7 +1,7 @@
 //! `apart decompose <assembly> -o <folder>`: exact convex decomposition of every part
 //! without declared pieces, written as one OFF mesh per piece plus an assembly.json
-//! manifest that declares them. Refuses to write where the input is, and gives parts
-//! whose safe file names collide unique ones.
+//! manifest that declares them, all or nothing ([`output::NewFolder`]). Refuses to
+//! write where the input is, and gives parts whose safe file names collide unique ones.
 //!
 //! The output loads back as the same solids: every coordinate written is a grid point
 //! (an integer times the grid step, exact in a double), so it snaps back to itself. A
@@ -28,7 +28,11 @@ use std::time::Instant;
 pub struct DecomposeArgs {
     /// A folder of mesh files, one mesh file, or an assembly.json manifest.
     pub assembly: PathBuf,
-    /// The folder to write the pieces and the manifest to (created if needed).
+    /// The folder to write the pieces and the manifest to. It is written whole or not
+    /// at all (beside it, then renamed into place). An existing folder is replaced only
+    /// when it is empty or an earlier `apart decompose` wrote it (it holds the hidden
+    /// file .apart-output); any other is refused, as is the input folder, a folder
+    /// inside it or one holding an input file.
     #[arg(short, long, value_name = "FOLDER")]
     pub output: PathBuf,
 }
@@ -78,7 +82,7 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let seconds = t.elapsed().as_secs_f64();
     let asm = &loaded.assembly;
     let files = file_names(&asm.parts);
-    refuse_to_write_into_input(&args.assembly, &args.output, &asm.parts, &files)?;
+    output::Inputs::of(&args.assembly, &loaded).check_folder("-o", &args.output)?;
     for (part, file) in asm.parts.iter().zip(&files) {
         if *file != safe_name(&part.name) && !global.quiet {
             output::eline(format_args!(
@@ -88,8 +92,9 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
         }
     }
     let _phase = output::phase(global, "writing pieces");
-    std::fs::create_dir_all(&args.output)
-        .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", args.output.display()))?;
+    // Written beside the folder and put in place whole at the end: the folder holds
+    // the whole output, or does not exist.
+    let mut out = output::NewFolder::create(&args.output, "apart decompose")?;
     let mut manifest = Manifest {
         name: asm.name.clone(),
         parts: Vec::new(),
@@ -99,11 +104,11 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
         let mesh = match &part.mesh {
             Some(m) => {
                 let file = format!("{dir}.off");
-                write_mesh(
-                    &args.output.join(&file),
-                    &m.to_raw(&asm.grid, None).vertices,
-                    &Polygons::from_triangles(&m.triangles),
-                )?;
+                let vertices = m.to_raw(&asm.grid, None).vertices;
+                let faces = Polygons::from_triangles(&m.triangles);
+                out.write(Path::new(&file), true, |mut w| {
+                    off::write(&mut w, &vertices, &faces)
+                })?;
                 Some(file)
             }
             None => None,
@@ -111,18 +116,17 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
         let report_part = part_report(part, dir);
         let mut pieces = Vec::new();
         if report_part.pieces_written {
-            let piece_dir = args.output.join(dir);
-            std::fs::create_dir_all(&piece_dir)
-                .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", piece_dir.display()))?;
             for (k, p) in part.pieces.iter().enumerate() {
                 let file = format!("{dir}/piece_{k}.off");
                 let (vertices, faces) = piece_mesh(p, &asm.grid);
-                write_off(&args.output.join(&file), &vertices, &faces)?;
+                out.write(Path::new(&file), false, |mut w| {
+                    off::write(&mut w, &vertices, &faces)
+                })?;
                 pieces.push(file);
             }
             // One line for the folder of pieces, not one per piece (hundreds for a
             // finely tessellated part).
-            output::wrote(&piece_dir);
+            out.announce(Path::new(dir));
         }
         report.push(report_part);
         manifest.parts.push(PartOut {
@@ -131,10 +135,11 @@ pub fn run(args: &DecomposeArgs, global: &Global) -> anyhow::Result<ExitCode> {
             pieces,
         });
     }
-    output::write_file(
-        &args.output.join("assembly.json"),
-        serde_json::to_string_pretty(&manifest)? + "\n",
-    )?;
+    let text = serde_json::to_string_pretty(&manifest)? + "\n";
+    out.write(Path::new("assembly.json"), true, |w| {
+        w.write_all(text.as_bytes())
+    })?;
+    out.commit()?;
     let report = Report {
         output: args.output.clone(),
         parts: report,
@@ -233,90 +238,6 @@ fn file_names(parts: &[Part]) -> Vec<String> {
         .collect()
 }
 
-/// `path` made absolute with symbolic links resolved, also when its last components do
-/// not exist yet (they are appended to the nearest existing ancestor, resolved).
-fn resolved(path: &Path) -> anyhow::Result<PathBuf> {
-    let abs = if path.is_absolute() {
-        path.to_path_buf()
-    } else {
-        std::env::current_dir()?.join(path)
-    };
-    let mut rest = Vec::new();
-    let mut base = abs.as_path();
-    loop {
-        if let Ok(c) = std::fs::canonicalize(base) {
-            let mut out = c;
-            for part in rest.iter().rev() {
-                match part {
-                    std::path::Component::ParentDir => {
-                        out.pop();
-                    }
-                    std::path::Component::CurDir => {}
-                    c => out.push(c.as_os_str()),
-                }
-            }
-            return Ok(out);
-        }
-        match (base.parent(), base.components().next_back()) {
-            (Some(parent), Some(last)) => {
-                rest.push(last);
-                base = parent;
-            }
-            _ => return Ok(abs),
-        }
-    }
-}
-
-/// Refuses an output folder that would write into the input: the input folder itself
-/// or a folder inside it, the folder holding the manifest or a mesh or piece file, or a
-/// part's piece folder that is one of these (all compared as resolved paths).
-fn refuse_to_write_into_input(
-    input: &Path,
-    out: &Path,
-    parts: &[Part],
-    files: &[String],
-) -> anyhow::Result<()> {
-    let mut folders = Vec::new();
-    let mut inputs = Vec::new();
-    let sources = parts
-        .iter()
-        .flat_map(|p| std::iter::once(&p.source).chain(&p.piece_sources));
-    for src in std::iter::once(&input.to_path_buf()).chain(sources) {
-        if let Ok(c) = std::fs::canonicalize(src) {
-            if c.is_dir() {
-                folders.push(c);
-            } else {
-                inputs.push(c);
-            }
-        }
-    }
-    let out_dir = resolved(out)?;
-    let mut written = vec![out_dir.clone()];
-    for f in files {
-        written.push(resolved(&out.join(f))?);
-    }
-    for dir in &written {
-        if let Some(f) = folders.iter().find(|f| dir.starts_with(f)) {
-            anyhow::bail!(
-                "refusing to write to {}: {} is {}the input folder {}; choose another folder with -o",
-                out.display(),
-                dir.display(),
-                if dir == f { "" } else { "inside " },
-                f.display()
-            );
-        }
-        if let Some(f) = inputs.iter().find(|f| f.parent() == Some(dir.as_path())) {
-            anyhow::bail!(
-                "refusing to write to {}: {} holds the input file {}, which could be overwritten; choose another folder with -o",
-                out.display(),
-                dir.display(),
-                f.display()
-            );
-        }
-    }
-    Ok(())
-}
-
 /// A file-system-safe version of a part name.
 fn safe_name(name: &str) -> String {
     let s: String = name
@@ -355,22 +276,4 @@ fn piece_mesh(p: &Polytope, grid: &Grid) -> (Vec<[f64; 3]>, Polygons) {
             .collect::<Vec<Vec<u32>>>(),
     );
     (vertices, faces)
-}
-
-fn write_off(path: &Path, vertices: &[[f64; 3]], faces: &Polygons) -> anyhow::Result<()> {
-    let file = std::fs::File::create(path)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    let mut w = std::io::BufWriter::new(file);
-    off::write(&mut w, vertices, faces)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    use std::io::Write;
-    w.flush()
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))
-}
-
-/// [`write_off`] for a part's mesh, announced like every written file.
-fn write_mesh(path: &Path, vertices: &[[f64; 3]], faces: &Polygons) -> anyhow::Result<()> {
-    write_off(path, vertices, faces)?;
-    output::wrote(path);
-    Ok(())
 }

@@ -208,6 +208,12 @@ pub fn run(args: &PartitionArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let load_seconds = t.elapsed().as_secs_f64();
+    let inputs = output::Inputs::of(&args.assembly, &loaded);
+    for (flag, p) in [("--svg", &args.svg), ("--png", &args.png)] {
+        if let Some(p) = p {
+            inputs.check_file(flag, p)?;
+        }
+    }
     let asm = &loaded.assembly;
     let parts = parts_of(asm)?;
     if parts.len() < 2 {

@@ -124,6 +124,11 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     };
     let named = tmp.as_ref().map(|_| for_named_files(global));
     let loaded = load_valid_but(&path, named.as_ref().unwrap_or(global), Some(&name))?;
+    let mut inputs = output::Inputs::of(&path, &loaded);
+    for given in &args.inputs {
+        inputs.add(Path::new(given));
+    }
+    args.pictures.check(&inputs)?;
     let asm = &loaded.assembly;
     let h = asm.grid.step();
     let k = asm

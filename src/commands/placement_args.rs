@@ -33,6 +33,18 @@ pub struct PictureArgs {
     pub svg: Option<PathBuf>,
 }
 
+impl PictureArgs {
+    /// Refuses a picture path that would overwrite one of the `inputs`.
+    pub fn check(&self, inputs: &output::Inputs) -> anyhow::Result<()> {
+        for (flag, p) in [("--png", &self.png), ("--svg", &self.svg)] {
+            if let Some(p) = p {
+                inputs.check_file(flag, p)?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Writes the requested pictures; `draw(view, width, height, svg)` makes the bytes.
 pub fn write_pictures(
     args: &PictureArgs,

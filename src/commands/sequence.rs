@@ -25,7 +25,7 @@ use apart::plan::{
     Solution, Step, Tolerance,
 };
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -150,7 +150,9 @@ pub struct SequenceArgs {
     #[arg(long, value_name = "FILE")]
     pub html: Option<PathBuf>,
     /// Write PNG renders (the assembly, then each step with its moving side highlighted)
-    /// into this folder.
+    /// into this folder, whole or not at all. An existing folder is replaced only when
+    /// it is empty or an earlier --renders wrote it (it holds the hidden file
+    /// .apart-output); any other is refused.
     #[arg(long, value_name = "FOLDER")]
     pub renders: Option<PathBuf>,
 }
@@ -334,14 +336,15 @@ struct Event<'a, T: Serialize> {
     body: &'a T,
 }
 
-/// Writes one JSON line on standard output and flushes it; a closed pipe is ignored.
+/// Writes one JSON line on standard output and flushes it (through
+/// [`output::to_stdout`]: a write error fails the run at its end).
 fn json_line<T: Serialize>(value: &T) {
     use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    if serde_json::to_writer(&mut out, value).is_ok() {
-        let _ = out.write_all(b"\n");
-    }
-    let _ = out.flush();
+    output::to_stdout(|out| {
+        serde_json::to_writer(&mut *out, value)?;
+        out.write_all(b"\n")?;
+        out.flush()
+    });
 }
 
 /// How the answer is printed.
@@ -454,6 +457,7 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let t = Instant::now();
     let loaded = load_valid(&args.assembly, global)?;
     let load = t.elapsed().as_secs_f64();
+    check_outputs(args, &output::Inputs::of(&args.assembly, &loaded))?;
     let asm = &loaded.assembly;
     // A wrong name is told before the long work.
     let base = match &args.base {
@@ -609,6 +613,28 @@ fn local_step(step: &Step, regions: &BlockingRegions) -> Step {
     }
 }
 
+/// The command named in the marker of a `--renders` folder.
+const RENDERS: &str = "apart sequence --renders";
+
+/// Refuses, before any work, a file or folder to write that would overwrite an input.
+fn check_outputs(args: &SequenceArgs, inputs: &output::Inputs) -> anyhow::Result<()> {
+    for (flag, p) in [
+        ("--svg", &args.svg),
+        ("--png", &args.png),
+        ("--glb", &args.glb),
+        ("--html", &args.html),
+    ] {
+        if let Some(p) = p {
+            inputs.check_file(flag, p)?;
+        }
+    }
+    if let Some(dir) = &args.renders {
+        inputs.check_folder("--renders", dir)?;
+        output::NewFolder::check(dir, RENDERS)?;
+    }
+    Ok(())
+}
+
 /// The files asked for. The sphere pictures (not with --first, which clap keeps apart
 /// from --svg and --png) are drawn from the pair regions of the pictured subassembly
 /// alone.
@@ -676,16 +702,16 @@ fn pictures(
         output::write_file(p, disassembly_html(asm, plan))?;
     }
     if let Some(dir) = &args.renders {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", dir.display()))?;
+        // Put in place whole: no folder of some of the steps.
+        let mut out = output::NewFolder::create(dir, RENDERS)?;
         let view = View::default();
-        output::write_file(
-            &dir.join("assembly.png"),
-            assembly_png(asm, &[], &view, 1000, 750),
-        )?;
+        let png = assembly_png(asm, &[], &view, 1000, 750);
+        out.write(Path::new("assembly.png"), true, |w| w.write_all(&png))?;
         for (k, png) in step_pngs(asm, plan, &view, 1000, 750).iter().enumerate() {
-            output::write_file(&dir.join(format!("step-{}.png", k + 1)), png)?;
+            let name = format!("step-{}.png", k + 1);
+            out.write(Path::new(&name), true, |w| w.write_all(png))?;
         }
+        out.commit()?;
     }
     Ok(())
 }

@@ -121,6 +121,8 @@ struct StackJson {
 pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     crate::input_facts::no_tolerance(global, "stack")?;
     let loaded = load_valid(&args.part, global)?;
+    args.pictures
+        .check(&output::Inputs::of(&args.part, &loaded))?;
     let grid = loaded.assembly.grid;
     let part = load_part(&loaded.assembly, args.part_name.as_deref(), &args.part)?;
     let h = grid.step();
