@@ -1,4 +1,4 @@
-//! Hostile and careless command lines (issue 10), end to end on the built binary: every
+//! Hostile and careless command lines, end to end on the built binary: every
 //! numeric option checked with its range before any work, usage errors exiting with 1
 //! (2 is the "no" answer), one-part assemblies meaning "nothing to separate" in every
 //! command, partition listings bounded and grouped by moving set, decompose never losing

@@ -1,4 +1,4 @@
-//! What the user reads when something is missing or wrong (issue 11, messages): a
+//! What the user reads when something is missing or wrong: a
 //! forgotten part name is named as missing, a mistyped part name lists the closest
 //! names, files of an assembly folder that are not read are listed with the reason,
 //! temporary paths never show, and a step moving one part "moves".

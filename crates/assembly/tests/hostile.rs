@@ -1,4 +1,4 @@
-//! Hostile and careless assembly inputs (issue 10): folder entries that are not regular
+//! Hostile and careless assembly inputs: folder entries that are not regular
 //! files, mesh files outside the assembly's folder, thousands of equal part names,
 //! relations between parts that snapping changes, every accepted grid size, and parts
 //! that the grid collapses. Each must end with a clear error naming the file and the

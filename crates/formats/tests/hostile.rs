@@ -1,4 +1,4 @@
-//! Hostile and careless inputs through the public reading API (issue 10): every case
+//! Hostile and careless inputs through the public reading API: every case
 //! ends quickly with a clear error naming the file and the element, or reads right.
 //! The inputs are built here, small; nothing big is committed.
 

@@ -164,7 +164,7 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out
 }
 
-/// Files built to hurt (issue 10): huge declared counts, a node DAG of 2^17
+/// Files built to hurt: huge declared counts, a node DAG of 2^17
 /// instances, a cycle, broken rotations, positions as bytes, an accessor far beyond
 /// its view. Each must be refused quickly; mutations of them must not panic, hang or
 /// allocate beyond what their bytes describe.

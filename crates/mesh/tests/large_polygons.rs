@@ -1,4 +1,4 @@
-//! Large polygons through snapping and validation (issue 10): a prism over a
+//! Large polygons through snapping and validation: a prism over a
 //! 100,000-gon, convex and toothed, is checked in near-linear time.
 
 /// A prism over a `k`-gon (radius 1000, height 10; every other vertex at `inner`

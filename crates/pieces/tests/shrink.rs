@@ -192,8 +192,8 @@ proptest! {
     }
 }
 
-/// The case that failed at stop 28, when the float cut ran in the piece's stored order on
-/// coordinates rounded twice: the 96-bit copy's shrink had a vertex two steps away.
+/// A case that fails when the float cut runs in the piece's stored order on coordinates
+/// rounded twice: the 96-bit copy's shrink then has a vertex two steps away.
 #[test]
 fn the_96_bit_copy_shrinks_to_the_same_piece_on_the_stop_28_case() {
     let pts = [

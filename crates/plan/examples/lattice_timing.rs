@@ -1,4 +1,4 @@
-//! Timing of partition and sequence on many unit cubes (issue 10): a touching lattice
+//! Timing of partition and sequence on many unit cubes: a touching lattice
 //! `n × n × n` (or `a × b × c`), or with `gap` > 0 separated cubes (of side 1, spaced `1 + gap`).
 //!
 //! `cargo run --release -p apart-plan --example lattice_timing -- N [GAP] [partition|sequence|both]`

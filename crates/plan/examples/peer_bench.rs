@@ -1,4 +1,4 @@
-//! Side-by-side bench of apart and the exact CGAL peer of paper 001's pipeline (issue 14),
+//! Side-by-side bench of apart and the exact CGAL peer of paper 001's pipeline,
 //! which also cross-checks their answers.
 //!
 //! ```sh

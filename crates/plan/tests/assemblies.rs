@@ -1,4 +1,4 @@
-//! Partitioning results on assemblies with known answers (issue 3).
+//! Partitioning results on assemblies with known answers.
 
 mod common;
 

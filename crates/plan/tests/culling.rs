@@ -1,4 +1,4 @@
-//! Hierarchical culling of piece pairs (issue 9): parts of many pieces whose piece
+//! Hierarchical culling of piece pairs: parts of many pieces whose piece
 //! pairs' projections overlap heavily, so that most groups of pairs are culled. The
 //! pair region must still be exactly the union of every piece pair's projection:
 //! checked against the brute-force oracle (swept pieces, no Minkowski sums) at integer

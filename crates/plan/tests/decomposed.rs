@@ -1,5 +1,5 @@
 //! Parts given as plain meshes are decomposed exactly, and partitioning them gives the same
-//! answer as partitioning the same parts given as declared convex pieces (issue 4).
+//! answer as partitioning the same parts given as declared convex pieces.
 
 mod common;
 

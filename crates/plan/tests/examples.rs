@@ -34,7 +34,7 @@ fn solutions(name: &str) -> Vec<(Vec<i64>, Vec<String>, CellKind)> {
     out
 }
 
-/// The table of issue 3: the sign of x picks blue (+) or purple (−), of y yellow or
+/// The independently checked table: the sign of x picks blue (+) or purple (−), of y yellow or
 /// turquoise, of z red or green; all isolated directions.
 fn split_star_expected() -> Vec<(Vec<i64>, Vec<String>, CellKind)> {
     let mut want = Vec::new();

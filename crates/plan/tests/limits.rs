@@ -1,4 +1,4 @@
-//! Bounded listings (issue 10, many parts): with `max_per_set` the planner keeps a few
+//! Bounded listings of many parts: with `max_per_set` the planner keeps a few
 //! solutions of each kind per moving set and counts the rest. Checked against the
 //! unbounded listing of the same assembly, which is the oracle here: the counts must be
 //! its counts, the kept solutions a subset of its solutions, and the faces kept the

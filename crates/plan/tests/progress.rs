@@ -1,4 +1,4 @@
-//! Progress reports and the stop flag (issue 11): the counts of every phase are
+//! Progress reports and the stop flag: the counts of every phase are
 //! monotone and end at their totals, the planners with a [`Progress`] give the same
 //! answers as without, and a planner stopped by the flag returns a partial answer whose
 //! every step or solution is valid (re-checked by the brute-force oracle) and which is

@@ -1,5 +1,5 @@
 //! The Split Star has exactly eight partitioning motions, all isolated directions
-//! (±1, ±1, ±1), each moving three parts (issue 3's independently checked table).
+//! (±1, ±1, ±1), each moving three parts (an independently checked table).
 
 mod common;
 

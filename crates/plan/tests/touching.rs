@@ -1,5 +1,5 @@
-//! Touching parts: solutions are reported on the maximal cells of the motion space
-//! (issue 10, "mislabelled cells").
+//! Touching parts: solutions are reported on the maximal cells of the motion space, never
+//! on mislabelled cells.
 //!
 //! Where the boundary of one pair's open blocked set changes nothing else, the arc and
 //! its vertices have the blocking graph of the face outside the set: they belong to that

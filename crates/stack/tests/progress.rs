@@ -1,4 +1,4 @@
-//! The stacker with a progress (issue 11): counts of parts placed, monotone and ending at
+//! The stacker with a progress: counts of parts placed, monotone and ending at
 //! the count; the same plan as without; and stopped by the flag, the parts placed so far,
 //! each still free of interference and stable, marked as stopped.
 
