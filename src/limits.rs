@@ -28,8 +28,9 @@
 //!   then may be incomplete.
 //! - The memory budget: `--max-memory SIZE`, or by default 80 % of the machine's memory
 //!   (the smaller of the physical memory and the cgroup's limit, [`machine_budget`]);
-//!   `--max-memory none` (or 0) sets none. [`Budget`] wraps the system allocator and
-//!   counts the bytes of live heap allocations (not stack, code or mapped files, so the
+//!   `--max-memory none` (or 0) sets none. [`Budget`] (the kernel's
+//!   `apart::kernel::budget`, shared with the Python extension) wraps the system
+//!   allocator and counts the bytes of live heap allocations (not stack, code or mapped files, so the
 //!   resident size is a few MB larger). Past 90 % of the budget while a planner runs
 //!   (the soft limit) it raises the stop flag (an atomic store, nothing allocated) for
 //!   the partial answer; an allocation that would pass the budget itself prints "out of
@@ -43,9 +44,10 @@
 //!   handler is installed, ends the process at once with exit code 130. Before a
 //!   planner starts (loading), Ctrl-C keeps the system's default: the run ends at once.
 
-use std::alloc::{GlobalAlloc, Layout, System};
+pub use apart::kernel::budget::{limit_text, machine_budget, memory_left, Budget};
+use apart::kernel::budget::{raw_write, FixedText as Buf};
 use std::sync::atomic::{
-    AtomicBool, AtomicIsize, AtomicU64, AtomicU8, AtomicUsize, Ordering, Ordering::Relaxed,
+    AtomicBool, AtomicU64, AtomicU8, AtomicUsize, Ordering, Ordering::Relaxed,
 };
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -72,56 +74,6 @@ static STOPPING: AtomicBool = AtomicBool::new(false);
 /// With `--json` (1), a stopped run also prints a JSON error object on standard output;
 /// with `sequence --jsonl` (2), a last line `{"event": "end", "valid": false, ...}`.
 static JSON: AtomicU8 = AtomicU8::new(0);
-
-/// A fixed buffer that formats without allocating (the allocator itself uses it).
-struct Buf {
-    bytes: [u8; 512],
-    len: usize,
-}
-
-impl Buf {
-    fn new() -> Buf {
-        Buf {
-            bytes: [0; 512],
-            len: 0,
-        }
-    }
-
-    fn as_bytes(&self) -> &[u8] {
-        &self.bytes[..self.len]
-    }
-}
-
-impl std::fmt::Write for Buf {
-    fn write_str(&mut self, s: &str) -> std::fmt::Result {
-        let n = s.len().min(self.bytes.len() - self.len);
-        self.bytes[self.len..self.len + n].copy_from_slice(&s.as_bytes()[..n]);
-        self.len += n;
-        Ok(())
-    }
-}
-
-/// Writes bytes to file descriptor `fd` without a lock or an allocation.
-#[cfg(unix)]
-#[allow(unsafe_code)]
-fn raw_write(fd: i32, bytes: &[u8]) {
-    use std::io::Write;
-    use std::os::fd::FromRawFd;
-    // SAFETY: fd 1 and 2 stay open for the life of the process; ManuallyDrop keeps this
-    // File from closing them.
-    let mut f = std::mem::ManuallyDrop::new(unsafe { std::fs::File::from_raw_fd(fd) });
-    let _ = f.write_all(bytes);
-}
-
-#[cfg(not(unix))]
-fn raw_write(fd: i32, bytes: &[u8]) {
-    use std::io::Write;
-    if fd == 1 {
-        let _ = std::io::stdout().write_all(bytes);
-    } else {
-        let _ = std::io::stderr().write_all(bytes);
-    }
-}
 
 /// Ends the run: `message` (already free of characters that need JSON escaping) as an
 /// error line on standard error, and as a JSON error object with `--json`; exit code 1.
@@ -544,144 +496,22 @@ pub fn install_interrupt() {}
 // ---------------------------------------------------------------------------
 // The memory budget
 
-/// The budget in bytes; 0: no budget, nothing counted.
-static LIMIT: AtomicUsize = AtomicUsize::new(0);
-/// The soft limit, 90 % of the budget: past it while planning, the stop flag is raised.
-static SOFT: AtomicUsize = AtomicUsize::new(usize::MAX);
 /// Set once the soft limit raised the stop flag.
 static SOFT_FIRED: AtomicBool = AtomicBool::new(false);
 /// The live bytes when the soft limit fired.
 static SOFT_LIVE: AtomicUsize = AtomicUsize::new(0);
-/// Live heap bytes allocated since the budget was set (frees of earlier allocations
-/// can make it slightly negative).
-static LIVE: AtomicIsize = AtomicIsize::new(0);
-/// The budget as a size (`4G`, or `19280M by default`), for the messages.
-static LIMIT_TEXT: OnceLock<String> = OnceLock::new();
-
-/// The budget as the messages name it.
-fn limit_text() -> &'static str {
-    LIMIT_TEXT.get().map_or("?", String::as_str)
-}
-
-/// A size in bytes as `4G`, `1536M`, `100K`, or bytes.
-pub fn size_text(bytes: u64) -> String {
-    for (unit, shift) in [("T", 40), ("G", 30), ("M", 20), ("K", 10)] {
-        if bytes >= 1 << shift && bytes % (1 << shift) == 0 {
-            return format!("{}{unit}", bytes >> shift);
-        }
-    }
-    bytes.to_string()
-}
-
-/// Smallest accepted `--max-memory`: below this even loading a small assembly fails.
-pub const MIN_MEMORY: u64 = 1 << 20;
-
-/// The share of the machine's memory the default budget takes.
-pub const DEFAULT_SHARE: f64 = 0.8;
-
-/// The default budget: [`DEFAULT_SHARE`] of the smaller of the physical memory
-/// (`/proc/meminfo`'s MemTotal) and the cgroup's memory limit if one is set (v2
-/// `memory.max`, not "max"; v1 `memory.limit_in_bytes`), rounded down to a whole MiB;
-/// `None` where neither can be read.
-pub fn machine_budget() -> Option<u64> {
-    let read = |p: &str| std::fs::read_to_string(p).ok();
-    let total = read("/proc/meminfo").and_then(|t| {
-        t.lines()
-            .find_map(|l| l.strip_prefix("MemTotal:"))
-            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
-            .map(|kb| kb.saturating_mul(1024))
-    });
-    // The cgroup's own folder (v2: the line "0::/path" of /proc/self/cgroup), and the
-    // root of the cgroup namespace, which a container sees as its own.
-    let own = read("/proc/self/cgroup").and_then(|t| {
-        t.lines()
-            .find_map(|l| l.strip_prefix("0::"))
-            .map(|p| p.trim().to_string())
-    });
-    let mut files = vec!["/sys/fs/cgroup/memory.max".to_string()];
-    if let Some(p) = own.filter(|p| p != "/" && !p.contains("..")) {
-        files.push(format!("/sys/fs/cgroup{p}/memory.max"));
-    }
-    files.push("/sys/fs/cgroup/memory/memory.limit_in_bytes".into());
-    let cgroup = files
-        .iter()
-        .filter_map(|f| read(f))
-        .filter_map(|t| t.trim().parse::<u64>().ok())
-        // v1 says "no limit" with a huge number.
-        .filter(|&b| b > 0 && b < 1 << 60)
-        .min();
-    let memory = match (total, cgroup) {
-        (Some(t), Some(c)) => t.min(c),
-        (t, c) => t.or(c)?,
-    };
-    let budget = (memory as f64 * DEFAULT_SHARE) as u64 >> 20 << 20;
-    (budget >= MIN_MEMORY).then_some(budget)
-}
 
 /// Sets the heap budget: `bytes` from `--max-memory`, or the machine's default
-/// (`default`, named so in the messages).
+/// (`default`, named so in the messages). The counting allocator and the budget are
+/// the kernel's ([`apart::kernel::budget`], shared with the Python extension); the
+/// run's reactions are these: past the soft limit the stop flag ([`soft_limit`]), past
+/// the budget the end of the run ([`over_budget`]).
 pub fn set_memory_budget(bytes: u64, default: bool) {
-    let text = if default {
-        format!("{} by default", size_text(bytes))
-    } else {
-        size_text(bytes)
-    };
-    let _ = LIMIT_TEXT.set(text);
-    LIVE.store(0, Relaxed);
-    let limit = usize::try_from(bytes).unwrap_or(usize::MAX);
-    SOFT.store(limit / 10 * 9, Relaxed);
-    LIMIT.store(limit, Relaxed);
-}
-
-/// The global allocator: the system allocator, counting live bytes against the
-/// memory budget when one is set.
-pub struct Budget;
-
-/// Bytes a thread may allocate or free before it settles with the shared count: the
-/// shared atomic is touched once per this much traffic, not on every call (two threads
-/// updating one counter on every allocation cost about 10% of the CPU time of an
-/// allocation-heavy partition). The budget holds to within this much per thread; an
-/// allocation at least this large is checked before it is made.
-const SLACK: isize = 256 << 10;
-
-thread_local! {
-    /// This thread's allocations minus frees not yet added to [`LIVE`].
-    static PENDING: std::cell::Cell<isize> = const { std::cell::Cell::new(0) };
-}
-
-/// Counts `delta` bytes (allocated: positive, freed: negative) when a budget is set,
-/// raises the stop flag past the soft limit, and ends the run when the live bytes pass
-/// the budget.
-#[inline]
-fn account(delta: isize) {
-    let limit = LIMIT.load(Relaxed);
-    if limit == 0 {
-        return;
-    }
-    let settle = PENDING
-        .try_with(|p| {
-            let v = p.get().saturating_add(delta);
-            if v.unsigned_abs() < SLACK as usize {
-                p.set(v);
-                None
-            } else {
-                p.set(0);
-                Some(v)
-            }
-        })
-        .unwrap_or(Some(delta));
-    if let Some(d) = settle {
-        let live = LIVE.fetch_add(d, Relaxed).saturating_add(d);
-        if d > 0 && live > 0 {
-            let live = live as usize;
-            if live > limit && claim_stop() {
-                over_budget(live);
-            }
-            if live > SOFT.load(Relaxed) {
-                soft_limit(live);
-            }
-        }
-    }
+    apart::kernel::budget::set_hooks(apart::kernel::budget::Hooks {
+        soft: soft_limit,
+        over: over_budget,
+    });
+    apart::kernel::budget::set_memory_budget(bytes, default);
 }
 
 /// Past the soft limit: while a planner runs, asks it for its partial answer (once).
@@ -697,25 +527,19 @@ fn soft_limit(live: usize) {
     raise_stop_flag();
 }
 
-#[inline]
-fn charge(bytes: usize) {
-    account(bytes.min(isize::MAX as usize) as isize);
-}
-
+/// Past the budget: ends the run with the error line (once; the allocation that
+/// passed it is not made). Formats into fixed buffers: it runs inside the allocator.
 #[cold]
-fn over_budget(live: usize) -> ! {
+fn over_budget(live: usize) {
+    if !claim_stop() {
+        return;
+    }
     stop(format_args!(
         "out of memory budget (--max-memory {}) during {}: {} MiB of heap asked for",
         limit_text(),
         phase(),
         live >> 20
     ))
-}
-
-/// Heap bytes still free under the memory budget (`None`: no budget).
-pub fn memory_left() -> Option<u64> {
-    let limit = LIMIT.load(Relaxed);
-    (limit != 0).then(|| (limit as i64 - LIVE.load(Relaxed).max(0) as i64).max(0) as u64)
 }
 
 /// The planners' budget question ([`apart::plan::Progress::with_budget`]): whether
@@ -779,45 +603,6 @@ pub fn check_motion_space(
         _ => {}
     }
     Ok(())
-}
-
-#[inline]
-fn refund(bytes: usize) {
-    account(-(bytes.min(isize::MAX as usize) as isize));
-}
-
-// SAFETY: every call is forwarded to the system allocator with the same arguments;
-// the counting around it never allocates.
-#[allow(unsafe_code)]
-unsafe impl GlobalAlloc for Budget {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        charge(layout.size());
-        // SAFETY: forwarded as given.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        charge(layout.size());
-        // SAFETY: forwarded as given.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        refund(layout.size());
-        // SAFETY: forwarded as given.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let old = layout.size();
-        if new_size > old {
-            charge(new_size - old);
-        } else {
-            refund(old - new_size);
-        }
-        // SAFETY: forwarded as given.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
 }
 
 // ---------------------------------------------------------------------------
@@ -891,40 +676,7 @@ pub fn timeout(text: &str) -> Result<f64, String> {
 /// `--max-memory`: a size such as `4G`, `500M`, `1.5G` or `1048576` (bytes); K, M, G, T
 /// are powers of 1024, an optional trailing `B` or `iB` is ignored. At least 1M.
 pub fn memory_size(text: &str) -> Result<u64, String> {
-    let t = text.trim();
-    let bad = || {
-        format!("must be a size such as 4G, 500M or 1048576 (bytes; K, M, G, T are powers of 1024), not \"{text}\"")
-    };
-    let t = t
-        .strip_suffix("iB")
-        .or_else(|| t.strip_suffix("ib"))
-        .or_else(|| t.strip_suffix(['B', 'b']))
-        .unwrap_or(t);
-    let (number, scale) = match t.char_indices().last() {
-        Some((k, c)) if c.is_ascii_alphabetic() => {
-            let scale = match c.to_ascii_uppercase() {
-                'K' => 1u64 << 10,
-                'M' => 1 << 20,
-                'G' => 1 << 30,
-                'T' => 1 << 40,
-                _ => return Err(bad()),
-            };
-            (&t[..k], scale)
-        }
-        _ => (t, 1),
-    };
-    let v: f64 = number.trim().parse().map_err(|_| bad())?;
-    if !v.is_finite() {
-        return Err(bad());
-    }
-    let bytes = v * scale as f64;
-    if bytes < MIN_MEMORY as f64 {
-        return Err(format!("must be at least 1M (1048576 bytes), not {text}"));
-    }
-    if bytes >= u64::MAX as f64 {
-        return Err(format!("is too large: {text}"));
-    }
-    Ok(bytes as u64)
+    apart::kernel::budget::parse_size(text)
 }
 
 /// `--max-memory`: a size as [`memory_size`] reads it, or `none` (or `0`) for no

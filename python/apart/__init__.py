@@ -15,12 +15,23 @@ geometry is the Rust library's, called through the compiled module ``apart._apar
 ...     print(s.moving, s.exact_direction)
 """
 
-from ._core import UNITS, Assembly, load, place, separate, stack
+from ._core import (
+    UNITS,
+    Assembly,
+    load,
+    memory_budget,
+    memory_in_use,
+    place,
+    separate,
+    set_memory_budget,
+    stack,
+)
 from ._errors import (
     ApartError,
     InputError,
     InternalError,
     InvalidAssemblyError,
+    OutOfMemoryBudget,
     Stop,
     StoppedError,
 )
@@ -49,11 +60,15 @@ __all__ = [
     "separate",
     "place",
     "stack",
+    "set_memory_budget",
+    "memory_budget",
+    "memory_in_use",
     "UNITS",
     "ApartError",
     "InputError",
     "InvalidAssemblyError",
     "InternalError",
+    "OutOfMemoryBudget",
     "Stop",
     "StoppedError",
     "CheckReport",

@@ -2,7 +2,7 @@
 with the command line's ``--json`` fields. Use the package ``apart`` instead: it checks
 arguments and wraps the answers in typed objects."""
 
-from typing import Callable, List, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 ProgressCallback = Callable[[str, int, int], object]
 
@@ -10,6 +10,19 @@ ProgressCallback = Callable[[str, int, int], object]
 DEFAULT_GRID_BITS: int
 #: The bits of a snapped coordinate the grid supports (lowest, highest).
 GRID_BITS_RANGE: Tuple[int, int]
+#: The default memory budget in bytes (80 % of the machine's memory; None: unknown).
+DEFAULT_MEMORY_BUDGET: Optional[int]
+#: The smallest memory budget accepted, in bytes.
+MIN_MEMORY_BUDGET: int
+
+def set_memory_budget(size: Union[None, int, str]) -> None:
+    """Sets the memory budget (bytes, a size such as ``"4G"``, ``"default"``, or None)."""
+
+def memory_budget() -> Optional[int]:
+    """The memory budget in bytes (None: none)."""
+
+def memory_in_use() -> int:
+    """The extension's live heap in bytes, as the budget counts it."""
 
 class Assembly:
     """A loaded assembly (parts snapped to one grid, every problem found)."""
@@ -30,14 +43,18 @@ class Assembly:
     def partition_json(
         self,
         *,
-        first: bool,
-        direction: Optional[Sequence[float]],
-        max_solutions: Optional[int],
-        max_per_set: Optional[int],
-        progress: Optional[ProgressCallback],
-        timeout: Optional[float],
+        first: bool = False,
+        direction: Optional[Sequence[float]] = None,
+        max_solutions: Optional[int] = None,
+        max_per_set: Optional[int] = None,
+        limit: Optional[int] = None,
+        all: bool = False,
+        progress: Optional[ProgressCallback] = None,
+        timeout: Optional[float] = None,
     ) -> str:
-        """Every solution, the first, or one direction's blocking graph, as JSON."""
+        """The solutions (listed as the command line lists them: ``limit`` moving sets,
+        default 20, ``max_per_set`` of each kind per set, default 5, or every one with
+        ``all``), the first, or one direction's blocking graph, as JSON."""
     def sequence_json(
         self,
         *,

@@ -73,13 +73,50 @@ def _load_options(tolerance: Union[None, float, str], units: Optional[str],
                 one_part_per_file=bool(one_part_per_file), verify=bool(verify), units=units)
 
 
+#: Largest timeout, in seconds (one week, as the command line's ``--timeout``).
+MAX_TIMEOUT = 604800.0
+
+
 def _timeout(timeout: Optional[float]) -> Optional[float]:
     if timeout is None:
         return None
-    t = float(timeout)
-    if not (np.isfinite(t) and t > 0):
-        raise InputError(f"timeout must be a positive number of seconds, not {timeout!r}")
+    t = _number(timeout, "timeout")
+    if not 0 < t <= MAX_TIMEOUT:
+        raise InputError(f"timeout must be more than 0 and at most {MAX_TIMEOUT} seconds (one week), not {timeout!r}")
     return t
+
+
+def set_memory_budget(size: Union[None, int, str]) -> None:
+    """Sets the memory budget of apart's work in this process, as the command line's
+    ``--max-memory``: a number of bytes (at least 1 MiB; 0 for none), a size such as
+    ``"4G"``, ``"500M"`` or ``"1.5G"`` (K, M, G, T are powers of 1024), ``"default"``,
+    or ``None`` (no budget). The default, set when apart is imported, is the command
+    line's: 80 % of the machine's memory (or of its cgroup's limit).
+
+    The budget counts the heap of apart's compiled module (not numpy's or the
+    interpreter's). During a call, past 90 % of the budget a planner with partial
+    answers stops with what it found (:meth:`Assembly.partition`,
+    :meth:`Assembly.sequence`, :meth:`Assembly.stack`: ``status`` is
+    ``"out of memory"``, ``complete`` False), and planners refuse to build a structure
+    estimated over what the budget leaves; a call without a partial answer, a refusal
+    before any answer, or a call whose heap passed the budget itself raises
+    :class:`OutOfMemoryBudget` (a ``MemoryError``), and the interpreter carries on.
+    Only past the larger of the budget and the default does apart end the process, with
+    the command line's message "out of memory budget (SIZE) during PHASE", rather than
+    let a failed allocation abort it."""
+    if isinstance(size, float) and size.is_integer():
+        size = int(size)
+    _apart.set_memory_budget(size)
+
+
+def memory_budget() -> Optional[int]:
+    """The memory budget in bytes (None: no budget); see :func:`set_memory_budget`."""
+    return _apart.memory_budget()
+
+
+def memory_in_use() -> int:
+    """The heap of apart's compiled module, in bytes, as the memory budget counts it."""
+    return _apart.memory_in_use()
 
 
 class _TqdmBars:
@@ -233,29 +270,64 @@ def _as_parts(meshes: Any) -> List[Tuple[str, Any, Any]]:
     return parts
 
 
+def _real_array(x: Any, what: str, **where: Any) -> np.ndarray:
+    """``x`` as a float64 array of real numbers, or :class:`InputError` naming ``what``:
+    complex numbers (which numpy would cast to their real part with only a warning),
+    booleans, strings and objects that are not real numbers are refused."""
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{what} are not numbers ({e})", **where) from None
+    kind = a.dtype.kind
+    if kind == "O":
+        if any(isinstance(e, (bool, np.bool_, complex, np.complexfloating, str, bytes))
+               for e in a.flat):
+            raise InputError(f"{what} must be real numbers, not {a.dtype} holding non-real values",
+                             **where)
+        try:
+            return a.astype(np.float64)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"{what} are not real numbers ({e})", **where) from None
+    if kind not in "iuf":
+        raise InputError(f"{what} must be real numbers, not {a.dtype}", **where)
+    return a.astype(np.float64)
+
+
 def _arrays(name: Any, vertices: Any, faces: Any) -> Tuple[str, bytes, bytes]:
-    """One part's arrays, checked, as little-endian bytes."""
+    """One part's arrays, checked, as little-endian bytes: ``vertices`` n x 3 finite
+    real numbers, ``faces`` m x 3 integers (or floats of integer value) in 0..n-1."""
     if not isinstance(name, str) or not name:
         raise InputError(f"a part name must be a non-empty string, not {name!r}")
-    try:
-        v = np.asarray(vertices, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise InputError(f'part "{name}": vertices are not numbers ({e})', part=name,
-                         element="vertices") from None
+    v = _real_array(vertices, f'part "{name}": vertices', part=name, element="vertices")
     if v.ndim != 2 or v.shape[1] != 3:
         raise InputError(f'part "{name}": vertices must be an n x 3 array, not of shape {v.shape}',
                          part=name, element="vertices")
-    f_in = np.asarray(faces)
+    bad = ~np.isfinite(v).all(axis=1)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(f'part "{name}": vertex {k} has a coordinate that is not a finite number ({v[k].tolist()})',
+                         part=name, element=f"vertex {k}")
+    try:
+        f_in = np.asarray(faces)
+    except (TypeError, ValueError) as e:
+        raise InputError(f'part "{name}": faces are not integers ({e})', part=name,
+                         element="faces") from None
     if f_in.dtype.kind == "f":
         if not np.all(np.isfinite(f_in)) or not np.all(f_in == np.round(f_in)):
             raise InputError(f'part "{name}": face indices must be integers', part=name, element="faces")
     elif f_in.dtype.kind not in "iu":
         raise InputError(f'part "{name}": face indices must be integers, not {f_in.dtype}',
                          part=name, element="faces")
-    f = f_in.astype(np.int64)
-    if f.ndim != 2 or f.shape[1] != 3:
-        raise InputError(f'part "{name}": faces must be an m x 3 array of vertex indices, not of shape {f.shape}',
+    if f_in.ndim != 2 or f_in.shape[1] != 3:
+        raise InputError(f'part "{name}": faces must be an m x 3 array of vertex indices, not of shape {f_in.shape}',
                          part=name, element="faces")
+    out = (f_in < 0) | (f_in >= len(v))
+    if out.any():
+        k = int(np.flatnonzero(out.any(axis=1))[0])
+        i = f_in[k][out[k]][0]
+        raise InputError(f'part "{name}": face {k}: vertex index {i.item()!r} is not one of the {len(v)} vertices',
+                         part=name, element=f"face {k}")
+    f = f_in.astype(np.int64)
     return (name, np.ascontiguousarray(v, dtype="<f8").tobytes(),
             np.ascontiguousarray(f, dtype="<i8").tobytes())
 
@@ -327,31 +399,46 @@ class Assembly:
         return CheckReport(json.loads(self._inner.check_json()))
 
     def partition(self, first: bool = False, direction: Optional[Seq[float]] = None, *,
-                  max_solutions: Optional[int] = None, max_per_set: Optional[int] = None,
+                  limit: Optional[int] = None, max_per_set: Optional[int] = None,
+                  all: bool = False, max_solutions: Optional[int] = None,
                   progress: ProgressArg = None,
                   timeout: Optional[float] = None) -> Union[Partition, DirectionAnswer]:
         """Every direction and minimal subset of parts that separates the assembly by one
         translation (``apart partition``); ``first=True`` stops at the first solution;
         ``direction=(x, y, z)`` answers one direction's blocking graph instead
-        (a :class:`DirectionAnswer`). ``max_solutions`` and ``max_per_set`` bound the
-        listing (every solution is still counted). ``progress`` is a callable
-        ``(phase, done, total)`` or True for a tqdm bar; ``timeout`` (seconds) stops
-        with the partial answer."""
+        (a :class:`DirectionAnswer`).
+
+        The listing is bounded as the command line's: at most ``limit`` moving sets
+        (default 20, ``--limit``), each with at most ``max_per_set`` solutions of each
+        kind, face, edge and vertex (default 5); ``None`` means these defaults.
+        ``all=True`` lists every moving set and every solution (``--all``; assemblies
+        of many loose parts have millions, which may not fit in memory), and takes no
+        ``limit`` or ``max_per_set``. Every solution is counted either way
+        (``solution_count``, each group's counts; ``truncated`` says whether some are
+        not listed). ``max_solutions`` stops the search once that many are listed
+        (the counts then cover only what was found).
+
+        ``progress`` is a callable ``(phase, done, total)`` or True for a tqdm bar;
+        ``timeout`` (seconds) stops with the partial answer, as does the memory budget
+        (:func:`apart.set_memory_budget`; ``status`` is then ``"out of memory"``)."""
         d = None
         if direction is not None:
-            try:
-                arr = np.asarray(direction, dtype=np.float64)
-            except (TypeError, ValueError):
-                raise InputError(f"direction must be three numbers, not {direction!r}") from None
+            arr = _real_array(direction, "direction")
             if arr.shape != (3,):
                 raise InputError(f"direction must be three numbers, not {direction!r}")
+            if not np.isfinite(arr).all() or not arr.any():
+                raise InputError(f"direction must be three finite numbers, not all zero, not {direction!r}")
             d = [float(x) for x in arr]
-        for label, v in (("max_solutions", max_solutions), ("max_per_set", max_per_set)):
+        for label, v in (("max_solutions", max_solutions), ("max_per_set", max_per_set),
+                         ("limit", limit)):
             if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < 1):
                 raise InputError(f"{label} must be an integer of 1 or more, not {v!r}")
+        if all and (limit is not None or max_per_set is not None):
+            raise InputError("all=True lists every solution: it takes no limit or max_per_set")
         raw = json.loads(_run(self._inner.partition_json, progress, first=bool(first),
                               direction=d, max_solutions=max_solutions,
-                              max_per_set=max_per_set, timeout=_timeout(timeout)))
+                              max_per_set=max_per_set, limit=limit, all=bool(all),
+                              timeout=_timeout(timeout)))
         return DirectionAnswer(raw) if d is not None else Partition(raw)
 
     def sequence(self, base: Optional[str] = None, *, first: bool = False,
@@ -538,8 +625,8 @@ def _quarters(bases: Optional[Seq[Tuple[float, float]]]) -> Optional[List[Tuple[
 
 def _number(v: Any, what: str) -> float:
     """A finite float, or InputError naming ``what``."""
-    if isinstance(v, bool):
-        raise InputError(f"{what} must be a number, not {v!r}")
+    if isinstance(v, (bool, np.bool_, complex, np.complexfloating, str, bytes)):
+        raise InputError(f"{what} must be a real number, not {v!r}")
     try:
         x = float(v)
     except (TypeError, ValueError):

@@ -45,6 +45,15 @@ class StoppedError(ApartError, RuntimeError):
     any answer to return."""
 
 
+class OutOfMemoryBudget(ApartError, MemoryError):
+    """The memory budget (:func:`apart.set_memory_budget`; by default 80 % of the
+    machine's memory, as the command line's ``--max-memory``) stopped a call that has no
+    partial answer, or the call's heap passed the budget itself: "out of memory budget
+    (SIZE) during PHASE: DETAIL". ``phase`` and ``detail`` say where and what;
+    ``budget`` is the budget in bytes. The interpreter and earlier results are
+    unharmed: a later call (with a larger budget, or on a smaller input) works."""
+
+
 class InternalError(ApartError, RuntimeError):
     """A bug in apart (a panic caught at the boundary): please report it."""
 
@@ -61,6 +70,7 @@ def _make(kind: str, message: str, details: str) -> ApartError:
     if kind == "InvalidAssemblyError":
         return InvalidAssemblyError(message, problems=d.get("problems"), **where)
     cls = {"InputError": InputError, "StoppedError": StoppedError,
+           "OutOfMemoryBudget": OutOfMemoryBudget,
            "InternalError": InternalError}.get(kind, ApartError)
     e = cls(message, **where)
     for k, v in d.items():

@@ -195,6 +195,8 @@ class MovingSet(_Answer):
     edges: int
     vertices: int
     best_clearance_deg: Optional[float]
+    #: How many of its solutions the partition lists.
+    listed: int
 
     @classmethod
     def _from(cls, d: Dict[str, Any]) -> "MovingSet":
@@ -204,6 +206,7 @@ class MovingSet(_Answer):
         g.solutions = d["solutions"]
         g.faces, g.edges, g.vertices = d["faces"], d["edges"], d["vertices"]
         g.best_clearance_deg = d.get("best_clearance_deg")
+        g.listed = d.get("listed", g.solutions)
         return g
 
     def __repr__(self) -> str:
@@ -213,7 +216,10 @@ class MovingSet(_Answer):
 
 class Partition(_Facts):
     """Every direction and minimal subset of parts that separates the assembly by one
-    translation (``apart partition``). Iterating gives the solutions."""
+    translation (``apart partition``). Iterating gives the listed solutions: as the
+    command line lists them, by default those of at most 20 moving sets with at most 5
+    of each kind per set (``partition(all=True)`` lists every one); ``solution_count``
+    and each group's counts cover every solution."""
 
     status: str
     complete: bool
@@ -233,6 +239,22 @@ class Partition(_Facts):
         self.solutions = [Solution._from(s) for s in raw["solutions"]]
         self.groups = [MovingSet._from(g) for g in raw["groups"]]
         self.solution_count = raw["solution_count"]
+
+    @property
+    def moving_set_count(self) -> int:
+        """Distinct moving sets among every solution (listed in ``groups`` or not)."""
+        return int(self._raw.get("moving_set_count", len(self.groups)))
+
+    @property
+    def truncated(self) -> bool:
+        """Some solutions are counted but not listed (see ``limit`` and ``max_per_set``
+        of :meth:`Assembly.partition`; ``all=True`` lists every one)."""
+        return bool(self._raw.get("truncated"))
+
+    @property
+    def limit(self) -> Optional[int]:
+        """Moving sets listed at most (None with ``all=True``)."""
+        return self._raw.get("limit")
 
     @property
     def nothing_to_separate(self) -> bool:
@@ -262,7 +284,9 @@ class Partition(_Facts):
         if self.interlocked:
             what = "interlocked"
         else:
-            what = (f"{self.solution_count} solutions in {len(self.groups)} moving sets")
+            what = (f"{self.solution_count} solutions in {self.moving_set_count} moving sets")
+            if self.truncated:
+                what += f" ({len(self.solutions)} listed)"
         if not self.complete:
             what += f", partial ({self.status})"
         return f"<Partition of {len(self.parts)} parts: {what}>"

@@ -1,7 +1,8 @@
 //! The answers as JSON values, field for field as the command line's `--json` prints
 //! them (`apart check`, `partition`, `sequence`, `separate`), so that the Python
-//! objects and the command line say the same thing. Every solution is listed (the
-//! command line lists at most 20 moving sets with 5 solutions of each kind).
+//! objects and the command line say the same thing. A partition lists what the command
+//! line lists ([`Listing`]): by default at most 20 moving sets with at most 5 solutions
+//! of each kind, every solution still counted.
 
 use apart_assembly::Loaded;
 use apart_kernel::{Grid, Vec3};
@@ -144,20 +145,50 @@ fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| names[k].clone()).collect()
 }
 
+/// Moving sets a partition lists by default (the command line's `--limit`).
+pub const DEFAULT_LIMIT: usize = 20;
+/// Solutions of each kind (face, edge, vertex) listed per moving set by default (the
+/// command line's listing without `--all`).
+pub const EXAMPLES_PER_KIND: usize = 5;
+
+/// What a partition lists: at most `sets` moving sets (`None`: all), each with at most
+/// `per_set` solutions of each kind (`None`: all). Every solution is counted either way.
+#[derive(Clone, Copy, Debug)]
+pub struct Listing {
+    /// Moving sets listed at most.
+    pub sets: Option<usize>,
+    /// Solutions of each kind listed per moving set at most.
+    pub per_set: Option<usize>,
+}
+
+impl Default for Listing {
+    /// The command line's: 20 moving sets, 5 solutions of each kind per set.
+    fn default() -> Listing {
+        Listing {
+            sets: Some(DEFAULT_LIMIT),
+            per_set: Some(EXAMPLES_PER_KIND),
+        }
+    }
+}
+
 /// Partitioning: one direction's blocking graph (`direction`), the first solution, or
-/// every solution. A run stopped by the flag has `"status": "stopped"`.
+/// every solution, listed as `listing` says. A run stopped by the flag has
+/// `"status": "stopped"`. The motion space is refused (the error `Stopped` in phase
+/// "motion space", with the refusal noted by the budget) when its estimated memory is
+/// over what the budget leaves, as the command line refuses it.
 pub fn partition(
     loaded: &Loaded,
     units: Option<&str>,
     direction: Option<Vec3>,
     opts: &Options,
+    listing: Listing,
     progress: &Progress,
 ) -> Result<Value, PlanError> {
     let asm = &loaded.assembly;
     let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
     if names.len() < 2 {
         let p = Partitioning::nothing_to_separate(names);
-        let mut v = partition_json(loaded, units, &p, 0.0)?;
+        let mut v = partition_json(loaded, units, &p, listing, 0.0)?;
         v["nothing_to_separate"] = true.into();
         return Ok(v);
     }
@@ -169,11 +200,20 @@ pub fn partition(
     if opts.first {
         // Likely directions first; the full computation only when none separates.
         let p = partition_first(parts)?;
-        return partition_json(loaded, units, &p, t.elapsed().as_secs_f64());
+        return partition_json(loaded, units, &p, listing, t.elapsed().as_secs_f64());
     }
     let p = match BlockingRegions::compute_with(parts, progress) {
         Ok(regions) => {
             let all: Vec<usize> = (0..parts.len()).collect();
+            let estimate = apart_plan::MotionSpace::estimate(&regions, &all);
+            if !progress.affordable(apart_plan::progress::phases::MOTION_SPACE, estimate.bytes) {
+                return Err(PlanError::Stopped {
+                    phase: apart_plan::progress::phases::MOTION_SPACE,
+                });
+            }
+            // Every solution is kept and the listing cut afterwards, as the command
+            // line does: the planner's own `max_per_set` keeps the first edges and
+            // vertices found, not the first in the listing's order.
             partition_subset_with(&regions, &all, opts, progress).0
         }
         Err(PlanError::Stopped { .. }) => {
@@ -182,27 +222,61 @@ pub fn partition(
         }
         Err(e) => return Err(e),
     };
-    partition_json(loaded, units, &p, t.elapsed().as_secs_f64())
+    partition_json(loaded, units, &p, listing, t.elapsed().as_secs_f64())
 }
 
-/// The answer of a partitioning, every solution listed.
+/// The answer of a partitioning, listed as the command line lists it: moving sets in
+/// the order of their best solution, the first `listing.sets` of them with at most
+/// `listing.per_set` solutions of each kind; the counts cover every solution.
 fn partition_json(
     loaded: &Loaded,
     units: Option<&str>,
     p: &Partitioning,
+    listing: Listing,
     seconds: f64,
 ) -> Result<Value, PlanError> {
-    let motions: Vec<Motion> = p
-        .solutions
+    // Moving sets in the order of their best (first) solution, and the solutions listed.
+    let mut index: HashMap<&[usize], usize> = HashMap::new();
+    let mut order: Vec<&[usize]> = Vec::new();
+    let mut best: Vec<Option<f64>> = Vec::new();
+    let mut listed: Vec<[usize; 3]> = Vec::new();
+    let mut kept: Vec<usize> = Vec::new();
+    for (k, s) in p.solutions.iter().enumerate() {
+        let key = s.moving.as_slice();
+        let g = *index.entry(key).or_insert_with(|| {
+            order.push(key);
+            best.push(None);
+            listed.push([0; 3]);
+            order.len() - 1
+        });
+        let kind = match s.cell {
+            CellKind::Face => 0,
+            CellKind::Edge => 1,
+            CellKind::Vertex => 2,
+        };
+        if listing.sets.is_none_or(|n| g < n) && listing.per_set.is_none_or(|n| listed[g][kind] < n)
+        {
+            listed[g][kind] += 1;
+            kept.push(k);
+        }
+        if s.cell == CellKind::Face {
+            let b = &mut best[g];
+            *b = Some(b.map_or(s.clearance_deg, |c: f64| c.max(s.clearance_deg)));
+        }
+    }
+    let motions: Vec<Motion> = kept
         .iter()
-        .map(|s| (s.moving.as_slice(), None, &s.direction))
+        .map(|&k| {
+            let s = &p.solutions[k];
+            (s.moving.as_slice(), None, &s.direction)
+        })
         .collect();
     let holds = holds_without_tolerance(loaded, &motions)?;
-    let solutions: Vec<Value> = p
-        .solutions
+    let solutions: Vec<Value> = kept
         .iter()
         .enumerate()
-        .map(|(i, s)| {
+        .map(|(i, &k)| {
+            let s = &p.solutions[k];
             let mut v = json!({
                 "cell": s.cell.name(),
                 "direction": s.unit,
@@ -216,43 +290,30 @@ fn partition_json(
             v
         })
         .collect();
-    // Moving sets in the order of their best (first listed) solution, with the counts
-    // of every solution the planner found.
+    // The counts of every solution the planner found, listed or not.
     let counts: HashMap<&[usize], [usize; 3]> = p
         .sets
         .iter()
         .map(|s| (s.moving.as_slice(), s.counts))
         .collect();
-    let mut order: Vec<&[usize]> = Vec::new();
-    let mut best: HashMap<&[usize], Option<f64>> = HashMap::new();
-    let mut listed: HashMap<&[usize], usize> = HashMap::new();
-    for s in &p.solutions {
-        let key = s.moving.as_slice();
-        if !best.contains_key(key) {
-            order.push(key);
-            best.insert(key, None);
-        }
-        *listed.entry(key).or_default() += 1;
-        if s.cell == CellKind::Face {
-            let b = best.get_mut(key).expect("inserted above");
-            *b = Some(b.map_or(s.clearance_deg, |c: f64| c.max(s.clearance_deg)));
-        }
-    }
-    let groups: Vec<Value> = order
+    let shown = listing.sets.map_or(order.len(), |n| n.min(order.len()));
+    let groups: Vec<Value> = order[..shown]
         .iter()
-        .map(|&m| {
-            let c = counts.get(m).copied().unwrap_or([0; 3]);
+        .enumerate()
+        .map(|(g, &m)| {
+            let c = counts.get(m).copied().unwrap_or(listed[g]);
             json!({
                 "moving": names_of(&p.names, m),
                 "solutions": c.iter().sum::<usize>(),
                 "faces": c[0],
                 "edges": c[1],
                 "vertices": c[2],
-                "best_clearance_deg": best[m],
-                "listed": listed[m],
+                "best_clearance_deg": best[g],
+                "listed": listed[g].iter().sum::<usize>(),
             })
         })
         .collect();
+    let total = p.solution_count();
     let s = &p.stats;
     let v = json!({
         "status": if p.stopped { "stopped" } else { "done" },
@@ -260,9 +321,10 @@ fn partition_json(
         "interlocked": p.interlocked,
         "nothing_to_separate": false,
         "parts": p.names,
-        "solution_count": p.solution_count(),
-        "moving_set_count": p.sets.len(),
-        "truncated": p.truncated,
+        "solution_count": total,
+        "moving_set_count": p.sets.len().max(order.len()),
+        "limit": listing.sets,
+        "truncated": kept.len() < total || p.truncated,
         "groups": groups,
         "solutions": solutions,
         "stats": {

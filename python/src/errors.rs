@@ -52,8 +52,30 @@ pub fn internal(py: Python<'_>, message: String) -> PyErr {
     make(py, "InternalError", message, serde_json::json!({}))
 }
 
-/// `apart.StoppedError`: the run was stopped before it had any answer.
+/// `apart.OutOfMemoryBudget` (a `MemoryError`): "out of memory budget (SIZE) during
+/// PHASE: DETAIL", as the command line's error line words it.
+pub fn out_of_memory(py: Python<'_>, phase: &str, detail: &str) -> PyErr {
+    make(
+        py,
+        "OutOfMemoryBudget",
+        format!(
+            "out of memory budget ({}) during {phase}: {detail}",
+            crate::budget::limit_text()
+        ),
+        serde_json::json!({
+            "phase": phase,
+            "detail": detail,
+            "budget": apart_kernel::budget::limit(),
+        }),
+    )
+}
+
+/// `apart.StoppedError`: the run was stopped before it had any answer
+/// (`apart.OutOfMemoryBudget` when the memory budget stopped it).
 pub fn stopped(py: Python<'_>, stop: Option<Stopped>) -> PyErr {
+    if let Some(s) = stop.as_ref().filter(|s| s.by_memory()) {
+        return out_of_memory(py, &s.phase, s.detail.as_deref().unwrap_or("stopped"));
+    }
     let (by, phase, after) = match &stop {
         Some(s) => (s.by, s.phase.clone(), s.after_seconds),
         None => ("stop flag", String::new(), 0.0),

@@ -5,10 +5,15 @@
 //! `--json` output (the pure-Python package wraps them in typed objects). Long work
 //! runs on a worker thread with the GIL released ([`work::run`]): progress goes to a
 //! Python callback, and Ctrl-C, a stop asked by the callback or a timeout raise the
-//! planners' stop flag. Errors become the exceptions of `apart._errors`; a panic is
-//! caught at the boundary and becomes `apart.InternalError`.
+//! planners' stop flag, as does the memory budget ([`budget`]: the command line's
+//! counting allocator, by default 80 % of the machine's memory). Every argument is
+//! checked here with the command line's ranges ([`args`]), as `apart._core` checks
+//! them. Errors become the exceptions of `apart._errors`; a panic is caught at the
+//! boundary and becomes `apart.InternalError`.
 
 mod answers;
+mod args;
+mod budget;
 mod errors;
 mod memory;
 mod pictures;
@@ -91,7 +96,7 @@ fn stage_label(s: apart_assembly::Stage) -> &'static str {
 fn load(
     py: Python<'_>,
     path: PathBuf,
-    grid_bits: u32,
+    grid_bits: i64,
     tolerance: Option<f64>,
     tolerance_auto: bool,
     strict: bool,
@@ -103,6 +108,10 @@ fn load(
     timeout: Option<f64>,
     decompose_all: bool,
 ) -> PyResult<Assembly> {
+    args::units(py, units.as_deref())?;
+    args::tolerance(py, tolerance, tolerance_auto)?;
+    let grid_bits = args::grid_bits(py, grid_bits)?;
+    let timeout = args::timeout(py, timeout)?;
     let args = LoadArgs {
         grid_bits,
         tolerance,
@@ -137,7 +146,7 @@ fn from_meshes(
     py: Python<'_>,
     name: String,
     parts: Vec<(String, Bound<'_, PyBytes>, Bound<'_, PyBytes>)>,
-    grid_bits: u32,
+    grid_bits: i64,
     tolerance: Option<f64>,
     tolerance_auto: bool,
     strict: bool,
@@ -147,6 +156,13 @@ fn from_meshes(
     progress: Option<Py<PyAny>>,
     timeout: Option<f64>,
 ) -> PyResult<Assembly> {
+    args::units(py, units.as_deref())?;
+    args::tolerance(py, tolerance, tolerance_auto)?;
+    let grid_bits = args::grid_bits(py, grid_bits)?;
+    let timeout = args::timeout(py, timeout)?;
+    if parts.is_empty() {
+        return Err(errors::value_error(py, "no meshes given".into()));
+    }
     let mut meshes = Vec::with_capacity(parts.len());
     for (part, v, f) in &parts {
         meshes.push(memory::mesh(part, v.as_bytes(), f.as_bytes()).map_err(
@@ -213,20 +229,45 @@ impl Assembly {
         errors::require_valid(py, &self.loaded)
     }
 
-    /// Every solution (`apart partition --json`), the first one only, or one direction's
-    /// blocking graph, as JSON text.
-    #[pyo3(signature = (*, first, direction, max_solutions, max_per_set, progress, timeout))]
+    /// The solutions (`apart partition --json`), the first one only, or one direction's
+    /// blocking graph, as JSON text. Listed as the command line lists them: at most
+    /// `limit` moving sets (default 20) with at most `max_per_set` solutions of each
+    /// kind (default 5), or everything with `all`; every solution is counted.
+    #[pyo3(signature = (*, first=false, direction=None, max_solutions=None, max_per_set=None, limit=None, all=false, progress=None, timeout=None))]
     #[allow(clippy::too_many_arguments)]
     fn partition_json(
         &self,
         py: Python<'_>,
         first: bool,
         direction: Option<[f64; 3]>,
-        max_solutions: Option<usize>,
-        max_per_set: Option<usize>,
+        max_solutions: Option<i64>,
+        max_per_set: Option<i64>,
+        limit: Option<i64>,
+        all: bool,
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
     ) -> PyResult<String> {
+        let max_solutions = args::positive(py, "max_solutions", max_solutions)?;
+        let max_per_set = args::positive(py, "max_per_set", max_per_set)?;
+        let limit = args::positive(py, "limit", limit)?;
+        let timeout = args::timeout(py, timeout)?;
+        if all && (limit.is_some() || max_per_set.is_some()) {
+            return Err(errors::value_error(
+                py,
+                "all=True lists every solution: it takes no limit or max_per_set".into(),
+            ));
+        }
+        let listing = if all {
+            answers::Listing {
+                sets: None,
+                per_set: None,
+            }
+        } else {
+            answers::Listing {
+                sets: Some(limit.unwrap_or(answers::DEFAULT_LIMIT)),
+                per_set: Some(max_per_set.unwrap_or(answers::EXAMPLES_PER_KIND)),
+            }
+        };
         errors::require_valid(py, &self.loaded)?;
         let loaded = self.loaded.clone();
         let units = self.units.clone();
@@ -237,7 +278,7 @@ impl Assembly {
         let opts = apart_plan::Options {
             first,
             max_solutions,
-            max_per_set,
+            max_per_set: None,
         };
         let limits = Limits {
             callback: progress,
@@ -246,9 +287,13 @@ impl Assembly {
             stoppable: !first && d.is_none(),
         };
         let (answer, stop) = run(py, limits, move |p| {
-            answers::partition(&loaded, units.as_deref(), d, &opts, p)
+            answers::partition(&loaded, units.as_deref(), d, &opts, listing, p)
         })?;
-        let mut answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        let mut answer = answer.map_err(|e| match &stop {
+            // The motion space refused by the memory budget.
+            Some(s) if s.by_memory() => errors::stopped(py, stop.clone()),
+            _ => errors::plan_error(py, e),
+        })?;
         work::mark(&mut answer, &stop);
         Ok(answer.to_string())
     }
@@ -266,7 +311,7 @@ impl Assembly {
         prefer_single: bool,
         prefer_connected: bool,
         prefer_axes: bool,
-        max_depth: Option<usize>,
+        max_depth: Option<i64>,
         growth: bool,
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
@@ -277,12 +322,8 @@ impl Assembly {
             Some(name) => Some(errors::part_index(py, &self.loaded.assembly, &name)?),
             None => None,
         };
-        if max_depth == Some(0) {
-            return Err(errors::value_error(
-                py,
-                "max_depth must be 1 or more".into(),
-            ));
-        }
+        let max_depth = args::positive(py, "max_depth", max_depth)?;
+        let timeout = args::timeout(py, timeout)?;
         let opts = apart_plan::SequenceOptions {
             prefer_single,
             prefer_connected,
@@ -313,7 +354,10 @@ impl Assembly {
         let (answer, stop) = run(py, limits, move |p| {
             answers::sequence(&loaded, units.as_deref(), &opts, first, p)
         })?;
-        let (mut answer, plan) = answer.map_err(|e| errors::plan_error(py, e))?;
+        let (mut answer, plan) = answer.map_err(|e| match &stop {
+            Some(s) if s.by_memory() => errors::stopped(py, stop.clone()),
+            _ => errors::plan_error(py, e),
+        })?;
         let plan = (!plan.stopped).then(|| Plan {
             loaded: self.loaded.clone(),
             plan: Arc::new(plan),
@@ -333,6 +377,7 @@ impl Assembly {
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
     ) -> PyResult<String> {
+        let timeout = args::timeout(py, timeout)?;
         errors::require_valid(py, &self.loaded)?;
         let asm = &self.loaded.assembly;
         if asm.parts.len() < 2 {
@@ -387,9 +432,25 @@ impl Assembly {
         dtheta: f64,
         bases: Option<Vec<(u8, u8)>>,
         clearance: Option<f64>,
-        candidates: usize,
+        candidates: i64,
         timeout: Option<f64>,
     ) -> PyResult<String> {
+        let target = args::all_finite(py, "target", target)?;
+        let weight = weight.map(|w| args::weight(py, w)).transpose()?;
+        let floor_point = args::all_finite(py, "floor_point", floor_point)?;
+        if region.is_some() && translations.is_some() {
+            return Err(errors::value_error(
+                py,
+                "give region= or translations=, not both".into(),
+            ));
+        }
+        let region = args::region(py, "region", region)?;
+        let translations = args::region(py, "translations", translations)?;
+        let dtheta = args::dtheta(py, dtheta)?;
+        let bases = args::bases(py, bases)?;
+        let clearance = args::clearance(py, clearance)?;
+        let candidates = args::count(py, "candidates", candidates, 1, Some(1000))?;
+        let timeout = args::timeout(py, timeout)?;
         errors::require_valid_but(py, &self.loaded, Some(&part))?;
         let k = errors::part_index(py, &self.loaded.assembly, &part)?;
         let asm = &self.loaded.assembly;
@@ -439,6 +500,7 @@ impl Assembly {
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
     ) -> PyResult<Bound<'py, PyBytes>> {
+        let timeout = args::timeout(py, timeout)?;
         errors::require_valid(py, &self.loaded)?;
         let asm = &self.loaded.assembly;
         if asm.parts.len() < 2 {
@@ -475,7 +537,7 @@ impl Assembly {
         &self,
         py: Python<'_>,
         part: String,
-        count: usize,
+        count: i64,
         weight: f64,
         floor: Option<[f64; 4]>,
         floor_z: f64,
@@ -483,11 +545,35 @@ impl Assembly {
         dtheta: f64,
         bases: Option<Vec<(u8, u8)>>,
         clearance: Option<f64>,
-        max_candidates: usize,
+        max_candidates: i64,
         extrapolate: bool,
         progress: Option<Py<PyAny>>,
         timeout: Option<f64>,
     ) -> PyResult<String> {
+        let count = args::count(py, "count", count, 1, Some(1000))?;
+        let weight = args::weight(py, weight)?;
+        if let Some(f) = floor {
+            if !(args::all_finite(py, "floor", f)?[0] < f[2] && f[1] < f[3]) {
+                return Err(errors::value_error(
+                    py,
+                    format!("floor must be (x0, y0, x1, y1) with x0 < x1 and y0 < y1, not {f:?}"),
+                ));
+            }
+        }
+        let floor_z = args::finite(py, "floor_z", floor_z)?;
+        if let Some(h) = max_height {
+            if !(h.is_finite() && h > 0.0) {
+                return Err(errors::value_error(
+                    py,
+                    format!("max_height must be a positive length, not {h}"),
+                ));
+            }
+        }
+        let dtheta = args::dtheta(py, dtheta)?;
+        let bases = args::bases(py, bases)?;
+        let clearance = args::clearance(py, clearance)?;
+        let max_candidates = args::count(py, "max_candidates", max_candidates, 1, Some(100_000))?;
+        let timeout = args::timeout(py, timeout)?;
         errors::require_valid(py, &self.loaded)?;
         let k = errors::part_index(py, &self.loaded.assembly, &part)?;
         if self.loaded.assembly.parts[k].pieces.is_empty() {
@@ -545,13 +631,79 @@ impl Plan {
     }
 }
 
+/// Sets the memory budget of the extension's heap: a number of bytes (at least 1 MiB;
+/// 0: none), a size such as `"4G"`, `"500M"` or `"1.5G"` (K, M, G, T are powers of
+/// 1024), `"default"` (80 % of the machine's memory, the budget when the module is
+/// loaded), or `None` / `"none"` (no budget), as the command line's `--max-memory`.
+#[pyfunction]
+fn set_memory_budget(py: Python<'_>, size: Option<Bound<'_, PyAny>>) -> PyResult<()> {
+    let bad = |why: String| errors::value_error(py, format!("memory budget {why}"));
+    let Some(size) = size else {
+        budget::set(None, false);
+        return Ok(());
+    };
+    if size.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(bad(format!(
+            "must be a size in bytes, a text such as \"4G\", \"default\" or None, not {size}"
+        )));
+    }
+    if let Ok(text) = size.extract::<String>() {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("none") || t == "0" {
+            budget::set(None, false);
+        } else if t.eq_ignore_ascii_case("default") {
+            budget::set(budget::machine(), budget::machine().is_some());
+        } else {
+            let bytes = apart_kernel::budget::parse_size(t).map_err(bad)?;
+            budget::set(Some(bytes), false);
+        }
+        return Ok(());
+    }
+    match size.extract::<i128>() {
+        Ok(0) => budget::set(None, false),
+        Ok(b) if b >= i128::from(apart_kernel::budget::MIN_MEMORY) && b < i128::from(u64::MAX) => {
+            budget::set(Some(b as u64), false)
+        }
+        Ok(b) => {
+            return Err(bad(format!(
+                "must be at least 1M (1048576 bytes), or 0 for none, not {b}"
+            )))
+        }
+        Err(_) => {
+            return Err(bad(format!(
+                "must be a size in bytes, a text such as \"4G\", \"default\" or None, not {}",
+                size.repr().map_or_else(|_| "?".into(), |r| r.to_string())
+            )))
+        }
+    }
+    Ok(())
+}
+
+/// The memory budget in bytes (`None`: none).
+#[pyfunction]
+fn memory_budget() -> Option<u64> {
+    apart_kernel::budget::limit()
+}
+
+/// The extension's live heap, in bytes, as the budget counts it.
+#[pyfunction]
+fn memory_in_use() -> u64 {
+    apart_kernel::budget::live()
+}
+
 /// The compiled module.
 #[pymodule]
 fn _apart(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Third-party mesh parsers' panics are caught and become errors; their default
     // message on standard error would only repeat it.
     apart_formats::quiet_parser_panics();
+    budget::init();
     m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
+    m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
+    m.add_function(wrap_pyfunction!(memory_in_use, m)?)?;
+    m.add("DEFAULT_MEMORY_BUDGET", budget::machine())?;
+    m.add("MIN_MEMORY_BUDGET", apart_kernel::budget::MIN_MEMORY)?;
     m.add_function(wrap_pyfunction!(from_meshes, m)?)?;
     m.add_class::<Assembly>()?;
     m.add_class::<Plan>()?;

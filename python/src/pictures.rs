@@ -25,6 +25,12 @@ pub fn motion_space(
         Err(e) => return Err(e),
     };
     let all: Vec<usize> = (0..parts.len()).collect();
+    // A motion space over what the memory budget leaves is not built (the refusal is
+    // noted by the budget's keeper: the call raises apart.OutOfMemoryBudget).
+    let estimate = MotionSpace::estimate(&regions, &all);
+    if !progress.affordable(apart_plan::progress::phases::MOTION_SPACE, estimate.bytes) {
+        return Ok(None);
+    }
     let (p, _) = partition_subset_with(&regions, &all, &Options::default(), progress);
     if p.stopped {
         return Ok(None);

@@ -1,12 +1,15 @@
 //! Long work off the interpreter: a worker thread runs it with the GIL released, while
-//! the calling thread forwards its progress to the Python callback, checks for Ctrl-C
-//! and the timeout, and raises the planners' stop flag when asked to stop.
+//! the calling thread forwards its progress to the Python callback, checks for Ctrl-C,
+//! the timeout and the memory budget ([`crate::budget`]), and raises the planners' stop
+//! flag when asked to stop.
 
+use crate::budget;
 use apart_kernel::progress::Progress;
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// How a run may be stopped, and who hears its progress.
@@ -18,19 +21,58 @@ pub struct Limits {
     pub timeout: Option<f64>,
     /// The work watches the stop flag (planners do; the loader does not, and on
     /// Ctrl-C it is left to finish in the background while `KeyboardInterrupt` is
-    /// raised at once).
+    /// raised at once). Only such work is stopped by the memory budget's soft limit.
     pub stoppable: bool,
 }
+
+/// What raised the stop flag: the memory budget (its soft limit, or a structure a
+/// planner estimated over what the budget leaves).
+pub const BY_MEMORY: &str = "memory budget";
 
 /// Why the stop flag was raised, and when.
 #[derive(Clone, Debug)]
 pub struct Stopped {
-    /// "timeout" or "callback".
+    /// "timeout", "callback" or [`BY_MEMORY`].
     pub by: &'static str,
     /// Seconds from the start of the run.
     pub after_seconds: f64,
     /// The last phase reported before the stop.
     pub phase: String,
+    /// For the memory budget: what was refused or how much was in use.
+    pub detail: Option<String>,
+}
+
+impl Stopped {
+    /// Stopped by the memory budget.
+    pub fn by_memory(&self) -> bool {
+        self.by == BY_MEMORY
+    }
+}
+
+/// A planner's refusal of a structure over the budget: its phase and the detail.
+type Refusal = Arc<Mutex<Option<(&'static str, String)>>>;
+
+/// Why the memory budget stops the call now, if it does: a refusal, the budget passed,
+/// or its soft limit passed.
+fn memory_stop(watch: &budget::Watch, refused: &Refusal, phase: &str) -> Option<(String, String)> {
+    if let Some((p, detail)) = refused.lock().unwrap_or_else(|e| e.into_inner()).clone() {
+        return Some((p.to_string(), detail));
+    }
+    if let Some(live) = watch.over_passed() {
+        return Some((
+            phase.to_string(),
+            format!("{} MiB of heap in use, past the budget", live >> 20),
+        ));
+    }
+    watch.soft_passed().then(|| {
+        (
+            phase.to_string(),
+            format!(
+                "{} MiB of heap in use, past 90 % of the budget",
+                apart_kernel::budget::live() >> 20
+            ),
+        )
+    })
 }
 
 /// What the worker sends.
@@ -44,7 +86,10 @@ enum Msg<R> {
 /// `apart.InternalError`; Ctrl-C raises the stop flag, waits for the planner's partial
 /// answer (unless the work cannot stop, or Ctrl-C comes twice) and raises
 /// `KeyboardInterrupt`; an exception from the callback other than `apart.Stop` does the
-/// same with that exception.
+/// same with that exception. The memory budget's soft limit (or a planner's refusal of
+/// a structure estimated over it) raises the stop flag of work that watches it, for
+/// its partial answer; a call during which the heap passed the budget itself raises
+/// `apart.OutOfMemoryBudget` once its work has returned (see [`crate::budget`]).
 pub fn run<R, F>(py: Python<'_>, limits: Limits, work: F) -> PyResult<(R, Option<Stopped>)>
 where
     R: Send + 'static,
@@ -52,8 +97,18 @@ where
 {
     let (tx, rx) = channel::<Msg<R>>();
     let reports = tx.clone();
+    let watch = budget::Watch::start();
+    let refused: Refusal = Arc::default();
+    let refusals = refused.clone();
     let progress = Progress::with_callback(move |phase, done, total| {
         let _ = reports.send(Msg::Progress(phase, done, total));
+    })
+    .with_budget(move |phase, bytes| match budget::affordable(phase, bytes) {
+        Ok(()) => true,
+        Err(detail) => {
+            *refusals.lock().unwrap_or_else(|e| e.into_inner()) = Some((phase, detail));
+            false
+        }
     });
     let flag = progress.stop_flag();
     let worker = progress.clone();
@@ -75,10 +130,18 @@ where
     // The last report per phase, so that the callback sees counts that never go back
     // (the loader's threads may report out of order).
     let mut last: Option<(&'static str, usize)> = None;
+    budget::set_phase("starting");
     let stop_stamp = |by: &'static str, phase: &str| Stopped {
         by,
         after_seconds: start.elapsed().as_secs_f64(),
         phase: phase.to_string(),
+        detail: None,
+    };
+    let memory_stamp = |(phase, detail): (String, String)| Stopped {
+        by: BY_MEMORY,
+        after_seconds: start.elapsed().as_secs_f64(),
+        phase,
+        detail: Some(detail),
     };
     let result = loop {
         let (msg, back) = py.detach(move || {
@@ -90,6 +153,7 @@ where
             Ok(Msg::Done(r)) => break r,
             Ok(Msg::Progress(p, done, total)) => {
                 phase = p.to_string();
+                budget::set_phase(p);
                 if last.is_some_and(|(q, d)| q == p && done < d) {
                     continue;
                 }
@@ -128,6 +192,12 @@ where
                 stop = Some(stop_stamp("timeout", &phase));
             }
         }
+        if limits.stoppable && stop.is_none() && raised.is_none() {
+            if let Some(m) = memory_stop(&watch, &refused, &phase) {
+                flag.store(true, Ordering::Relaxed);
+                stop = Some(memory_stamp(m));
+            }
+        }
         // Work that cannot stop has no partial answer: a stop ends the call now (the
         // worker finishes on its own and its answer is dropped).
         if stop.is_some() && !limits.stoppable {
@@ -140,6 +210,21 @@ where
     // A Ctrl-C that came with the last reports, after the loop's last look, is still a
     // Ctrl-C during the call.
     py.check_signals()?;
+    // Past the budget itself the command line would have ended: no answer.
+    if let Some(live) = watch.over_passed() {
+        drop(result);
+        return Err(crate::errors::out_of_memory(
+            py,
+            &phase,
+            &format!("{} MiB of heap asked for", live >> 20),
+        ));
+    }
+    // A planner's refusal just before its work returned (it stopped on its own).
+    if stop.is_none() {
+        if let Some((p, detail)) = refused.lock().unwrap_or_else(|e| e.into_inner()).take() {
+            stop = Some(memory_stamp((p.to_string(), detail)));
+        }
+    }
     match result {
         Ok(r) => Ok((r, stop)),
         Err(panic) => {
@@ -163,9 +248,10 @@ fn stop_class(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 }
 
 /// Marks a planner's answer that stopped early (`"status": "stopped"`, set by the
-/// answer itself) with why and when: `"status"` becomes `"timeout"` or `"stopped"`
-/// (asked by the callback), and `"stopped"` holds `by`, `after_seconds` and `phase` as
-/// in the command line's JSON.
+/// answer itself) with why and when: `"status"` becomes `"timeout"`, `"out of memory"`
+/// (the memory budget) or `"stopped"` (asked by the callback), and `"stopped"` holds
+/// `by`, `after_seconds` and `phase` as in the command line's JSON (and for the memory
+/// budget its `detail`).
 pub fn mark(answer: &mut serde_json::Value, stop: &Option<Stopped>) {
     let partial = answer.get("status").and_then(|s| s.as_str()) == Some("stopped");
     if !partial {
@@ -173,6 +259,7 @@ pub fn mark(answer: &mut serde_json::Value, stop: &Option<Stopped>) {
     }
     let (by, status, after, phase) = match stop {
         Some(s) if s.by == "timeout" => ("timeout", "timeout", s.after_seconds, s.phase.clone()),
+        Some(s) if s.by_memory() => (BY_MEMORY, "out of memory", s.after_seconds, s.phase.clone()),
         Some(s) => ("callback", "stopped", s.after_seconds, s.phase.clone()),
         None => ("stop flag", "stopped", 0.0, String::new()),
     };
@@ -182,4 +269,8 @@ pub fn mark(answer: &mut serde_json::Value, stop: &Option<Stopped>) {
         "after_seconds": after,
         "phase": phase,
     });
+    if let Some(d) = stop.as_ref().and_then(|s| s.detail.as_ref()) {
+        answer["stopped"]["detail"] = d.clone().into();
+        answer["stopped"]["budget"] = budget::limit_text().into();
+    }
 }

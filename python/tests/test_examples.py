@@ -42,7 +42,7 @@ def test_split_star_has_the_eight_published_motions(star, cli):
 
 @pytest.mark.parametrize("example", ["peg-in-the-hole", "split-star-3", "dovetail-and-cap", "hinge"])
 def test_partition_matches_the_command_line(example, cli):
-    p = apart.load(EXAMPLES / example).partition()
+    p = apart.load(EXAMPLES / example).partition(all=True)
     code, j = cli("partition", str(EXAMPLES / example), "--all")
     assert code == (2 if j["interlocked"] else 0)
     assert p.interlocked == j["interlocked"]
@@ -184,7 +184,7 @@ def test_tolerance_auto_matches_the_command_line(cli):
         apart.load(folder).partition()
     assert e.value.part in ("pin", "block")
     asm = apart.load(folder, tolerance="auto")
-    p = asm.partition()
+    p = asm.partition(all=True)
     code, j = cli("partition", str(folder), "--tolerance", "auto", "--all")
     assert code == 0
     assert p.tolerance == j["tolerance"] and p.tolerance["auto"] is True
@@ -194,7 +194,7 @@ def test_tolerance_auto_matches_the_command_line(cli):
 
 def test_tolerance_with_units(cli):
     folder = EXAMPLES / "cad-seams"
-    p = apart.load(folder, tolerance="5um", units="mm").partition()
+    p = apart.load(folder, tolerance="5um", units="mm").partition(all=True)
     code, j = cli("partition", str(folder), "--tolerance", "5um", "--units", "mm", "--all")
     assert p.tolerance["eps"] == j["tolerance"]["eps"] == pytest.approx(0.005)
     assert p.units == j["units"] == "mm"

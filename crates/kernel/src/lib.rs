@@ -21,6 +21,8 @@
 //! - [`fvec`]: float vectors, for pictures, measurements and the shadows of float
 //!   filters (no float decides anything).
 //! - [`progress`]: progress reports and a stop flag shared by the long planners.
+//! - [`budget`]: the memory budget's counting allocator, shared by the command line
+//!   and the Python extension (this crate's only unsafe code).
 //!
 //! ```
 //! use apart_kernel::{Vec3, Sign, predicates::det3_sign, spherical::circle_intersection};
@@ -32,6 +34,7 @@
 //! ```
 
 pub mod aabb;
+pub mod budget;
 pub mod bvh;
 pub mod fvec;
 pub mod grid;
