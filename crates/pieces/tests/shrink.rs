@@ -195,7 +195,7 @@ proptest! {
 /// A case that fails when the float cut runs in the piece's stored order on coordinates
 /// rounded twice: the 96-bit copy's shrink then has a vertex two steps away.
 #[test]
-fn the_96_bit_copy_shrinks_to_the_same_piece_on_the_stop_28_case() {
+fn the_96_bit_copy_shrinks_to_the_same_piece_when_rounded_twice() {
     let pts = [
         (-367, -6, -1335),
         (-8, -297, -3819),
