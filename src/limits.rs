@@ -30,8 +30,8 @@
 //!   (the smaller of the physical memory and the cgroup's limit, [`machine_budget`]);
 //!   `--max-memory none` (or 0) sets none. [`Budget`] (the kernel's
 //!   `apart::kernel::budget`, shared with the Python extension) wraps the system
-//!   allocator and counts the bytes of live heap allocations (not stack, code or mapped files, so the
-//!   resident size is a few MB larger). Past 90 % of the budget while a planner runs
+//!   allocator and counts the bytes of live heap allocations, and a thread samples the
+//!   resident size every 20 ms (what the allocator keeps beyond the bytes asked for). Past 90 % of the budget while a planner runs
 //!   (the soft limit) it raises the stop flag (an atomic store, nothing allocated) for
 //!   the partial answer; an allocation that would pass the budget itself prints "out of
 //!   memory budget (--max-memory SIZE) during PHASE" with a raw write (no allocation
@@ -512,6 +512,7 @@ pub fn set_memory_budget(bytes: u64, default: bool) {
         over: over_budget,
     });
     apart::kernel::budget::set_memory_budget(bytes, default);
+    apart::kernel::budget::watch_resident();
 }
 
 /// Past the soft limit: while a planner runs, asks it for its partial answer (once).

@@ -101,12 +101,13 @@ pub struct Global {
     pub timeout: Option<f64>,
     /// The memory budget: SIZE of live heap memory (4G, 500M, 1.5G or bytes; K, M, G, T
     /// are powers of 1024; at least 1M), or none (or 0) for no budget. Default: 80 % of
-    /// the machine's memory (the smaller of the physical memory and the cgroup's limit).
+    /// the machine's memory (the smaller of the physical memory and the cgroup's limit;
+    /// under an address-space limit, 80 % of it less 512M).
     /// Past 90 % of it partition, sequence and stack stop their planner and print the
     /// answer found so far (status "out of memory"); a run that would pass the budget
     /// itself ends at once. Either way the run ends with "out of memory budget
-    /// (--max-memory SIZE) during PHASE" and exit code 1. Counts heap allocations only
-    /// (the resident size is a few MB more).
+    /// (--max-memory SIZE) during PHASE" and exit code 1. Bounds the live heap and the
+    /// growth of the resident size (sampled every 20 ms).
     #[arg(long, global = true, value_name = "SIZE|none", value_parser = limits::memory_budget, allow_negative_numbers = true)]
     pub max_memory: Option<u64>,
 }
