@@ -107,7 +107,7 @@ pub struct Global {
     /// answer found so far (status "out of memory"); a run that would pass the budget
     /// itself ends at once. Either way the run ends with "out of memory budget
     /// (--max-memory SIZE) during PHASE" and exit code 1. Bounds the live heap and the
-    /// growth of the resident size (sampled every 20 ms).
+    /// growth of the resident size (sampled every 20 ms, at most 64M past the budget).
     #[arg(long, global = true, value_name = "SIZE|none", value_parser = limits::memory_budget, allow_negative_numbers = true)]
     pub max_memory: Option<u64>,
 }

@@ -1203,3 +1203,56 @@ fn files_outside_the_assembly_need_allow_outside() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Under an address-space limit (`ulimit -v`) and no `--max-memory`, the default budget
+/// is taken from the limit: a motion space too big for it ends the run with apart's own
+/// message and exit code 1, never with an allocation failure (an abort, signal 6).
+#[cfg(target_os = "linux")]
+#[test]
+fn an_address_space_limit_sets_the_default_budget() {
+    let dir = scratch("address-space");
+    // 512 loose cubes: their motion space is estimated at 3.8 GiB.
+    loose_cubes(&dir, 512);
+    // 1.5 GiB of address space: a budget of 80 % of it less 512 MiB, about 800 MiB.
+    let script = format!(
+        "ulimit -v 1572864 && exec {} partition {}",
+        env!("CARGO_BIN_EXE_apart"),
+        dir.display()
+    );
+    let out = Command::new("sh").args(["-c", &script]).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{:?}: {err}", out.status);
+    assert!(
+        err.contains("out of memory budget (") && err.contains("by default"),
+        "{err}"
+    );
+}
+
+/// A file whose name is not UTF-8 in an assembly folder: `check --json` writes whole
+/// JSON naming it (escaped), rather than stopping in the middle of the answer.
+#[cfg(unix)]
+#[test]
+fn a_file_name_that_is_not_utf8_is_written_escaped_in_json() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("not-utf8");
+    let name = std::ffi::OsStr::from_bytes(b"b\xff.off");
+    std::fs::write(dir.join("a.off"), cube_off([0, 0, 0])).unwrap();
+    std::fs::write(dir.join(name), cube_off([1, 0, 0])).unwrap();
+    let out = run(&["check", "--json", dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v = json(&out);
+    assert_eq!(v["valid"], true);
+    let sources: Vec<String> = v["parts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["source"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(sources.len(), 2);
+    assert!(
+        sources
+            .iter()
+            .any(|s| s.ends_with(".off") && s.contains('b') && !s.contains("a.off")),
+        "{sources:?}"
+    );
+}
