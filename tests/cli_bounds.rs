@@ -1252,7 +1252,7 @@ fn a_file_name_that_is_not_utf8_is_written_escaped_in_json() {
     assert!(
         sources
             .iter()
-            .any(|s| s.ends_with(".off") && s.contains('b') && !s.contains("a.off")),
+            .any(|s| s.contains(".off") && s.contains('b') && !s.contains("a.off")),
         "{sources:?}"
     );
 }

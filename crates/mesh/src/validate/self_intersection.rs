@@ -321,10 +321,8 @@ impl Slab {
             let d = fvec::dot(u, p);
             s.lo = s.lo.min(d);
             s.hi = s.hi.max(d);
-            for k in 0..3 {
-                s.min[k] = s.min[k].min(p[k]);
-                s.max[k] = s.max[k].max(p[k]);
-            }
+            s.min = [0, 1, 2].map(|k| s.min[k].min(p[k]));
+            s.max = [0, 1, 2].map(|k| s.max[k].max(p[k]));
         }
         s
     }
