@@ -74,25 +74,11 @@ struct Overlap {
     depth: f64,
 }
 
-/// Pairs of parts with pieces whose open boxes meet, but for the pairs `disjoint`.
-fn pair_boxes(parts: &[Part], disjoint: &[(usize, usize)]) -> Vec<(usize, usize)> {
-    let mut pairs = Vec::new();
-    for i in 0..parts.len() {
-        for j in i + 1..parts.len() {
-            let (a, b) = (&parts[i], &parts[j]);
-            if a.pieces.is_empty() || b.pieces.is_empty() || disjoint.binary_search(&(i, j)).is_ok()
-            {
-                continue;
-            }
-            if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
-                if ba.overlaps_open(&bb) {
-                    pairs.push((i, j));
-                }
-            }
-        }
-    }
-    pairs
-}
+/// How many overlapping pairs of parts a tolerance is measured on before the loader
+/// gives up: a product of thousands of parts has a few overlapping fits per part, while
+/// thousands of copies of one part overlap in millions of pairs, which no tolerance is
+/// for (and measuring each would take minutes).
+pub const MAX_OVERLAPPING_PAIRS: usize = 200_000;
 
 /// The deepest overlap of two parts' pieces (grid units), or `None` when their
 /// interiors are disjoint. The piece pairs whose open boxes meet are tested in parallel;
@@ -129,17 +115,55 @@ pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f6
 }
 
 /// The overlapping pairs of parts, but for the pairs `disjoint` (known not to).
-fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Vec<Overlap> {
-    pair_boxes(parts, disjoint)
-        .into_par_iter()
-        .filter_map(|(i, j)| {
-            deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
-                i,
-                j,
-                depth,
-            })
+/// In pair order: candidates from a hierarchy of the parts' boxes, part by part, tested
+/// in parallel batches. `Err` when more than [`MAX_OVERLAPPING_PAIRS`] overlap.
+fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>, usize> {
+    let boxes: Vec<Aabb> = parts
+        .iter()
+        .map(|p| match p.pieces.is_empty() {
+            true => Aabb::EMPTY,
+            false => p.bbox.unwrap_or(Aabb::EMPTY),
         })
-        .collect()
+        .collect();
+    let bvh = apart_kernel::Bvh::new(boxes.clone());
+    let mut out = Vec::new();
+    for i in 0..parts.len() {
+        if boxes[i].is_empty() {
+            continue;
+        }
+        let mut near = Vec::new();
+        bvh.query(&boxes[i], |j| {
+            let j = j as usize;
+            if j > i
+                && boxes[i].overlaps_open(&boxes[j])
+                && disjoint.binary_search(&(i, j)).is_err()
+            {
+                near.push(j);
+            }
+        });
+        near.sort_unstable();
+        for batch in near.chunks(256) {
+            out.par_extend(batch.par_iter().filter_map(|&j| {
+                deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
+                    i,
+                    j,
+                    depth,
+                })
+            }));
+            if out.len() > MAX_OVERLAPPING_PAIRS {
+                return Err(MAX_OVERLAPPING_PAIRS);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The error when too many pairs overlap for a tolerance to be measured.
+fn too_many_overlaps(n: usize) -> Problem {
+    Problem::error(format!(
+        "more than {n} pairs of parts overlap: copies of parts on each other, not the overlaps of tessellated fits that a tolerance accepts; the tolerance is not applied (without it, apart check lists the first overlaps)"
+    ))
+    .with_kind(ProblemKind::Tolerance)
 }
 
 /// `v` (input units, finite, positive) in grid units, exactly.
@@ -207,7 +231,13 @@ pub(crate) fn apply(
     let grid = asm.grid;
     let h = grid.step();
     let tracker = Tracker::start(opts, Stage::Overlaps, 1);
-    let before = overlaps(&asm.parts, disjoint);
+    let before = match overlaps(&asm.parts, disjoint) {
+        Ok(b) => b,
+        Err(n) => {
+            asm.tolerance = None;
+            return vec![too_many_overlaps(n)];
+        }
+    };
     tracker.tick();
     let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * h;
     let size = asm
@@ -263,7 +293,14 @@ pub(crate) fn apply(
     loop {
         (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
         // Shrunk pieces lie inside the originals: disjoint parts stay disjoint.
-        after = overlaps(&asm.parts, disjoint);
+        after = match overlaps(&asm.parts, disjoint) {
+            Ok(a) => a,
+            Err(n) => {
+                // Shrinking only separates: as many overlaps as before at most.
+                problems.push(too_many_overlaps(n));
+                Vec::new()
+            }
+        };
         // The depth is a floating-point measurement: when it fell short, double (auto
         // only; a stated tolerance is kept as stated).
         if !auto || after.is_empty() || eps * 2.0 > limit {

@@ -145,54 +145,89 @@ fn solids(p: &Part) -> Vec<Cow<'_, Mesh>> {
     }
 }
 
-/// Problems for every pair of parts whose interiors overlap; the pairs `disjoint`
-/// (`(i, j)`, `i < j`, sorted) are already known not to.
+/// How many overlapping pairs of parts are listed before the check stops: one refuses
+/// the assembly, and thousands of copies of one part would otherwise cost a test and a
+/// message per pair (4.5 million for 3,000 copies).
+pub(crate) const MAX_LISTED_OVERLAPS: usize = 100;
+
+/// Problems for the pairs of parts whose interiors overlap, the first
+/// [`MAX_LISTED_OVERLAPS`] in pair order (then one problem saying the list stops); the
+/// pairs `disjoint` (`(i, j)`, `i < j`, sorted) are already known not to. Candidate
+/// pairs come from a hierarchy of the parts' boxes, part by part, and are tested in
+/// parallel batches in order, so the answer is the same on any number of threads and
+/// the search ends as soon as the list is full.
 pub(crate) fn check_parts(
     asm: &Assembly,
     opts: &LoadOptions,
     disjoint: &[(usize, usize)],
 ) -> Vec<Problem> {
     let parts = &asm.parts;
-    let mut pairs = Vec::new();
+    let boxes: Vec<Aabb> = parts
+        .iter()
+        .map(|p| p.bbox.filter(|_| usable(p)).unwrap_or(Aabb::EMPTY))
+        .collect();
+    let bvh = apart_kernel::Bvh::new(boxes.clone());
+    let tracker = Tracker::start(opts, Stage::Overlaps, parts.len());
+    let mut out: Vec<Problem> = Vec::new();
     for i in 0..parts.len() {
-        for j in i + 1..parts.len() {
-            let (a, b) = (&parts[i], &parts[j]);
-            if !usable(a) || !usable(b) || disjoint.binary_search(&(i, j)).is_ok() {
-                continue;
+        tracker.tick();
+        if boxes[i].is_empty() {
+            continue;
+        }
+        let mut near = Vec::new();
+        bvh.query(&boxes[i], |j| {
+            let j = j as usize;
+            if j > i
+                && boxes[i].overlaps_open(&boxes[j])
+                && disjoint.binary_search(&(i, j)).is_err()
+            {
+                near.push(j);
             }
-            if let (Some(ba), Some(bb)) = (a.bbox, b.bbox) {
-                if ba.overlaps_open(&bb) {
-                    pairs.push((i, j));
+        });
+        near.sort_unstable();
+        for batch in near.chunks(64) {
+            let found: Vec<Problem> = batch
+                .par_iter()
+                .filter_map(|&j| overlap_problem(asm, i, j))
+                .collect();
+            for p in found {
+                if out.len() == MAX_LISTED_OVERLAPS {
+                    out.push(
+                        Problem::error(format!(
+                            "more parts overlap; the list stops at {MAX_LISTED_OVERLAPS} pairs"
+                        ))
+                        .with_kind(ProblemKind::Overlap {
+                            other: Box::new(String::new()),
+                        }),
+                    );
+                    return out;
                 }
+                out.push(p);
             }
         }
     }
-    let tracker = Tracker::start(opts, Stage::Overlaps, pairs.len());
-    pairs
-        .par_iter()
-        .map(|&(i, j)| {
-            let w = part_overlap(&parts[i], &parts[j], &asm.grid);
-            tracker.tick();
-            w.map(|w| {
-                let (a, b) = (&parts[i], &parts[j]);
-                // The depth is measured on convex pieces; parts compared by their
-                // boundaries only get the witness.
-                let depth = crate::tolerance::deepest_piece_overlap(&a.pieces, &b.pieces)
-                    .map(|d| format!(" by a depth of {:.3e}", d * asm.grid.step()))
-                    .unwrap_or_default();
-                Problem::error(format!(
-                    "overlaps part \"{}\"{depth}: {} lies strictly inside both",
-                    b.name,
-                    fmt_witness(&w, &asm.grid)
-                ))
-                .in_part(a.name.clone())
-                .with_kind(ProblemKind::Overlap {
-                    other: Box::new(b.name.clone()),
-                })
-            })
-        })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .flatten()
-        .collect()
+    out
+}
+
+/// The problem of parts `i` and `j` when their interiors overlap, with a witness point
+/// and (for parts with pieces) the depth.
+fn overlap_problem(asm: &Assembly, i: usize, j: usize) -> Option<Problem> {
+    let (a, b) = (&asm.parts[i], &asm.parts[j]);
+    let w = part_overlap(a, b, &asm.grid)?;
+    // The depth is measured on convex pieces; parts compared by their boundaries only
+    // get the witness.
+    let depth = crate::tolerance::deepest_piece_overlap(&a.pieces, &b.pieces)
+        .map(|d| format!(" by a depth of {:.3e}", d * asm.grid.step()))
+        .unwrap_or_default();
+    Some(
+        Problem::error(format!(
+            "overlaps part \"{}\"{depth}: {} lies strictly inside both",
+            b.name,
+            fmt_witness(&w, &asm.grid)
+        ))
+        .in_part(a.name.clone())
+        .with_kind(ProblemKind::Overlap {
+            other: Box::new(b.name.clone()),
+        }),
+    )
 }
