@@ -145,10 +145,12 @@ pub(crate) fn self_intersections_counted(
     let bvh_of_triangles = bvh;
     let bvh = own_bvh.as_ref().unwrap_or(bvh);
     let boxes_of = bvh.boxes();
-    // Every node's slab along the normal of its first triangle.
+    // Every leaf's slab along the normal of its first triangle. Inner nodes get none:
+    // theirs would rarely separate anything and would cost a test per pair of nodes
+    // (a tenth of the validation of a million-triangle torus).
     let slabs = bvh.node_labels(
         |prims| Slab::of_triangles(mesh, prims.iter().map(|&p| owner[p as usize])),
-        Slab::join,
+        |_, _| Slab::NONE,
         Slab::NONE,
     );
 
@@ -275,9 +277,18 @@ impl Slab {
         ok: false,
     };
 
-    /// The slab of the triangles `ts` along the normal of the first one with a normal.
+    /// The slab of the triangles `ts` along the normal of the first one; none when
+    /// one of them has no area (the exact test's answer on such a triangle is not a
+    /// question of where it lies, so nothing is skipped for it).
     fn of_triangles(mesh: &Mesh, ts: impl Iterator<Item = u32> + Clone) -> Slab {
         let corners = |t: u32| mesh.corners(t as usize).map(|p| p.map(|c| c as f64));
+        let flat = |t: u32| {
+            let [a, b, c] = mesh.corners(t as usize);
+            orient::normal(a, b, c) == [0; 3]
+        };
+        if ts.clone().any(flat) {
+            return Slab::NONE;
+        }
         let Some(u) = ts.clone().find_map(|t| {
             let [a, b, c] = corners(t);
             let n = fvec::cross(fvec::sub(b, a), fvec::sub(c, a));
@@ -440,13 +451,23 @@ impl Face {
 /// non-convex cap (a star's) is thus not tested against itself, which would cost the
 /// square of its triangles.
 fn certified_groups(mesh: &Mesh, distinct: &[bool], flats: &[Flat]) -> Vec<Face> {
+    // Only faces of many triangles: counted first, so that a mesh of a million
+    // single-triangle faces costs one pass and no map.
+    let Some(&top) = mesh.source_faces.iter().max() else {
+        return Vec::new();
+    };
+    let mut count = vec![0u32; top as usize + 1];
+    for &f in &mesh.source_faces {
+        count[f as usize] += 1;
+    }
     let mut by_face: std::collections::HashMap<u32, Vec<u32>> = Default::default();
     for (t, &f) in mesh.source_faces.iter().enumerate() {
-        by_face.entry(f).or_default().push(t as u32);
+        if count[f as usize] as usize >= CERTIFY_MIN {
+            by_face.entry(f).or_default().push(t as u32);
+        }
     }
     let mut faces: Vec<(u32, Face)> = by_face
         .into_par_iter()
-        .filter(|(_, ts)| ts.len() >= CERTIFY_MIN)
         .filter_map(|(f, ts)| {
             let cycle = certify_planar(mesh, &ts, distinct, flats)?;
             let n = cycle.len();
