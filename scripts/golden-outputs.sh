@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Write the JSON and pictures of the shipped examples into one folder, so that a
 # refactoring can show they stay byte-identical: run it before and after, then
-# `diff -r BEFORE AFTER`. Timings (the "seconds" of the stats) are removed from the
-# JSON; everything else is kept as printed.
+# `diff -r BEFORE AFTER`. Each command runs twice, with `--json` and as text. Timings
+# (the "seconds" of the stats, the text's "time:" lines) are removed; everything else
+# is kept as printed.
 #
 # usage: scripts/golden-outputs.sh OUT_DIR [APART_BINARY]
 set -euo pipefail
@@ -31,6 +32,11 @@ run() { # name, then the arguments of apart
   "$bin" --json -q "$@" >"$out/$name.raw" 2>"$out/$name.err" || code=$?
   echo "$code" >"$out/$name.exit"
   if strip <"$out/$name.raw" >"$out/$name.json" 2>/dev/null; then rm "$out/$name.raw"; fi
+  code=0
+  "$bin" "$@" >"$out/$name.txt" 2>"$out/$name.txt.err" || code=$?
+  echo "$code" >"$out/$name.txt.exit"
+  sed -i -E '/^ *time: /d; s/[0-9]+(\.[0-9]+)? (ms|s)\b/T/g' "$out/$name.txt" "$out/$name.txt.err"
+  sed -i "s#$out#OUT#g" "$out/$name.txt" "$out/$name.txt.err" "$out/$name.err"
 }
 
 for a in split-star split-star-3 dovetail-and-cap hinge linked-rings peg-in-the-hole ring-and-cone tray-of-cubes cad-pin-in-hole cad-seams; do
