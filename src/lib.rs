@@ -7,8 +7,9 @@
 //! [`decompose`] (exact convex decomposition), [`minkowski`] (convex sums and their
 //! projection onto the sphere), [`sphere`] (arrangements of great-circle arcs),
 //! [`plan`] (partitioning, sequences, separation), [`stack`] (placement by c-space
-//! obstacles and stacking) and [`draw`] (pictures and exports). The `apart` binary
-//! holds flags and output only.
+//! obstacles and stacking), [`jobs`] (each job with its typed answer, shared with the
+//! Python binding) and [`draw`] (pictures and exports). The `apart` binary holds flags
+//! and output only.
 //!
 //! ```no_run
 //! let loaded = apart::assembly::load(std::path::Path::new("examples/split-star"), &Default::default()).unwrap();
@@ -20,6 +21,7 @@ pub use apart_assembly as assembly;
 pub use apart_decompose as decompose;
 pub use apart_draw as draw;
 pub use apart_formats as formats;
+pub use apart_jobs as jobs;
 pub use apart_kernel as kernel;
 pub use apart_mesh as mesh;
 pub use apart_minkowski as minkowski;

@@ -568,42 +568,27 @@ pub fn affordable(phase: &'static str, bytes: u64) -> bool {
     false
 }
 
-/// An estimate of the motion space below this many bytes builds without a word.
-const QUIET_ESTIMATE: u64 = 2 << 30;
-
-/// Before the motion space of `subset` is built: refuses it when its estimated memory
-/// (a lower bound: the arcs and the cells' blocking statuses, measured to be 1.5–3 times
-/// below the real peak on lattices of 200–1000 cubes) exceeds what the memory budget
-/// leaves, and warns when it is large and no budget is set (`--max-memory none`).
-pub fn check_motion_space(
-    regions: &apart::plan::BlockingRegions,
-    subset: &[usize],
-    global: &crate::Global,
-) -> anyhow::Result<()> {
-    let e = apart::plan::MotionSpace::estimate(regions, subset);
-    let what = format!(
-        "the motion space of {} parts ({} arcs, {:.0} blocked pairs per cell) needs at least {} MiB",
-        e.parts,
-        e.arcs,
-        e.blocked_per_cell,
-        e.bytes >> 20
-    );
-    match memory_left() {
-        Some(left) if e.bytes > left => {
-            anyhow::bail!(
-                "out of memory budget (--max-memory {}): {what}, {} MiB are left",
-                limit_text(),
-                left >> 20
-            )
-        }
-        None if e.bytes >= QUIET_ESTIMATE && !global.quiet => {
-            crate::output::eline(format_args!(
-                "warning: {what}; --max-memory SIZE stops the run before it is built"
-            ));
-        }
-        _ => {}
+/// A planner's note of a large structure it is about to build: a warning when no
+/// memory budget is set (`--max-memory none`), which would have stopped it in time.
+pub fn large_estimate(_phase: &'static str, what: &str) {
+    if memory_left().is_none() && !crate::output::is_quiet() {
+        crate::output::eline(format_args!(
+            "warning: {what}; --max-memory SIZE stops the run before it is built"
+        ));
     }
-    Ok(())
+}
+
+/// A job's error for the command line: the memory budget's refusal words the budget
+/// and what is left.
+pub fn job_error(e: apart::jobs::JobError, _global: &crate::Global) -> anyhow::Error {
+    match e {
+        apart::jobs::JobError::Plan(e) => e.into(),
+        apart::jobs::JobError::OverBudget { what, .. } => anyhow::anyhow!(
+            "out of memory budget (--max-memory {}): {what}, {} MiB are left",
+            limit_text(),
+            memory_left().unwrap_or(0) >> 20
+        ),
+    }
 }
 
 // ---------------------------------------------------------------------------

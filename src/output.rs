@@ -106,6 +106,11 @@ pub fn set_quiet(quiet: bool) {
     QUIET.store(quiet, Ordering::Relaxed);
 }
 
+/// Whether `--quiet` is on.
+pub fn is_quiet() -> bool {
+    QUIET.load(Ordering::Relaxed)
+}
+
 /// Writes `bytes` to `path` all or nothing ([`write_with`]), creating its folder if
 /// needed (`--svg out/star.svg`), and announces it on standard error ("wrote
 /// hinge.html") unless `--quiet`. Every file a command writes for the user goes through
@@ -659,7 +664,8 @@ pub fn planner(global: &Global, label: &'static str) -> (Phase, apart::plan::Pro
         }
     })
     .with_stop_flag(crate::limits::stop_flag())
-    .with_budget(crate::limits::affordable);
+    .with_budget(crate::limits::affordable)
+    .with_notes(crate::limits::large_estimate);
     (Phase(bar), progress)
 }
 
@@ -691,6 +697,21 @@ pub fn stopped_json(stop: &Option<Stopped>) -> Option<StoppedJson> {
         phase: t.phase,
         detail: t.detail.clone(),
     })
+}
+
+/// States in `status` why a partial answer stopped, as the front end knows it.
+pub fn stamp(status: &mut apart::jobs::Status, stop: &Option<Stopped>) {
+    if let Some(t) = stop {
+        status.stopped_by(
+            t.status(),
+            apart::jobs::StopFacts {
+                by: t.by_key().to_string(),
+                after_seconds: t.seconds,
+                phase: t.phase.to_string(),
+                detail: t.detail.clone(),
+            },
+        );
+    }
 }
 
 /// The status of a planner's answer: `None` when it ran to its end; for a partial

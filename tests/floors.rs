@@ -18,6 +18,7 @@ const FLOORS: &[(&str, u32)] = &[
     ("apart-stack", 3),
     ("apart-plan", 4),
     ("apart-draw", 5),
+    ("apart-jobs", 5),
     ("apart", 6),
 ];
 

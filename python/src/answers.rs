@@ -5,15 +5,15 @@
 //! of each kind, every solution still counted.
 
 use apart_assembly::Loaded;
+use apart_jobs::partition::PartitionOptions;
+use apart_jobs::{InputFacts, JobError};
 use apart_kernel::{Grid, Vec3};
 use apart_mesh::Problem;
 use apart_plan::progress::Progress;
 use apart_plan::{
-    dbg_along, partition_first, partition_subset_with, parts_of, separate as separate_parts,
-    BlockingRegions, CellKind, Options, Part, Partitioning, PlanError, SequenceOptions,
+    parts_of, separate as separate_parts, BlockingRegions, PlanError, SequenceOptions,
 };
 use serde_json::{json, Value};
-use std::collections::HashMap;
 
 /// Every problem, as the command line's JSON lists them.
 pub fn problems(problems: &[Problem]) -> Value {
@@ -22,40 +22,10 @@ pub fn problems(problems: &[Problem]) -> Value {
 
 /// Unit, tolerance, repairs and files not read: the facts every answer states.
 fn input_facts(loaded: &Loaded, units: Option<&str>) -> serde_json::Map<String, Value> {
-    let asm = &loaded.assembly;
-    let repairs: Vec<Value> = loaded
-        .repairs
-        .iter()
-        .map(|r| {
-            let mut v = serde_json::to_value(&r.report).unwrap_or_else(|_| json!({}));
-            let file = (!r.file.as_os_str().is_empty()).then(|| r.file.clone());
-            v["file"] = json!(file);
-            v["parts"] = json!(r.parts);
-            v
-        })
-        .collect();
-    let skipped: Vec<Value> = loaded
-        .skipped
-        .iter()
-        .map(|s| json!({"file": s.path, "reason": s.reason}))
-        .collect();
-    let tolerance = asm.tolerance.as_ref().map(|t| {
-        json!({
-            "eps": t.eps,
-            "exact": t.exact.to_string(),
-            "auto": t.auto,
-            "deepest_overlap": t.deepest_overlap,
-            "accepted_overlaps": t.accepted_overlaps,
-            "vanished_pieces": t.vanished_pieces,
-            "max_shift": t.max_shift,
-        })
-    });
-    let mut m = serde_json::Map::new();
-    m.insert("units".into(), json!(units));
-    m.insert("tolerance".into(), json!(tolerance));
-    m.insert("repairs".into(), json!(repairs));
-    m.insert("skipped_files".into(), json!(skipped));
-    m
+    match serde_json::to_value(InputFacts::of(loaded, units)) {
+        Ok(Value::Object(m)) => m,
+        _ => serde_json::Map::new(),
+    }
 }
 
 /// `value` (an object) with the input facts added.
@@ -145,240 +115,23 @@ fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| names[k].clone()).collect()
 }
 
-/// Moving sets a partition lists by default (the command line's `--limit`).
-pub const DEFAULT_LIMIT: usize = 20;
-/// Solutions of each kind (face, edge, vertex) listed per moving set by default (the
-/// command line's listing without `--all`).
-pub const EXAMPLES_PER_KIND: usize = 5;
-
-/// What a partition lists: at most `sets` moving sets (`None`: all), each with at most
-/// `per_set` solutions of each kind (`None`: all). Every solution is counted either way.
-#[derive(Clone, Copy, Debug)]
-pub struct Listing {
-    /// Moving sets listed at most.
-    pub sets: Option<usize>,
-    /// Solutions of each kind listed per moving set at most.
-    pub per_set: Option<usize>,
-}
-
-impl Default for Listing {
-    /// The command line's: 20 moving sets, 5 solutions of each kind per set.
-    fn default() -> Listing {
-        Listing {
-            sets: Some(DEFAULT_LIMIT),
-            per_set: Some(EXAMPLES_PER_KIND),
-        }
-    }
-}
-
-/// Partitioning: one direction's blocking graph (`direction`), the first solution, or
-/// every solution, listed as `listing` says. A run stopped by the flag has
-/// `"status": "stopped"`. The motion space is refused (the error `Stopped` in phase
-/// "motion space", with the refusal noted by the budget) when its estimated memory is
-/// over what the budget leaves, as the command line refuses it.
+/// Partitioning: one direction's blocking graph (`direction`, with two parts or more),
+/// or the job's partition (see [`apart_jobs::partition`]), with the seconds it took.
 pub fn partition(
     loaded: &Loaded,
     units: Option<&str>,
     direction: Option<Vec3>,
-    opts: &Options,
-    listing: Listing,
+    opts: &PartitionOptions,
     progress: &Progress,
-) -> Result<Value, PlanError> {
-    let asm = &loaded.assembly;
-    let names: Vec<String> = asm.parts.iter().map(|p| p.name.clone()).collect();
-    if names.len() < 2 {
-        let p = Partitioning::nothing_to_separate(names);
-        let mut v = partition_json(loaded, units, &p, listing, 0.0)?;
-        v["nothing_to_separate"] = true.into();
-        return Ok(v);
-    }
-    let parts = parts_of(asm)?;
-    if let Some(d) = direction {
-        return direction_json(loaded, units, parts, &d);
+) -> Result<Value, JobError> {
+    if let Some(d) = direction.filter(|_| loaded.assembly.parts.len() >= 2) {
+        let a = apart_jobs::partition::direction(loaded, units, &d)?;
+        return Ok(serde_json::to_value(a).unwrap_or(Value::Null));
     }
     let t = std::time::Instant::now();
-    if opts.first {
-        // Likely directions first; the full computation only when none separates.
-        let p = partition_first(parts)?;
-        return partition_json(loaded, units, &p, listing, t.elapsed().as_secs_f64());
-    }
-    let p = match BlockingRegions::compute_with(parts, progress) {
-        Ok(regions) => {
-            let all: Vec<usize> = (0..parts.len()).collect();
-            let estimate = apart_plan::MotionSpace::estimate(&regions, &all);
-            if !progress.affordable(apart_plan::progress::phases::MOTION_SPACE, estimate.bytes) {
-                return Err(PlanError::Stopped {
-                    phase: apart_plan::progress::phases::MOTION_SPACE,
-                });
-            }
-            // Every solution is kept and the listing cut afterwards, as the command
-            // line does: the planner's own `max_per_set` keeps the first edges and
-            // vertices found, not the first in the listing's order.
-            partition_subset_with(&regions, &all, opts, progress).0
-        }
-        Err(PlanError::Stopped { .. }) => {
-            let pieces = parts.iter().map(|p| p.pieces.len()).sum();
-            Partitioning::stopped_before_solutions(names, pieces)
-        }
-        Err(e) => return Err(e),
-    };
-    partition_json(loaded, units, &p, listing, t.elapsed().as_secs_f64())
-}
-
-/// The answer of a partitioning, listed as the command line lists it: moving sets in
-/// the order of their best solution, the first `listing.sets` of them with at most
-/// `listing.per_set` solutions of each kind; the counts cover every solution.
-fn partition_json(
-    loaded: &Loaded,
-    units: Option<&str>,
-    p: &Partitioning,
-    listing: Listing,
-    seconds: f64,
-) -> Result<Value, PlanError> {
-    // Moving sets in the order of their best (first) solution, and the solutions listed.
-    let mut index: HashMap<&[usize], usize> = HashMap::new();
-    let mut order: Vec<&[usize]> = Vec::new();
-    let mut best: Vec<Option<f64>> = Vec::new();
-    let mut listed: Vec<[usize; 3]> = Vec::new();
-    let mut kept: Vec<usize> = Vec::new();
-    for (k, s) in p.solutions.iter().enumerate() {
-        let key = s.moving.as_slice();
-        let g = *index.entry(key).or_insert_with(|| {
-            order.push(key);
-            best.push(None);
-            listed.push([0; 3]);
-            order.len() - 1
-        });
-        let kind = match s.cell {
-            CellKind::Face => 0,
-            CellKind::Edge => 1,
-            CellKind::Vertex => 2,
-        };
-        if listing.sets.is_none_or(|n| g < n) && listing.per_set.is_none_or(|n| listed[g][kind] < n)
-        {
-            listed[g][kind] += 1;
-            kept.push(k);
-        }
-        if s.cell == CellKind::Face {
-            let b = &mut best[g];
-            *b = Some(b.map_or(s.clearance_deg, |c: f64| c.max(s.clearance_deg)));
-        }
-    }
-    let motions: Vec<Motion> = kept
-        .iter()
-        .map(|&k| {
-            let s = &p.solutions[k];
-            (s.moving.as_slice(), None, &s.direction)
-        })
-        .collect();
-    let holds = holds_without_tolerance(loaded, &motions)?;
-    let solutions: Vec<Value> = kept
-        .iter()
-        .enumerate()
-        .map(|(i, &k)| {
-            let s = &p.solutions[k];
-            let mut v = json!({
-                "cell": s.cell.name(),
-                "direction": s.unit,
-                "exact_direction": s.direction.to_strings(),
-                "moving": names_of(&p.names, &s.moving),
-                "clearance_deg": s.clearance_deg,
-            });
-            if let Some(h) = &holds {
-                v["holds_without_tolerance"] = h[i].into();
-            }
-            v
-        })
-        .collect();
-    // The counts of every solution the planner found, listed or not.
-    let counts: HashMap<&[usize], [usize; 3]> = p
-        .sets
-        .iter()
-        .map(|s| (s.moving.as_slice(), s.counts))
-        .collect();
-    let shown = listing.sets.map_or(order.len(), |n| n.min(order.len()));
-    let groups: Vec<Value> = order[..shown]
-        .iter()
-        .enumerate()
-        .map(|(g, &m)| {
-            let c = counts.get(m).copied().unwrap_or(listed[g]);
-            json!({
-                "moving": names_of(&p.names, m),
-                "solutions": c.iter().sum::<usize>(),
-                "faces": c[0],
-                "edges": c[1],
-                "vertices": c[2],
-                "best_clearance_deg": best[g],
-                "listed": listed[g].iter().sum::<usize>(),
-            })
-        })
-        .collect();
-    let total = p.solution_count();
-    let s = &p.stats;
-    let v = json!({
-        "status": if p.stopped { "stopped" } else { "done" },
-        "complete": !p.stopped,
-        "interlocked": p.interlocked,
-        "nothing_to_separate": false,
-        "parts": p.names,
-        "solution_count": total,
-        "moving_set_count": p.sets.len().max(order.len()),
-        "limit": listing.sets,
-        "truncated": kept.len() < total || p.truncated,
-        "groups": groups,
-        "solutions": solutions,
-        "stats": {
-            "pieces": s.pieces,
-            "sums": s.sums,
-            "arcs": s.arcs,
-            "vertices": s.vertices,
-            "edges": s.edges,
-            "faces": s.faces,
-            "seconds": {
-                "total": seconds,
-                "sums": s.seconds.sums,
-                "projection": s.seconds.projection,
-                "unions": s.seconds.unions,
-                "overlay": s.seconds.overlay,
-                "graphs": s.seconds.graphs,
-            },
-        },
-    });
-    Ok(with_facts(v, loaded, units))
-}
-
-/// One direction's blocking graph and the minimal sets that move along it.
-fn direction_json(
-    loaded: &Loaded,
-    units: Option<&str>,
-    parts: &[Part],
-    d: &Vec3,
-) -> Result<Value, PlanError> {
-    let names: Vec<String> = parts.iter().map(|p| p.name.clone()).collect();
-    let answer = dbg_along(parts, d)?;
-    let blocks: Vec<[String; 2]> = answer
-        .dbg
-        .arcs()
-        .iter()
-        .map(|&(a, b)| [names[a].clone(), names[b].clone()])
-        .collect();
-    let motions: Vec<Motion> = answer
-        .moving
-        .iter()
-        .map(|m| (m.as_slice(), None, d))
-        .collect();
-    let holds = holds_without_tolerance(loaded, &motions)?;
-    let mut v = json!({
-        "direction": d.unit_f64(),
-        "exact_direction": d.to_strings(),
-        "cell": answer.cell.name(),
-        "blocks": blocks,
-        "moving": answer.moving.iter().map(|m| names_of(&names, m)).collect::<Vec<_>>(),
-    });
-    if let Some(h) = holds {
-        v["holds_without_tolerance"] = json!(h);
-    }
-    Ok(with_facts(v, loaded, units))
+    let mut a = apart_jobs::partition::partition(loaded, units, opts, progress)?.answer;
+    a.stats.seconds.total = Some(t.elapsed().as_secs_f64());
+    Ok(serde_json::to_value(a).unwrap_or(Value::Null))
 }
 
 /// A disassembly plan, and the plan itself (for its pictures): by

@@ -158,6 +158,19 @@ pub fn plan_error(py: Python<'_>, e: apart_plan::PlanError) -> PyErr {
     }
 }
 
+/// A job's error: the memory budget's refusal as `apart.OutOfMemoryBudget`, a
+/// planner's error as [`plan_error`] says.
+pub fn job_error(py: Python<'_>, e: apart_jobs::JobError, stop: &Option<Stopped>) -> PyErr {
+    match e {
+        apart_jobs::JobError::OverBudget { .. } => stopped(py, stop.clone()),
+        apart_jobs::JobError::Plan(e) => match stop {
+            // The motion space refused by the memory budget.
+            Some(s) if s.by_memory() => stopped(py, stop.clone()),
+            _ => plan_error(py, e),
+        },
+    }
+}
+
 /// The index of the part named `name`, or `apart.InputError` listing the parts.
 pub fn part_index(py: Python<'_>, asm: &Assembly, name: &str) -> PyResult<usize> {
     if let Some(k) = asm.parts.iter().position(|p| p.name == name) {

@@ -20,6 +20,7 @@ mod pictures;
 mod work;
 
 use apart_assembly::{Decompose, LoadOptions, Loaded, Tolerance};
+use apart_jobs::partition::{Listing, PartitionOptions, DEFAULT_LIMIT, EXAMPLES_PER_KIND};
 use errors::{input_error, load_error};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -258,14 +259,11 @@ impl Assembly {
             ));
         }
         let listing = if all {
-            answers::Listing {
-                sets: None,
-                per_set: None,
-            }
+            Listing::all()
         } else {
-            answers::Listing {
-                sets: Some(limit.unwrap_or(answers::DEFAULT_LIMIT)),
-                per_set: Some(max_per_set.unwrap_or(answers::EXAMPLES_PER_KIND)),
+            Listing {
+                sets: Some(limit.unwrap_or(DEFAULT_LIMIT)),
+                per_set: Some(max_per_set.unwrap_or(EXAMPLES_PER_KIND)),
             }
         };
         errors::require_valid(py, &self.loaded)?;
@@ -275,10 +273,11 @@ impl Assembly {
             Some(d) => Some(answers::snap_direction(d).map_err(|m| errors::value_error(py, m))?),
             None => None,
         };
-        let opts = apart_plan::Options {
+        let opts = PartitionOptions {
             first,
             max_solutions,
-            max_per_set: None,
+            listing,
+            keep_for_pictures: false,
         };
         let limits = Limits {
             callback: progress,
@@ -287,13 +286,9 @@ impl Assembly {
             stoppable: !first && d.is_none(),
         };
         let (answer, stop) = run(py, limits, move |p| {
-            answers::partition(&loaded, units.as_deref(), d, &opts, listing, p)
+            answers::partition(&loaded, units.as_deref(), d, &opts, p)
         })?;
-        let mut answer = answer.map_err(|e| match &stop {
-            // The motion space refused by the memory budget.
-            Some(s) if s.by_memory() => errors::stopped(py, stop.clone()),
-            _ => errors::plan_error(py, e),
-        })?;
+        let mut answer = answer.map_err(|e| errors::job_error(py, e, &stop))?;
         work::mark(&mut answer, &stop);
         Ok(answer.to_string())
     }

@@ -47,6 +47,10 @@ pub type ProgressCallback = Arc<dyn Fn(&'static str, usize, usize) + Send + Sync
 /// estimated: true when it may go ahead (see [`Progress::affordable`]).
 pub type BudgetCallback = Arc<dyn Fn(&'static str, u64) -> bool + Send + Sync>;
 
+/// A callback receiving `(phase, text)`: a note for the user from a planner, about
+/// something large it is about to do (see [`Progress::note`]).
+pub type NoteCallback = Arc<dyn Fn(&'static str, &str) + Send + Sync>;
+
 /// The names of the phases reported, in the order a run meets them.
 pub mod phases {
     /// apart-plan's `BlockingRegions::compute_with`: pairs of parts whose blocked region
@@ -76,6 +80,7 @@ pub struct Progress {
     callback: Option<ProgressCallback>,
     stop: Arc<AtomicBool>,
     budget: Option<BudgetCallback>,
+    notes: Option<NoteCallback>,
 }
 
 impl std::fmt::Debug for Progress {
@@ -101,6 +106,7 @@ impl Progress {
             callback: Some(Arc::new(callback)),
             stop: Arc::default(),
             budget: None,
+            notes: None,
         }
     }
 
@@ -118,6 +124,7 @@ impl Progress {
             callback: None,
             stop: self.stop.clone(),
             budget: self.budget.clone(),
+            notes: self.notes.clone(),
         }
     }
 
@@ -129,6 +136,23 @@ impl Progress {
     ) -> Progress {
         self.budget = Some(Arc::new(budget));
         self
+    }
+
+    /// The same, handing the planners' notes to `notes(phase, text)`.
+    pub fn with_notes(
+        mut self,
+        notes: impl Fn(&'static str, &str) + Send + Sync + 'static,
+    ) -> Progress {
+        self.notes = Some(Arc::new(notes));
+        self
+    }
+
+    /// A note for the user from `phase` (for example the estimated memory of a large
+    /// structure about to be built); dropped without a notes callback.
+    pub fn note(&self, phase: &'static str, text: &str) {
+        if let Some(f) = &self.notes {
+            f(phase, text);
+        }
     }
 
     /// Whether `bytes`, estimated for what `phase` is about to build, may be spent: true

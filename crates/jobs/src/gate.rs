@@ -1,0 +1,36 @@
+//! The validity gate of the planning jobs: a job plans only an assembly whose loading
+//! found no error, except the overlaps of a part about to be placed.
+
+use apart_assembly::Loaded;
+use apart_mesh::{Problem, ProblemKind, Severity};
+
+/// The errors that keep `loaded` from being planned: every problem of severity error,
+/// except the overlaps of the part named `free` with the others (a part to place may
+/// be given where others are).
+pub fn errors<'a>(loaded: &'a Loaded, free: Option<&str>) -> Vec<&'a Problem> {
+    let excused = |p: &Problem| {
+        free.is_some_and(|n| match &p.kind {
+            ProblemKind::Overlap { other } => other.as_str() == n || p.part.as_deref() == Some(n),
+            _ => false,
+        })
+    };
+    loaded
+        .problems
+        .iter()
+        .filter(|p| p.is_error() && !excused(p))
+        .collect()
+}
+
+/// The warnings of `loaded` (repairs, tolerated defects), which a planning job states
+/// but which do not stop it.
+pub fn warnings(loaded: &Loaded) -> impl Iterator<Item = &Problem> {
+    loaded
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Warning)
+}
+
+/// "N error" or "N errors".
+pub fn count(errors: usize) -> String {
+    format!("{errors} error{}", if errors == 1 { "" } else { "s" })
+}

@@ -1,0 +1,54 @@
+//! The jobs of apart, one function per job, shared by both front ends (the command line
+//! and the Python binding).
+//!
+//! A job takes a loaded assembly ([`apart_assembly::Loaded`]), its options and a
+//! [`Progress`] (callback, stop flag and memory budget question), and returns a typed
+//! answer that serialises to the JSON both front ends print. The front ends parse their
+//! arguments, call the job and present the answer (text, JSON, Python objects,
+//! pictures); they never run a planner themselves.
+//!
+//! What every answer shares lives here too: the facts of its input ([`facts`]), its
+//! status when a stop flag cut it short ([`status`]), and the validity gate of the
+//! planning jobs ([`gate`]).
+
+pub mod facts;
+pub mod gate;
+pub mod partition;
+pub mod status;
+
+pub use apart_kernel::progress::Progress;
+pub use facts::InputFacts;
+pub use status::{Status, StopFacts};
+
+/// Why a job has no answer.
+#[derive(Debug)]
+pub enum JobError {
+    /// The planner failed or was stopped before it had an answer.
+    Plan(apart_plan::PlanError),
+    /// The memory budget refused a structure the job was about to build (its estimate).
+    OverBudget {
+        /// The phase that was refused ([`apart_kernel::progress::phases`]).
+        phase: &'static str,
+        /// What it would have built, and its estimated size.
+        what: String,
+        /// The estimated size in bytes.
+        bytes: u64,
+    },
+}
+
+impl std::fmt::Display for JobError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            JobError::Plan(e) => e.fmt(f),
+            JobError::OverBudget { what, .. } => f.write_str(what),
+        }
+    }
+}
+
+impl std::error::Error for JobError {}
+
+impl From<apart_plan::PlanError> for JobError {
+    fn from(e: apart_plan::PlanError) -> JobError {
+        JobError::Plan(e)
+    }
+}
