@@ -10,9 +10,7 @@ use apart_jobs::{InputFacts, JobError};
 use apart_kernel::{Grid, Vec3};
 use apart_mesh::Problem;
 use apart_plan::progress::Progress;
-use apart_plan::{
-    parts_of, separate as separate_parts, BlockingRegions, PlanError, SequenceOptions,
-};
+use apart_plan::{parts_of, PlanError, SequenceOptions};
 use serde_json::{json, Value};
 
 /// Every problem, as the command line's JSON lists them.
@@ -38,52 +36,7 @@ fn with_facts(mut value: Value, loaded: &Loaded, units: Option<&str>) -> Value {
 
 /// The check report.
 pub fn check(loaded: &Loaded, units: Option<&str>) -> Value {
-    let a = &loaded.assembly;
-    let g = &a.grid;
-    let parts: Vec<Value> = a
-        .parts
-        .iter()
-        .map(|p| {
-            let known = p.volume_known();
-            let v = p.volume_units(g);
-            let source = (!p.source.as_os_str().is_empty()).then(|| p.source.clone());
-            json!({
-                "name": p.name,
-                "source": source,
-                "vertices": p.info.as_ref().map(|i| i.vertices),
-                "faces": p.info.as_ref().map(|i| i.faces),
-                "triangles": p.info.as_ref().map(|i| i.triangles),
-                "volume": known.then(|| v.to_string()),
-                "volume_decimal": known.then(|| v.to_f64()),
-                "convex": p.convex,
-                "reflex_edges": p.reflex_edges,
-                "pieces": p.pieces.len(),
-                "declared_pieces": p.declared_pieces,
-                "decomposed": p.decomposed,
-                "piece_sources": p.piece_sources,
-                "bbox": p.bbox.map(|b| json!({
-                    "min": b.min.map(|q| g.to_units(q)),
-                    "max": b.max.map(|q| g.to_units(q)),
-                })),
-            })
-        })
-        .collect();
-    with_facts(
-        json!({
-            "assembly": a.name,
-            "valid": loaded.is_valid(),
-            "grid": {
-                "exp": g.exp,
-                "step": g.step(),
-                "bits": g.bits,
-                "max_snap_displacement": a.max_snap_displacement,
-            },
-            "parts": parts,
-            "problems": problems(&loaded.problems),
-        }),
-        loaded,
-        units,
-    )
+    serde_json::to_value(apart_jobs::check::check(loaded, units)).unwrap_or(Value::Null)
 }
 
 /// Snaps a direction like the command line's `--direction X,Y,Z`: to a primitive
@@ -247,14 +200,6 @@ pub fn sequence(
 }
 
 /// An exact spherical arc.
-fn arc_json(a: &apart_sphere::Arc) -> Value {
-    json!({
-        "normal": a.normal.to_strings(),
-        "start": a.start.to_strings(),
-        "end": a.end.to_strings(),
-    })
-}
-
 /// Every direction along which part `a` leaves part `b`; `None` when the stop flag
 /// ended the run before it had the pair regions.
 pub fn separate(
@@ -263,56 +208,11 @@ pub fn separate(
     a: usize,
     b: usize,
     progress: &Progress,
-) -> Result<Option<Value>, PlanError> {
-    let asm = &loaded.assembly;
-    let regions = match BlockingRegions::compute_with(parts_of(asm)?, progress) {
-        Ok(r) => r,
-        Err(PlanError::Stopped { .. }) => return Ok(None),
-        Err(e) => return Err(e),
-    };
-    let s = separate_parts(&regions, a, b);
-    let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
-    let best = s.best();
-    let pair = [a, b];
-    let holds = match &best {
-        Some((d, _)) => holds_without_tolerance(loaded, &[(&[a], Some(&pair), d)])?.map(|h| h[0]),
-        None => None,
-    };
-    let best = best.map(|(d, c)| {
-        let mut v = json!({
-            "direction": d.unit_f64(),
-            "exact_direction": d.to_strings(),
-            "clearance_deg": c,
-        });
-        if let Some(h) = holds {
-            v["holds_without_tolerance"] = h.into();
-        }
-        v
-    });
-    let regions: Vec<Value> = s
-        .faces
-        .iter()
-        .map(|f| {
-            json!({
-                "area_fraction": f.area / (4.0 * std::f64::consts::PI),
-                "direction": f.direction.unit_f64(),
-                "exact_direction": f.direction.to_strings(),
-                "clearance_deg": f.clearance_deg,
-                "loops": f.loops.iter().map(|lp| lp.iter().map(arc_json).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            })
-        })
-        .collect();
-    let v = json!({
-        "moving": asm.parts[a].name,
-        "fixed": asm.parts[b].name,
-        "separable": separable,
-        "area_fraction": s.area_fraction(),
-        "best": best,
-        "regions": regions,
-        "sliding": s.sliding.iter().map(arc_json).collect::<Vec<_>>(),
-        "isolated": s.isolated.iter().map(|d| d.to_strings()).collect::<Vec<_>>(),
-    });
-    Ok(Some(with_facts(v, loaded, units)))
+) -> Result<Option<Value>, JobError> {
+    Ok(
+        apart_jobs::separate::separate(loaded, units, a, b, progress)?
+            .map(|s| serde_json::to_value(s).unwrap_or(Value::Null)),
+    )
 }
 
 /// The stacker's options, in input units (checked by the Python side for their ranges).

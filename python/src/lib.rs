@@ -402,7 +402,7 @@ impl Assembly {
         let (answer, stop) = run(py, limits, move |p| {
             answers::separate(&loaded, units.as_deref(), ia, ib, p)
         })?;
-        let answer = answer.map_err(|e| errors::plan_error(py, e))?;
+        let answer = answer.map_err(|e| errors::job_error(py, e, &stop))?;
         match (answer, stop) {
             (Some(answer), None) => Ok(answer.to_string()),
             // Separation has no partial answer: a stop ends it with no result.

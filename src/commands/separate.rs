@@ -5,14 +5,13 @@
 use crate::commands::load::{
     closest_names, files_manifest, for_named_files, load_valid, load_with, part_index,
 };
-use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
+use crate::input_facts::{tolerance_statement, Units};
 use crate::output;
-use crate::Global;
+use crate::{limits, Global};
 use apart::assembly::Decompose;
 use apart::formats::escape::escape;
-use apart::plan::{parts_of, separate, BlockingRegions, Separation};
-use apart::sphere::Arc;
-use serde::Serialize;
+use apart::jobs::Progress;
+use apart::plan::Separation;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -23,54 +22,6 @@ pub struct SeparateArgs {
     /// mesh files (`A.off B.stl`), each one part in the same coordinates.
     #[arg(num_args = 2..=3, required = true, value_names = ["ASSEMBLY|A_FILE", "A|B_FILE", "B"])]
     pub inputs: Vec<String>,
-}
-
-#[derive(Serialize)]
-struct ArcJson {
-    normal: [String; 3],
-    start: [String; 3],
-    end: [String; 3],
-}
-
-#[derive(Serialize)]
-struct RegionJson {
-    area_fraction: f64,
-    direction: [f64; 3],
-    exact_direction: [String; 3],
-    clearance_deg: f64,
-    loops: Vec<Vec<ArcJson>>,
-}
-
-#[derive(Serialize)]
-struct BestJson {
-    direction: [f64; 3],
-    exact_direction: [String; 3],
-    clearance_deg: f64,
-    /// Under a tolerance: this direction also separates the parts as given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    holds_without_tolerance: Option<bool>,
-}
-
-#[derive(Serialize)]
-struct SeparateJson {
-    moving: String,
-    fixed: String,
-    separable: bool,
-    area_fraction: f64,
-    best: Option<BestJson>,
-    regions: Vec<RegionJson>,
-    sliding: Vec<ArcJson>,
-    isolated: Vec<[String; 3]>,
-    #[serde(flatten)]
-    input: InputFacts,
-}
-
-fn arc_json(a: &Arc) -> ArcJson {
-    ArcJson {
-        normal: a.normal.to_strings(),
-        start: a.start.to_strings(),
-        end: a.end.to_strings(),
-    }
 }
 
 /// Runs the command.
@@ -104,33 +55,20 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
     );
     let (a, b) = (part_index(asm, &a_name, "")?, part_index(asm, &b_name, "")?);
     anyhow::ensure!(a != b, "the two parts must differ");
-    let regions = {
+    let answer = {
+        // Not stoppable: a timeout ends the run where it is, as while loading.
         let _phase = output::phase(global, "pair regions");
-        BlockingRegions::compute(parts_of(asm)?)?
+        let units = global.units.map(Units::symbol);
+        apart::jobs::separate::separate(&loaded, units, a, b, &Progress::new())
+            .map_err(|e| limits::job_error(e, global))?
+            .ok_or_else(|| anyhow::anyhow!("stopped before an answer"))?
     };
-    let s = {
-        let _phase = output::phase(global, "separation");
-        separate(&regions, a, b)
-    };
-    let separable = !(s.faces.is_empty() && s.sliding.is_empty() && s.isolated.is_empty());
-    let best = s.best();
-    let pair = [a, b];
-    let holds = match &best {
-        Some((d, _)) => holds_without_tolerance(asm, &[(&[a], Some(&pair), d)])?.map(|h| h[0]),
-        None => None,
-    };
+    let separable = answer.separable;
     if global.json {
-        output::json(&to_json(
-            &s,
-            &a_name,
-            &b_name,
-            separable,
-            InputFacts::of(&loaded, global),
-            holds,
-        ))?;
+        output::json(&answer)?;
     } else {
-        print_text(&s, &a_name, &b_name);
-        if holds == Some(false) {
+        print_text(&answer.separation, &a_name, &b_name);
+        if answer.best.as_ref().and_then(|b| b.holds_without_tolerance) == Some(false) {
             output::line("the best direction holds only under the tolerance");
         }
         if let Some(t) = tolerance_statement(asm, global) {
@@ -185,46 +123,6 @@ fn one_name_missing(asm: &str, a: &str, global: &Global) -> anyhow::Error {
         }
     }
     anyhow::anyhow!(msg)
-}
-
-fn to_json(
-    s: &Separation,
-    a: &str,
-    b: &str,
-    separable: bool,
-    input: InputFacts,
-    holds: Option<bool>,
-) -> SeparateJson {
-    SeparateJson {
-        input,
-        moving: a.to_string(),
-        fixed: b.to_string(),
-        separable,
-        area_fraction: s.area_fraction(),
-        best: s.best().map(|(d, c)| BestJson {
-            direction: d.unit_f64(),
-            exact_direction: d.to_strings(),
-            clearance_deg: c,
-            holds_without_tolerance: holds,
-        }),
-        regions: s
-            .faces
-            .iter()
-            .map(|f| RegionJson {
-                area_fraction: f.area / (4.0 * std::f64::consts::PI),
-                direction: f.direction.unit_f64(),
-                exact_direction: f.direction.to_strings(),
-                clearance_deg: f.clearance_deg,
-                loops: f
-                    .loops
-                    .iter()
-                    .map(|lp| lp.iter().map(arc_json).collect())
-                    .collect(),
-            })
-            .collect(),
-        sliding: s.sliding.iter().map(arc_json).collect(),
-        isolated: s.isolated.iter().map(|d| d.to_strings()).collect(),
-    }
 }
 
 fn point(v: &apart::kernel::Vec3) -> String {

@@ -11,9 +11,11 @@
 //! status when a stop flag cut it short ([`status`]), and the validity gate of the
 //! planning jobs ([`gate`]).
 
+pub mod check;
 pub mod facts;
 pub mod gate;
 pub mod partition;
+pub mod separate;
 pub mod status;
 
 pub use apart_kernel::progress::Progress;
