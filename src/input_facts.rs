@@ -1,11 +1,9 @@
-//! What every answer states about its input: the length unit, the tolerance it holds
-//! under, the repairs made on load and the files not read. Parsing of `--units` and `--tolerance`.
+//! The length unit and the tolerance of the command line: parsing of `--units` and
+//! `--tolerance`, and the sentence a text answer under a tolerance ends with (the
+//! JSON's facts are the jobs' `InputFacts`).
 
 use crate::Global;
-use apart::assembly::{Assembly, Loaded, Tolerance};
-use apart::mesh::repair::RepairReport;
-
-use serde::Serialize;
+use apart::assembly::{Assembly, Tolerance};
 
 /// Length units of input files.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -128,103 +126,6 @@ pub fn length(v: f64, units: Option<Units>) -> String {
         Some(u) => format!("{v:.4e} {}", u.symbol()),
         None => format!("{v:.4e}"),
     }
-}
-
-/// The tolerance of an answer, as JSON.
-#[derive(Serialize)]
-pub struct ToleranceJson {
-    /// Every convex piece was made at least this much smaller (input units).
-    eps: f64,
-    /// The same, exactly (a rational in input units).
-    exact: String,
-    /// Chosen by `--tolerance auto`.
-    auto: bool,
-    /// The deepest overlap between parts before shrinking (input units).
-    deepest_overlap: f64,
-    /// Pairs of parts whose overlap became contact.
-    accepted_overlaps: usize,
-    /// Pieces thinner than twice the tolerance that vanished.
-    vanished_pieces: usize,
-    /// The farthest any face moved inward (input units, at least `eps`).
-    max_shift: f64,
-}
-
-/// Unit, tolerance and repairs, flattened into every command's JSON.
-#[derive(Serialize)]
-pub struct InputFacts {
-    /// The unit of the input files, when given with `--units`.
-    units: Option<&'static str>,
-    /// The tolerance the answer holds under; null for the parts as given.
-    tolerance: Option<ToleranceJson>,
-    /// Every repair made on load, per mesh file.
-    repairs: Vec<RepairJson>,
-    /// Files and folders of the assembly folder that were not read, with the reason.
-    skipped_files: Vec<SkippedJson>,
-}
-
-/// A file not read, as JSON.
-#[derive(Serialize)]
-pub struct SkippedJson {
-    #[serde(serialize_with = "apart::mesh::path_text")]
-    file: std::path::PathBuf,
-    reason: String,
-}
-
-/// The repairs of one mesh file, as JSON.
-#[derive(Serialize)]
-pub struct RepairJson {
-    #[serde(serialize_with = "apart::mesh::path_text")]
-    file: std::path::PathBuf,
-    parts: Vec<String>,
-    #[serde(flatten)]
-    counts: RepairReport,
-}
-
-impl InputFacts {
-    /// The facts of a loaded assembly.
-    pub fn of(loaded: &Loaded, global: &Global) -> InputFacts {
-        let asm = &loaded.assembly;
-        InputFacts {
-            repairs: loaded
-                .repairs
-                .iter()
-                .map(|r| RepairJson {
-                    file: r.file.clone(),
-                    parts: r.parts.clone(),
-                    counts: r.report.clone(),
-                })
-                .collect(),
-            skipped_files: loaded
-                .skipped
-                .iter()
-                .map(|s| SkippedJson {
-                    file: s.path.clone(),
-                    reason: s.reason.clone(),
-                })
-                .collect(),
-            units: global.units.map(Units::symbol),
-            tolerance: asm.tolerance.as_ref().map(|t| ToleranceJson {
-                eps: t.eps,
-                exact: t.exact.to_string(),
-                auto: t.auto,
-                deepest_overlap: t.deepest_overlap,
-                accepted_overlaps: t.accepted_overlaps,
-                vanished_pieces: t.vanished_pieces,
-                max_shift: t.max_shift,
-            }),
-        }
-    }
-}
-
-/// A motion found by a planner (the library's [`apart::plan::along::Motion`]).
-pub type Motion<'a> = apart::plan::along::Motion<'a>;
-
-/// [`apart::plan::along::holds_without_tolerance`], with the CLI's error type.
-pub fn holds_without_tolerance(
-    asm: &Assembly,
-    motions: &[Motion],
-) -> anyhow::Result<Option<Vec<bool>>> {
-    Ok(apart::plan::along::holds_without_tolerance(asm, motions)?)
 }
 
 /// The sentence every text answer under a tolerance ends with; `None` without one.

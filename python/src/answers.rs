@@ -6,32 +6,18 @@
 
 use apart_assembly::Loaded;
 use apart_jobs::partition::PartitionOptions;
-use apart_jobs::{InputFacts, JobError};
+use apart_jobs::sequence::SequenceJobOptions;
+use apart_jobs::JobError;
 use apart_kernel::{Grid, Vec3};
 use apart_mesh::Problem;
 use apart_plan::progress::Progress;
-use apart_plan::{parts_of, PlanError, SequenceOptions};
+use apart_plan::SequenceOptions;
 use serde_json::{json, Value};
+use std::sync::Arc;
 
 /// Every problem, as the command line's JSON lists them.
 pub fn problems(problems: &[Problem]) -> Value {
     serde_json::to_value(problems).unwrap_or(Value::Null)
-}
-
-/// Unit, tolerance, repairs and files not read: the facts every answer states.
-fn input_facts(loaded: &Loaded, units: Option<&str>) -> serde_json::Map<String, Value> {
-    match serde_json::to_value(InputFacts::of(loaded, units)) {
-        Ok(Value::Object(m)) => m,
-        _ => serde_json::Map::new(),
-    }
-}
-
-/// `value` (an object) with the input facts added.
-fn with_facts(mut value: Value, loaded: &Loaded, units: Option<&str>) -> Value {
-    if let Value::Object(m) = &mut value {
-        m.extend(input_facts(loaded, units));
-    }
-    value
 }
 
 /// The check report.
@@ -53,21 +39,6 @@ pub fn snap_direction(v: [f64; 3]) -> Result<Vec3, String> {
     Ok(d)
 }
 
-use apart_plan::along::Motion;
-
-/// Whether each motion also holds for the parts as given (the library's check).
-fn holds_without_tolerance(
-    loaded: &Loaded,
-    motions: &[Motion],
-) -> Result<Option<Vec<bool>>, PlanError> {
-    apart_plan::along::holds_without_tolerance(&loaded.assembly, motions)
-}
-
-/// Names of a set of part indices.
-fn names_of(names: &[String], set: &[usize]) -> Vec<String> {
-    set.iter().map(|&k| names[k].clone()).collect()
-}
-
 /// Partitioning: one direction's blocking graph (`direction`, with two parts or more),
 /// or the job's partition (see [`apart_jobs::partition`]), with the seconds it took.
 pub fn partition(
@@ -87,119 +58,27 @@ pub fn partition(
     Ok(serde_json::to_value(a).unwrap_or(Value::Null))
 }
 
-/// A disassembly plan, and the plan itself (for its pictures): by
-/// [`apart_plan::sequence_parts`] (its `opts.ranking`), or with `first` along the first
-/// likely direction that frees a subset ([`apart_plan::sequence_first_with`]). The JSON
-/// is the command line's `--json`, field for field. A run stopped by the flag has
-/// `"status": "stopped"`.
+/// A disassembly plan (the job's, every step with why it was chosen) with the seconds
+/// it took, and the plan itself (for its pictures).
 pub fn sequence(
     loaded: &Loaded,
     units: Option<&str>,
     opts: &SequenceOptions,
     first: bool,
     progress: &Progress,
-) -> Result<(Value, apart_plan::Sequence), PlanError> {
-    let asm = &loaded.assembly;
+) -> Result<(Value, Arc<apart_plan::Sequence>), JobError> {
     let t = std::time::Instant::now();
-    let plan = if asm.parts.len() < 2 {
-        apart_plan::Sequence::empty(asm.parts.iter().map(|p| p.name.clone()).collect())
-    } else if first {
-        apart_plan::sequence_first_with(parts_of(asm)?, opts, progress, &mut |_| {})?
-    } else {
-        apart_plan::sequence_parts(parts_of(asm)?, opts, progress, &mut |_| {})?
+    let job = SequenceJobOptions {
+        plan: opts.clone(),
+        first,
+        explain: true,
     };
-    let regions_and_steps = t.elapsed().as_secs_f64();
-    let motions = plan.motions();
-    let holds = holds_without_tolerance(loaded, &motions)?;
-    let step_unit = asm.grid.step();
-    let names = |set: &[usize]| names_of(&plan.names, set);
-    let keys = |k: &apart_plan::sequence::Keys| {
-        json!({
-            "connected": k.connected,
-            "single": k.single,
-            "axis": k.axis,
-            "cell": k.cell.name(),
-            "clearance_deg": k.clearance_deg,
-            "parts": k.parts,
-        })
-    };
-    let steps: Vec<Value> = plan
-        .steps
-        .iter()
-        .enumerate()
-        .map(|(k, s)| {
-            let runner_up = s.choice.runner_up.as_ref().map(|r| {
-                let mut v = keys(&r.keys);
-                v["moving"] = json!(names(&r.moving));
-                v["exact_direction"] = json!(r.direction.to_strings());
-                v["lost_on"] = json!(r.lost_on.key());
-                v
-            });
-            let mut choice = keys(&s.choice.keys);
-            choice["candidates"] = s.choice.candidates.into();
-            choice["runner_up"] = json!(runner_up);
-            let mut v = json!({
-                "subassembly": names(&s.subassembly),
-                "moving": names(&s.moving),
-                "direction": s.unit,
-                "exact_direction": s.direction.to_strings(),
-                "cell": s.cell.name(),
-                "clearance_deg": s.clearance_deg,
-                "depth": s.depth,
-                "rule": s.rule.key(),
-                "choice": choice,
-            });
-            if let Some(t) = s.tolerance {
-                v["growth"] = match t {
-                    apart_plan::Tolerance::Finite(x) => json!(x * step_unit),
-                    apart_plan::Tolerance::Unbounded => Value::Null,
-                };
-            }
-            if let Some(h) = &holds {
-                v["holds_without_tolerance"] = h[k].into();
-            }
-            v
-        })
-        .collect();
-    let region_seconds = plan.regions.as_ref().map_or(0.0, |(_, s)| {
-        s.sums_seconds + s.projection_seconds + s.unions_seconds
-    });
-    let l = &plan.local;
-    let work = json!({
-        "singles": l.singles,
-        "pairs": l.pairs,
-        "likely_directions": l.likely_directions,
-        "single_steps": l.single_steps,
-        "pair_steps": l.pair_steps,
-        "likely_steps": l.likely_steps,
-        "ranked_steps": l.ranked,
-        "full_searches": l.full_searches,
-    });
-    let ranking = match opts.ranking {
-        apart_plan::Ranking::Auto => "auto",
-        apart_plan::Ranking::Full => "full",
-        apart_plan::Ranking::Local => "local",
-    };
-    let v = json!({
-        "status": if plan.stopped { "stopped" } else { "done" },
-        "interlocked": !plan.stuck.is_empty(),
-        "complete": plan.complete(),
-        "nothing_to_separate": plan.names.len() < 2,
-        "parts": plan.names,
-        "steps": steps,
-        "stuck": plan.stuck.iter().map(|s| names(s)).collect::<Vec<_>>(),
-        "unsplit": plan.unsplit.iter().map(|s| names(s)).collect::<Vec<_>>(),
-        "not_yet_split": plan.pending.iter().map(|s| names(s)).collect::<Vec<_>>(),
-        "full_searches": first.then_some(plan.full_searches),
-        "ranking": (!first).then_some(ranking),
-        "pair_regions": (!first).then(|| plan.regions.as_ref().map_or(0, |(n, _)| *n)),
-        "work": if first { Value::Null } else { work },
-        "seconds": {"total": regions_and_steps, "regions": region_seconds, "steps": plan.step_seconds},
-    });
-    Ok((with_facts(v, loaded, units), plan))
+    let mut a = apart_jobs::sequence::sequence(loaded, units, &job, progress, &mut |_, _| {})?;
+    a.seconds.total = Some(t.elapsed().as_secs_f64());
+    let plan = a.plan.clone();
+    Ok((serde_json::to_value(a).unwrap_or(Value::Null), plan))
 }
 
-/// An exact spherical arc.
 /// Every direction along which part `a` leaves part `b`; `None` when the stop flag
 /// ended the run before it had the pair regions.
 pub fn separate(

@@ -349,13 +349,10 @@ impl Assembly {
         let (answer, stop) = run(py, limits, move |p| {
             answers::sequence(&loaded, units.as_deref(), &opts, first, p)
         })?;
-        let (mut answer, plan) = answer.map_err(|e| match &stop {
-            Some(s) if s.by_memory() => errors::stopped(py, stop.clone()),
-            _ => errors::plan_error(py, e),
-        })?;
+        let (mut answer, plan) = answer.map_err(|e| errors::job_error(py, e, &stop))?;
         let plan = (!plan.stopped).then(|| Plan {
             loaded: self.loaded.clone(),
-            plan: Arc::new(plan),
+            plan,
         });
         work::mark(&mut answer, &stop);
         Ok((answer.to_string(), plan))

@@ -10,7 +10,7 @@
 
 use crate::commands::load::{load_valid, part_index};
 use crate::commands::partition::Projection;
-use crate::input_facts::{holds_without_tolerance, tolerance_statement, InputFacts};
+use crate::input_facts::{tolerance_statement, Units};
 use crate::limits::Stopped;
 use crate::output;
 use crate::{limits, Global};
@@ -18,11 +18,12 @@ use apart::draw::{
     assembly_png, disassembly_glb, disassembly_html, motion_space_png, motion_space_svg,
     step_motion_space_png, step_motion_space_svg, step_pngs, SphereSvgOptions, View,
 };
-use apart::plan::sequence::{Choice, Keys, LocalStats};
+use apart::jobs::sequence::{region_seconds, sequence, step_answer, SequenceJobOptions};
+use apart::jobs::Status;
+use apart::plan::sequence::Keys;
 use apart::plan::{
-    partition_subset, parts_of, sequence_first_with, sequence_parts, BlockingRegions, CellKind,
-    KeepSolutions, MotionSpace, Options, Part, Progress, Ranking, Rule, Sequence, SequenceOptions,
-    Solution, Step, Tolerance,
+    partition_subset, parts_of, BlockingRegions, CellKind, KeepSolutions, MotionSpace, Options,
+    Part, Progress, Ranking, Rule, Sequence, SequenceOptions, Solution, Step, Tolerance,
 };
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -47,16 +48,6 @@ impl From<RankingArg> for Ranking {
             RankingArg::Auto => Ranking::Auto,
             RankingArg::Full => Ranking::Full,
             RankingArg::Local => Ranking::Local,
-        }
-    }
-}
-
-impl RankingArg {
-    fn key(self) -> &'static str {
-        match self {
-            RankingArg::Auto => "auto",
-            RankingArg::Full => "full",
-            RankingArg::Local => "local",
         }
     }
 }
@@ -157,175 +148,6 @@ pub struct SequenceArgs {
     pub renders: Option<PathBuf>,
 }
 
-#[derive(Serialize)]
-struct StepJson {
-    subassembly: Vec<String>,
-    moving: Vec<String>,
-    direction: [f64; 3],
-    exact_direction: [String; 3],
-    cell: &'static str,
-    clearance_deg: f64,
-    depth: usize,
-    /// The rule that chose the step: "ranked" (over the subassembly's full motion
-    /// space), "single" (a single part from its own free directions), "likely" (a set
-    /// along a likely direction), "full" (the full motion space after nothing simpler
-    /// split the subassembly).
-    rule: &'static str,
-    /// Largest uniform growth in input units (--growth); null when unbounded.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    growth: Option<Option<f64>>,
-    /// Under a tolerance: the step also holds for the parts as given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    holds_without_tolerance: Option<bool>,
-    /// With --explain: why the step was chosen.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    choice: Option<ChoiceJson>,
-}
-
-/// A candidate's ranking keys.
-#[derive(Serialize)]
-struct KeysJson {
-    /// Both sides connected through contacts; null unless --prefer-connected.
-    connected: Option<bool>,
-    single: bool,
-    axis: bool,
-    cell: &'static str,
-    clearance_deg: f64,
-    parts: usize,
-}
-
-/// The best candidate the chosen one beat.
-#[derive(Serialize)]
-struct RivalJson {
-    moving: Vec<String>,
-    exact_direction: [String; 3],
-    #[serde(flatten)]
-    keys: KeysJson,
-    /// The first key it lost on: connected, single, axis, cell, clearance, fewer_parts,
-    /// order.
-    lost_on: &'static str,
-}
-
-/// Why a step was chosen.
-#[derive(Serialize)]
-struct ChoiceJson {
-    candidates: usize,
-    #[serde(flatten)]
-    keys: KeysJson,
-    runner_up: Option<RivalJson>,
-}
-
-/// The planner's work (not with --first).
-#[derive(Serialize)]
-struct WorkJson {
-    /// Parts whose free directions alone were computed (recomputations included).
-    singles: usize,
-    /// Pairs of touching parts whose free directions together were computed.
-    pairs: usize,
-    /// Likely directions tested over a whole subassembly.
-    likely_directions: usize,
-    /// Steps by rule.
-    single_steps: usize,
-    pair_steps: usize,
-    likely_steps: usize,
-    ranked_steps: usize,
-    /// Subassemblies searched over their full motion space because no single part and
-    /// no likely direction split them.
-    full_searches: usize,
-}
-
-impl From<&LocalStats> for WorkJson {
-    fn from(s: &LocalStats) -> WorkJson {
-        WorkJson {
-            singles: s.singles,
-            pairs: s.pairs,
-            likely_directions: s.likely_directions,
-            single_steps: s.single_steps,
-            pair_steps: s.pair_steps,
-            likely_steps: s.likely_steps,
-            ranked_steps: s.ranked,
-            full_searches: s.full_searches,
-        }
-    }
-}
-
-/// Every step of a plan as JSON, each made as it is written (a plan of thousands of
-/// steps is never held as JSON values at once).
-struct StepsJson<'a> {
-    plan: &'a Sequence,
-    args: &'a SequenceArgs,
-    step_unit: f64,
-    holds: &'a Option<Vec<bool>>,
-}
-
-impl Serialize for StepsJson<'_> {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::SerializeSeq;
-        let steps = &self.plan.steps;
-        let mut seq = serializer.serialize_seq(Some(steps.len()))?;
-        for (k, s) in steps.iter().enumerate() {
-            let holds = self.holds.as_ref().map(|h| h[k]);
-            seq.serialize_element(&step_json(
-                &self.plan.names,
-                s,
-                self.args,
-                self.step_unit,
-                holds,
-            ))?;
-        }
-        seq.end()
-    }
-}
-
-#[derive(Serialize)]
-struct SequenceJson<'a> {
-    /// "done", or "timeout", "out of memory", "interrupted": --timeout, the memory
-    /// budget or Ctrl-C stopped the run; `steps` are the steps found until then and
-    /// `not_yet_split` the subassemblies still to split.
-    status: &'static str,
-    /// What stopped the run, and where; absent when it ran to its end.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    stopped: Option<output::StoppedJson>,
-    interlocked: bool,
-    complete: bool,
-    /// The assembly has one part: there is nothing to separate (complete, no step).
-    nothing_to_separate: bool,
-    parts: Vec<String>,
-    /// Every step (absent from the "end" line of --jsonl, whose step lines came before).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    steps: Option<StepsJson<'a>>,
-    /// The number of steps (in the "end" line of --jsonl only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    step_count: Option<usize>,
-    /// Subassemblies no single translation can split.
-    stuck: Vec<Vec<String>>,
-    /// Subassemblies left whole by --max-depth.
-    unsplit: Vec<Vec<String>>,
-    /// Subassemblies not yet split when the run was stopped (empty otherwise), in the
-    /// order they would have been split.
-    not_yet_split: Vec<Vec<String>>,
-    /// With --first: subassemblies that no likely direction split, searched in full
-    /// (their own pair regions); null without --first (see `work`).
-    full_searches: Option<usize>,
-    /// How steps were chosen (--ranking); null with --first.
-    ranking: Option<&'static str>,
-    /// Pair regions made (lazily, as steps needed them); null with --first.
-    pair_regions: Option<usize>,
-    /// The planner's work; null with --first.
-    work: Option<WorkJson>,
-    seconds: SecondsJson,
-    #[serde(flatten)]
-    input: InputFacts,
-}
-
-#[derive(Serialize)]
-struct SecondsJson {
-    load: f64,
-    /// Making the pair regions (their sums, projections and unions), a part of `steps`.
-    regions: f64,
-    steps: f64,
-}
-
 /// One line of --jsonl: an event and its fields.
 #[derive(Serialize)]
 struct Event<'a, T: Serialize> {
@@ -375,41 +197,26 @@ fn list(all: &[String], set: &[usize]) -> String {
     )
 }
 
-/// Prints each step as the planner finds it, and keeps what the answer needs of it.
+/// Prints each step as the planner finds it.
 struct Printer<'a> {
     mode: Mode,
     args: &'a SequenceArgs,
-    asm: &'a apart::assembly::Assembly,
     names: &'a [String],
     step_unit: f64,
-    /// Per step found: whether it holds without the tolerance (`None`: no tolerance).
-    holds: Vec<Option<bool>>,
-    /// The first error met while checking a step without the tolerance.
-    error: Option<anyhow::Error>,
+    /// Steps printed.
+    count: usize,
 }
 
 impl Printer<'_> {
-    fn step(&mut self, s: &Step) {
-        let k = self.holds.len();
-        let motion = [(
-            s.moving.as_slice(),
-            Some(s.subassembly.as_slice()),
-            &s.direction,
-        )];
-        let holds = match holds_without_tolerance(self.asm, &motion) {
-            Ok(h) => h.map(|h| h[0]),
-            Err(e) => {
-                self.error.get_or_insert(e);
-                None
-            }
-        };
-        self.holds.push(holds);
+    fn step(&mut self, s: &Step, holds: Option<bool>) {
+        let k = self.count;
+        self.count += 1;
         match self.mode {
             Mode::Json => {}
             Mode::JsonLines => json_line(&Event {
                 event: "step",
                 index: Some(k + 1),
-                body: &step_json(self.names, s, self.args, self.step_unit, holds),
+                body: &step_answer(self.names, s, self.step_unit, holds, self.args.explain),
             }),
             Mode::Text => self.text(k, s, holds),
         }
@@ -500,27 +307,28 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     let mut printer = Printer {
         mode,
         args,
-        asm,
         names: &names,
         step_unit,
-        holds: Vec::new(),
-        error: None,
+        count: 0,
     };
-    let plan = if names.len() < 2 {
-        Sequence::empty(names.clone())
-    } else {
-        let parts = parts_of(asm)?;
+    let job = SequenceJobOptions {
+        plan: opts,
+        first: args.first,
+        explain: args.explain,
+    };
+    let mut answer = {
         let (phase, progress) = output::planner(global, "sequence steps");
-        let mut on_step = |s: &Step| phase.suspend(|| printer.step(s));
-        if args.first {
-            sequence_first_with(parts, &opts, &progress, &mut on_step)?
-        } else {
-            sequence_parts(parts, &opts, &progress, &mut on_step)?
-        }
+        let mut on_step = |s: &Step, holds: Option<bool>| phase.suspend(|| printer.step(s, holds));
+        sequence(
+            &loaded,
+            global.units.map(Units::symbol),
+            &job,
+            &progress,
+            &mut on_step,
+        )
+        .map_err(|e| limits::job_error(e, global))?
     };
-    if let Some(e) = printer.error.take() {
-        return Err(e);
-    }
+    let plan = answer.plan.clone();
     let files = args.svg.is_some()
         || args.png.is_some()
         || args.glb.is_some()
@@ -531,22 +339,20 @@ pub fn run(args: &SequenceArgs, global: &Global) -> anyhow::Result<ExitCode> {
         let _phase = output::phase(global, "pictures and exports");
         pictures(args, asm, &plan)?;
     }
-    let holds: Option<Vec<bool>> = printer.holds.iter().copied().collect();
+    let mut status = Status::of(plan.stopped);
+    output::stamp(&mut status, &stop);
+    answer.set_status(status);
+    answer.seconds.load = Some(load);
     match mode {
-        Mode::Json | Mode::JsonLines => {
-            let input = InputFacts::of(&loaded, global);
-            let mut answer = to_json(&plan, args, step_unit, load, input, &holds, &stop);
-            if mode == Mode::Json {
-                output::json(&answer)?;
-            } else {
-                answer.step_count = answer.steps.take().map(|s| s.plan.steps.len());
-                crate::limits::set_phase("writing the answer");
-                json_line(&Event {
-                    event: "end",
-                    index: None,
-                    body: &answer,
-                });
-            }
+        Mode::Json => output::json(&answer)?,
+        Mode::JsonLines => {
+            answer.without_steps();
+            crate::limits::set_phase("writing the answer");
+            json_line(&Event {
+                event: "end",
+                index: None,
+                body: &answer,
+            });
         }
         Mode::Text => {
             let load = output::load_time(load, &loaded.seconds);
@@ -720,112 +526,6 @@ fn names_of(all: &[String], set: &[usize]) -> Vec<String> {
     set.iter().map(|&k| all[k].clone()).collect()
 }
 
-fn tolerance_units(t: &Option<Tolerance>, step_unit: f64) -> Option<Option<f64>> {
-    t.map(|t| match t {
-        Tolerance::Finite(s) => Some(s * step_unit),
-        Tolerance::Unbounded => None,
-    })
-}
-
-fn keys_json(k: &Keys) -> KeysJson {
-    KeysJson {
-        connected: k.connected,
-        single: k.single,
-        axis: k.axis,
-        cell: k.cell.name(),
-        clearance_deg: k.clearance_deg,
-        parts: k.parts,
-    }
-}
-
-fn choice_json(names: &[String], c: &Choice) -> ChoiceJson {
-    ChoiceJson {
-        candidates: c.candidates,
-        keys: keys_json(&c.keys),
-        runner_up: c.runner_up.as_ref().map(|r| RivalJson {
-            moving: names_of(names, &r.moving),
-            exact_direction: r.direction.to_strings(),
-            keys: keys_json(&r.keys),
-            lost_on: r.lost_on.key(),
-        }),
-    }
-}
-
-fn step_json(
-    names: &[String],
-    s: &Step,
-    args: &SequenceArgs,
-    step_unit: f64,
-    holds: Option<bool>,
-) -> StepJson {
-    StepJson {
-        holds_without_tolerance: holds,
-        subassembly: names_of(names, &s.subassembly),
-        moving: names_of(names, &s.moving),
-        direction: s.unit,
-        exact_direction: s.direction.to_strings(),
-        cell: s.cell.name(),
-        clearance_deg: s.clearance_deg,
-        depth: s.depth,
-        rule: s.rule.key(),
-        growth: tolerance_units(&s.tolerance, step_unit),
-        choice: args.explain.then(|| choice_json(names, &s.choice)),
-    }
-}
-
-/// The seconds spent making pair regions (their sums, projections and unions).
-fn region_seconds(plan: &Sequence) -> f64 {
-    plan.regions.as_ref().map_or(0.0, |(_, s)| {
-        s.sums_seconds + s.projection_seconds + s.unions_seconds
-    })
-}
-
-fn to_json<'a>(
-    plan: &'a Sequence,
-    args: &'a SequenceArgs,
-    step_unit: f64,
-    load: f64,
-    input: InputFacts,
-    holds: &'a Option<Vec<bool>>,
-    stop: &Option<Stopped>,
-) -> SequenceJson<'a> {
-    let names = &plan.names;
-    let sets =
-        |s: &[Vec<usize>]| -> Vec<Vec<String>> { s.iter().map(|s| names_of(names, s)).collect() };
-    SequenceJson {
-        input,
-        status: output::status(stop),
-        stopped: output::stopped_json(stop),
-        not_yet_split: sets(&plan.pending),
-        interlocked: !plan.stuck.is_empty(),
-        complete: plan.complete(),
-        nothing_to_separate: plan.names.len() < 2,
-        parts: plan.names.clone(),
-        steps: Some(StepsJson {
-            plan,
-            args,
-            step_unit,
-            holds,
-        }),
-        step_count: None,
-        stuck: sets(&plan.stuck),
-        unsplit: sets(&plan.unsplit),
-        full_searches: args.first.then_some(plan.full_searches),
-        ranking: (!args.first).then(|| args.ranking.key()),
-        pair_regions: if args.first {
-            None
-        } else {
-            Some(plan.regions.as_ref().map_or(0, |(n, _)| *n))
-        },
-        work: (!args.first).then(|| WorkJson::from(&plan.local)),
-        seconds: SecondsJson {
-            load,
-            regions: region_seconds(plan),
-            steps: plan.step_seconds,
-        },
-    }
-}
-
 fn describe(names: &[String], s: &Step, step_unit: f64) -> String {
     let d = s.direction.to_strings();
     let kind = match s.cell.name() {
@@ -833,7 +533,10 @@ fn describe(names: &[String], s: &Step, step_unit: f64) -> String {
         "edge" => "edge, sliding".to_string(),
         _ => "isolated direction".to_string(),
     };
-    let tol = match tolerance_units(&s.tolerance, step_unit) {
+    let tol = match s.tolerance.map(|t| match t {
+        Tolerance::Finite(x) => Some(x * step_unit),
+        Tolerance::Unbounded => None,
+    }) {
         Some(Some(x)) => format!("; tolerates growth up to {x:.6}"),
         Some(None) => "; any growth".to_string(),
         None => String::new(),

@@ -16,6 +16,7 @@ pub mod facts;
 pub mod gate;
 pub mod partition;
 pub mod separate;
+pub mod sequence;
 pub mod status;
 
 pub use apart_kernel::progress::Progress;
