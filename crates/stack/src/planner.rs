@@ -10,8 +10,8 @@
 use crate::orientation::{orientations, Base, Orientation};
 use crate::part::{PartModel, StackError};
 use crate::partial::{
-    Cost, Moving, ObstacleCache, ObstacleStats, PlaceOptions, PlaceStats, Placer, Region,
-    SupportFilter,
+    Candidate, Cost, Moving, ObstacleCache, ObstacleStats, PlaceOptions, PlaceStats, Placer,
+    Region, SupportFilter,
 };
 use crate::scene::Scene;
 use crate::stability::{contacts, lowerable, placed_pieces, stable, top, up_face_area, Contact};
@@ -202,6 +202,77 @@ fn plan(
     prune: bool,
 ) -> Result<StackPlan, StackError> {
     let start = Instant::now();
+    let (centre, sigma) = floor_box(opts)?;
+    let moving = Moving::new(part.clone(), &grippable(part, opts)?, true);
+    let slack = opts.slack.clone().unwrap_or_else(|| default_slack(&moving));
+    let cost = Cost::Stacking {
+        w: opts.weight.clone(),
+        floor: centre,
+    };
+    cost.validate()?;
+    let run = Run {
+        opts,
+        progress,
+        prune,
+        sigma,
+        slack,
+        cost,
+        moving,
+    };
+    let mut stack = Stack {
+        scene: Scene::new(),
+        shapes: HashMap::default(),
+        cache: ObstacleCache::new(),
+        stats: PlanStats {
+            orientations: run.moving.orientations.len(),
+            ..Default::default()
+        },
+        placements: Vec::new(),
+        stopped: false,
+    };
+    let mut complete = true;
+    progress.report(phases::STACKING, 0, opts.count);
+    for n in 0..opts.count {
+        if progress.stopped() {
+            stack.stopped = true;
+            break;
+        }
+        let Some(accepted) = run.place_next(n, &mut stack)? else {
+            complete = false;
+            break;
+        };
+        stack.add(n, accepted, &run.moving);
+        progress.report(phases::STACKING, n + 1, opts.count);
+    }
+    let Stack {
+        scene,
+        cache,
+        mut stats,
+        placements,
+        stopped,
+        ..
+    } = stack;
+    let height = (0..scene.pieces().len())
+        .filter_map(|k| top(&[scene.placed(k)]))
+        .max()
+        .map(|t| &t - &opts.floor_z)
+        .unwrap_or_else(Rational::zero);
+    stats.obstacles = cache.stats;
+    stats.seconds = start.elapsed().as_secs_f64();
+    Ok(StackPlan {
+        placements,
+        stack_height: height,
+        complete: complete && !stopped,
+        stopped,
+        moving: run.moving,
+        scene,
+        stats,
+    })
+}
+
+/// The centre of the floor region (eq. (1)'s `(x0, y0, z0)`) and the box parts may
+/// take: the floor region up to the maximum height. An error when either is empty.
+fn floor_box(opts: &StackOptions) -> Result<([Rational; 3], Aabb<Rational>), StackError> {
     let [x0, y0, x1, y1] = opts.floor.clone();
     if x0 >= x1 || y0 >= y1 || opts.max_height <= Rational::zero() {
         return Err(StackError::Invalid(
@@ -218,8 +289,13 @@ fn plan(
         min: [x0.clone(), y0.clone(), opts.floor_z.clone()],
         max: [x1.clone(), y1.clone(), &opts.floor_z + &opts.max_height],
     };
+    Ok((centre, sigma))
+}
+
+/// The orientations of `opts` showing an upward face large enough for the suction
+/// gripper (the area computed once per base orientation); an error when none does.
+fn grippable(part: &PartModel, opts: &StackOptions) -> Result<Vec<Orientation>, StackError> {
     let all = orientations(opts.dtheta_deg, &opts.bases, opts.max_angle_error_deg);
-    // Keep orientations with an upward face for the suction gripper.
     let mut grip: HashMap<Base, bool> = HashMap::default();
     let usable: Vec<Orientation> = all
         .into_iter()
@@ -235,137 +311,182 @@ fn plan(
             "no orientation shows an upward face large enough for the gripper".into(),
         ));
     }
-    let moving = Moving::new(part.clone(), &usable, true);
-    let slack = opts.slack.clone().unwrap_or_else(|| {
-        let e = &moving.oriented[0].extent;
-        let m = (0..3)
-            .map(|i| &e.max[i] - &e.min[i])
-            .min()
-            .expect("three axes");
-        &m * &Rational::from_i128(1, 4)
-    });
-    let cost = Cost::Stacking {
-        w: opts.weight.clone(),
-        floor: centre,
-    };
-    cost.validate()?;
-    let mut scene = Scene::new();
-    let mut shapes: HashMap<(usize, usize), usize> = HashMap::default();
-    let mut cache = ObstacleCache::new();
-    let mut stats = PlanStats {
-        orientations: moving.orientations.len(),
-        ..Default::default()
-    };
-    let mut placements: Vec<Placed> = Vec::new();
-    let mut complete = true;
-    let mut stopped = false;
-    progress.report(phases::STACKING, 0, opts.count);
-    for n in 0..opts.count {
-        if progress.stopped() {
-            stopped = true;
-            break;
-        }
-        let mut accepted = None;
+    Ok(usable)
+}
+
+/// The first stage's default growth of the stack's box: a quarter of the part's
+/// smallest extent (in its first orientation).
+fn default_slack(moving: &Moving) -> Rational {
+    let e = &moving.oriented[0].extent;
+    let m = (0..3)
+        .map(|i| &e.max[i] - &e.min[i])
+        .min()
+        .expect("three axes");
+    &m * &Rational::from_i128(1, 4)
+}
+
+/// What stays the same while the parts are placed one after another.
+struct Run<'a> {
+    opts: &'a StackOptions,
+    progress: &'a Progress,
+    prune: bool,
+    /// The box parts may take (floor region up to the maximum height).
+    sigma: Aabb<Rational>,
+    /// Growth of the stack's box in the first stage.
+    slack: Rational,
+    cost: Cost,
+    moving: Moving,
+}
+
+/// The stack so far, and the counters of the plan.
+struct Stack {
+    scene: Scene,
+    /// The scene's shape of each piece of each orientation, added once.
+    shapes: HashMap<(usize, usize), usize>,
+    cache: ObstacleCache,
+    stats: PlanStats,
+    placements: Vec<Placed>,
+    /// The stop flag was seen.
+    stopped: bool,
+}
+
+/// A candidate that passed the checks: its contacts, stage and the candidates examined
+/// in that stage up to it.
+struct Accepted {
+    candidate: Candidate,
+    contacts: Vec<Contact>,
+    stage: u8,
+    examined: usize,
+}
+
+impl Run<'_> {
+    /// The first acceptable placement of part `n`: in the stack's grown box, then
+    /// anywhere (the first part anywhere at once). `None` when neither stage finds one
+    /// or the stop flag is raised.
+    fn place_next(&self, n: usize, stack: &mut Stack) -> Result<Option<Accepted>, StackError> {
         let stages: &[u8] = if n == 0 { &[2] } else { &[1, 2] };
         for &stage in stages {
-            let region = if stage == 1 {
-                let bb = scene.bbox().expect("a stack with parts");
-                Aabb {
-                    min: [0, 1, 2].map(|i| (&bb.min[i] - &slack).max(sigma.min[i].clone())),
-                    max: [0, 1, 2].map(|i| (&bb.max[i] + &slack).min(sigma.max[i].clone())),
-                }
-            } else {
-                sigma.clone()
-            };
-            let popts = PlaceOptions {
-                region: Region::Container(region),
-                cost: cost.clone(),
-                clearance: opts.clearance.clone(),
-                extrapolate: opts.extrapolate,
-            };
-            let mut placer = Placer::new(&scene, &moving, &mut cache, &popts)?;
-            if prune {
-                placer = placer.with_support_filter(SupportFilter {
-                    floor_z: opts.floor_z.clone(),
-                });
+            let accepted = self.search_stage(stage, stack)?;
+            if accepted.is_some() || stack.stopped {
+                return Ok(accepted);
             }
-            let mut examined = 0;
-            while examined < opts.max_candidates {
-                if progress.stopped() {
-                    stopped = true;
-                    break;
-                }
-                let Some(c) = placer.next_candidate()? else {
-                    break;
-                };
-                examined += 1;
-                let oriented = &moving.oriented[c.orientation];
-                let placed = placed_pieces(&oriented.pieces, &c.translation);
-                let t0 = Instant::now();
-                let cts = contacts(&placed, &opts.floor_z, &scene);
-                let cg = rational::add(&oriented.centroid, &c.translation);
-                let ok = stable(&cg, &cts);
-                stats.stability_seconds += t0.elapsed().as_secs_f64();
-                if !ok {
-                    stats.unstable += 1;
-                    continue;
-                }
-                let t0 = Instant::now();
-                let ok = lowerable(&placed, &scene)?;
-                stats.lowering_seconds += t0.elapsed().as_secs_f64();
-                if !ok {
-                    stats.not_lowerable += 1;
-                    continue;
-                }
-                accepted = Some((c, cts, stage, examined));
+        }
+        Ok(None)
+    }
+
+    /// The region of a stage: the stack's box grown by the slack, within the floor box
+    /// (stage 1), or the whole floor box (stage 2).
+    fn stage_region(&self, stage: u8, scene: &Scene) -> Aabb<Rational> {
+        if stage == 1 {
+            let bb = scene.bbox().expect("a stack with parts");
+            let (sigma, slack) = (&self.sigma, &self.slack);
+            Aabb {
+                min: [0, 1, 2].map(|i| (&bb.min[i] - slack).max(sigma.min[i].clone())),
+                max: [0, 1, 2].map(|i| (&bb.max[i] + slack).min(sigma.max[i].clone())),
+            }
+        } else {
+            self.sigma.clone()
+        }
+    }
+
+    /// The engine's candidates of one stage, cheapest first, up to
+    /// `max_candidates`: the first that passes the checks. Sets `stack.stopped` when the
+    /// stop flag ends the search.
+    fn search_stage(&self, stage: u8, stack: &mut Stack) -> Result<Option<Accepted>, StackError> {
+        let popts = PlaceOptions {
+            region: Region::Container(self.stage_region(stage, &stack.scene)),
+            cost: self.cost.clone(),
+            clearance: self.opts.clearance.clone(),
+            extrapolate: self.opts.extrapolate,
+        };
+        let mut placer = Placer::new(&stack.scene, &self.moving, &mut stack.cache, &popts)?;
+        if self.prune {
+            placer = placer.with_support_filter(SupportFilter {
+                floor_z: self.opts.floor_z.clone(),
+            });
+        }
+        let mut accepted = None;
+        let mut examined = 0;
+        while examined < self.opts.max_candidates {
+            if self.progress.stopped() {
+                stack.stopped = true;
                 break;
             }
-            add_stats(&mut stats.place, &placer.stats);
-            if accepted.is_some() || stopped {
+            let Some(c) = placer.next_candidate()? else {
+                break;
+            };
+            examined += 1;
+            if let Some(contacts) = self.check(&c, &stack.scene, &mut stack.stats)? {
+                accepted = Some(Accepted {
+                    candidate: c,
+                    contacts,
+                    stage,
+                    examined,
+                });
                 break;
             }
         }
-        let Some((c, cts, stage, examined)) = accepted else {
-            complete = false;
-            break;
-        };
+        add_stats(&mut stack.stats.place, &placer.stats);
+        Ok(accepted)
+    }
+
+    /// The contacts of candidate `c` when it is stable and can be lowered into place
+    /// among the parts of `scene`; else `None`, counted in `stats` with the checks'
+    /// times.
+    fn check(
+        &self,
+        c: &Candidate,
+        scene: &Scene,
+        stats: &mut PlanStats,
+    ) -> Result<Option<Vec<Contact>>, StackError> {
+        let oriented = &self.moving.oriented[c.orientation];
+        let placed = placed_pieces(&oriented.pieces, &c.translation);
+        let t0 = Instant::now();
+        let cts = contacts(&placed, &self.opts.floor_z, scene);
+        let cg = rational::add(&oriented.centroid, &c.translation);
+        let ok = stable(&cg, &cts);
+        stats.stability_seconds += t0.elapsed().as_secs_f64();
+        if !ok {
+            stats.unstable += 1;
+            return Ok(None);
+        }
+        let t0 = Instant::now();
+        let ok = lowerable(&placed, scene)?;
+        stats.lowering_seconds += t0.elapsed().as_secs_f64();
+        if !ok {
+            stats.not_lowerable += 1;
+            return Ok(None);
+        }
+        Ok(Some(cts))
+    }
+}
+
+impl Stack {
+    /// Adds the accepted placement of part `n` to the scene (each piece shape once per
+    /// orientation) and to the placements.
+    fn add(&mut self, n: usize, a: Accepted, moving: &Moving) {
+        let c = a.candidate;
         let o = c.orientation;
         let ids: Vec<usize> = (0..moving.oriented[o].pieces.len())
             .map(|b| {
-                *shapes
+                *self
+                    .shapes
                     .entry((o, b))
-                    .or_insert_with(|| scene.add_shape(moving.oriented[o].pieces[b].clone()))
+                    .or_insert_with(|| self.scene.add_shape(moving.oriented[o].pieces[b].clone()))
             })
             .collect();
-        scene.add_part(&ids, &c.translation);
-        placements.push(Placed {
+        self.scene.add_part(&ids, &c.translation);
+        self.placements.push(Placed {
             index: n,
             orientation_index: o,
             orientation: moving.orientations[o],
             translation: c.translation,
             cost: c.cost,
-            stage,
-            contacts: cts,
-            examined,
+            stage: a.stage,
+            contacts: a.contacts,
+            examined: a.examined,
         });
-        progress.report(phases::STACKING, n + 1, opts.count);
     }
-    let height = (0..scene.pieces().len())
-        .filter_map(|k| top(&[scene.placed(k)]))
-        .max()
-        .map(|t| &t - &opts.floor_z)
-        .unwrap_or_else(Rational::zero);
-    stats.obstacles = cache.stats;
-    stats.seconds = start.elapsed().as_secs_f64();
-    Ok(StackPlan {
-        placements,
-        stack_height: height,
-        complete: complete && !stopped,
-        stopped,
-        moving,
-        scene,
-        stats,
-    })
 }
 
 #[cfg(test)]
