@@ -749,6 +749,44 @@ pub fn exit_code(stop: &Option<Stopped>, answer: std::process::ExitCode) -> std:
     }
 }
 
+/// An assembly that is not valid: the error that ends a planning command, with the
+/// problems that make it so (in the JSON error object's `"problems"`).
+#[derive(Debug)]
+pub struct Invalid {
+    /// The error line.
+    pub message: String,
+    /// Its errors.
+    pub problems: Vec<apart::mesh::Problem>,
+}
+
+impl std::fmt::Display for Invalid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Invalid {}
+
+/// The JSON error object of a failure: `{"valid": false, "error": ..., "status": ...}`,
+/// with the problems of an invalid assembly.
+fn failure_json(e: &anyhow::Error, msg: &str) -> serde_json::Value {
+    let mut v = serde_json::json!({ "valid": false, "error": msg, "status": failure_status(e) });
+    if let Some(i) = e.downcast_ref::<Invalid>() {
+        v["problems"] = serde_json::to_value(&i.problems).unwrap_or_default();
+    }
+    v
+}
+
+/// The `"status"` of a failure's JSON error object: "out of memory" when the memory
+/// budget refused the work, "error" otherwise (the exit code tells the rest).
+fn failure_status(e: &anyhow::Error) -> &'static str {
+    if e.downcast_ref::<crate::limits::OverBudget>().is_some() {
+        "out of memory"
+    } else {
+        "error"
+    }
+}
+
 /// Reports a failure that stopped a command: one clear line on standard error (and a
 /// JSON object on standard output with `--json`, an "end" line with `sequence --jsonl`).
 pub fn fail(global: &Global, e: &anyhow::Error) {
@@ -762,9 +800,10 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
     }
     use std::io::Write;
     if global.json {
-        let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
+        let _ = json(&failure_json(e, &msg));
     } else if crate::limits::json_lines() {
-        let end = serde_json::json!({ "event": "end", "valid": false, "error": msg });
+        let mut end = failure_json(e, &msg);
+        end["event"] = "end".into();
         to_stdout(|out| writeln!(out, "{end}").and_then(|()| out.flush()));
     }
     let _ = writeln!(std::io::stderr().lock(), "error: {msg}");

@@ -113,18 +113,23 @@ pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyho
             errors.len(),
             if errors.len() == 1 { "" } else { "s" }
         );
-        match named_files(path) {
+        let message = match named_files(path) {
             // No single path to `apart check`: the errors above are all there is.
-            Some(named) => anyhow::bail!(
+            Some(named) => format!(
                 "{} do not make a valid assembly ({count} above)",
                 named.given.join(" and ")
             ),
-            None => anyhow::bail!(
+            None => format!(
                 "{} is not a valid assembly ({count}); run `apart check {}` for the details",
                 escaped(path),
                 escaped(path)
             ),
-        }
+        };
+        let problems = errors.into_iter().cloned().collect();
+        return Err(anyhow::Error::new(crate::output::Invalid {
+            message,
+            problems,
+        }));
     }
     for p in loaded
         .problems
