@@ -70,7 +70,7 @@ pub use regions::{BlockingRegions, Part};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{
     sequence, sequence_first, sequence_first_with, sequence_parts, sequence_with, KeepSolutions,
-    Ranking, Rule, Sequence, SequenceOptions, Step, Tolerance,
+    Ranking, Rule, Sequence, SequenceOptions, Step, Growth,
 };
 pub use store::PairStore;
 
