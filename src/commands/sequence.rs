@@ -22,8 +22,8 @@ use apart::jobs::sequence::{region_seconds, sequence, step_answer, SequenceJobOp
 use apart::jobs::Status;
 use apart::plan::sequence::Keys;
 use apart::plan::{
-    partition_subset, parts_of, BlockingRegions, CellKind, KeepSolutions, MotionSpace, Options,
-    Part, Progress, Ranking, Rule, Sequence, SequenceOptions, Solution, Step, Growth,
+    partition_subset, parts_of, BlockingRegions, CellKind, Growth, KeepSolutions, MotionSpace,
+    Options, Part, Progress, Ranking, Rule, Sequence, SequenceOptions, Solution, Step,
 };
 use serde::Serialize;
 use std::path::{Path, PathBuf};

@@ -6,8 +6,7 @@ use apart_assembly::Loaded;
 use apart_plan::along::holds_without_tolerance;
 use apart_plan::sequence::{Choice, Keys, LocalStats};
 use apart_plan::{
-    parts_of, sequence_first_with, sequence_parts, Ranking, Sequence, SequenceOptions, Step,
-    Growth,
+    parts_of, sequence_first_with, sequence_parts, Growth, Ranking, Sequence, SequenceOptions, Step,
 };
 use serde::Serialize;
 use std::sync::Arc;

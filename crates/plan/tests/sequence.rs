@@ -4,8 +4,8 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_plan::{
-    sequence, sequence_first, BlockingRegions, CellKind, MotionSpace, Part, Progress, Sequence,
-    SequenceOptions, Growth,
+    sequence, sequence_first, BlockingRegions, CellKind, Growth, MotionSpace, Part, Progress,
+    Sequence, SequenceOptions,
 };
 use common::check_plan;
 use proptest::prelude::*;
