@@ -42,6 +42,7 @@ mod model;
 mod options;
 mod overlap;
 mod pieces;
+mod snapping;
 pub mod tolerance;
 mod witness;
 

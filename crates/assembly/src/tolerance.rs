@@ -229,7 +229,6 @@ pub(crate) fn apply(
     disjoint: &[(usize, usize)],
 ) -> Vec<Problem> {
     let grid = asm.grid;
-    let h = grid.step();
     let tracker = Tracker::start(opts, Stage::Overlaps, 1);
     let before = match overlaps(&asm.parts, disjoint) {
         Ok(b) => b,
@@ -239,7 +238,59 @@ pub(crate) fn apply(
         }
     };
     tracker.tick();
-    let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * h;
+    let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * grid.step();
+    let mut problems = Vec::new();
+    let (eps, auto, limit) = match choose_eps(asm, tol, &before, deepest) {
+        Ok(chosen) => chosen,
+        Err(problem) => {
+            asm.tolerance = None;
+            problems.push(problem);
+            return problems;
+        }
+    };
+    if auto && eps > limit {
+        problems.push(Problem::error(format!(
+            "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
+        ))
+        .with_kind(ProblemKind::Tolerance));
+    }
+    let eps = match auto && eps > limit {
+        true => round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE),
+        false => eps,
+    };
+    for p in &mut asm.parts {
+        p.unshrunk_pieces = std::mem::take(&mut p.pieces);
+    }
+    let shrunk = shrink_until_apart(asm, disjoint, eps, auto, limit, &mut problems);
+    report(asm, &before, &shrunk, deepest, &mut problems);
+    asm.tolerance = Some(AppliedTolerance {
+        eps: shrunk.eps,
+        exact: dyadic(shrunk.eps),
+        auto,
+        deepest_overlap: deepest,
+        accepted_overlaps: before.len().saturating_sub(shrunk.after.len()),
+        overlapping: {
+            let mut v: Vec<(usize, usize)> = before.iter().map(|o| (o.i, o.j)).collect();
+            v.sort_unstable();
+            v
+        },
+        vanished_pieces: shrunk.vanished,
+        max_shift: (shrunk.max_shift * grid.step()).max(shrunk.eps),
+    });
+    problems
+}
+
+/// The tolerance to apply (input units), whether it was chosen automatically, and the
+/// largest an automatic one may be ([`AUTO_LIMIT`] of the assembly's largest extent);
+/// `Err` with the problem when no tolerance applies: a stated one that is not a finite
+/// positive length, or an automatic one with nothing to accept.
+fn choose_eps(
+    asm: &Assembly,
+    tol: Tolerance,
+    before: &[Overlap],
+    deepest: f64,
+) -> Result<(f64, bool, f64), Problem> {
+    let grid = asm.grid;
     let size = asm
         .parts
         .iter()
@@ -252,48 +303,49 @@ pub(crate) fn apply(
             .map(|k| grid.to_units(size.max[k]) - grid.to_units(size.min[k]))
             .fold(0.0, f64::max)
     };
-    let mut problems = Vec::new();
-    let (mut eps, auto) = match tol {
-        Tolerance::None => unreachable!("apply is called with a tolerance"),
-        Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => {
-            asm.tolerance = None;
-            problems.push(
-                Problem::error(format!("tolerance {e} is not a finite positive length"))
-                    .with_kind(ProblemKind::Tolerance),
-            );
-            return problems;
-        }
-        Tolerance::Fixed(e) => (e, false),
-        Tolerance::Auto => {
-            if before.is_empty() {
-                asm.tolerance = None;
-                problems.push(
-                    Problem::note("tolerance auto: no part overlaps another, so none is needed")
-                        .with_kind(ProblemKind::Tolerance),
-                );
-                return problems;
-            }
-            (round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true)
-        }
-    };
     let limit = AUTO_LIMIT * extent;
-    if auto && eps > limit {
-        problems.push(Problem::error(format!(
-            "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
+    match tol {
+        Tolerance::None => unreachable!("apply is called with a tolerance"),
+        Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => Err(Problem::error(format!(
+            "tolerance {e} is not a finite positive length"
         ))
-        .with_kind(ProblemKind::Tolerance));
-        eps = round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE);
+        .with_kind(ProblemKind::Tolerance)),
+        Tolerance::Fixed(e) => Ok((e, false, limit)),
+        Tolerance::Auto if before.is_empty() => Err(Problem::note(
+            "tolerance auto: no part overlaps another, so none is needed",
+        )
+        .with_kind(ProblemKind::Tolerance)),
+        Tolerance::Auto => Ok((round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true, limit)),
     }
-    for p in &mut asm.parts {
-        p.unshrunk_pieces = std::mem::take(&mut p.pieces);
-    }
-    let mut vanished;
-    let mut max_shift;
-    let mut after;
+}
+
+/// The parts' pieces once shrunk, and what overlaps remain.
+struct Shrunk {
+    /// The tolerance finally applied (input units).
+    eps: f64,
+    /// Pieces that vanished.
+    vanished: usize,
+    /// The farthest any face moved (grid units).
+    max_shift: f64,
+    /// The pairs of parts that still overlap.
+    after: Vec<Overlap>,
+}
+
+/// Shrinks every piece by `eps` and measures the overlaps left; an automatic tolerance
+/// is doubled (up to `limit`) while some remain, since the depth it was chosen from is
+/// a floating-point measurement that may fall short.
+fn shrink_until_apart(
+    asm: &mut Assembly,
+    disjoint: &[(usize, usize)],
+    mut eps: f64,
+    auto: bool,
+    limit: f64,
+    problems: &mut Vec<Problem>,
+) -> Shrunk {
     loop {
-        (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
+        let (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &asm.grid));
         // Shrunk pieces lie inside the originals: disjoint parts stay disjoint.
-        after = match overlaps(&asm.parts, disjoint) {
+        let after = match overlaps(&asm.parts, disjoint) {
             Ok(a) => a,
             Err(n) => {
                 // Shrinking only separates: as many overlaps as before at most.
@@ -301,20 +353,37 @@ pub(crate) fn apply(
                 Vec::new()
             }
         };
-        // The depth is a floating-point measurement: when it fell short, double (auto
-        // only; a stated tolerance is kept as stated).
+        // A stated tolerance is kept as stated.
         if !auto || after.is_empty() || eps * 2.0 > limit {
-            break;
+            return Shrunk {
+                eps,
+                vanished,
+                max_shift,
+                after,
+            };
         }
         eps *= 2.0;
     }
-    for o in &after {
+}
+
+/// The problems of a tolerance applied: overlaps deeper than it accepts (errors with
+/// the depth measured before shrinking and a witness), the overlaps accepted and the
+/// pieces that vanished (notes), and parts of which nothing is left (errors).
+fn report(
+    asm: &Assembly,
+    before: &[Overlap],
+    shrunk: &Shrunk,
+    deepest: f64,
+    problems: &mut Vec<Problem>,
+) {
+    let (grid, eps) = (asm.grid, shrunk.eps);
+    for o in &shrunk.after {
         let (a, b) = (&asm.parts[o.i], &asm.parts[o.j]);
         let depth = before
             .iter()
             .find(|x| x.i == o.i && x.j == o.j)
             .map_or(o.depth, |x| x.depth)
-            * h;
+            * grid.step();
         let witness = crate::overlap::part_overlap(a, b, &grid)
             .map(|w| format!(": {} lies strictly inside both", fmt_witness(&w, &grid)))
             .unwrap_or_default();
@@ -329,7 +398,7 @@ pub(crate) fn apply(
             }),
         );
     }
-    let accepted = before.len().saturating_sub(after.len());
+    let accepted = before.len().saturating_sub(shrunk.after.len());
     if accepted > 0 {
         problems.push(Problem::note(format!(
             "{accepted} overlapping pair{} of parts (deepest {deepest:.3e}) count as contact for parts made {eps:.3e} smaller",
@@ -337,6 +406,7 @@ pub(crate) fn apply(
         ))
         .with_kind(ProblemKind::Tolerance));
     }
+    let vanished = shrunk.vanished;
     if vanished > 0 {
         problems.push(
             Problem::note(format!(
@@ -357,21 +427,6 @@ pub(crate) fn apply(
             );
         }
     }
-    asm.tolerance = Some(AppliedTolerance {
-        eps,
-        exact: dyadic(eps),
-        auto,
-        deepest_overlap: deepest,
-        accepted_overlaps: accepted,
-        overlapping: {
-            let mut v: Vec<(usize, usize)> = before.iter().map(|o| (o.i, o.j)).collect();
-            v.sort_unstable();
-            v
-        },
-        vanished_pieces: vanished,
-        max_shift: (max_shift * h).max(eps),
-    });
-    problems
 }
 
 #[cfg(test)]

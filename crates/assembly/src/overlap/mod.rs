@@ -9,9 +9,9 @@
 
 pub(crate) mod boundary;
 
-use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
 use crate::options::{LoadOptions, Stage, Tracker};
+use crate::pieces::piece_box;
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
 use apart_kernel::{Aabb, Rational};
@@ -124,8 +124,8 @@ fn overlap_point(a: &Part, b: &Part, grid: Option<&Grid>) -> Option<[Rational; 3
 /// The pairs `(i, j)` of pieces `a[i]`, `b[j]` whose open boxes meet (only those can
 /// overlap), by sort and sweep.
 pub(crate) fn open_box_pairs(a: &[Polytope], b: &[Polytope]) -> Vec<(usize, usize)> {
-    let ba: Vec<Aabb> = a.iter().map(polytope_bbox).collect();
-    let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
+    let ba: Vec<Aabb> = a.iter().map(piece_box).collect();
+    let bb: Vec<Aabb> = b.iter().map(piece_box).collect();
     sweep_pairs_between(&ba, &by_low_x(&ba), &bb, &by_low_x(&bb))
         .into_iter()
         .filter(|&(i, j)| ba[i].overlaps_open(&bb[j]))
