@@ -12,12 +12,12 @@ use std::sync::Mutex;
 /// Loads `path` with the global options, a progress bar on a terminal, and the given
 /// decomposition policy.
 pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::Result<Loaded> {
-    let (bar, hook) = output::progress(global);
+    let (bar, progress) = output::progress(global);
     // The loader's other options keep their defaults (also any added later).
     #[allow(clippy::needless_update)]
     let opts = LoadOptions {
         grid_bits: global.grid_bits,
-        progress: Some(hook),
+        progress,
         decompose,
         verify: global.verify,
         tolerance: crate::input_facts::tolerance(global)?,

@@ -53,6 +53,13 @@ pub enum LoadError {
     /// No grid fits the coordinates.
     #[error("cannot choose the grid: {0}")]
     Grid(#[from] apart_kernel::GridError),
+    /// The stop flag of [`crate::LoadOptions::progress`] was raised: there is no partial
+    /// assembly.
+    #[error("loading stopped during {phase}: the stop flag was raised")]
+    Stopped {
+        /// The phase it stopped in ([`apart_kernel::progress::phases`]).
+        phase: &'static str,
+    },
 }
 
 fn read_message(path: &std::path::Path, cause: &ReadError) -> String {

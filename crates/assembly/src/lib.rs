@@ -51,7 +51,7 @@ pub use apart_mesh::{Problem, Severity};
 pub use error::LoadError;
 pub use load::load;
 pub use model::{Assembly, LoadSeconds, Loaded, Part, Repairs, Skipped};
-pub use options::{Decompose, LoadOptions, Progress, ProgressFn, Stage};
+pub use options::{Decompose, LoadOptions};
 pub use tolerance::{AppliedTolerance, Tolerance};
 pub use witness::{fmt_witness, witness_units};
 

@@ -15,8 +15,9 @@
 //! `1e-3` of the assembly's size.
 
 use crate::model::{Assembly, Part};
-use crate::options::{LoadOptions, Stage, Tracker};
+use crate::options::LoadOptions;
 use crate::witness::fmt_witness;
+use apart_kernel::progress::{phases, Progress};
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::{Problem, ProblemKind};
@@ -114,10 +115,22 @@ pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f6
     (d != NONE).then(|| f64::from_bits(d))
 }
 
+/// Why [`overlaps`] gave no list.
+enum Unmeasured {
+    /// More than this many pairs overlap.
+    TooMany(usize),
+    /// The stop flag was raised.
+    Stopped,
+}
+
 /// The overlapping pairs of parts, but for the pairs `disjoint` (known not to).
 /// In pair order: candidates from a hierarchy of the parts' boxes, part by part, tested
-/// in parallel batches. `Err` when more than [`MAX_OVERLAPPING_PAIRS`] overlap.
-fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>, usize> {
+/// in parallel batches, the stop flag of `progress` checked before each.
+fn overlaps(
+    parts: &[Part],
+    disjoint: &[(usize, usize)],
+    progress: &Progress,
+) -> Result<Vec<Overlap>, Unmeasured> {
     let boxes: Vec<Aabb> = parts
         .iter()
         .map(|p| match p.pieces.is_empty() {
@@ -143,6 +156,9 @@ fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>,
         });
         near.sort_unstable();
         for batch in near.chunks(256) {
+            if progress.stopped() {
+                return Err(Unmeasured::Stopped);
+            }
             out.par_extend(batch.par_iter().filter_map(|&j| {
                 deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
                     i,
@@ -151,7 +167,7 @@ fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>,
                 })
             }));
             if out.len() > MAX_OVERLAPPING_PAIRS {
-                return Err(MAX_OVERLAPPING_PAIRS);
+                return Err(Unmeasured::TooMany(MAX_OVERLAPPING_PAIRS));
             }
         }
     }
@@ -221,7 +237,8 @@ fn shrink_all(parts: &mut [Part], eps: &Rational) -> (usize, f64) {
 /// the overlap check on the shrunk pieces (deeper overlaps as errors with a witness and
 /// the measured depth; accepted overlaps and vanished pieces as notes).
 /// `disjoint` lists pairs of parts `(i, j)`, `i < j`, sorted, already known not to
-/// overlap.
+/// overlap. Once the stop flag is raised, the problems are incomplete (the loader then
+/// fails).
 pub(crate) fn apply(
     asm: &mut Assembly,
     tol: Tolerance,
@@ -229,15 +246,18 @@ pub(crate) fn apply(
     disjoint: &[(usize, usize)],
 ) -> Vec<Problem> {
     let grid = asm.grid;
-    let tracker = Tracker::start(opts, Stage::Overlaps, 1);
-    let before = match overlaps(&asm.parts, disjoint) {
+    let counter = opts.progress.counter(phases::OVERLAPS, 1);
+    let before = match overlaps(&asm.parts, disjoint, &opts.progress) {
         Ok(b) => b,
-        Err(n) => {
+        Err(why) => {
             asm.tolerance = None;
-            return vec![too_many_overlaps(n)];
+            return match why {
+                Unmeasured::TooMany(n) => vec![too_many_overlaps(n)],
+                Unmeasured::Stopped => Vec::new(),
+            };
         }
     };
-    tracker.tick();
+    counter.add(1);
     let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * grid.step();
     let mut problems = Vec::new();
     let (eps, auto, limit) = match choose_eps(asm, tol, &before, deepest) {
@@ -261,7 +281,7 @@ pub(crate) fn apply(
     for p in &mut asm.parts {
         p.unshrunk_pieces = std::mem::take(&mut p.pieces);
     }
-    let shrunk = shrink_until_apart(asm, disjoint, eps, auto, limit, &mut problems);
+    let shrunk = shrink_until_apart(asm, disjoint, (eps, auto, limit), opts, &mut problems);
     report(asm, &before, &shrunk, deepest, &mut problems);
     asm.tolerance = Some(AppliedTolerance {
         eps: shrunk.eps,
@@ -332,29 +352,29 @@ struct Shrunk {
 }
 
 /// Shrinks every piece by `eps` and measures the overlaps left; an automatic tolerance
-/// is doubled (up to `limit`) while some remain, since the depth it was chosen from is
-/// a floating-point measurement that may fall short.
+/// (`auto`) is doubled, up to `limit`, while some remain, since the depth it was chosen
+/// from is a floating-point measurement that may fall short.
 fn shrink_until_apart(
     asm: &mut Assembly,
     disjoint: &[(usize, usize)],
-    mut eps: f64,
-    auto: bool,
-    limit: f64,
+    (mut eps, auto, limit): (f64, bool, f64),
+    opts: &LoadOptions,
     problems: &mut Vec<Problem>,
 ) -> Shrunk {
     loop {
         let (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &asm.grid));
         // Shrunk pieces lie inside the originals: disjoint parts stay disjoint.
-        let after = match overlaps(&asm.parts, disjoint) {
-            Ok(a) => a,
-            Err(n) => {
+        let (after, stopped) = match overlaps(&asm.parts, disjoint, &opts.progress) {
+            Ok(a) => (a, false),
+            Err(Unmeasured::TooMany(n)) => {
                 // Shrinking only separates: as many overlaps as before at most.
                 problems.push(too_many_overlaps(n));
-                Vec::new()
+                (Vec::new(), false)
             }
+            Err(Unmeasured::Stopped) => (Vec::new(), true),
         };
         // A stated tolerance is kept as stated.
-        if !auto || after.is_empty() || eps * 2.0 > limit {
+        if stopped || !auto || after.is_empty() || eps * 2.0 > limit {
             return Shrunk {
                 eps,
                 vanished,

@@ -9,12 +9,13 @@ pub(crate) use build::fmt_len;
 use crate::error::LoadError;
 use crate::inputs::{self, Names, PartSpec, Plan, Root, SourceRef};
 use crate::model::{Assembly, LoadSeconds, Loaded, Part, Repairs};
-use crate::options::{Decompose, LoadOptions, Stage, Tracker};
+use crate::options::{check_stop, Decompose, LoadOptions};
 use crate::overlap;
 use crate::snapping;
 use crate::tolerance::{self, Tolerance};
 use apart_formats::{read_file_with, RawObject, ReadOptions};
 use apart_kernel::grid::{GridError, MAX_BITS, MIN_BITS};
+use apart_kernel::progress::phases;
 use apart_kernel::Grid;
 use apart_mesh::{Problem, ProblemKind};
 use apart_pieces::Polytope;
@@ -68,6 +69,7 @@ fn load_plan(plan: Plan, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         skipped,
     } = plan;
     let read = read_files(&specs, root.as_deref(), preloaded, opts);
+    check_stop(opts, phases::READING)?;
     seconds.read = lap();
     let raw = raw_parts(&specs, read);
     let scan = GridScan::of(&raw, opts)?;
@@ -77,9 +79,11 @@ fn load_plan(plan: Plan, opts: &LoadOptions) -> Result<Loaded, LoadError> {
         largest: scan.largest.as_ref(),
     };
     let (mut parts, raw_points, repairs) = build_all(raw, &ctx, &mut problems);
+    check_stop(opts, phases::VALIDATING)?;
     seconds.validate = lap();
     if needs_pieces(opts, parts.len()) {
         problems.extend(decompose_parts(&mut parts, opts));
+        check_stop(opts, phases::DECOMPOSING)?;
     }
     seconds.decompose = lap();
     // Relations between parts that snapping changed (needs the pieces, for the exact
@@ -90,9 +94,11 @@ fn load_plan(plan: Plan, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     // below skips them.
     let mut disjoint = Vec::new();
     if scan.max_snap_displacement > 0.0 {
-        let (warnings, apart) = snapping::changed_relations(&parts, &raw_points, &scan.grid);
+        let (warnings, apart) =
+            snapping::changed_relations(&parts, &raw_points, &scan.grid, &opts.progress);
         problems.extend(warnings);
         disjoint = apart;
+        check_stop(opts, phases::OVERLAPS)?;
     }
     drop(raw_points);
     seconds.snapping = lap();
@@ -113,6 +119,7 @@ fn load_plan(plan: Plan, opts: &LoadOptions) -> Result<Loaded, LoadError> {
             &disjoint,
         ));
     }
+    check_stop(opts, phases::OVERLAPS)?;
     seconds.overlaps = lap();
     Ok(Loaded {
         assembly,
@@ -128,7 +135,7 @@ type ReadFiles = HashMap<PathBuf, Result<Vec<RawObject>, String>>;
 
 /// Reads every file the parts name once, in parallel, with the files already read
 /// (`preloaded`). A file outside `root` (unless [`LoadOptions::allow_outside`]) or that
-/// is not a regular file is never opened.
+/// is not a regular file is never opened; once the stop flag is raised, no file is.
 fn read_files(
     specs: &[PartSpec],
     root: Option<&Path>,
@@ -148,16 +155,19 @@ fn read_files(
         false => root.map(Root::new),
         true => None,
     };
-    let tracker = Tracker::start(opts, Stage::Reading, files.len());
+    let counter = opts.progress.counter(phases::READING, files.len());
     let mut read: ReadFiles = files
         .par_iter()
         .map(|p| {
+            if opts.progress.stopped() {
+                return (p.to_path_buf(), Err("loading was stopped".to_string()));
+            }
             let r = root
                 .as_ref()
                 .map_or(Ok(()), |root| root.inside(p))
                 .and_then(|()| inputs::regular_file(p))
                 .and_then(|()| read_file_with(p, &read_opts).map_err(|e| e.to_string()));
-            tracker.tick();
+            counter.add(1);
             (p.to_path_buf(), r)
         })
         .collect();
@@ -288,19 +298,24 @@ impl GridScan {
 /// The parts, built and validated in parallel, with the input coordinates of each
 /// part's mesh vertices (for the snapping check) and the repairs made. Part names are
 /// made unique (files split into bodies may collide with other names) before their
-/// problems join `problems`, so that a renamed part's problems name it.
+/// problems join `problems`, so that a renamed part's problems name it. Once the stop
+/// flag is raised, no part is begun (and the parts are incomplete).
 fn build_all(
     raw: Vec<RawPart>,
     ctx: &Ctx,
     problems: &mut Vec<Problem>,
 ) -> (Vec<Part>, Vec<Option<Vec<[f64; 3]>>>, Vec<Repairs>) {
-    let tracker = Tracker::start(ctx.opts, Stage::Validating, raw.len());
+    let progress = &ctx.opts.progress;
+    let counter = progress.counter(phases::VALIDATING, raw.len());
     let built: Vec<Built> = raw
         .into_par_iter()
-        .map(|r| {
+        .filter_map(|r| {
+            if progress.stopped() {
+                return None;
+            }
             let out = build_parts(r, ctx);
-            tracker.tick();
-            out
+            counter.add(1);
+            Some(out)
         })
         .collect();
     let mut parts = Vec::with_capacity(built.len());
@@ -335,7 +350,8 @@ fn needs_pieces(opts: &LoadOptions, parts: usize) -> bool {
     }
 }
 
-/// Decomposes every valid non-convex part without pieces, in parallel.
+/// Decomposes every valid non-convex part without pieces, in parallel; once the stop
+/// flag is raised, no decomposition is begun.
 fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
     let todo: Vec<usize> = (0..parts.len())
         .filter(|&k| {
@@ -348,10 +364,13 @@ fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
                     .is_some_and(|i| i.closed && i.volume6.is_some() && i.self_intersections == 0)
         })
         .collect();
-    let tracker = Tracker::start(opts, Stage::Decomposing, todo.len());
+    let counter = opts.progress.counter(phases::DECOMPOSING, todo.len());
     let results: Vec<(usize, Result<Vec<Polytope>, Problem>)> = todo
         .par_iter()
-        .map(|&k| {
+        .filter_map(|&k| {
+            if opts.progress.stopped() {
+                return None;
+            }
             let p = &parts[k];
             let mesh = p.mesh.as_ref().expect("filtered");
             let points = mesh.points();
@@ -373,8 +392,8 @@ fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
                     }
                     Ok(d.pieces)
                 });
-            tracker.tick();
-            (k, r.map_err(|e| e.in_part(p.name.clone())))
+            counter.add(1);
+            Some((k, r.map_err(|e| e.in_part(p.name.clone()))))
         })
         .collect();
     let mut problems = Vec::new();

@@ -35,6 +35,7 @@ use crate::overlap;
 use apart_formats::escape::escape;
 use apart_kernel::fvec::{add, cross, norm, scale, sub, F3};
 use apart_kernel::grid::MAX_BITS;
+use apart_kernel::progress::Progress;
 use apart_kernel::Aabb;
 use apart_kernel::Bvh;
 use apart_kernel::Grid;
@@ -421,11 +422,12 @@ fn warning(
 /// usable mesh and is left out).
 /// Also returns the pairs `(i, j)` (sorted) of parts whose interiors the check found
 /// disjoint after snapping (exactly), so that the overlap check need not test them
-/// again.
+/// again. Once the stop flag of `progress` is raised, no further pair is judged.
 pub(crate) fn changed_relations(
     parts: &[Part],
     raw: &[Option<Vec<F3>>],
     grid: &Grid,
+    progress: &Progress,
 ) -> (Vec<Problem>, Vec<(usize, usize)>) {
     let usable: Vec<usize> = (0..parts.len())
         .filter(|&k| raw[k].is_some() && parts[k].mesh.is_some() && parts[k].bbox.is_some())
@@ -442,6 +444,9 @@ pub(crate) fn changed_relations(
     let judged: Vec<_> = pairs
         .par_iter()
         .filter_map(|&(i, j)| {
+            if progress.stopped() {
+                return None;
+            }
             let (ra, rb) = (raw[i].as_deref()?, raw[j].as_deref()?);
             let near = near(&parts[i], ra, &parts[j], rb, grid)?;
             Some(((i, j), judge(&parts[i], &parts[j], &near, grid)))
