@@ -47,6 +47,10 @@ pub enum LoadError {
         /// What it is: "a named pipe (FIFO)", "a socket", "a character device"...
         kind: &'static str,
     },
+    /// An assembly description in memory breaks a manifest's rules (see
+    /// [`crate::load_description`]).
+    #[error("{}", escape(.0))]
+    Description(String),
     /// Nothing to load.
     #[error("{}: no parts found (expected mesh files .off .obj .stl .ply .gltf .glb, or assembly.json)", escaped(.0))]
     NoParts(PathBuf),

@@ -11,7 +11,6 @@ use apart_mesh::{fmt_point, Problem, ProblemKind};
 use apart_pieces::interference::{interior_witness, triangle_meets_interior};
 use apart_pieces::{Polytope, PolytopeError};
 use rayon::prelude::*;
-use std::path::PathBuf;
 
 /// A piece's integer box ([`Polytope::integer_box`]). A piece beyond that box's range
 /// (never one on a grid, whose coordinates stay below 2^52) gets a box holding every
@@ -90,7 +89,7 @@ pub(crate) const MAX_LISTED_OVERLAPS: usize = 20;
 /// the pairs whose boxes overlap.
 pub(crate) fn overlapping_pieces(
     pieces: &[Polytope],
-    sources: &[PathBuf],
+    labels: &[String],
     grid: &Grid,
 ) -> Vec<Problem> {
     let boxes: Vec<_> = pieces.iter().map(piece_box).collect();
@@ -122,11 +121,7 @@ pub(crate) fn overlapping_pieces(
                         "the pieces overlap: {} lies strictly inside both",
                         fmt_witness(&w, grid)
                     ))
-                    .at(format!(
-                        "pieces {} and {}",
-                        sources[i].display(),
-                        sources[j].display()
-                    ))
+                    .at(format!("pieces {} and {}", labels[i], labels[j]))
                     .with_kind(ProblemKind::Piece),
                 );
             }
@@ -143,15 +138,15 @@ pub(crate) fn overlapping_pieces(
 /// piece are tested by a separating-axis test, then one interior point is located.
 pub(crate) fn pieces_outside_mesh(
     pieces: &[Polytope],
-    sources: &[PathBuf],
+    labels: &[String],
     locator: &Locator,
     grid: &Grid,
 ) -> Vec<Problem> {
     let mesh = locator.mesh();
     pieces
         .par_iter()
-        .zip(sources)
-        .filter_map(|(p, source)| {
+        .zip(labels)
+        .filter_map(|(p, label)| {
             let mut crossing = None;
             locator.bvh().query(&piece_box(p), |t| {
                 if crossing.is_none() {
@@ -184,7 +179,7 @@ pub(crate) fn pieces_outside_mesh(
             };
             Some(
                 Problem::error(what)
-                    .at(format!("piece {}", source.display()))
+                    .at(format!("piece {label}"))
                     .with_kind(ProblemKind::Piece),
             )
         })

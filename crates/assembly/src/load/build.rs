@@ -3,7 +3,7 @@
 //! when convex, or those of the solid a surface with crossing faces encloses).
 
 use super::RawPart;
-use crate::inputs::{Names, PartSpec};
+use crate::inputs::{Names, PartSpec, SourceRef};
 use crate::model::{Part, Repairs};
 use crate::options::LoadOptions;
 use crate::pieces::{self, piece_box};
@@ -17,6 +17,7 @@ use apart_mesh::validate::{validate, MeshInfo};
 use apart_mesh::{Mesh, Problem, ProblemKind};
 use apart_pieces::Polytope;
 use std::collections::HashMap;
+use std::path::Path;
 
 /// The parts one specification gave (several when its mesh holds separate solids), and
 /// what repair did to its mesh.
@@ -62,11 +63,7 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
     };
     let (mesh, probs) = Mesh::from_raw(raw, grid);
     let mut problems = r.problems.clone();
-    problems.extend(
-        probs
-            .into_iter()
-            .map(|p| p.in_file(&src.path).in_part(&spec.name)),
-    );
+    problems.extend(probs.into_iter().map(|p| src.locate(p).in_part(&spec.name)));
     let Some(mut mesh) = mesh else {
         return Built {
             parts: vec![build_part(&r, spec.name.clone(), None, problems, ctx)],
@@ -78,13 +75,14 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
         let report = repair(&mut mesh, &RepairOptions::default());
         if !report.is_empty() {
             problems.push(
-                Problem::warning(format!("repaired: {report}"))
-                    .with_kind(ProblemKind::Repaired)
-                    .in_file(&src.path)
-                    .in_part(&spec.name),
+                src.locate(
+                    Problem::warning(format!("repaired: {report}"))
+                        .with_kind(ProblemKind::Repaired),
+                )
+                .in_part(&spec.name),
             );
             repairs = Some(Repairs {
-                file: src.path.clone(),
+                file: src.origin.file().map(Path::to_path_buf).unwrap_or_default(),
                 parts: Vec::new(),
                 report,
             });
@@ -106,14 +104,11 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
     let names: Vec<String> = (1..=solids.len())
         .map(|k| format!("{}_{k}", spec.name))
         .collect();
-    problems.push(
-        Problem::note(format!(
-            "the mesh holds {} separate solids, loaded as parts {} (--one-part-per-file reads it as one part)",
-            solids.len(),
-            names.join(", ")
-        ))
-        .in_file(&src.path),
-    );
+    problems.push(src.locate(Problem::note(format!(
+        "the mesh holds {} separate solids, loaded as parts {} (--one-part-per-file reads it as one part)",
+        solids.len(),
+        names.join(", ")
+    ))));
     let parts = solids
         .into_iter()
         .zip(names)
@@ -223,9 +218,12 @@ pub(super) fn unique_name(names: &mut Names, part: &mut Part, problems: &mut Vec
             escape(&old),
             escape(&new)
         ))
-        .in_file(&part.source)
         .in_part(new.clone()),
     );
+    if !part.source.as_os_str().is_empty() {
+        let note = problems.pop().expect("pushed");
+        problems.push(note.in_file(&part.source));
+    }
     part.name = new;
 }
 
@@ -269,11 +267,7 @@ fn build_part(
     if let (Some(mesh), Some(src)) = (mesh, &spec.mesh) {
         let (ok, points, probs) = add_mesh(&mut part, mesh, r.mesh.as_ref(), &spec.name, ctx);
         (mesh_ok, raw_points) = (ok, points);
-        problems.extend(
-            probs
-                .into_iter()
-                .map(|p| p.in_file(&src.path).in_part(&part.name)),
-        );
+        problems.extend(probs.into_iter().map(|p| src.locate(p).in_part(&part.name)));
     }
     if part.declared_pieces {
         add_declared_pieces(&mut part, r, mesh_ok, &mut problems, ctx);
@@ -372,7 +366,9 @@ fn add_declared_pieces(
     let grid = ctx.grid;
     let name = part.name.clone();
     let mut pieces_ok = !r.pieces.is_empty();
-    for (path, raw) in &r.pieces {
+    // How problems name each piece: its file, or its number among the declared pieces.
+    let mut labels = Vec::with_capacity(r.pieces.len());
+    for (k, (src, raw)) in r.pieces.iter().enumerate() {
         let Some(raw) = raw else {
             pieces_ok = false;
             continue;
@@ -380,18 +376,25 @@ fn add_declared_pieces(
         match pieces::convex_piece(raw, grid) {
             Ok(p) => {
                 part.pieces.push(p);
-                part.piece_sources.push(path.clone());
+                let file = src.origin.file();
+                part.piece_sources
+                    .push(file.map(Path::to_path_buf).unwrap_or_default());
+                labels.push(file.map_or(k.to_string(), |f| f.display().to_string()));
             }
             Err(mut probs) => {
                 explain_collapse(&mut probs, raw, &r.spec.name, ctx);
                 pieces_ok = false;
-                problems.extend(probs.into_iter().map(|p| p.in_file(path).in_part(&name)));
+                problems.extend(
+                    probs
+                        .into_iter()
+                        .map(|p| piece_problem(p, src, k).in_part(&name)),
+                );
             }
         }
     }
     if pieces_ok {
         problems.extend(
-            pieces::overlapping_pieces(&part.pieces, &part.piece_sources, grid)
+            pieces::overlapping_pieces(&part.pieces, &labels, grid)
                 .into_iter()
                 .map(|p| p.in_part(&name)),
         );
@@ -400,14 +403,9 @@ fn add_declared_pieces(
         });
         if let (true, false, Some(mesh)) = (mesh_ok, part.decomposed, &part.mesh) {
             problems.extend(
-                pieces::pieces_outside_mesh(
-                    &part.pieces,
-                    &part.piece_sources,
-                    &Locator::new(mesh),
-                    grid,
-                )
-                .into_iter()
-                .map(|p| p.in_part(&name)),
+                pieces::pieces_outside_mesh(&part.pieces, &labels, &Locator::new(mesh), grid)
+                    .into_iter()
+                    .map(|p| p.in_part(&name)),
             );
         }
         if mesh_ok && sum != part.volume {
@@ -433,6 +431,19 @@ fn add_declared_pieces(
             .fold(Aabb::EMPTY, |b, p| b.union(&piece_box(p)));
         part.bbox = (!b.is_empty()).then_some(b);
     }
+}
+
+/// A problem of declared piece `k` (from `src`): in its file, or, for a piece given as
+/// arrays, at `piece k` (before the element, if any).
+fn piece_problem(mut p: Problem, src: &SourceRef, k: usize) -> Problem {
+    if src.origin.file().is_some() {
+        return src.locate(p);
+    }
+    p.element = Some(match p.element.take() {
+        Some(e) => format!("piece {k}, {e}"),
+        None => format!("piece {k}"),
+    });
+    p
 }
 
 /// A convex part's one piece: the polytope of its mesh.

@@ -6,8 +6,9 @@ mod build;
 
 pub(crate) use build::fmt_len;
 
+use crate::description::Description;
 use crate::error::LoadError;
-use crate::inputs::{self, Names, PartSpec, Plan, Root, SourceRef};
+use crate::inputs::{self, Names, Origin, PartSpec, Plan, Root, SourceRef};
 use crate::model::{Assembly, LoadSeconds, Loaded, Part, Repairs};
 use crate::options::{check_stop, Decompose, LoadOptions};
 use crate::overlap;
@@ -22,7 +23,7 @@ use apart_pieces::Polytope;
 use build::{build_parts, unique_name, Built, Ctx, Largest};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 /// Loads an assembly from a folder, a mesh file or a manifest (see the crate docs).
@@ -31,6 +32,19 @@ use std::time::Instant;
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     check_bits(opts)?;
     let plan = inputs::plan(path, &read_options(opts))?;
+    load_plan(plan, opts)
+}
+
+/// Loads an assembly described in memory (see [`crate::description`]): exactly as the
+/// manifest it stands for, except that the files it names are read wherever they lie
+/// (the caller named them) and meshes given as arrays are named by their part and
+/// element only. Fails when the description breaks a manifest's rules (no parts, a
+/// part without a name or without a mesh or pieces, two parts of one name) or nothing
+/// can be loaded; every other problem is collected in [`Loaded::problems`].
+pub fn load_description(description: Description, opts: &LoadOptions) -> Result<Loaded, LoadError> {
+    check_bits(opts)?;
+    description.check().map_err(LoadError::Description)?;
+    let plan = inputs::from_description(description, None, Path::new(""));
     load_plan(plan, opts)
 }
 
@@ -130,24 +144,26 @@ fn load_plan(plan: Plan, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     })
 }
 
-/// What reading each file gave: its objects, or why it could not be read.
-type ReadFiles = HashMap<PathBuf, Result<Vec<RawObject>, String>>;
+/// What reading each file gave (its objects, or why it could not be read), and the
+/// meshes given as arrays.
+type ReadFiles = HashMap<Origin, Result<Vec<RawObject>, String>>;
 
-/// Reads every file the parts name once, in parallel, with the files already read
-/// (`preloaded`). A file outside `root` (unless [`LoadOptions::allow_outside`]) or that
-/// is not a regular file is never opened; once the stop flag is raised, no file is.
+/// Reads every file the parts name once, in parallel, with the meshes already in
+/// memory (`preloaded`). A file outside `root` (unless [`LoadOptions::allow_outside`])
+/// or that is not a regular file is never opened; once the stop flag is raised, no
+/// file is. Meshes given as arrays count as read at once.
 fn read_files(
     specs: &[PartSpec],
     root: Option<&Path>,
-    preloaded: HashMap<PathBuf, Vec<RawObject>>,
+    preloaded: HashMap<Origin, Vec<RawObject>>,
     opts: &LoadOptions,
 ) -> ReadFiles {
     let read_opts = read_options(opts);
     let mut files: Vec<&Path> = specs
         .iter()
         .flat_map(|p| p.mesh.iter().chain(&p.pieces))
-        .map(|s| s.path.as_path())
-        .filter(|p| !preloaded.contains_key(*p))
+        .filter(|s| !preloaded.contains_key(&s.origin))
+        .filter_map(|s| s.origin.file())
         .collect();
     files.sort();
     files.dedup();
@@ -155,12 +171,18 @@ fn read_files(
         false => root.map(Root::new),
         true => None,
     };
-    let counter = opts.progress.counter(phases::READING, files.len());
+    let arrays = preloaded
+        .keys()
+        .filter(|o| matches!(o, Origin::Arrays(_)))
+        .count();
+    let counter = opts.progress.counter(phases::READING, arrays + files.len());
+    counter.add(arrays);
     let mut read: ReadFiles = files
         .par_iter()
         .map(|p| {
+            let origin = Origin::File(p.to_path_buf());
             if opts.progress.stopped() {
-                return (p.to_path_buf(), Err("loading was stopped".to_string()));
+                return (origin, Err("loading was stopped".to_string()));
             }
             let r = root
                 .as_ref()
@@ -168,7 +190,7 @@ fn read_files(
                 .and_then(|()| inputs::regular_file(p))
                 .and_then(|()| read_file_with(p, &read_opts).map_err(|e| e.to_string()));
             counter.add(1);
-            (p.to_path_buf(), r)
+            (origin, r)
         })
         .collect();
     read.extend(preloaded.into_iter().map(|(p, o)| (p, Ok(o))));
@@ -177,40 +199,36 @@ fn read_files(
 
 /// The raw solids of every part, transformed: each object of a file is taken out at
 /// its last use rather than copied.
-fn raw_parts(specs: &[PartSpec], mut read: ReadFiles) -> Vec<RawPart<'_>> {
+fn raw_parts<'a>(specs: &'a [PartSpec], mut read: ReadFiles) -> Vec<RawPart<'a>> {
     // How often each object is used: the last use takes it instead of copying it.
-    let mut uses: HashMap<(PathBuf, Option<usize>), usize> = HashMap::new();
+    let mut uses: HashMap<(&Origin, Option<usize>), usize> = HashMap::new();
     for s in specs.iter().flat_map(|p| p.mesh.iter().chain(&p.pieces)) {
-        *uses.entry((s.path.clone(), s.object)).or_default() += 1;
+        *uses.entry((&s.origin, s.object)).or_default() += 1;
     }
     specs
         .iter()
         .map(|spec| {
             let mut probs = Vec::new();
-            let mut get = |s: &SourceRef| {
-                let left = uses.get_mut(&(s.path.clone(), s.object)).map(|n| {
+            let mut get = |s: &'a SourceRef| {
+                let left = uses.get_mut(&(&s.origin, s.object)).map(|n| {
                     *n -= 1;
                     *n
                 });
-                let objects = match read.get_mut(&s.path) {
+                let objects = match read.get_mut(&s.origin) {
                     Some(Ok(o)) => Ok(o),
                     Some(Err(e)) => Err(&*e),
-                    None => unreachable!("every file of the plan was read"),
+                    None => unreachable!("every source of the plan was read"),
                 };
                 match resolve(s, objects, left == Some(0)) {
                     Ok(o) => Some(o),
                     Err(p) => {
-                        probs.push(p.in_file(&s.path).in_part(&spec.name));
+                        probs.push(s.locate(p).in_part(&spec.name));
                         None
                     }
                 }
             };
             let mesh = spec.mesh.as_ref().and_then(&mut get);
-            let pieces = spec
-                .pieces
-                .iter()
-                .map(|s| (s.path.clone(), get(s)))
-                .collect();
+            let pieces = spec.pieces.iter().map(|s| (s, get(s))).collect();
             RawPart {
                 spec,
                 mesh,
@@ -413,7 +431,8 @@ fn decompose_parts(parts: &mut [Part], opts: &LoadOptions) -> Vec<Problem> {
 struct RawPart<'a> {
     spec: &'a PartSpec,
     mesh: Option<RawObject>,
-    pieces: Vec<(PathBuf, Option<RawObject>)>,
+    /// Each declared piece's source, and its solid when it could be read.
+    pieces: Vec<(&'a SourceRef, Option<RawObject>)>,
     problems: Vec<Problem>,
 }
 
