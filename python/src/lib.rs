@@ -189,7 +189,7 @@ fn from_meshes(
         stoppable: false,
     };
     let (loaded, _) = run(py, limits, move |p| {
-        memory::load(&name, &meshes, &args.options(p))
+        memory::load(name, meshes, &args.options(p))
     })?;
     let loaded = loaded.map_err(|message| load_error(py, message, None))?;
     Ok(Assembly {

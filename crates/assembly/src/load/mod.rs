@@ -176,7 +176,10 @@ fn read_files(
         .filter(|o| matches!(o, Origin::Arrays(_)))
         .count();
     let counter = opts.progress.counter(phases::READING, arrays + files.len());
-    counter.add(arrays);
+    // One by one, as files are counted.
+    for _ in 0..arrays {
+        counter.add(1);
+    }
     let mut read: ReadFiles = files
         .par_iter()
         .map(|p| {
