@@ -24,13 +24,11 @@ pub fn mesh(name: &str, vertices: &[u8], faces: &[u8]) -> Result<MemMesh, MeshEr
     if vertices.len() % 24 != 0 || faces.len() % 24 != 0 {
         return Err((None, "vertices and faces must have three columns".into()));
     }
-    let f64s = |b: &[u8]| -> Vec<f64> {
-        b.chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-            .collect()
-    };
-    let v = f64s(vertices);
-    let vertices: Vec<[f64; 3]> = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let f = |b: &[u8]| f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+    let vertices: Vec<[f64; 3]> = vertices
+        .chunks_exact(24)
+        .map(|c| [f(&c[..8]), f(&c[8..16]), f(&c[16..])])
+        .collect();
     if let Some(k) = vertices
         .iter()
         .position(|p| p.iter().any(|x| !x.is_finite()))

@@ -17,7 +17,6 @@ fn box_arrays(lo: [f64; 3], hi: [f64; 3]) -> MeshSource {
     let triangles = CUBOID_QUADS
         .iter()
         .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .map(|t| t.map(|i| i as u32))
         .collect();
     MeshSource::Arrays {
         vertices: cuboid_corners(lo, hi),

@@ -153,7 +153,9 @@ fn manifest_transforms_and_progress() {
         ]}"#,
     )
     .unwrap();
-    let seen: Arc<Mutex<Vec<(&str, usize, usize)>>> = Arc::default();
+    // Each report: the phase, done, total.
+    type Reports = Arc<Mutex<Vec<(&'static str, usize, usize)>>>;
+    let seen: Reports = Arc::default();
     let s = seen.clone();
     let opts = LoadOptions {
         progress: Progress::with_callback(move |phase, done, total| {

@@ -29,7 +29,11 @@ pub(super) struct Built {
 }
 
 /// A part, its problems, and the input coordinates of its mesh's vertices.
-pub(super) type BuiltPart = (Part, Vec<Problem>, Option<Vec<[f64; 3]>>);
+pub(super) type BuiltPart = (Part, Vec<Problem>, InputPoints);
+
+/// The input coordinates (before snapping) of the vertices of a part's mesh, when the
+/// mesh is a usable solid.
+pub(super) type InputPoints = Option<Vec<[f64; 3]>>;
 
 /// The part whose coordinates reach the largest magnitude, which sets the grid step.
 pub(super) struct Largest {
@@ -311,7 +315,7 @@ fn add_mesh(
     raw: Option<&RawObject>,
     spec_name: &str,
     ctx: &Ctx,
-) -> (bool, Option<Vec<[f64; 3]>>, Vec<Problem>) {
+) -> (bool, InputPoints, Vec<Problem>) {
     let grid = ctx.grid;
     let (info, mut probs) = validate(&mut mesh, grid);
     if ctx.opts.repair && info.closed && info.self_intersections > 0 {

@@ -20,7 +20,7 @@ use apart_kernel::progress::phases;
 use apart_kernel::Grid;
 use apart_mesh::{Problem, ProblemKind};
 use apart_pieces::Polytope;
-use build::{build_parts, unique_name, Built, Ctx, Largest};
+use build::{build_parts, unique_name, Built, Ctx, InputPoints, Largest};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
@@ -325,7 +325,7 @@ fn build_all(
     raw: Vec<RawPart>,
     ctx: &Ctx,
     problems: &mut Vec<Problem>,
-) -> (Vec<Part>, Vec<Option<Vec<[f64; 3]>>>, Vec<Repairs>) {
+) -> (Vec<Part>, Vec<InputPoints>, Vec<Repairs>) {
     let progress = &ctx.opts.progress;
     let counter = progress.counter(phases::VALIDATING, raw.len());
     let built: Vec<Built> = raw
