@@ -3,7 +3,8 @@
 
 use crate::limits::Stopped;
 use crate::Global;
-use apart::assembly::{LoadSeconds, Progress, ProgressFn};
+use apart::assembly::LoadSeconds;
+use apart::kernel::progress::{phases, Progress};
 use apart::kernel::Aabb;
 use apart::kernel::Grid;
 use apart::mesh::Problem;
@@ -11,7 +12,6 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
 
 /// "load T ms (read a, validate b, ...)": the load's wall time and its stages (the
 /// stages that took under 0.05 ms are left out).
@@ -536,9 +536,10 @@ fn shows_progress(global: &Global) -> bool {
     !global.quiet && !global.json && std::io::stderr().is_terminal()
 }
 
-/// The loader's hook: records each loading stage as the run's phase (for the messages
-/// of `--timeout` and `--max-memory`) and, on a terminal, drives a progress bar.
-pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
+/// The loader's progress: records each loading phase as the run's phase (for the
+/// messages of `--timeout` and `--max-memory`) and, on a terminal, drives a progress
+/// bar.
+pub fn progress(global: &Global) -> (Option<ProgressBar>, Progress) {
     set_quiet(global.quiet);
     crate::limits::set_phase("loading");
     let bar = shows_progress(global).then(|| {
@@ -554,23 +555,23 @@ pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
         bar
     });
     let b = bar.clone();
-    let hook: ProgressFn = Arc::new(move |p: Progress| {
-        if p.done == 0 {
-            crate::limits::set_phase(match p.stage.label() {
-                "reading" => "loading (reading files)",
-                "validating" => "loading (validating parts)",
-                "decomposing" => "loading (convex decomposition)",
-                "overlaps" => "loading (overlaps between parts)",
+    let progress = Progress::with_callback(move |phase, done, total| {
+        if done == 0 {
+            crate::limits::set_phase(match phase {
+                phases::READING => "loading (reading files)",
+                phases::VALIDATING => "loading (validating parts)",
+                phases::DECOMPOSING => "loading (convex decomposition)",
+                phases::OVERLAPS => "loading (overlaps between parts)",
                 _ => "loading",
             });
         }
         if let Some(b) = &b {
-            b.set_message(p.stage.label());
-            b.set_length(p.total as u64);
-            b.set_position(p.done as u64);
+            b.set_message(phase);
+            b.set_length(total as u64);
+            b.set_position(done as u64);
         }
     });
-    (bar, hook)
+    (bar, progress)
 }
 
 /// A bar counting `total` items of `label` with the time left (`apart batch`), hidden
