@@ -144,17 +144,7 @@ fn overlaps(
         if boxes[i].is_empty() {
             continue;
         }
-        let mut near = Vec::new();
-        bvh.query(&boxes[i], |j| {
-            let j = j as usize;
-            if j > i
-                && boxes[i].overlaps_open(&boxes[j])
-                && disjoint.binary_search(&(i, j)).is_err()
-            {
-                near.push(j);
-            }
-        });
-        near.sort_unstable();
+        let near = crate::overlap::later_candidates(&bvh, &boxes, i, disjoint);
         for batch in near.chunks(256) {
             if progress.stopped() {
                 return Err(Unmeasured::Stopped);

@@ -151,6 +151,27 @@ fn solids(p: &Part) -> Vec<Cow<'_, Mesh>> {
 /// message per pair (4.5 million for 3,000 copies).
 pub(crate) const MAX_LISTED_OVERLAPS: usize = 100;
 
+/// The parts after `i` whose open boxes meet part `i`'s (found through `bvh`, built on
+/// `boxes`), but for the pairs `disjoint` (`(i, j)`, `i < j`, sorted) known not to
+/// overlap: the candidates of the overlap check and of the tolerance's measurement,
+/// increasing.
+pub(crate) fn later_candidates(
+    bvh: &apart_kernel::Bvh,
+    boxes: &[Aabb],
+    i: usize,
+    disjoint: &[(usize, usize)],
+) -> Vec<usize> {
+    let mut near = Vec::new();
+    bvh.query(&boxes[i], |j| {
+        let j = j as usize;
+        if j > i && boxes[i].overlaps_open(&boxes[j]) && disjoint.binary_search(&(i, j)).is_err() {
+            near.push(j);
+        }
+    });
+    near.sort_unstable();
+    near
+}
+
 /// Problems for the pairs of parts whose interiors overlap, the first
 /// [`MAX_LISTED_OVERLAPS`] in pair order (then one problem saying the list stops); the
 /// pairs `disjoint` (`(i, j)`, `i < j`, sorted) are already known not to. Candidate
@@ -178,17 +199,7 @@ pub(crate) fn check_parts(
         if boxes[i].is_empty() {
             continue;
         }
-        let mut near = Vec::new();
-        bvh.query(&boxes[i], |j| {
-            let j = j as usize;
-            if j > i
-                && boxes[i].overlaps_open(&boxes[j])
-                && disjoint.binary_search(&(i, j)).is_err()
-            {
-                near.push(j);
-            }
-        });
-        near.sort_unstable();
+        let near = later_candidates(&bvh, &boxes, i, disjoint);
         for batch in near.chunks(64) {
             if opts.progress.stopped() {
                 return out;
