@@ -12,6 +12,7 @@
 //! planning jobs ([`gate`]).
 
 pub mod check;
+pub mod decompose;
 pub mod facts;
 pub mod gate;
 pub mod partition;
