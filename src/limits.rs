@@ -76,9 +76,10 @@ static STOPPING: AtomicBool = AtomicBool::new(false);
 static JSON: AtomicU8 = AtomicU8::new(0);
 
 /// Ends the run: `message` (already free of characters that need JSON escaping) as an
-/// error line on standard error, and as a JSON error object with `--json`; exit code 1.
-/// Formats into fixed buffers, so it is safe to call from the allocator.
-fn stop(message: std::fmt::Arguments) -> ! {
+/// error line on standard error, and as a JSON error object with `--json` whose
+/// `"status"` is `status` ("timeout", "out of memory"); exit code 1. Formats into fixed
+/// buffers, so it is safe to call from the allocator.
+fn stop(status: &str, message: std::fmt::Arguments) -> ! {
     use std::fmt::Write;
     let mut text = Buf::new();
     let _ = text.write_fmt(message);
@@ -102,6 +103,8 @@ fn stop(message: std::fmt::Arguments) -> ! {
             "\n{\"valid\": false, \"error\": \""
         });
         let _ = out.write_str(std::str::from_utf8(text.as_bytes()).unwrap_or("stopped"));
+        let _ = out.write_str("\", \"status\": \"");
+        let _ = out.write_str(status);
         let _ = out.write_str("\"}\n");
         raw_write(1, out.as_bytes());
     }
@@ -423,7 +426,7 @@ pub fn start_watchdog(seconds: f64) {
                 let grace = grace(seconds);
                 sleep_until(deadline + std::time::Duration::from_secs_f64(grace));
                 if !ANSWERING.load(Relaxed) && claim_stop() {
-                    stop(format_args!(
+                    stop("timeout", format_args!(
                         "stopped after {seconds} s: {} (--timeout {seconds}; no partial answer within {grace} s more)",
                         phase()
                     ));
@@ -431,7 +434,7 @@ pub fn start_watchdog(seconds: f64) {
                 return;
             }
             if claim_stop() {
-                stop(format_args!(
+                stop("timeout", format_args!(
                     "stopped after {seconds} s: {} (--timeout {seconds})",
                     phase()
                 ));
@@ -535,12 +538,15 @@ fn over_budget(live: usize) {
     if !claim_stop() {
         return;
     }
-    stop(format_args!(
-        "out of memory budget (--max-memory {}) during {}: {} MiB of heap asked for",
-        limit_text(),
-        phase(),
-        live >> 20
-    ))
+    stop(
+        "out of memory",
+        format_args!(
+            "out of memory budget (--max-memory {}) during {}: {} MiB of heap asked for",
+            limit_text(),
+            phase(),
+            live >> 20
+        ),
+    )
 }
 
 /// The planners' budget question ([`apart::plan::Progress::with_budget`]): whether
@@ -578,16 +584,29 @@ pub fn large_estimate(_phase: &'static str, what: &str) {
     }
 }
 
+/// The memory budget refused what a job was about to build: the error that ends the
+/// run (its JSON error object says `"status": "out of memory"`).
+#[derive(Debug)]
+pub struct OverBudget(pub String);
+
+impl std::fmt::Display for OverBudget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for OverBudget {}
+
 /// A job's error for the command line: the memory budget's refusal words the budget
 /// and what is left.
 pub fn job_error(e: apart::jobs::JobError, _global: &crate::Global) -> anyhow::Error {
     match e {
         apart::jobs::JobError::Plan(e) => e.into(),
-        apart::jobs::JobError::OverBudget { what, .. } => anyhow::anyhow!(
+        apart::jobs::JobError::OverBudget { what, .. } => anyhow::Error::new(OverBudget(format!(
             "out of memory budget (--max-memory {}): {what}, {} MiB are left",
             limit_text(),
             memory_left().unwrap_or(0) >> 20
-        ),
+        ))),
         apart::jobs::JobError::Stack(e) => e.into(),
         e @ apart::jobs::JobError::Part { .. } => anyhow::anyhow!("{e}"),
         apart::jobs::JobError::NotFinite { setting, value } => anyhow::anyhow!(

@@ -3,7 +3,8 @@
 
 use crate::limits::Stopped;
 use crate::Global;
-use apart::assembly::{LoadSeconds, Progress, ProgressFn};
+use apart::assembly::LoadSeconds;
+use apart::kernel::progress::{phases, Progress};
 use apart::kernel::Aabb;
 use apart::kernel::Grid;
 use apart::mesh::Problem;
@@ -11,7 +12,6 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
 
 /// "load T ms (read a, validate b, ...)": the load's wall time and its stages (the
 /// stages that took under 0.05 ms are left out).
@@ -536,9 +536,10 @@ fn shows_progress(global: &Global) -> bool {
     !global.quiet && !global.json && std::io::stderr().is_terminal()
 }
 
-/// The loader's hook: records each loading stage as the run's phase (for the messages
-/// of `--timeout` and `--max-memory`) and, on a terminal, drives a progress bar.
-pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
+/// The loader's progress: records each loading phase as the run's phase (for the
+/// messages of `--timeout` and `--max-memory`) and, on a terminal, drives a progress
+/// bar.
+pub fn progress(global: &Global) -> (Option<ProgressBar>, Progress) {
     set_quiet(global.quiet);
     crate::limits::set_phase("loading");
     let bar = shows_progress(global).then(|| {
@@ -554,23 +555,23 @@ pub fn progress(global: &Global) -> (Option<ProgressBar>, ProgressFn) {
         bar
     });
     let b = bar.clone();
-    let hook: ProgressFn = Arc::new(move |p: Progress| {
-        if p.done == 0 {
-            crate::limits::set_phase(match p.stage.label() {
-                "reading" => "loading (reading files)",
-                "validating" => "loading (validating parts)",
-                "decomposing" => "loading (convex decomposition)",
-                "overlaps" => "loading (overlaps between parts)",
+    let progress = Progress::with_callback(move |phase, done, total| {
+        if done == 0 {
+            crate::limits::set_phase(match phase {
+                phases::READING => "loading (reading files)",
+                phases::VALIDATING => "loading (validating parts)",
+                phases::DECOMPOSING => "loading (convex decomposition)",
+                phases::OVERLAPS => "loading (overlaps between parts)",
                 _ => "loading",
             });
         }
         if let Some(b) = &b {
-            b.set_message(p.stage.label());
-            b.set_length(p.total as u64);
-            b.set_position(p.done as u64);
+            b.set_message(phase);
+            b.set_length(total as u64);
+            b.set_position(done as u64);
         }
     });
-    (bar, hook)
+    (bar, progress)
 }
 
 /// A bar counting `total` items of `label` with the time left (`apart batch`), hidden
@@ -721,6 +722,44 @@ pub fn exit_code(stop: &Option<Stopped>, answer: std::process::ExitCode) -> std:
     }
 }
 
+/// An assembly that is not valid: the error that ends a planning command, with the
+/// problems that make it so (in the JSON error object's `"problems"`).
+#[derive(Debug)]
+pub struct Invalid {
+    /// The error line.
+    pub message: String,
+    /// Its errors.
+    pub problems: Vec<apart::mesh::Problem>,
+}
+
+impl std::fmt::Display for Invalid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Invalid {}
+
+/// The JSON error object of a failure: `{"valid": false, "error": ..., "status": ...}`,
+/// with the problems of an invalid assembly.
+fn failure_json(e: &anyhow::Error, msg: &str) -> serde_json::Value {
+    let mut v = serde_json::json!({ "valid": false, "error": msg, "status": failure_status(e) });
+    if let Some(i) = e.downcast_ref::<Invalid>() {
+        v["problems"] = serde_json::to_value(&i.problems).unwrap_or_default();
+    }
+    v
+}
+
+/// The `"status"` of a failure's JSON error object: "out of memory" when the memory
+/// budget refused the work, "error" otherwise (the exit code tells the rest).
+fn failure_status(e: &anyhow::Error) -> &'static str {
+    if e.downcast_ref::<crate::limits::OverBudget>().is_some() {
+        "out of memory"
+    } else {
+        "error"
+    }
+}
+
 /// Reports a failure that stopped a command: one clear line on standard error (and a
 /// JSON object on standard output with `--json`, an "end" line with `sequence --jsonl`).
 pub fn fail(global: &Global, e: &anyhow::Error) {
@@ -734,9 +773,10 @@ pub fn fail(global: &Global, e: &anyhow::Error) {
     }
     use std::io::Write;
     if global.json {
-        let _ = json(&serde_json::json!({ "valid": false, "error": msg }));
+        let _ = json(&failure_json(e, &msg));
     } else if crate::limits::json_lines() {
-        let end = serde_json::json!({ "event": "end", "valid": false, "error": msg });
+        let mut end = failure_json(e, &msg);
+        end["event"] = "end".into();
         to_stdout(|out| writeln!(out, "{end}").and_then(|()| out.flush()));
     }
     let _ = writeln!(std::io::stderr().lock(), "error: {msg}");

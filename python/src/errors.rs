@@ -97,19 +97,7 @@ pub fn require_valid(py: Python<'_>, loaded: &Loaded) -> PyResult<()> {
 /// [`require_valid`], excusing the overlaps of part `free` (the part to place, which
 /// may be given where it overlaps the others, as `apart place` allows).
 pub fn require_valid_but(py: Python<'_>, loaded: &Loaded, free: Option<&str>) -> PyResult<()> {
-    let excused = |p: &apart_mesh::Problem| {
-        free.is_some_and(|n| match &p.kind {
-            apart_mesh::ProblemKind::Overlap { other } => {
-                other.as_str() == n || p.part.as_deref() == Some(n)
-            }
-            _ => false,
-        })
-    };
-    let errors: Vec<_> = loaded
-        .problems
-        .iter()
-        .filter(|p| p.is_error() && !excused(p))
-        .collect();
+    let errors = apart_jobs::gate::errors(loaded, free);
     let Some(first) = errors.first() else {
         return Ok(());
     };

@@ -21,6 +21,7 @@ mod work;
 
 use apart_assembly::{Decompose, LoadOptions, Loaded, Tolerance};
 use apart_jobs::partition::{Listing, PartitionOptions, DEFAULT_LIMIT, EXAMPLES_PER_KIND};
+use apart_kernel::progress::{phases, Progress};
 use errors::{input_error, load_error};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -50,8 +51,9 @@ struct LoadArgs {
 }
 
 impl LoadArgs {
-    /// The library's options, with loading stages reported to `progress`.
-    fn options(self, progress: &apart_kernel::progress::Progress) -> LoadOptions {
+    /// The library's options, with loading phases reported to `progress` under the
+    /// names Python shows, and its stop flag watched.
+    fn options(self, progress: &Progress) -> LoadOptions {
         let p = progress.clone();
         let tolerance = match (self.tolerance_auto, self.tolerance) {
             (true, _) => Tolerance::Auto,
@@ -62,9 +64,10 @@ impl LoadArgs {
         #[allow(clippy::needless_update)]
         LoadOptions {
             grid_bits: self.grid_bits,
-            progress: Some(Arc::new(move |s: apart_assembly::Progress| {
-                p.report(stage_label(s.stage), s.done, s.total);
-            })),
+            progress: Progress::with_callback(move |phase, done, total| {
+                p.report(phase_label(phase), done, total);
+            })
+            .with_stop_flag(progress.stop_flag()),
             decompose: if self.decompose_all {
                 Decompose::Always
             } else {
@@ -80,13 +83,14 @@ impl LoadArgs {
     }
 }
 
-/// The phase name of a loading stage.
-fn stage_label(s: apart_assembly::Stage) -> &'static str {
-    match s {
-        apart_assembly::Stage::Reading => "loading: reading files",
-        apart_assembly::Stage::Validating => "loading: validating parts",
-        apart_assembly::Stage::Decomposing => "loading: convex decomposition",
-        apart_assembly::Stage::Overlaps => "loading: overlaps between parts",
+/// The name Python shows for a loading phase.
+fn phase_label(phase: &'static str) -> &'static str {
+    match phase {
+        phases::READING => "loading: reading files",
+        phases::VALIDATING => "loading: validating parts",
+        phases::DECOMPOSING => "loading: convex decomposition",
+        phases::OVERLAPS => "loading: overlaps between parts",
+        other => other,
     }
 }
 
@@ -186,7 +190,7 @@ fn from_meshes(
         stoppable: false,
     };
     let (loaded, _) = run(py, limits, move |p| {
-        memory::load(&name, &meshes, &args.options(p))
+        memory::load(name, meshes, &args.options(p))
     })?;
     let loaded = loaded.map_err(|message| load_error(py, message, None))?;
     Ok(Assembly {

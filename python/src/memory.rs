@@ -1,12 +1,11 @@
-//! Assemblies from arrays: each part's triangles are written as an OFF file (every
-//! `f64` in its shortest exact decimal, so nothing is rounded) beside an
-//! `assembly.json` manifest in a temporary folder, which the library's loader reads as
-//! any manifest. Paths of that folder never reach the user: problems name the part.
+//! Assemblies from arrays: each part's vertices and triangles are handed to the
+//! library's loader as a [`Description`] in memory, which it loads as it would the
+//! manifest of those meshes. No file is written, and problems name the part and the
+//! element only.
 
-use apart_assembly::{LoadOptions, Loaded};
-use apart_formats::Polygons;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use apart_assembly::{
+    load_description, DescribedPart, Description, LoadOptions, Loaded, MeshSource,
+};
 
 /// One part's triangle mesh.
 pub struct MemMesh {
@@ -25,13 +24,11 @@ pub fn mesh(name: &str, vertices: &[u8], faces: &[u8]) -> Result<MemMesh, MeshEr
     if vertices.len() % 24 != 0 || faces.len() % 24 != 0 {
         return Err((None, "vertices and faces must have three columns".into()));
     }
-    let f64s = |b: &[u8]| -> Vec<f64> {
-        b.chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-            .collect()
-    };
-    let v = f64s(vertices);
-    let vertices: Vec<[f64; 3]> = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let f = |b: &[u8]| f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+    let vertices: Vec<[f64; 3]> = vertices
+        .chunks_exact(24)
+        .map(|c| [f(&c[..8]), f(&c[8..16]), f(&c[16..])])
+        .collect();
     if let Some(k) = vertices
         .iter()
         .position(|p| p.iter().any(|x| !x.is_finite()))
@@ -69,65 +66,19 @@ pub fn mesh(name: &str, vertices: &[u8], faces: &[u8]) -> Result<MemMesh, MeshEr
     })
 }
 
-/// A temporary folder, removed when dropped.
-struct TempDir(PathBuf);
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 /// Loads the meshes as the parts of an assembly named `name`, in order.
-pub fn load(name: &str, meshes: &[MemMesh], opts: &LoadOptions) -> Result<Loaded, String> {
-    static COUNT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "apart-python-{}-{}",
-        std::process::id(),
-        COUNT.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let guard = TempDir(dir.clone());
-    let mut parts = Vec::new();
-    for (k, m) in meshes.iter().enumerate() {
-        let file = format!("part{k}.off");
-        let mut bytes = Vec::new();
-        let polygons = Polygons::from_triangles(&m.faces);
-        apart_formats::off::write(&mut bytes, &m.vertices, &polygons)
-            .map_err(|e| format!("part \"{}\": {e}", m.name))?;
-        std::fs::write(dir.join(&file), bytes)
-            .map_err(|e| format!("cannot write a temporary file: {e}"))?;
-        parts.push(serde_json::json!({"name": m.name, "mesh": file}));
-    }
-    let manifest = dir.join("assembly.json");
-    let text = serde_json::json!({"name": name, "parts": parts}).to_string();
-    std::fs::write(&manifest, text).map_err(|e| format!("cannot write a temporary file: {e}"))?;
-    let loaded = apart_assembly::load(&manifest, opts).map_err(|e| hide(&e.to_string(), &dir))?;
-    let loaded = forget_files(loaded, &dir);
-    drop(guard);
-    Ok(loaded)
-}
-
-/// `text` without the temporary folder's path (its files become their part's number).
-fn hide(text: &str, dir: &Path) -> String {
-    let d = dir.display().to_string();
-    text.replace(&format!("{d}/"), "").replace(&d, "")
-}
-
-/// The loaded assembly with no path of the temporary folder: problems and repairs name
-/// no file, parts have no source.
-fn forget_files(mut loaded: Loaded, dir: &Path) -> Loaded {
-    for p in &mut loaded.problems {
-        if p.file.as_deref().is_some_and(|f| f.starts_with(dir)) {
-            p.file = None;
-        }
-        p.message = hide(&p.message, dir);
-    }
-    for r in &mut loaded.repairs {
-        r.file = PathBuf::new();
-    }
-    for part in &mut loaded.assembly.parts {
-        part.source = PathBuf::new();
-    }
-    loaded
+pub fn load(name: String, meshes: Vec<MemMesh>, opts: &LoadOptions) -> Result<Loaded, String> {
+    let parts = meshes
+        .into_iter()
+        .map(|m| {
+            DescribedPart::new(
+                m.name,
+                MeshSource::Arrays {
+                    vertices: m.vertices,
+                    triangles: m.faces,
+                },
+            )
+        })
+        .collect();
+    load_description(Description { name, parts }, opts).map_err(|e| e.to_string())
 }

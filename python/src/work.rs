@@ -19,9 +19,10 @@ pub struct Limits {
     pub callback: Option<Py<PyAny>>,
     /// Seconds after which the stop flag is raised.
     pub timeout: Option<f64>,
-    /// The work watches the stop flag (planners do; the loader does not, and on
-    /// Ctrl-C it is left to finish in the background while `KeyboardInterrupt` is
-    /// raised at once). Only such work is stopped by the memory budget's soft limit.
+    /// The work watches the stop flag and has a partial answer (planners do; the
+    /// loader watches it but has none, so on Ctrl-C `KeyboardInterrupt` is raised at
+    /// once and the raised flag ends the loader in the background). Only such work is
+    /// stopped by the memory budget's soft limit.
     pub stoppable: bool,
 }
 

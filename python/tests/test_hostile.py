@@ -146,10 +146,10 @@ def test_a_planner_over_a_tiny_budget_stops_and_the_next_call_works(lattice, bud
         assert p.status == "out of memory" and not p.complete
         assert p.stopped["by"] == "memory budget" and p.stopped["detail"]
         assert solution_set(p) <= solution_set(full)
-    # A call that cannot stop (loading 216 cubes needs a few MiB) raises.
+    # A call that cannot stop (loading 512 cubes from arrays needs a few MiB) raises.
     apart.set_memory_budget(apart.memory_in_use() + (1 << 20))
     with pytest.raises(apart.OutOfMemoryBudget, match="during loading"):
-        apart.Assembly.from_meshes(loose_cubes(6), name="more")
+        apart.Assembly.from_meshes(loose_cubes(8), name="more")
     # The interpreter carries on: with the default budget the same call answers in full.
     apart.set_memory_budget("default")
     again = asm.partition(all=True)

@@ -260,6 +260,8 @@ fn run_one(exe: &Path, command: BatchCommand, asm: &Path, key: String, extra: &[
         .arg(asm)
         .args(extra)
         .stdin(Stdio::null())
+        // Its warnings and error line are not read: its JSON says what happened.
+        .stderr(Stdio::null())
         .output();
     let seconds = t.elapsed().as_secs_f64();
     let out = match out {
@@ -268,25 +270,28 @@ fn run_one(exe: &Path, command: BatchCommand, asm: &Path, key: String, extra: &[
             return json!({"assembly": key, "status": "failed", "error": e.to_string(), "seconds": seconds})
         }
     };
-    let answer: Option<Value> = serde_json::from_slice(&out.stdout).ok();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let error_line = stderr
-        .lines()
-        .find(|l| l.starts_with("error"))
-        .or_else(|| stderr.lines().last())
-        .unwrap_or("")
-        .to_string();
+    let answer = answer_of(&out.stdout);
     let code = out.status.code();
+    // The status its answer or its JSON error object states: "out of memory" or
+    // "timeout" tell a run that ended with exit code 1 from invalid input.
+    let reported = answer
+        .as_ref()
+        .and_then(|a| a.get("status"))
+        .and_then(Value::as_str);
     // The exit codes of the README's table (`check` exits 1 on invalid input too).
     let status = match code {
         Some(0) => "ok",
         Some(2) => "interlocked",
         Some(3) => "timeout",
         Some(130) => "interrupted",
-        Some(1) if stderr.contains("out of memory budget") => "out of memory",
-        Some(1) if stderr.contains("stopped after") => "timeout",
+        Some(1) if reported == Some("out of memory") => "out of memory",
+        Some(1) if reported == Some("timeout") => "timeout",
         Some(1) => "invalid input",
         _ => "failed",
+    };
+    let error_line = match &answer {
+        Some(a) => error_of(a),
+        None => Some(format!("no answer ({})", out.status)),
     };
     let mut line = json!({
         "assembly": key,
@@ -316,13 +321,67 @@ fn run_one(exe: &Path, command: BatchCommand, asm: &Path, key: String, extra: &[
                 };
             }
         }
-        if status != "ok" && status != "interlocked" && !error_line.is_empty() {
-            line["error"] = error_line.into();
+        if status != "ok" && status != "interlocked" {
+            if let Some(e) = error_line {
+                line["error"] = e.into();
+            }
         }
-    } else if !error_line.is_empty() {
-        line["error"] = error_line.into();
+    } else if let Some(e) = error_line {
+        line["error"] = e.into();
     }
     line
+}
+
+/// A child's JSON on standard output: its answer, or its JSON error object (the last
+/// line, after a partial answer cut short).
+fn answer_of(stdout: &[u8]) -> Option<Value> {
+    serde_json::from_slice(stdout).ok().or_else(|| {
+        let text = String::from_utf8_lossy(stdout);
+        let last = text.lines().rev().find(|l| !l.trim().is_empty())?;
+        serde_json::from_str(last).ok()
+    })
+}
+
+/// What went wrong, from a child's JSON: its error object's `"error"`, or where its
+/// partial answer stopped.
+fn error_of(answer: &Value) -> Option<String> {
+    // An invalid assembly: its first error, which names the file, part and element.
+    if let Some(p) = answer
+        .get("problems")
+        .and_then(Value::as_array)
+        .and_then(|ps| ps.iter().find(|p| p["severity"] == "error"))
+    {
+        let text = |k: &str| p.get(k).and_then(Value::as_str);
+        let mut at: Vec<String> = Vec::new();
+        match (text("file"), text("part")) {
+            (Some(f), Some(n)) => at.push(format!("{f} (part \"{n}\")")),
+            (Some(f), None) => at.push(f.to_string()),
+            (None, Some(n)) => at.push(format!("part \"{n}\"")),
+            (None, None) => {}
+        }
+        at.extend(text("element").map(str::to_string));
+        let message = text("message").unwrap_or("?");
+        return Some(if at.is_empty() {
+            format!("error: {message}")
+        } else {
+            format!("error: {}: {message}", at.join(", "))
+        });
+    }
+    if let Some(e) = answer.get("error").and_then(Value::as_str) {
+        return Some(e.to_string());
+    }
+    let stopped = answer.get("stopped")?;
+    let by = stopped.get("by").and_then(Value::as_str).unwrap_or("?");
+    let phase = stopped.get("phase").and_then(Value::as_str).unwrap_or("?");
+    let after = stopped
+        .get("after_seconds")
+        .and_then(Value::as_f64)
+        .unwrap_or(0.0);
+    let mut e = format!("stopped by {by} after {after} s during {phase}: partial answer");
+    if let Some(d) = stopped.get("detail").and_then(Value::as_str) {
+        e.push_str(&format!(" ({d})"));
+    }
+    Some(e)
 }
 
 /// Runs `apart batch`.

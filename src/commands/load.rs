@@ -3,21 +3,35 @@
 
 use crate::output;
 use crate::Global;
-use apart::assembly::{load, Assembly, Decompose, LoadOptions, Loaded};
+use apart::assembly::{
+    load, load_description, Assembly, Decompose, DescribedPart, Description, LoadOptions, Loaded,
+    MeshSource,
+};
 use apart::formats::escape::{escape, path as escaped};
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+
+/// What a command loads: an assembly by its path, or mesh files named on the command
+/// line.
+#[derive(Clone, Copy)]
+enum Input<'a> {
+    Path(&'a Path),
+    Named(&'a NamedFiles),
+}
 
 /// Loads `path` with the global options, a progress bar on a terminal, and the given
 /// decomposition policy.
 pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::Result<Loaded> {
-    let (bar, hook) = output::progress(global);
+    load_input(Input::Path(path), global, decompose)
+}
+
+/// Loads `input` as [`load_with`] does.
+fn load_input(input: Input, global: &Global, decompose: Decompose) -> anyhow::Result<Loaded> {
+    let (bar, progress) = output::progress(global);
     // The loader's other options keep their defaults (also any added later).
     #[allow(clippy::needless_update)]
     let opts = LoadOptions {
         grid_bits: global.grid_bits,
-        progress: Some(hook),
+        progress,
         decompose,
         verify: global.verify,
         tolerance: crate::input_facts::tolerance(global)?,
@@ -26,14 +40,14 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
         allow_outside: global.allow_outside,
         ..LoadOptions::default()
     };
-    let loaded = load(path, &opts);
+    let loaded = match input {
+        Input::Path(path) => load(path, &opts),
+        Input::Named(named) => load_description(named.description.clone(), &opts),
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let loaded = match named_files(path) {
-        Some(named) => named.rename(loaded.map_err(|e| anyhow::anyhow!("{e}"))?),
-        None => loaded?,
-    };
+    let loaded = loaded?;
     // Files the user may have expected to be parts (printed also with --quiet, which
     // keeps warnings).
     for s in &loaded.skipped {
@@ -90,20 +104,22 @@ pub fn load_valid(path: &Path, global: &Global) -> anyhow::Result<Loaded> {
 /// [`load_valid`], except that overlaps of the part named `free` with other parts are
 /// allowed (a part about to be placed may start where others are).
 pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyhow::Result<Loaded> {
-    let loaded = load_with(path, global, Decompose::Always)?;
-    let excused = |p: &apart::mesh::Problem| {
-        free.is_some_and(|n| match &p.kind {
-            apart::mesh::ProblemKind::Overlap { other } => {
-                other.as_str() == n || p.part.as_deref() == Some(n)
-            }
-            _ => false,
-        })
-    };
-    let errors: Vec<_> = loaded
-        .problems
-        .iter()
-        .filter(|p| p.is_error() && !excused(p))
-        .collect();
+    valid_but(Input::Path(path), global, free)
+}
+
+/// [`load_valid_but`] for mesh files named on the command line.
+pub fn load_valid_named(
+    named: &NamedFiles,
+    global: &Global,
+    free: Option<&str>,
+) -> anyhow::Result<Loaded> {
+    valid_but(Input::Named(named), global, free)
+}
+
+/// [`load_valid_but`] of either input.
+fn valid_but(input: Input, global: &Global, free: Option<&str>) -> anyhow::Result<Loaded> {
+    let loaded = load_input(input, global, Decompose::Always)?;
+    let errors = apart::jobs::gate::errors(&loaded, free);
     if !errors.is_empty() {
         for p in &errors {
             output::eline(p);
@@ -113,18 +129,23 @@ pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyho
             errors.len(),
             if errors.len() == 1 { "" } else { "s" }
         );
-        match named_files(path) {
+        let message = match input {
             // No single path to `apart check`: the errors above are all there is.
-            Some(named) => anyhow::bail!(
+            Input::Named(named) => format!(
                 "{} do not make a valid assembly ({count} above)",
                 named.given.join(" and ")
             ),
-            None => anyhow::bail!(
+            Input::Path(path) => format!(
                 "{} is not a valid assembly ({count}); run `apart check {}` for the details",
                 escaped(path),
                 escaped(path)
             ),
-        }
+        };
+        let problems = errors.into_iter().cloned().collect();
+        return Err(anyhow::Error::new(crate::output::Invalid {
+            message,
+            problems,
+        }));
     }
     for p in loaded
         .problems
@@ -138,74 +159,28 @@ pub fn load_valid_but(path: &Path, global: &Global, free: Option<&str>) -> anyho
     Ok(loaded)
 }
 
-/// The global options for loading a [`files_manifest`]: the files were named on the
-/// command line, so they may lie outside the manifest's temporary folder.
-pub fn for_named_files(global: &Global) -> Global {
-    Global {
-        allow_outside: true,
-        ..global.clone()
-    }
-}
-
-/// The mesh files named on the command line behind a temporary manifest: what the user
-/// typed, by the absolute path the manifest holds.
-#[derive(Clone)]
-struct NamedFiles {
-    /// The files as given, in order.
+/// Mesh files named on the command line as the parts of one assembly (so that they
+/// are snapped to one grid): each file one part, named by its stem (made unique), read
+/// wherever it lies and named in messages as given.
+pub struct NamedFiles {
+    /// The files as given, escaped for messages, in order.
     given: Vec<String>,
-    /// Absolute path (as written in the manifest) to the path as given.
-    by_abs: HashMap<PathBuf, PathBuf>,
+    /// The part names, in order.
+    names: Vec<String>,
+    /// The assembly to load.
+    description: Description,
 }
 
 impl NamedFiles {
-    /// The path the user gave for `p`, when `p` is one of the manifest's files.
-    fn given_path(&self, p: &Path) -> Option<PathBuf> {
-        self.by_abs.get(p).cloned()
-    }
-
-    /// `loaded` with every path of the temporary manifest replaced by the one given on
-    /// the command line (problems, repairs, part sources), so that no temporary path
-    /// reaches the user.
-    fn rename(&self, mut loaded: Loaded) -> Loaded {
-        let swap = |p: &mut PathBuf| {
-            if let Some(g) = self.given_path(p) {
-                *p = g;
-            }
-        };
-        for p in &mut loaded.problems {
-            if let Some(f) = &mut p.file {
-                swap(f);
-            }
-        }
-        for r in &mut loaded.repairs {
-            swap(&mut r.file);
-        }
-        for part in &mut loaded.assembly.parts {
-            swap(&mut part.source);
-            part.piece_sources.iter_mut().for_each(swap);
-        }
-        loaded
+    /// The part names, one per file, in order.
+    pub fn names(&self) -> &[String] {
+        &self.names
     }
 }
 
-/// The temporary manifests alive in this process, by their path.
-static NAMED: Mutex<Option<HashMap<PathBuf, NamedFiles>>> = Mutex::new(None);
-
-/// The files behind `path` when it is a temporary manifest of [`files_manifest`].
-fn named_files(path: &Path) -> Option<NamedFiles> {
-    let map = NAMED.lock().unwrap_or_else(|e| e.into_inner());
-    map.as_ref()?.get(path).cloned()
-}
-
-/// A temporary manifest naming mesh files as parts of one assembly (so that they are
-/// snapped to one grid), with the part names (file stems, made unique) and a guard that
-/// removes the manifest's folder when dropped. Load it with [`for_named_files`]: the
-/// loading functions of this module report the files by the names given, never by the
-/// temporary manifest's paths.
-pub fn files_manifest(
-    files: &[&String],
-    tag: &str,
-) -> anyhow::Result<(PathBuf, Vec<String>, TempDir)> {
+/// The mesh files `files`, each to be loaded as one part with [`load_valid_named`]; an
+/// error when one is a folder or cannot be found.
+pub fn named_files(files: &[&String]) -> anyhow::Result<NamedFiles> {
     for f in files {
         match std::fs::metadata(f.as_str()) {
             Ok(m) if m.is_dir() => anyhow::bail!(
@@ -219,17 +194,9 @@ pub fn files_manifest(
             Err(e) => anyhow::bail!("cannot read {}: {e}", escape(f)),
         }
     }
-    let dir = std::env::temp_dir().join(format!("apart-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir)?;
-    let file = dir.join("assembly.json");
-    let guard = TempDir(dir.clone(), file.clone());
     let mut names: Vec<String> = Vec::new();
     let mut parts = Vec::new();
-    let mut by_abs = HashMap::new();
     for (k, f) in files.iter().enumerate() {
-        let abs = std::fs::canonicalize(f)
-            .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", escape(f)))?;
-        by_abs.insert(abs.clone(), PathBuf::from(f.as_str()));
         let mut name = Path::new(f.as_str())
             .file_stem()
             .map_or(format!("part{}", k + 1), |s| {
@@ -238,33 +205,20 @@ pub fn files_manifest(
         while names.contains(&name) {
             name.push_str("_2");
         }
-        parts.push(serde_json::json!({"name": name, "mesh": abs}));
+        parts.push(DescribedPart::new(
+            name.clone(),
+            MeshSource::File(PathBuf::from(f.as_str())),
+        ));
         names.push(name);
     }
-    let manifest = serde_json::json!({"name": names.join(" and "), "parts": parts});
-    std::fs::write(&file, serde_json::to_string(&manifest)?)?;
-    let named = NamedFiles {
+    Ok(NamedFiles {
         given: files.iter().map(|f| escape(f)).collect(),
-        by_abs,
-    };
-    NAMED
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .get_or_insert_with(HashMap::new)
-        .insert(file.clone(), named);
-    Ok((file, names, guard))
-}
-
-/// A temporary folder (and the manifest in it), removed and forgotten when dropped.
-pub struct TempDir(PathBuf, PathBuf);
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-        if let Some(map) = NAMED.lock().unwrap_or_else(|e| e.into_inner()).as_mut() {
-            map.remove(&self.1);
-        }
-    }
+        description: Description {
+            name: names.join(" and "),
+            parts,
+        },
+        names,
+    })
 }
 
 /// The index of the part named `name`, or an error that names the closest part names

@@ -4,7 +4,7 @@
 //! each cell, over discrete orientations about z. Exit code 0 when a position was found,
 //! 2 when the part fits nowhere in the region.
 
-use crate::commands::load::{files_manifest, for_named_files, load_valid_but};
+use crate::commands::load::{load_valid_but, load_valid_named, named_files};
 use crate::commands::placement_args::{
     parse_bases, parse_numbers, percent, write_pictures, PictureArgs, STACKING_PAPER,
 };
@@ -85,16 +85,18 @@ pub struct PlaceArgs {
 pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     crate::input_facts::no_tolerance(global, "place")?;
     let start = std::time::Instant::now();
-    let (path, name, tmp) = match args.inputs.as_slice() {
+    let (path, name, named) = match args.inputs.as_slice() {
         [asm, name] if !Path::new(name).is_file() => (PathBuf::from(asm), name.clone(), None),
         [fixed, new] => {
-            let (file, names, tmp) = files_manifest(&[fixed, new], "place")?;
-            (file, names[1].clone(), Some(tmp))
+            let named = named_files(&[fixed, new])?;
+            (PathBuf::from(fixed), named.names()[1].clone(), Some(named))
         }
         _ => anyhow::bail!("give an assembly and a part name, or two mesh files"),
     };
-    let named = tmp.as_ref().map(|_| for_named_files(global));
-    let loaded = load_valid_but(&path, named.as_ref().unwrap_or(global), Some(&name))?;
+    let loaded = match &named {
+        Some(named) => load_valid_named(named, global, Some(&name))?,
+        None => load_valid_but(&path, global, Some(&name))?,
+    };
     let mut inputs = output::Inputs::of(&path, &loaded);
     for given in &args.inputs {
         inputs.add(Path::new(given));

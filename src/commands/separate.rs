@@ -3,7 +3,7 @@
 //! direction of largest clearance. Exit code 0 when A can leave B, 2 when it cannot.
 
 use crate::commands::load::{
-    closest_names, files_manifest, for_named_files, load_valid, load_with, part_index,
+    closest_names, load_valid, load_valid_named, load_with, named_files, part_index,
 };
 use crate::input_facts::{tolerance_statement, Units};
 use crate::output;
@@ -26,7 +26,7 @@ pub struct SeparateArgs {
 
 /// Runs the command.
 pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
-    let (path, a_name, b_name, tmp) = match args.inputs.as_slice() {
+    let (path, a_name, b_name, named) = match args.inputs.as_slice() {
         [asm, a, b] => (PathBuf::from(asm), a.clone(), b.clone(), None),
         [asm, a] if is_assembly(asm) => return Err(one_name_missing(asm, a, global)),
         [a, b] if std::path::Path::new(a).is_file() && !std::path::Path::new(b).exists() => {
@@ -38,14 +38,16 @@ pub fn run(args: &SeparateArgs, global: &Global) -> anyhow::Result<ExitCode> {
             )
         }
         [a, b] => {
-            let (file, names, tmp) = files_manifest(&[a, b], "separate")?;
-            let [na, nb]: [String; 2] = names.try_into().expect("two names");
-            (file, na, nb, Some(tmp))
+            let named = named_files(&[a, b])?;
+            let [na, nb]: [String; 2] = named.names().to_vec().try_into().expect("two names");
+            (PathBuf::new(), na, nb, Some(named))
         }
         _ => anyhow::bail!("give an assembly and two part names, or two mesh files"),
     };
-    let named = tmp.as_ref().map(|_| for_named_files(global));
-    let loaded = load_valid(&path, named.as_ref().unwrap_or(global))?;
+    let loaded = match &named {
+        Some(named) => load_valid_named(named, global, None)?,
+        None => load_valid(&path, global)?,
+    };
     let asm = &loaded.assembly;
     anyhow::ensure!(
         asm.parts.len() >= 2,

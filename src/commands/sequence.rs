@@ -22,8 +22,8 @@ use apart::jobs::sequence::{region_seconds, sequence, step_answer, SequenceJobOp
 use apart::jobs::Status;
 use apart::plan::sequence::Keys;
 use apart::plan::{
-    partition_subset, parts_of, BlockingRegions, CellKind, KeepSolutions, MotionSpace, Options,
-    Part, Progress, Ranking, Rule, Sequence, SequenceOptions, Solution, Step, Tolerance,
+    partition_subset, parts_of, BlockingRegions, CellKind, Growth, KeepSolutions, MotionSpace,
+    Options, Part, Progress, Ranking, Rule, Sequence, SequenceOptions, Solution, Step,
 };
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -534,8 +534,8 @@ fn describe(names: &[String], s: &Step, step_unit: f64) -> String {
         _ => "isolated direction".to_string(),
     };
     let tol = match s.tolerance.map(|t| match t {
-        Tolerance::Finite(x) => Some(x * step_unit),
-        Tolerance::Unbounded => None,
+        Growth::Finite(x) => Some(x * step_unit),
+        Growth::Unbounded => None,
     }) {
         Some(Some(x)) => format!("; tolerates growth up to {x:.6}"),
         Some(None) => "; any growth".to_string(),

@@ -47,12 +47,23 @@ pub enum LoadError {
         /// What it is: "a named pipe (FIFO)", "a socket", "a character device"...
         kind: &'static str,
     },
+    /// An assembly description in memory breaks a manifest's rules (see
+    /// [`crate::load_description`]).
+    #[error("{}", escape(.0))]
+    Description(String),
     /// Nothing to load.
     #[error("{}: no parts found (expected mesh files .off .obj .stl .ply .gltf .glb, or assembly.json)", escaped(.0))]
     NoParts(PathBuf),
     /// No grid fits the coordinates.
     #[error("cannot choose the grid: {0}")]
     Grid(#[from] apart_kernel::GridError),
+    /// The stop flag of [`crate::LoadOptions::progress`] was raised: there is no partial
+    /// assembly.
+    #[error("loading stopped during {phase}: the stop flag was raised")]
+    Stopped {
+        /// The phase it stopped in ([`apart_kernel::progress::phases`]).
+        phase: &'static str,
+    },
 }
 
 fn read_message(path: &std::path::Path, cause: &ReadError) -> String {

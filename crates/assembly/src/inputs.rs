@@ -1,32 +1,65 @@
 //! What a path names: a folder of mesh files (with optional piece folders), one mesh
 //! file with one or several objects, or an `assembly.json` manifest (directly, or in
-//! the folder). The result is a list of part specifications, not yet read.
+//! the folder); and what a [`Description`] in memory lists, which a manifest becomes
+//! once parsed. The result is a list of part specifications, not yet read (but for
+//! meshes already in memory).
 
+use crate::description::{DescribedPart, Description, MeshSource};
 use crate::error::LoadError;
 use crate::manifest;
 use crate::model::Skipped;
 use apart_formats::escape::path as escaped;
 use apart_formats::transform::Affine;
-use apart_formats::{file_kind, read_file_with, Format, RawObject, ReadOptions};
+use apart_formats::{file_kind, read_file_with, Format, Polygons, RawObject, ReadOptions};
 use apart_mesh::Problem;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+/// Where the mesh data of one solid comes from.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub(crate) enum Origin {
+    /// A mesh file.
+    File(PathBuf),
+    /// The `k`-th mesh given as arrays (held in [`Plan::preloaded`]).
+    Arrays(usize),
+}
+
+impl Origin {
+    /// The file, when the data comes from one.
+    pub(crate) fn file(&self) -> Option<&Path> {
+        match self {
+            Origin::File(p) => Some(p),
+            Origin::Arrays(_) => None,
+        }
+    }
+}
+
 /// Where one solid comes from.
 #[derive(Clone, Debug)]
 pub(crate) struct SourceRef {
-    /// The mesh file.
-    pub path: PathBuf,
+    /// The mesh file, or arrays.
+    pub origin: Origin,
     /// One object of a multi-object file, or `None` for all of them merged.
     pub object: Option<usize>,
     /// Applied before snapping.
     pub transform: Affine,
 }
 
+impl SourceRef {
+    /// `problem` naming this source's file, when it comes from one.
+    pub(crate) fn locate(&self, problem: Problem) -> Problem {
+        match self.origin.file() {
+            Some(f) => problem.in_file(f),
+            None => problem,
+        }
+    }
+}
+
 /// A part to load.
 #[derive(Clone, Debug)]
 pub(crate) struct PartSpec {
     pub name: String,
+    /// Where the part comes from (see [`crate::Part::source`]; empty for arrays).
     pub source: PathBuf,
     pub mesh: Option<SourceRef>,
     pub pieces: Vec<SourceRef>,
@@ -35,16 +68,17 @@ pub(crate) struct PartSpec {
     pub splittable: bool,
 }
 
-/// The parts to load, with any problem found while looking for them, and files already
-/// read (a multi-object file is read to learn its objects).
+/// The parts to load, with any problem found while looking for them, and meshes already
+/// in memory (a multi-object file is read to learn its objects; arrays are given).
 pub(crate) struct Plan {
     pub name: String,
     /// The assembly's folder, which every mesh file it names must resolve inside (unless
-    /// [`crate::LoadOptions::allow_outside`]); `None` for one mesh file named directly.
+    /// [`crate::LoadOptions::allow_outside`]); `None` for one mesh file named directly
+    /// and for a description in memory, whose files the caller named.
     pub root: Option<PathBuf>,
     pub parts: Vec<PartSpec>,
     pub problems: Vec<Problem>,
-    pub preloaded: HashMap<PathBuf, Vec<RawObject>>,
+    pub preloaded: HashMap<Origin, Vec<RawObject>>,
     /// Entries of an assembly folder that are not read, with the reason.
     pub skipped: Vec<Skipped>,
 }
@@ -57,7 +91,7 @@ fn stem(p: &Path) -> String {
 
 fn plain(path: PathBuf) -> SourceRef {
     SourceRef {
-        path,
+        origin: Origin::File(path),
         object: None,
         transform: Affine::IDENTITY,
     }
@@ -223,29 +257,81 @@ fn from_manifest(path: &Path) -> Result<Plan, LoadError> {
     let parts = m
         .parts
         .into_iter()
+        .map(|p| DescribedPart {
+            name: p.name,
+            mesh: p.mesh.map(MeshSource::File),
+            pieces: p.pieces.into_iter().map(MeshSource::File).collect(),
+            transform: p.transform,
+        })
+        .collect();
+    Ok(from_description(
+        Description { name, parts },
+        Some(dir.to_path_buf()),
+        path,
+    ))
+}
+
+/// The parts a description lists, each named by the caller (never split into bodies),
+/// with its arrays moved into [`Plan::preloaded`]. `root` confines the files it names
+/// (a manifest's folder); a part without a mesh has `source` as its source (a
+/// manifest's path), a part whose mesh is arrays an empty one.
+pub(crate) fn from_description(desc: Description, root: Option<PathBuf>, source: &Path) -> Plan {
+    let mut preloaded = HashMap::new();
+    let mut source_ref = |mesh: MeshSource, transform: Affine| {
+        let origin = match mesh {
+            MeshSource::File(p) => Origin::File(p),
+            MeshSource::Arrays {
+                vertices,
+                triangles,
+            } => {
+                let origin = Origin::Arrays(preloaded.len());
+                let faces = Polygons::from_triangles(&triangles);
+                drop(triangles);
+                let raw = RawObject {
+                    name: None,
+                    vertices,
+                    faces,
+                };
+                preloaded.insert(origin.clone(), vec![raw]);
+                origin
+            }
+        };
+        SourceRef {
+            origin,
+            object: None,
+            transform,
+        }
+    };
+    let parts = desc
+        .parts
+        .into_iter()
         .map(|p| {
-            let r = |path: PathBuf| SourceRef {
-                path,
-                object: None,
-                transform: p.transform,
+            let part_source = match &p.mesh {
+                Some(MeshSource::File(f)) => f.clone(),
+                Some(MeshSource::Arrays { .. }) => PathBuf::new(),
+                None => source.to_path_buf(),
             };
             PartSpec {
-                source: p.mesh.clone().unwrap_or_else(|| path.to_path_buf()),
+                source: part_source,
+                mesh: p.mesh.map(|m| source_ref(m, p.transform)),
+                pieces: p
+                    .pieces
+                    .into_iter()
+                    .map(|m| source_ref(m, p.transform))
+                    .collect(),
                 name: p.name,
-                mesh: p.mesh.map(r),
-                pieces: p.pieces.into_iter().map(r).collect(),
                 splittable: false,
             }
         })
         .collect();
-    Ok(Plan {
-        name,
-        root: Some(dir.to_path_buf()),
+    Plan {
+        name: desc.name,
+        root,
         parts,
         problems: Vec::new(),
-        preloaded: HashMap::new(),
+        preloaded,
         skipped: Vec::new(),
-    })
+    }
 }
 
 fn list(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
@@ -462,7 +548,7 @@ fn from_file(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
             name,
             source: path.to_path_buf(),
             mesh: Some(SourceRef {
-                path: path.to_path_buf(),
+                origin: Origin::File(path.to_path_buf()),
                 object: Some(k),
                 transform: Affine::IDENTITY,
             }),
@@ -471,7 +557,7 @@ fn from_file(path: &Path, read: &ReadOptions) -> Result<Plan, LoadError> {
         });
     }
     let mut preloaded = HashMap::new();
-    preloaded.insert(path.to_path_buf(), objects);
+    preloaded.insert(Origin::File(path.to_path_buf()), objects);
     Ok(Plan {
         name: base,
         root: None,

@@ -9,6 +9,15 @@
 //! - one mesh file: each object (OBJ `o`/`g` group, glTF mesh node) is a part;
 //! - an `assembly.json` manifest, or a folder containing one (see [`manifest`]).
 //!
+//! [`load_description`] accepts the same assembly held in memory, a [`Description`]:
+//! in effect a manifest whose parts' meshes and pieces are files ([`MeshSource::File`],
+//! read wherever they lie: the caller named them) or arrays of vertices and triangles
+//! ([`MeshSource::Arrays`], named in problems by part and element only). A manifest is
+//! read into a description and loaded by the same code, so both meet the same
+//! validation, repair, decomposition, tolerance and overlap checks. The command line's
+//! `apart separate A.off B.off` and Python's arrays go through it, without temporary
+//! files.
+//!
 //! Only regular files are read: a folder entry with a mesh extension, or a path a
 //! manifest names, that is a named pipe, a socket or a device is an error naming the
 //! file and the part, and is never opened. Every mesh file of a folder or manifest must
@@ -18,11 +27,16 @@
 //! The grid is chosen once from every coordinate of every part and piece (after
 //! transforms); a part the grid collapses says which part's coordinates set the step,
 //! and two parts whose relation (apart, touching, overlapping) snapping changed get a
-//! warning naming both, the distance or depth, and the grid bits that keep it. Loading collects every problem rather than stopping at the first: the
+//! warning naming both, the distance or depth, and the grid bits that keep it. Loading
+//! collects every problem rather than stopping at the first: the
 //! validity of each part as a solid, of each declared piece (closed, convex), of the
 //! pieces of a part (disjoint interiors, volumes adding up to the part's), and of the
 //! parts together (disjoint interiors, each overlap with a witness point strictly
 //! inside both, verified exactly).
+//!
+//! [`LoadOptions::progress`] (the kernel's [`apart_kernel::progress::Progress`], as the
+//! planners take) reports each phase and carries a stop flag: raised, loading ends
+//! with [`LoadError::Stopped`].
 //!
 //! ```no_run
 //! use apart_assembly::{load, LoadOptions};
@@ -34,6 +48,7 @@
 //! ```
 
 mod convex;
+pub mod description;
 mod error;
 mod inputs;
 mod load;
@@ -42,15 +57,17 @@ mod model;
 mod options;
 mod overlap;
 mod pieces;
+mod snapping;
 pub mod tolerance;
 mod witness;
 
 /// Problems are defined with the meshes and shared by the loader.
 pub use apart_mesh::{Problem, Severity};
+pub use description::{DescribedPart, Description, MeshSource};
 pub use error::LoadError;
-pub use load::load;
+pub use load::{load, load_description};
 pub use model::{Assembly, LoadSeconds, Loaded, Part, Repairs, Skipped};
-pub use options::{Decompose, LoadOptions, Progress, ProgressFn, Stage};
+pub use options::{Decompose, LoadOptions};
 pub use tolerance::{AppliedTolerance, Tolerance};
 pub use witness::{fmt_witness, witness_units};
 

@@ -14,7 +14,8 @@ use std::path::PathBuf;
 pub struct Part {
     /// The part's name (unique in the assembly).
     pub name: String,
-    /// Where the part came from: its mesh file, or its pieces' folder or manifest.
+    /// Where the part came from: its mesh file, or its pieces' folder or manifest; empty
+    /// for a part whose mesh was given as arrays (or that was built in code).
     pub source: PathBuf,
     /// The boundary, snapped and validated; `None` when only pieces were given (or the
     /// mesh could not be read).
@@ -25,7 +26,8 @@ pub struct Part {
     /// pieces, or the part itself when it is convex, or empty for a non-convex part
     /// without declared pieces.
     pub pieces: Vec<Polytope>,
-    /// The file of each declared piece (empty when the pieces were not declared).
+    /// The file of each declared piece (empty when the pieces were not declared; an
+    /// empty path for a piece given as arrays).
     pub piece_sources: Vec<PathBuf>,
     /// The pieces were declared in the input (not derived from a convex part).
     pub declared_pieces: bool,
@@ -80,7 +82,7 @@ impl Part {
 /// An assembly in its assembled pose, snapped to one grid.
 #[derive(Clone, Debug)]
 pub struct Assembly {
-    /// Its name (from the manifest, or the file or folder name).
+    /// Its name (from the manifest or description, or the file or folder name).
     pub name: String,
     /// The grid every coordinate was snapped to.
     pub grid: Grid,
@@ -103,7 +105,7 @@ impl Assembly {
 /// What repair on load did to one mesh file (or object).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Repairs {
-    /// The file.
+    /// The file (empty for a mesh given as arrays).
     pub file: PathBuf,
     /// The parts made of it (several when it held separate solids).
     pub parts: Vec<String>,

@@ -1,47 +1,9 @@
-//! Options of the loader, and the progress hook a program can drive a bar with.
+//! Options of the loader, with the [`Progress`] that reports its phases and can stop
+//! it.
 
+use crate::error::LoadError;
 use crate::tolerance::Tolerance;
-use std::sync::Arc;
-
-/// A long step of loading.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stage {
-    /// Reading mesh files (`total` = files).
-    Reading,
-    /// Snapping and validating parts and pieces (`total` = parts).
-    Validating,
-    /// Decomposing non-convex parts into convex pieces (`total` = parts).
-    Decomposing,
-    /// Checking pairs of parts and pieces for overlap (`total` = pairs).
-    Overlaps,
-}
-
-impl Stage {
-    /// A short label for a progress bar.
-    pub fn label(self) -> &'static str {
-        match self {
-            Stage::Reading => "reading",
-            Stage::Validating => "validating",
-            Stage::Decomposing => "decomposing",
-            Stage::Overlaps => "overlaps",
-        }
-    }
-}
-
-/// How far a stage has come: `done` of `total` items.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Progress {
-    /// The stage.
-    pub stage: Stage,
-    /// Items finished.
-    pub done: usize,
-    /// Items in the stage.
-    pub total: usize,
-}
-
-/// Called from any thread as the loader advances (first with `done = 0` for each
-/// stage); must be cheap.
-pub type ProgressFn = Arc<dyn Fn(Progress) + Send + Sync>;
+use apart_kernel::progress::Progress;
 
 /// When to decompose valid non-convex parts that declare no pieces into exact convex
 /// pieces (`apart-decompose`).
@@ -57,12 +19,16 @@ pub enum Decompose {
 }
 
 /// How to load an assembly.
-#[derive(Clone)]
+#[derive(Clone, Debug)]
 pub struct LoadOptions {
     /// Bits of a snapped coordinate (see [`apart_kernel::grid`]).
     pub grid_bits: u32,
-    /// Progress reports; `None` (the default) is silent.
-    pub progress: Option<ProgressFn>,
+    /// Reports the phases of loading ([`apart_kernel::progress::phases`]: `READING`,
+    /// `VALIDATING`, `DECOMPOSING`, `OVERLAPS`; first with `done = 0` for each, from any
+    /// thread, in order), and a stop flag checked between parts and batches of part
+    /// pairs: when raised, loading fails with [`LoadError::Stopped`]. The default is
+    /// silent, with a flag nobody raises.
+    pub progress: Progress,
     /// When to decompose non-convex parts without declared pieces.
     pub decompose: Decompose,
     /// Verify every decomposition exactly (pieces convex, interiors disjoint, inside the
@@ -87,7 +53,7 @@ impl Default for LoadOptions {
     fn default() -> LoadOptions {
         LoadOptions {
             grid_bits: apart_kernel::grid::DEFAULT_BITS,
-            progress: None,
+            progress: Progress::new(),
             decompose: Decompose::WhenNeeded,
             verify: false,
             tolerance: Tolerance::None,
@@ -98,55 +64,11 @@ impl Default for LoadOptions {
     }
 }
 
-impl std::fmt::Debug for LoadOptions {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("LoadOptions")
-            .field("grid_bits", &self.grid_bits)
-            .field("progress", &self.progress.is_some())
-            .field("decompose", &self.decompose)
-            .field("verify", &self.verify)
-            .field("tolerance", &self.tolerance)
-            .field("repair", &self.repair)
-            .field("split_bodies", &self.split_bodies)
-            .field("allow_outside", &self.allow_outside)
-            .finish()
-    }
-}
-
-/// Counts finished items of one stage and reports them.
-pub(crate) struct Tracker<'a> {
-    hook: Option<&'a ProgressFn>,
-    stage: Stage,
-    total: usize,
-    done: std::sync::atomic::AtomicUsize,
-}
-
-impl<'a> Tracker<'a> {
-    pub(crate) fn start(opts: &'a LoadOptions, stage: Stage, total: usize) -> Tracker<'a> {
-        let hook = opts.progress.as_ref();
-        if let Some(h) = hook {
-            h(Progress {
-                stage,
-                done: 0,
-                total,
-            });
-        }
-        Tracker {
-            hook,
-            stage,
-            total,
-            done: 0.into(),
-        }
-    }
-
-    pub(crate) fn tick(&self) {
-        let done = self.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        if let Some(h) = self.hook {
-            h(Progress {
-                stage: self.stage,
-                done,
-                total: self.total,
-            });
-        }
+/// Fails with [`LoadError::Stopped`] when the stop flag of `opts` is raised: called
+/// between the phases of loading, whose loops stop taking new work once it is.
+pub(crate) fn check_stop(opts: &LoadOptions, phase: &'static str) -> Result<(), LoadError> {
+    match opts.progress.stopped() {
+        true => Err(LoadError::Stopped { phase }),
+        false => Ok(()),
     }
 }

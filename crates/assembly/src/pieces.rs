@@ -2,17 +2,26 @@
 //! of one part must have disjoint interiors.
 
 use crate::convex::{convex_polytope, QUADRATIC_LIMIT};
-use crate::load::polytope_bbox;
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_formats::RawObject;
-use apart_kernel::{Bvh, Grid, HPoint, Int};
+use apart_kernel::{Aabb, Bvh, Grid, HPoint, Int};
 use apart_mesh::locate::Locator;
 use apart_mesh::validate::check_solid;
 use apart_mesh::{fmt_point, Problem, ProblemKind};
 use apart_pieces::interference::{interior_witness, triangle_meets_interior};
 use apart_pieces::{Polytope, PolytopeError};
 use rayon::prelude::*;
-use std::path::PathBuf;
+
+/// A piece's integer box ([`Polytope::integer_box`]). A piece beyond that box's range
+/// (never one on a grid, whose coordinates stay below 2^52) gets a box holding every
+/// other, which costs tests and never hides an overlap.
+pub(crate) fn piece_box(p: &Polytope) -> Aabb {
+    const FAR: i64 = 1 << 61;
+    p.integer_box().unwrap_or(Aabb {
+        min: [-FAR; 3],
+        max: [FAR; 3],
+    })
+}
 
 /// The convex polytope of a piece, or the problems that prevent it.
 pub(crate) fn convex_piece(raw: &RawObject, grid: &Grid) -> Result<Polytope, Vec<Problem>> {
@@ -80,10 +89,10 @@ pub(crate) const MAX_LISTED_OVERLAPS: usize = 20;
 /// the pairs whose boxes overlap.
 pub(crate) fn overlapping_pieces(
     pieces: &[Polytope],
-    sources: &[PathBuf],
+    labels: &[String],
     grid: &Grid,
 ) -> Vec<Problem> {
-    let boxes: Vec<_> = pieces.iter().map(polytope_bbox).collect();
+    let boxes: Vec<_> = pieces.iter().map(piece_box).collect();
     let bvh = Bvh::new(boxes.clone());
     let mut out = Vec::new();
     for i in 0..pieces.len() {
@@ -112,11 +121,7 @@ pub(crate) fn overlapping_pieces(
                         "the pieces overlap: {} lies strictly inside both",
                         fmt_witness(&w, grid)
                     ))
-                    .at(format!(
-                        "pieces {} and {}",
-                        sources[i].display(),
-                        sources[j].display()
-                    ))
+                    .at(format!("pieces {} and {}", labels[i], labels[j]))
                     .with_kind(ProblemKind::Piece),
                 );
             }
@@ -133,17 +138,17 @@ pub(crate) fn overlapping_pieces(
 /// piece are tested by a separating-axis test, then one interior point is located.
 pub(crate) fn pieces_outside_mesh(
     pieces: &[Polytope],
-    sources: &[PathBuf],
+    labels: &[String],
     locator: &Locator,
     grid: &Grid,
 ) -> Vec<Problem> {
     let mesh = locator.mesh();
     pieces
         .par_iter()
-        .zip(sources)
-        .filter_map(|(p, source)| {
+        .zip(labels)
+        .filter_map(|(p, label)| {
             let mut crossing = None;
-            locator.bvh().query(&polytope_bbox(p), |t| {
+            locator.bvh().query(&piece_box(p), |t| {
                 if crossing.is_none() {
                     let c = mesh.corners(t as usize).map(|c| *c);
                     if triangle_meets_interior(p, &c) {
@@ -174,7 +179,7 @@ pub(crate) fn pieces_outside_mesh(
             };
             Some(
                 Problem::error(what)
-                    .at(format!("piece {}", source.display()))
+                    .at(format!("piece {label}"))
                     .with_kind(ProblemKind::Piece),
             )
         })

@@ -15,8 +15,9 @@
 //! `1e-3` of the assembly's size.
 
 use crate::model::{Assembly, Part};
-use crate::options::{LoadOptions, Stage, Tracker};
+use crate::options::LoadOptions;
 use crate::witness::fmt_witness;
+use apart_kernel::progress::{phases, Progress};
 use apart_kernel::Aabb;
 use apart_kernel::{Grid, Rational};
 use apart_mesh::{Problem, ProblemKind};
@@ -114,10 +115,22 @@ pub(crate) fn deepest_piece_overlap(a: &[Polytope], b: &[Polytope]) -> Option<f6
     (d != NONE).then(|| f64::from_bits(d))
 }
 
+/// Why [`overlaps`] gave no list.
+enum Unmeasured {
+    /// More than this many pairs overlap.
+    TooMany(usize),
+    /// The stop flag was raised.
+    Stopped,
+}
+
 /// The overlapping pairs of parts, but for the pairs `disjoint` (known not to).
 /// In pair order: candidates from a hierarchy of the parts' boxes, part by part, tested
-/// in parallel batches. `Err` when more than [`MAX_OVERLAPPING_PAIRS`] overlap.
-fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>, usize> {
+/// in parallel batches, the stop flag of `progress` checked before each.
+fn overlaps(
+    parts: &[Part],
+    disjoint: &[(usize, usize)],
+    progress: &Progress,
+) -> Result<Vec<Overlap>, Unmeasured> {
     let boxes: Vec<Aabb> = parts
         .iter()
         .map(|p| match p.pieces.is_empty() {
@@ -143,6 +156,9 @@ fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>,
         });
         near.sort_unstable();
         for batch in near.chunks(256) {
+            if progress.stopped() {
+                return Err(Unmeasured::Stopped);
+            }
             out.par_extend(batch.par_iter().filter_map(|&j| {
                 deepest_piece_overlap(&parts[i].pieces, &parts[j].pieces).map(|depth| Overlap {
                     i,
@@ -151,7 +167,7 @@ fn overlaps(parts: &[Part], disjoint: &[(usize, usize)]) -> Result<Vec<Overlap>,
                 })
             }));
             if out.len() > MAX_OVERLAPPING_PAIRS {
-                return Err(MAX_OVERLAPPING_PAIRS);
+                return Err(Unmeasured::TooMany(MAX_OVERLAPPING_PAIRS));
             }
         }
     }
@@ -221,7 +237,8 @@ fn shrink_all(parts: &mut [Part], eps: &Rational) -> (usize, f64) {
 /// the overlap check on the shrunk pieces (deeper overlaps as errors with a witness and
 /// the measured depth; accepted overlaps and vanished pieces as notes).
 /// `disjoint` lists pairs of parts `(i, j)`, `i < j`, sorted, already known not to
-/// overlap.
+/// overlap. Once the stop flag is raised, the problems are incomplete (the loader then
+/// fails).
 pub(crate) fn apply(
     asm: &mut Assembly,
     tol: Tolerance,
@@ -229,17 +246,71 @@ pub(crate) fn apply(
     disjoint: &[(usize, usize)],
 ) -> Vec<Problem> {
     let grid = asm.grid;
-    let h = grid.step();
-    let tracker = Tracker::start(opts, Stage::Overlaps, 1);
-    let before = match overlaps(&asm.parts, disjoint) {
+    let counter = opts.progress.counter(phases::OVERLAPS, 1);
+    let before = match overlaps(&asm.parts, disjoint, &opts.progress) {
         Ok(b) => b,
-        Err(n) => {
+        Err(why) => {
             asm.tolerance = None;
-            return vec![too_many_overlaps(n)];
+            return match why {
+                Unmeasured::TooMany(n) => vec![too_many_overlaps(n)],
+                Unmeasured::Stopped => Vec::new(),
+            };
         }
     };
-    tracker.tick();
-    let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * h;
+    counter.add(1);
+    let deepest = before.iter().map(|o| o.depth).fold(0.0, f64::max) * grid.step();
+    let mut problems = Vec::new();
+    let (eps, auto, limit) = match choose_eps(asm, tol, &before, deepest) {
+        Ok(chosen) => chosen,
+        Err(problem) => {
+            asm.tolerance = None;
+            problems.push(problem);
+            return problems;
+        }
+    };
+    if auto && eps > limit {
+        problems.push(Problem::error(format!(
+            "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
+        ))
+        .with_kind(ProblemKind::Tolerance));
+    }
+    let eps = match auto && eps > limit {
+        true => round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE),
+        false => eps,
+    };
+    for p in &mut asm.parts {
+        p.unshrunk_pieces = std::mem::take(&mut p.pieces);
+    }
+    let shrunk = shrink_until_apart(asm, disjoint, (eps, auto, limit), opts, &mut problems);
+    report(asm, &before, &shrunk, deepest, &mut problems);
+    asm.tolerance = Some(AppliedTolerance {
+        eps: shrunk.eps,
+        exact: dyadic(shrunk.eps),
+        auto,
+        deepest_overlap: deepest,
+        accepted_overlaps: before.len().saturating_sub(shrunk.after.len()),
+        overlapping: {
+            let mut v: Vec<(usize, usize)> = before.iter().map(|o| (o.i, o.j)).collect();
+            v.sort_unstable();
+            v
+        },
+        vanished_pieces: shrunk.vanished,
+        max_shift: (shrunk.max_shift * grid.step()).max(shrunk.eps),
+    });
+    problems
+}
+
+/// The tolerance to apply (input units), whether it was chosen automatically, and the
+/// largest an automatic one may be ([`AUTO_LIMIT`] of the assembly's largest extent);
+/// `Err` with the problem when no tolerance applies: a stated one that is not a finite
+/// positive length, or an automatic one with nothing to accept.
+fn choose_eps(
+    asm: &Assembly,
+    tol: Tolerance,
+    before: &[Overlap],
+    deepest: f64,
+) -> Result<(f64, bool, f64), Problem> {
+    let grid = asm.grid;
     let size = asm
         .parts
         .iter()
@@ -252,69 +323,87 @@ pub(crate) fn apply(
             .map(|k| grid.to_units(size.max[k]) - grid.to_units(size.min[k]))
             .fold(0.0, f64::max)
     };
-    let mut problems = Vec::new();
-    let (mut eps, auto) = match tol {
-        Tolerance::None => unreachable!("apply is called with a tolerance"),
-        Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => {
-            asm.tolerance = None;
-            problems.push(
-                Problem::error(format!("tolerance {e} is not a finite positive length"))
-                    .with_kind(ProblemKind::Tolerance),
-            );
-            return problems;
-        }
-        Tolerance::Fixed(e) => (e, false),
-        Tolerance::Auto => {
-            if before.is_empty() {
-                asm.tolerance = None;
-                problems.push(
-                    Problem::note("tolerance auto: no part overlaps another, so none is needed")
-                        .with_kind(ProblemKind::Tolerance),
-                );
-                return problems;
-            }
-            (round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true)
-        }
-    };
     let limit = AUTO_LIMIT * extent;
-    if auto && eps > limit {
-        problems.push(Problem::error(format!(
-            "tolerance auto: the deepest overlap, {deepest:.3e}, needs a tolerance of {eps:.3e}, beyond the limit of {AUTO_LIMIT} of the assembly's size ({limit:.3e}); these overlaps are modelling errors, not tessellation"
+    match tol {
+        Tolerance::None => unreachable!("apply is called with a tolerance"),
+        Tolerance::Fixed(e) if !(e.is_finite() && e > 0.0) => Err(Problem::error(format!(
+            "tolerance {e} is not a finite positive length"
         ))
-        .with_kind(ProblemKind::Tolerance));
-        eps = round_up_8_bits(limit).min(limit).max(f64::MIN_POSITIVE);
+        .with_kind(ProblemKind::Tolerance)),
+        Tolerance::Fixed(e) => Ok((e, false, limit)),
+        Tolerance::Auto if before.is_empty() => Err(Problem::note(
+            "tolerance auto: no part overlaps another, so none is needed",
+        )
+        .with_kind(ProblemKind::Tolerance)),
+        Tolerance::Auto => Ok((round_up_8_bits(deepest / 2.0 * (1.0 + 1e-9)), true, limit)),
     }
-    for p in &mut asm.parts {
-        p.unshrunk_pieces = std::mem::take(&mut p.pieces);
-    }
-    let mut vanished;
-    let mut max_shift;
-    let mut after;
+}
+
+/// The parts' pieces once shrunk, and what overlaps remain.
+struct Shrunk {
+    /// The tolerance finally applied (input units).
+    eps: f64,
+    /// Pieces that vanished.
+    vanished: usize,
+    /// The farthest any face moved (grid units).
+    max_shift: f64,
+    /// The pairs of parts that still overlap.
+    after: Vec<Overlap>,
+}
+
+/// Shrinks every piece by `eps` and measures the overlaps left; an automatic tolerance
+/// (`auto`) is doubled, up to `limit`, while some remain, since the depth it was chosen
+/// from is a floating-point measurement that may fall short.
+fn shrink_until_apart(
+    asm: &mut Assembly,
+    disjoint: &[(usize, usize)],
+    (mut eps, auto, limit): (f64, bool, f64),
+    opts: &LoadOptions,
+    problems: &mut Vec<Problem>,
+) -> Shrunk {
     loop {
-        (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &grid));
+        let (vanished, max_shift) = shrink_all(&mut asm.parts, &to_grid_units(eps, &asm.grid));
         // Shrunk pieces lie inside the originals: disjoint parts stay disjoint.
-        after = match overlaps(&asm.parts, disjoint) {
-            Ok(a) => a,
-            Err(n) => {
+        let (after, stopped) = match overlaps(&asm.parts, disjoint, &opts.progress) {
+            Ok(a) => (a, false),
+            Err(Unmeasured::TooMany(n)) => {
                 // Shrinking only separates: as many overlaps as before at most.
                 problems.push(too_many_overlaps(n));
-                Vec::new()
+                (Vec::new(), false)
             }
+            Err(Unmeasured::Stopped) => (Vec::new(), true),
         };
-        // The depth is a floating-point measurement: when it fell short, double (auto
-        // only; a stated tolerance is kept as stated).
-        if !auto || after.is_empty() || eps * 2.0 > limit {
-            break;
+        // A stated tolerance is kept as stated.
+        if stopped || !auto || after.is_empty() || eps * 2.0 > limit {
+            return Shrunk {
+                eps,
+                vanished,
+                max_shift,
+                after,
+            };
         }
         eps *= 2.0;
     }
-    for o in &after {
+}
+
+/// The problems of a tolerance applied: overlaps deeper than it accepts (errors with
+/// the depth measured before shrinking and a witness), the overlaps accepted and the
+/// pieces that vanished (notes), and parts of which nothing is left (errors).
+fn report(
+    asm: &Assembly,
+    before: &[Overlap],
+    shrunk: &Shrunk,
+    deepest: f64,
+    problems: &mut Vec<Problem>,
+) {
+    let (grid, eps) = (asm.grid, shrunk.eps);
+    for o in &shrunk.after {
         let (a, b) = (&asm.parts[o.i], &asm.parts[o.j]);
         let depth = before
             .iter()
             .find(|x| x.i == o.i && x.j == o.j)
             .map_or(o.depth, |x| x.depth)
-            * h;
+            * grid.step();
         let witness = crate::overlap::part_overlap(a, b, &grid)
             .map(|w| format!(": {} lies strictly inside both", fmt_witness(&w, &grid)))
             .unwrap_or_default();
@@ -329,7 +418,7 @@ pub(crate) fn apply(
             }),
         );
     }
-    let accepted = before.len().saturating_sub(after.len());
+    let accepted = before.len().saturating_sub(shrunk.after.len());
     if accepted > 0 {
         problems.push(Problem::note(format!(
             "{accepted} overlapping pair{} of parts (deepest {deepest:.3e}) count as contact for parts made {eps:.3e} smaller",
@@ -337,6 +426,7 @@ pub(crate) fn apply(
         ))
         .with_kind(ProblemKind::Tolerance));
     }
+    let vanished = shrunk.vanished;
     if vanished > 0 {
         problems.push(
             Problem::note(format!(
@@ -357,21 +447,6 @@ pub(crate) fn apply(
             );
         }
     }
-    asm.tolerance = Some(AppliedTolerance {
-        eps,
-        exact: dyadic(eps),
-        auto,
-        deepest_overlap: deepest,
-        accepted_overlaps: accepted,
-        overlapping: {
-            let mut v: Vec<(usize, usize)> = before.iter().map(|o| (o.i, o.j)).collect();
-            v.sort_unstable();
-            v
-        },
-        vanished_pieces: vanished,
-        max_shift: (max_shift * h).max(eps),
-    });
-    problems
 }
 
 #[cfg(test)]

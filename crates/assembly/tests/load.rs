@@ -1,8 +1,9 @@
 //! Loading folders, multi-object files and manifests, written to temporary folders.
 //! Expected values are computed by hand from the boxes written.
 
-use apart_assembly::{load, LoadError, LoadOptions, Stage};
+use apart_assembly::{load, LoadError, LoadOptions};
 use apart_formats::{obj, off, stl, Polygons, RawObject};
+use apart_kernel::progress::{phases, Progress};
 use apart_kernel::{Int, Rational};
 use apart_mesh::Severity;
 use apart_testkit::solids::{cuboid_corners, CUBOID_QUADS};
@@ -152,12 +153,14 @@ fn manifest_transforms_and_progress() {
         ]}"#,
     )
     .unwrap();
-    let seen: Arc<Mutex<Vec<(Stage, usize, usize)>>> = Arc::default();
+    // Each report: the phase, done, total.
+    type Reports = Arc<Mutex<Vec<(&'static str, usize, usize)>>>;
+    let seen: Reports = Arc::default();
     let s = seen.clone();
     let opts = LoadOptions {
-        progress: Some(Arc::new(move |p| {
-            s.lock().unwrap().push((p.stage, p.done, p.total))
-        })),
+        progress: Progress::with_callback(move |phase, done, total| {
+            s.lock().unwrap().push((phase, done, total))
+        }),
         ..LoadOptions::default()
     };
     let l = load(&d, &opts).unwrap();
@@ -173,13 +176,57 @@ fn manifest_transforms_and_progress() {
     assert_eq!((bbox("m").min, bbox("m").max), ([-2, 0, 2], [0, 1, 3]));
     assert_eq!(a.part("m").unwrap().volume_units(&a.grid), rat(2, 1));
     let seen = seen.lock().unwrap();
-    for stage in [Stage::Reading, Stage::Validating, Stage::Overlaps] {
+    for phase in [phases::READING, phases::VALIDATING, phases::OVERLAPS] {
         assert!(
-            seen.iter().any(|&(s, d, _)| s == stage && d == 0),
-            "{stage:?} not started"
+            seen.iter().any(|&(s, d, _)| s == phase && d == 0),
+            "{phase} not started"
         );
     }
-    assert!(seen.contains(&(Stage::Validating, 4, 4)));
+    assert!(seen.contains(&(phases::VALIDATING, 4, 4)));
+    // The one file is read once, for the four parts.
+    assert!(seen.contains(&(phases::READING, 1, 1)));
+}
+
+#[test]
+fn a_raised_stop_flag_stops_loading_with_an_error() {
+    let d = tmp("stop");
+    write_off(&d.join("a.off"), &boxed(None, [0.0; 3], [1.0; 3]));
+    write_off(
+        &d.join("b.off"),
+        &boxed(None, [2.0, 0.0, 0.0], [3.0, 1.0, 1.0]),
+    );
+    // Raised before loading: nothing is read.
+    let progress = Progress::new();
+    progress.request_stop();
+    let opts = LoadOptions {
+        progress,
+        ..LoadOptions::default()
+    };
+    match load(&d, &opts) {
+        Err(e @ LoadError::Stopped { phase }) => {
+            assert_eq!(phase, phases::READING);
+            assert!(e.to_string().contains("stopped"), "{e}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Raised by the callback once the parts are validated: decomposition is not begun.
+    let progress = Progress::new();
+    let flag = progress.stop_flag();
+    let opts = LoadOptions {
+        progress: Progress::with_callback(move |phase, done, total| {
+            if phase == phases::VALIDATING && done == total {
+                flag.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        })
+        .with_stop_flag(progress.stop_flag()),
+        ..LoadOptions::default()
+    };
+    assert!(matches!(
+        load(&d, &opts),
+        Err(LoadError::Stopped {
+            phase: phases::VALIDATING
+        })
+    ));
 }
 
 #[test]

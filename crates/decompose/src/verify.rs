@@ -123,18 +123,20 @@ fn check_convex(p: &Polytope) -> Result<(), String> {
     Ok(())
 }
 
-/// Floating-point bounding box in true coordinates, widened far beyond rounding errors
-/// (a filter only).
+/// Floating-point bounding box in true coordinates: the piece's integer box
+/// ([`Polytope::integer_box`], rounded outward), widened past the rounding of its
+/// integers to floats (a filter only), or everything when it does not fit.
 fn piece_box(p: &Polytope) -> Aabb<f64> {
-    let mut b = Aabb::EMPTY;
-    for v in p.vertices() {
-        b = b.with(&[0, 1, 2].map(|k| Rational::new(v.get(k), p.den().clone()).to_f64()));
-    }
-    let Aabb { min: lo, max: hi } = b;
-    let slack = |k: usize| 1e-9 * (lo[k].abs() + hi[k].abs() + 1.0);
-    Aabb {
-        min: [0, 1, 2].map(|k| lo[k] - slack(k)),
-        max: [0, 1, 2].map(|k| hi[k] + slack(k)),
+    let out = |x: i64, s: f64| x as f64 + s * ((x as f64).abs() * 1e-15 + 1.0);
+    match p.integer_box() {
+        Some(b) => Aabb {
+            min: b.min.map(|x| out(x, -1.0)),
+            max: b.max.map(|x| out(x, 1.0)),
+        },
+        None => Aabb {
+            min: [f64::NEG_INFINITY; 3],
+            max: [f64::INFINITY; 3],
+        },
     }
 }
 

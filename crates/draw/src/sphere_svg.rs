@@ -168,7 +168,6 @@ pub fn motion_space_svg(
         }
     }
     let part_hex: Vec<String> = part_colors(names).iter().map(|c| c.hex()).collect();
-    let colour = |m: &[usize]| -> Vec<String> { m.iter().map(|&k| part_hex[k].clone()).collect() };
 
     // The legend first, to know the picture's height.
     let legend = legend(
@@ -176,7 +175,10 @@ pub fn motion_space_svg(
         subset,
         solutions,
         &subsets,
-        &subsets.iter().map(|m| colour(m)).collect::<Vec<_>>(),
+        &subsets
+            .iter()
+            .map(|m| subset_colours(&part_hex, m))
+            .collect::<Vec<_>>(),
         opts.highlight.as_ref(),
         max_count,
         4.0 * r + 3.0 * margin,
@@ -195,7 +197,29 @@ pub fn motion_space_svg(
         r#"<text x="{margin}" y="30" font-size="18" font-weight="bold">{}</text>"#,
         escape(&opts.title)
     );
-    let projection = match opts.projection {
+    hemisphere_labels(&mut svg, &frame);
+    draw_faces(&mut svg, ms, &frame, max_count);
+    draw_arcs(&mut svg, ms, &frame);
+    draw_rims(&mut svg, &frame);
+    draw_solutions(&mut svg, ms, &frame, names, solutions, &part_hex);
+    if let Some(h) = &opts.highlight {
+        ring_direction(&mut svg, &frame, h);
+    }
+    svg.push_str(&legend.0);
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// The hex colours of the parts `m` of a moving subset.
+fn subset_colours(part_hex: &[String], m: &[usize]) -> Vec<String> {
+    m.iter().map(|&k| part_hex[k].clone()).collect()
+}
+
+/// The caption under each hemisphere disk (which side it is seen from, and the
+/// projection), and the clip path of each disk.
+fn hemisphere_labels(svg: &mut String, frame: &Frame) {
+    let r = frame.r;
+    let projection = match frame.projection {
         SphereProjection::EqualArea => "equal-area",
         SphereProjection::Orthographic => "orthographic",
     };
@@ -217,8 +241,13 @@ pub fn motion_space_svg(
             r#"<clipPath id="disk{k}"><circle cx="{cx:.2}" cy="{cy:.2}" r="{r:.2}"/></clipPath>"#
         );
     }
+}
 
-    // Faces.
+/// Every face of the arrangement in its hemisphere, shaded by how many of at most
+/// `max_count` ordered pairs block it.
+fn draw_faces(svg: &mut String, ms: &MotionSpace, frame: &Frame, max_count: usize) {
+    let arr = ms.arrangement();
+    let st = ms.statuses();
     for f in arr.face_ids() {
         let count = ms.blocked_pairs(&st.faces[f.index()]);
         let up = face_is_upper(ms, f);
@@ -244,7 +273,12 @@ pub fn motion_space_svg(
             if up { 0 } else { 1 }
         );
     }
-    // Arcs (region boundaries), drawn in both views where they lie.
+}
+
+/// The arcs bounding blocked regions (not the structural ones), drawn in both views
+/// where they lie.
+fn draw_arcs(svg: &mut String, ms: &MotionSpace, frame: &Frame) {
+    let arr = ms.arrangement();
     for e in arr.edge_ids() {
         let edge = arr.edge(e);
         if edge.structural
@@ -256,8 +290,13 @@ pub fn motion_space_svg(
             continue;
         }
         let pts = arc_points(&arr.edge_arc(e));
-        draw_polyline(&mut svg, &frame, &pts, "#333333", 0.8, None);
+        draw_polyline(svg, frame, &pts, "#333333", 0.8, None);
     }
+}
+
+/// The rim of each disk, with its axis labels.
+fn draw_rims(svg: &mut String, frame: &Frame) {
+    let r = frame.r;
     for k in 0..2 {
         let (cx, cy) = frame.centers[k];
         let _ = writeln!(
@@ -294,17 +333,28 @@ pub fn motion_space_svg(
             if k == 0 { "+z" } else { "−z" }
         );
     }
+}
 
-    // Solutions.
+/// The solutions in the colours of their moving parts: a vertex or face direction as a
+/// mark, an edge as the whole run of arcs through its direction, thickened.
+fn draw_solutions(
+    svg: &mut String,
+    ms: &MotionSpace,
+    frame: &Frame,
+    names: &[String],
+    solutions: &[Solution],
+    part_hex: &[String],
+) {
+    let arr = ms.arrangement();
     for s in solutions {
-        let c = colour(&s.moving);
+        let c = subset_colours(part_hex, &s.moving);
         let who = names_list(names, &s.moving, 8);
         let u = s.unit;
         match s.cell {
-            CellKind::Vertex => mark(&mut svg, &frame, &u, &c, 5.0, &format!("{who}: vertex")),
+            CellKind::Vertex => mark(svg, frame, &u, &c, 5.0, &format!("{who}: vertex")),
             CellKind::Face => mark(
-                &mut svg,
-                &frame,
+                svg,
+                frame,
                 &u,
                 &c,
                 7.0,
@@ -318,27 +368,26 @@ pub fn motion_space_svg(
                     let n = c.len() as f64;
                     for (i, c) in c.iter().enumerate() {
                         let dash = (n > 1.0).then(|| (8.0, 8.0 * (n - 1.0), -8.0 * i as f64));
-                        draw_polyline_dashed(&mut svg, &frame, &pts, c, 4.5, Some(&title), dash);
+                        draw_polyline_dashed(svg, frame, &pts, c, 4.5, Some(&title), dash);
                     }
                 }
             }
         }
     }
-    if let Some(h) = &opts.highlight {
-        let u = h.unit_f64();
-        for up in [true, false] {
-            if (u[2] >= 0.0) == up || u[2] == 0.0 {
-                let (x, y) = frame.screen(&u, up);
-                let _ = writeln!(
-                    svg,
-                    r##"<circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#fff" stroke-width="5"/><circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#000" stroke-width="2.5"><title>chosen direction</title></circle>"##
-                );
-            }
+}
+
+/// A ring around direction `h` in each hemisphere it shows in: the chosen direction.
+fn ring_direction(svg: &mut String, frame: &Frame, h: &Vec3) {
+    let u = h.unit_f64();
+    for up in [true, false] {
+        if (u[2] >= 0.0) == up || u[2] == 0.0 {
+            let (x, y) = frame.screen(&u, up);
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#fff" stroke-width="5"/><circle cx="{x:.2}" cy="{y:.2}" r="12" fill="none" stroke="#000" stroke-width="2.5"><title>chosen direction</title></circle>"##
+            );
         }
     }
-    svg.push_str(&legend.0);
-    svg.push_str("</svg>\n");
-    svg
 }
 
 /// The fill of a face blocked by `count` of at most `max` ordered pairs.

@@ -2,7 +2,7 @@
 //! found no error, except the overlaps of a part about to be placed.
 
 use apart_assembly::Loaded;
-use apart_mesh::{Problem, ProblemKind, Severity};
+use apart_mesh::{Problem, ProblemKind};
 
 /// The errors that keep `loaded` from being planned: every problem of severity error,
 /// except the overlaps of the part named `free` with the others (a part to place may
@@ -19,18 +19,4 @@ pub fn errors<'a>(loaded: &'a Loaded, free: Option<&str>) -> Vec<&'a Problem> {
         .iter()
         .filter(|p| p.is_error() && !excused(p))
         .collect()
-}
-
-/// The warnings of `loaded` (repairs, tolerated defects), which a planning job states
-/// but which do not stop it.
-pub fn warnings(loaded: &Loaded) -> impl Iterator<Item = &Problem> {
-    loaded
-        .problems
-        .iter()
-        .filter(|p| p.severity == Severity::Warning)
-}
-
-/// "N error" or "N errors".
-pub fn count(errors: usize) -> String {
-    format!("{errors} error{}", if errors == 1 { "" } else { "s" })
 }

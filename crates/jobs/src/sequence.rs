@@ -6,8 +6,7 @@ use apart_assembly::Loaded;
 use apart_plan::along::holds_without_tolerance;
 use apart_plan::sequence::{Choice, Keys, LocalStats};
 use apart_plan::{
-    parts_of, sequence_first_with, sequence_parts, Ranking, Sequence, SequenceOptions, Step,
-    Tolerance,
+    parts_of, sequence_first_with, sequence_parts, Growth, Ranking, Sequence, SequenceOptions, Step,
 };
 use serde::Serialize;
 use std::sync::Arc;
@@ -145,8 +144,8 @@ pub fn step_answer(
         depth: s.depth,
         rule: s.rule.key(),
         growth: s.tolerance.map(|t| match t {
-            Tolerance::Finite(x) => Some(x * step_unit),
-            Tolerance::Unbounded => None,
+            Growth::Finite(x) => Some(x * step_unit),
+            Growth::Unbounded => None,
         }),
         holds_without_tolerance: holds,
         choice: explain.then(|| ChoiceAnswer::of(names, &s.choice)),

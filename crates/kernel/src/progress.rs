@@ -6,7 +6,9 @@
 //! apart-stack's `stack_with`) check the flag between
 //! units of work (part pairs, culling rounds, faces and cells scanned in batches,
 //! sequence steps, stacked parts), never in inner loops, and when it is raised they
-//! return what they have, marked as stopped. Whoever holds the flag (a watchdog thread,
+//! return what they have, marked as stopped. apart-assembly's loader takes one too
+//! (in its `LoadOptions`): it checks the flag between parts and batches of part pairs
+//! and, having no partial assembly to give, fails with a "stopped" error. Whoever holds the flag (a watchdog thread,
 //! a Ctrl-C handler, the callback itself) raises it with [`Progress::request_stop`] or
 //! by storing `true` into [`Progress::stop_flag`].
 //!
@@ -53,6 +55,16 @@ pub type NoteCallback = Arc<dyn Fn(&'static str, &str) + Send + Sync>;
 
 /// The names of the phases reported, in the order a run meets them.
 pub mod phases {
+    /// apart-assembly's loader: mesh files read (and meshes given as arrays taken), of
+    /// all.
+    pub const READING: &str = "reading";
+    /// The loader: parts snapped, repaired and validated, of all.
+    pub const VALIDATING: &str = "validating";
+    /// The loader: parts given their exact convex decomposition, of those that need one.
+    pub const DECOMPOSING: &str = "decomposing";
+    /// The loader: parts checked for overlaps with the others (one unit when a tolerance
+    /// is measured instead).
+    pub const OVERLAPS: &str = "overlaps";
     /// apart-plan's `BlockingRegions::compute_with`: pairs of parts whose blocked region
     /// is computed, of all pairs.
     pub const PAIR_REGIONS: &str = "pair regions";

@@ -69,21 +69,35 @@ pub fn triangles_meet(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
         if coplanar_apart(&t2, &u2) {
             return None;
         }
-        let edges_meet = (0..3).any(|i| {
-            (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
-        });
-        let inside = in_closed_triangle_2d(&t2[0], &u2[0], &u2[1], &u2[2])
-            || in_closed_triangle_2d(&u2[0], &t2[0], &t2[1], &t2[2]);
-        if !(edges_meet || inside) {
-            return None;
-        }
-        // Positive-area overlap, or only touching along a boundary?
-        return Some(if coplanar_overlap_area(&t2, &u2) {
-            Contact::Overlap
-        } else {
-            Contact::Intersect
-        });
+        return coplanar_contact(&t2, &u2);
     }
+    edges_through(t, u)
+}
+
+/// Closed coplanar triangles `t2` and `u2`, projected along the dominant axis of their
+/// plane: do they meet, and with a positive area or only along a boundary?
+fn coplanar_contact(t2: &[[i64; 2]; 3], u2: &[[i64; 2]; 3]) -> Option<Contact> {
+    let edges_meet = (0..3).any(|i| {
+        (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
+    });
+    let inside = in_closed_triangle_2d(&t2[0], &u2[0], &u2[1], &u2[2])
+        || in_closed_triangle_2d(&u2[0], &t2[0], &t2[1], &t2[2]);
+    if !(edges_meet || inside) {
+        return None;
+    }
+    // Positive-area overlap, or only touching along a boundary?
+    Some(if coplanar_overlap_area(t2, u2) {
+        Contact::Overlap
+    } else {
+        Contact::Intersect
+    })
+}
+
+/// Closed triangles `t` and `u` not in one plane: they meet when an edge of one meets
+/// the other.
+fn edges_through(t: [&P3; 3], u: [&P3; 3]) -> Option<Contact> {
+    let [a, b, c] = t;
+    let [d, e, f] = u;
     let hit = (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], d, e, f))
         || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], a, b, c));
     hit.then_some(Contact::Intersect)
@@ -462,23 +476,9 @@ mod oracle {
             let k = dominant_axis(&normal(a, b, c));
             let t2 = t.map(|v| project(v, k));
             let u2 = u.map(|v| project(v, k));
-            let edges_meet = (0..3).any(|i| {
-                (0..3).any(|j| segments_meet_2d(&t2[i], &t2[(i + 1) % 3], &u2[j], &u2[(j + 1) % 3]))
-            });
-            let inside = in_closed_triangle_2d(&t2[0], &u2[0], &u2[1], &u2[2])
-                || in_closed_triangle_2d(&u2[0], &t2[0], &t2[1], &t2[2]);
-            if !(edges_meet || inside) {
-                return None;
-            }
-            return Some(if coplanar_overlap_area(&t2, &u2) {
-                Contact::Overlap
-            } else {
-                Contact::Intersect
-            });
+            return coplanar_contact(&t2, &u2);
         }
-        let hit = (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], d, e, f))
-            || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], a, b, c));
-        hit.then_some(Contact::Intersect)
+        edges_through(t, u)
     }
 
     fn flat_pt() -> impl Strategy<Value = [i64; 3]> {

@@ -51,6 +51,8 @@ pub struct Polytope {
     /// polytopes of at least [`CLIMB_MIN`] vertices; it holds no coordinates, and stays
     /// valid under translation and positive scaling).
     climb: std::sync::OnceLock<Climb>,
+    /// The integer box of [`Polytope::integer_box`] (computed on demand, once).
+    bounds: std::sync::OnceLock<Option<apart_kernel::Aabb>>,
 }
 
 /// Floating-point true coordinates of a polytope's vertices, for filters that prune
@@ -440,6 +442,7 @@ impl Polytope {
             edge_dirs: std::sync::OnceLock::new(),
             shadow: std::sync::OnceLock::new(),
             climb: std::sync::OnceLock::new(),
+            bounds: std::sync::OnceLock::new(),
         })
     }
 
@@ -462,8 +465,13 @@ impl Polytope {
     }
 
     /// The smallest integer box holding the polytope (a rational vertex's coordinates
-    /// rounded outward), or `None` when a bound exceeds 2^60 in magnitude.
+    /// rounded outward), or `None` when a bound exceeds 2^60 in magnitude: the one box
+    /// of a piece, computed exactly once and kept.
     pub fn integer_box(&self) -> Option<apart_kernel::Aabb> {
+        *self.bounds.get_or_init(|| self.compute_integer_box())
+    }
+
+    fn compute_integer_box(&self) -> Option<apart_kernel::Aabb> {
         let mut b: apart_kernel::Aabb = apart_kernel::Aabb::EMPTY;
         for v in &self.vertices {
             for k in 0..3 {
@@ -503,6 +511,7 @@ impl Polytope {
         assert!(den > Int::ZERO, "denominator must be positive");
         self.den = den;
         self.shadow = std::sync::OnceLock::new();
+        self.bounds = std::sync::OnceLock::new();
         self
     }
 
@@ -724,6 +733,7 @@ impl Polytope {
             f.offset += f.normal.dot(t);
         }
         p.shadow = std::sync::OnceLock::new();
+        p.bounds = std::sync::OnceLock::new();
         p
     }
 

@@ -20,7 +20,7 @@
 
 use crate::clearance::{chord2, FArc};
 use apart_kernel::fvec::dot;
-use apart_kernel::int::{cmp_fractions, sign_of, to_f64};
+use apart_kernel::int::{cmp_fractions, sign_of};
 use apart_kernel::{Aabb, Bvh, Int, Sign, Vec3};
 use apart_minkowski::{project, Projection};
 use apart_pieces::Polytope;
@@ -33,31 +33,12 @@ use std::cmp::Ordering;
 /// 20k-triangle nut and washer that leaves 2,299 sums of 20,002).
 const LEAF: usize = 1;
 
-/// Integer bounds holding a piece: its coordinates' floats, widened by 2 (a float of a
-/// coordinate below 2^62 is within 1 of it; the widening also gives every box volume).
-/// `None` when a coordinate does not fit.
+/// Integer bounds holding a piece: its box ([`Polytope::integer_box`]) widened by 2, so
+/// that every box has volume. `None` when a coordinate does not fit.
 pub(crate) fn piece_box(p: &Polytope) -> Option<Aabb> {
-    let den = to_f64(p.den());
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for v in p.vertices() {
-        for k in 0..3 {
-            let x = to_f64(&v.get(k)) / den;
-            lo[k] = lo[k].min(x);
-            hi[k] = hi[k].max(x);
-        }
-    }
-    const LIMIT: f64 = (1u64 << 60) as f64;
-    if lo
-        .iter()
-        .chain(&hi)
-        .any(|x| !x.is_finite() || x.abs() > LIMIT)
-    {
-        return None;
-    }
-    Some(Aabb {
-        min: lo.map(|x| x.floor() as i64 - 2),
-        max: hi.map(|x| x.ceil() as i64 + 2),
+    p.integer_box().map(|b| Aabb {
+        min: b.min.map(|x| x - 2),
+        max: b.max.map(|x| x + 2),
     })
 }
 

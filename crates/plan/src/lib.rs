@@ -69,8 +69,8 @@ pub use regions::parts_of;
 pub use regions::{BlockingRegions, Part};
 pub use separate::{separate, FreeFace, Separation};
 pub use sequence::{
-    sequence, sequence_first, sequence_first_with, sequence_parts, sequence_with, KeepSolutions,
-    Ranking, Rule, Sequence, SequenceOptions, Step, Tolerance,
+    sequence, sequence_first, sequence_first_with, sequence_parts, sequence_with, Growth,
+    KeepSolutions, Ranking, Rule, Sequence, SequenceOptions, Step,
 };
 pub use store::PairStore;
 

@@ -149,7 +149,7 @@ pub struct Step {
     /// Level in the disassembly tree (the whole assembly splits at level 0).
     pub depth: usize,
     /// Largest uniform growth of every part that keeps this separation; when computed.
-    pub tolerance: Option<Tolerance>,
+    pub tolerance: Option<Growth>,
     /// Why this step was chosen (see [`best_step`]).
     pub choice: Choice,
     /// Every solution of the subassembly's motion space, as
@@ -174,7 +174,7 @@ impl Step {
 
 /// How much the parts may grow before a step becomes impossible.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Tolerance {
+pub enum Growth {
     /// Growth by a ball of this radius (grid units) still lets the step happen.
     Finite(f64),
     /// No growth blocks the step (the sides leave each other at once).
@@ -594,12 +594,12 @@ fn set_along_axes(regions: &BlockingRegions, ms: &MotionSpace, moving: &[usize])
 /// The ray along the direction must avoid the interior of every grown sum. Measured in
 /// floating point (a tolerance to compare with manufacturing accuracy, not a
 /// combinatorial decision), to about 1e-9 relative.
-pub fn growth_tolerance(regions: &BlockingRegions, step: &Step) -> Tolerance {
+pub fn growth_tolerance(regions: &BlockingRegions, step: &Step) -> Growth {
     growth_of(&|k| regions.pieces(k), step)
 }
 
 /// [`growth_tolerance`] with the pieces of part `k` given by `pieces(k)`.
-fn growth_of<'p>(pieces: &dyn Fn(usize) -> &'p [apart_pieces::Polytope], step: &Step) -> Tolerance {
+fn growth_of<'p>(pieces: &dyn Fn(usize) -> &'p [apart_pieces::Polytope], step: &Step) -> Growth {
     let d = step.unit;
     let rest: Vec<usize> = step.staying();
     let mut best = f64::INFINITY;
@@ -631,9 +631,9 @@ fn growth_of<'p>(pieces: &dyn Fn(usize) -> &'p [apart_pieces::Polytope], step: &
         }
     }
     if best.is_finite() {
-        Tolerance::Finite(best)
+        Growth::Finite(best)
     } else {
-        Tolerance::Unbounded
+        Growth::Unbounded
     }
 }
 

@@ -4,8 +4,8 @@ mod common;
 
 use apart_kernel::Vec3;
 use apart_plan::{
-    sequence, sequence_first, BlockingRegions, CellKind, MotionSpace, Part, Progress, Sequence,
-    SequenceOptions, Tolerance,
+    sequence, sequence_first, BlockingRegions, CellKind, Growth, MotionSpace, Part, Progress,
+    Sequence, SequenceOptions,
 };
 use common::check_plan;
 use proptest::prelude::*;
@@ -181,7 +181,7 @@ fn growth_tolerance_of_a_peg_with_play() {
     );
     // The peg rests on the floor (left at once going up): only the play limits growth.
     match step.tolerance {
-        Some(Tolerance::Finite(s)) => assert!((s - 0.5).abs() < 1e-6, "{s}"),
+        Some(Growth::Finite(s)) => assert!((s - 0.5).abs() < 1e-6, "{s}"),
         t => panic!("{t:?}"),
     }
     // Tight peg in a tight hole: zero tolerance; stacked cubes lifted apart: unbounded.
@@ -192,7 +192,7 @@ fn growth_tolerance_of_a_peg_with_play() {
             ..Default::default()
         },
     );
-    assert_eq!(p.steps[0].tolerance, Some(Tolerance::Finite(0.0)));
+    assert_eq!(p.steps[0].tolerance, Some(Growth::Finite(0.0)));
     let p = plan(
         &common::stacked_cubes(),
         &SequenceOptions {
@@ -200,7 +200,7 @@ fn growth_tolerance_of_a_peg_with_play() {
             ..Default::default()
         },
     );
-    assert_eq!(p.steps[0].tolerance, Some(Tolerance::Unbounded));
+    assert_eq!(p.steps[0].tolerance, Some(Growth::Unbounded));
 }
 
 proptest! {

@@ -9,11 +9,12 @@
 
 pub(crate) mod boundary;
 
-use crate::load::polytope_bbox;
 use crate::model::{Assembly, Part};
-use crate::options::{LoadOptions, Stage, Tracker};
+use crate::options::LoadOptions;
+use crate::pieces::piece_box;
 use crate::witness::{fmt_witness, simplest, verified_in_polytopes};
 use apart_kernel::bvh::{by_low_x, sweep_pairs_between};
+use apart_kernel::progress::phases;
 use apart_kernel::{Aabb, Rational};
 use apart_kernel::{Grid, HPoint};
 use apart_mesh::locate::Locator;
@@ -124,8 +125,8 @@ fn overlap_point(a: &Part, b: &Part, grid: Option<&Grid>) -> Option<[Rational; 3
 /// The pairs `(i, j)` of pieces `a[i]`, `b[j]` whose open boxes meet (only those can
 /// overlap), by sort and sweep.
 pub(crate) fn open_box_pairs(a: &[Polytope], b: &[Polytope]) -> Vec<(usize, usize)> {
-    let ba: Vec<Aabb> = a.iter().map(polytope_bbox).collect();
-    let bb: Vec<Aabb> = b.iter().map(polytope_bbox).collect();
+    let ba: Vec<Aabb> = a.iter().map(piece_box).collect();
+    let bb: Vec<Aabb> = b.iter().map(piece_box).collect();
     sweep_pairs_between(&ba, &by_low_x(&ba), &bb, &by_low_x(&bb))
         .into_iter()
         .filter(|&(i, j)| ba[i].overlaps_open(&bb[j]))
@@ -155,7 +156,7 @@ pub(crate) const MAX_LISTED_OVERLAPS: usize = 100;
 /// pairs `disjoint` (`(i, j)`, `i < j`, sorted) are already known not to. Candidate
 /// pairs come from a hierarchy of the parts' boxes, part by part, and are tested in
 /// parallel batches in order, so the answer is the same on any number of threads and
-/// the search ends as soon as the list is full.
+/// the search ends as soon as the list is full, or once the stop flag is raised.
 pub(crate) fn check_parts(
     asm: &Assembly,
     opts: &LoadOptions,
@@ -167,10 +168,13 @@ pub(crate) fn check_parts(
         .map(|p| p.bbox.filter(|_| usable(p)).unwrap_or(Aabb::EMPTY))
         .collect();
     let bvh = apart_kernel::Bvh::new(boxes.clone());
-    let tracker = Tracker::start(opts, Stage::Overlaps, parts.len());
+    let counter = opts.progress.counter(phases::OVERLAPS, parts.len());
     let mut out: Vec<Problem> = Vec::new();
     for i in 0..parts.len() {
-        tracker.tick();
+        if opts.progress.stopped() {
+            break;
+        }
+        counter.add(1);
         if boxes[i].is_empty() {
             continue;
         }
@@ -186,6 +190,9 @@ pub(crate) fn check_parts(
         });
         near.sort_unstable();
         for batch in near.chunks(64) {
+            if opts.progress.stopped() {
+                return out;
+            }
             let found: Vec<Problem> = batch
                 .par_iter()
                 .filter_map(|&j| overlap_problem(asm, i, j))

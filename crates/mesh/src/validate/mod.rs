@@ -115,24 +115,7 @@ fn faces_at(mesh: &Mesh, t: u32, u: u32) -> String {
 /// negative. `grid` only serves to print coordinates in input units.
 pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
     let mut problems = Vec::new();
-    let mut faces: Vec<u32> = mesh.source_faces.clone();
-    faces.dedup();
-    let mut info = MeshInfo {
-        vertices: mesh.vertices.len(),
-        triangles: mesh.triangles.len(),
-        faces: faces.len(),
-        edges: 0,
-        shells: 0,
-        closed: false,
-        volume6: None,
-        reflex_edges: 0,
-        touching_edges: 0,
-        touching_vertices: 0,
-        self_intersections: 0,
-        flipped: false,
-        convex: false,
-        bbox: mesh.bbox(),
-    };
+    let mut info = first_info(mesh);
     if mesh.triangles.is_empty() {
         problems.push(
             Problem::error("empty mesh: no face with a non-zero area")
@@ -153,6 +136,59 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
     let convex_edges = use_.convex;
     info.touching_edges = use_.touching.len();
     info.closed = use_.closed();
+    report_edges(mesh, grid, &use_, &mut problems);
+    let touching_vertices = vertices::touching_vertices(mesh, &he);
+    info.touching_vertices = touching_vertices.len();
+    report_touching_vertices(mesh, grid, &touching_vertices, &mut problems);
+    drop(he);
+    let (shell_of, shells) = shells::shells(mesh.triangles.len(), &use_.pairs);
+    info.shells = shells;
+    drop(use_);
+
+    // Volume and orientation.
+    if info.closed {
+        check_volume(mesh, &mut info, convex_edges, &mut problems);
+    }
+
+    // Self-intersection.
+    let (bvh, count) = report_self_intersections(mesh, &info, shells, &mut problems);
+    info.self_intersections = count;
+
+    // Nesting of shells.
+    if info.closed && info.volume6.is_some() && shells > 1 && count == 0 {
+        check_nesting(mesh, bvh, &shell_of, shells, &mut problems);
+    }
+
+    let has_errors = problems.iter().any(Problem::is_error);
+    info.convex = convexity::is_convex(&info, has_errors);
+    (info, problems)
+}
+
+/// What is known of `mesh` before any check: its counts and box.
+fn first_info(mesh: &Mesh) -> MeshInfo {
+    let mut faces: Vec<u32> = mesh.source_faces.clone();
+    faces.dedup();
+    MeshInfo {
+        vertices: mesh.vertices.len(),
+        triangles: mesh.triangles.len(),
+        faces: faces.len(),
+        edges: 0,
+        shells: 0,
+        closed: false,
+        volume6: None,
+        reflex_edges: 0,
+        touching_edges: 0,
+        touching_vertices: 0,
+        self_intersections: 0,
+        flipped: false,
+        convex: false,
+        bbox: mesh.bbox(),
+    }
+}
+
+/// Reports the edges that are open, inconsistently oriented or non-manifold (errors),
+/// and those along which the solid touches itself (notes), each kind capped.
+fn report_edges(mesh: &Mesh, grid: &Grid, use_: &edges::EdgeUse, problems: &mut Vec<Problem>) {
     let mut c = Capped::new(LIST);
     for &(a, b) in &use_.boundary {
         c.push(|| {
@@ -161,7 +197,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                 .with_kind(ProblemKind::OpenBoundary)
         });
     }
-    c.finish("boundary edges", &mut problems);
+    c.finish("boundary edges", problems);
     let mut c = Capped::new(LIST);
     for &(a, b, t, u) in &use_.inconsistent {
         c.push(|| {
@@ -173,7 +209,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             .with_kind(ProblemKind::InconsistentOrientation)
         });
     }
-    c.finish("inconsistently oriented face pairs", &mut problems);
+    c.finish("inconsistently oriented face pairs", problems);
     let mut c = Capped::new(LIST);
     for &(a, b, n) in &use_.nonmanifold {
         c.push(|| {
@@ -184,7 +220,7 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             .with_kind(ProblemKind::NonManifold)
         });
     }
-    c.finish("non-manifold edges", &mut problems);
+    c.finish("non-manifold edges", problems);
     let mut c = Capped::new(LIST);
     for &(a, b, n) in &use_.touching {
         c.push(|| {
@@ -195,11 +231,18 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             .with_kind(ProblemKind::SelfTouching)
         });
     }
-    c.finish("edges where the solid touches itself", &mut problems);
-    let touching_vertices = vertices::touching_vertices(mesh, &he);
-    info.touching_vertices = touching_vertices.len();
+    c.finish("edges where the solid touches itself", problems);
+}
+
+/// Notes the vertices at which the solid touches itself (capped).
+fn report_touching_vertices(
+    mesh: &Mesh,
+    grid: &Grid,
+    touching_vertices: &[u32],
+    problems: &mut Vec<Problem>,
+) {
     let mut c = Capped::new(LIST);
-    for &v in &touching_vertices {
+    for &v in touching_vertices {
         c.push(|| {
             Problem::note("the solid touches itself at this vertex: valid")
                 .at(format!(
@@ -210,47 +253,55 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
                 .with_kind(ProblemKind::SelfTouching)
         });
     }
-    c.finish("vertices where the solid touches itself", &mut problems);
-    drop(he);
-    let (shell_of, shells) = shells::shells(mesh.triangles.len(), &use_.pairs);
-    info.shells = shells;
-    drop(use_);
+    c.finish("vertices where the solid touches itself", problems);
+}
 
-    // Volume and orientation.
-    if info.closed {
-        let mut v6 = mesh.volume6();
-        if v6 == Int::ZERO {
+/// The volume of the closed `mesh`: an error when zero; when negative, every triangle
+/// is flipped (the reflex edges become the `convex_edges` of before) with a warning.
+fn check_volume(
+    mesh: &mut Mesh,
+    info: &mut MeshInfo,
+    convex_edges: usize,
+    problems: &mut Vec<Problem>,
+) {
+    let mut v6 = mesh.volume6();
+    if v6 == Int::ZERO {
+        problems
+            .push(Problem::error("the solid has zero volume").with_kind(ProblemKind::ZeroVolume));
+    } else {
+        if v6 < Int::ZERO {
+            mesh.flip();
+            v6 = -v6;
+            info.flipped = true;
+            info.reflex_edges = convex_edges;
             problems.push(
-                Problem::error("the solid has zero volume").with_kind(ProblemKind::ZeroVolume),
+                Problem::warning("inside out (negative volume): every face was flipped")
+                    .with_kind(ProblemKind::InsideOut),
             );
-        } else {
-            if v6 < Int::ZERO {
-                mesh.flip();
-                v6 = -v6;
-                info.flipped = true;
-                info.reflex_edges = convex_edges;
-                problems.push(
-                    Problem::warning("inside out (negative volume): every face was flipped")
-                        .with_kind(ProblemKind::InsideOut),
-                );
-            }
-            info.volume6 = Some(v6);
         }
+        info.volume6 = Some(v6);
     }
+}
 
-    // Self-intersection.
+/// Reports the pairs of faces meeting beyond what they share (the first [`LIST`], then
+/// how many more): the hierarchy over the triangles' boxes, and the number of pairs.
+fn report_self_intersections(
+    mesh: &Mesh,
+    info: &MeshInfo,
+    shells: usize,
+    problems: &mut Vec<Problem>,
+) -> (Bvh, usize) {
     let boxes: Vec<Aabb> = (0..mesh.triangles.len())
         .into_par_iter()
         .with_min_len(8192)
         .map(|t| Aabb::of(mesh.corners(t)))
         .collect();
     let bvh = Bvh::new(boxes);
-    let (pairs, count) = if bounds_convex_body_once(mesh, &info, shells, &bvh) {
+    let (pairs, count) = if bounds_convex_body_once(mesh, info, shells, &bvh) {
         (Vec::new(), 0)
     } else {
         self_intersection::self_intersections(mesh, &bvh, LIST)
     };
-    info.self_intersections = count;
     for &(t, u, contact) in &pairs {
         let what = match contact {
             Contact::Intersect => "self-intersection: the faces meet beyond their shared vertices",
@@ -271,54 +322,59 @@ pub fn validate(mesh: &mut Mesh, grid: &Grid) -> (MeshInfo, Vec<Problem>) {
             .with_kind(ProblemKind::SelfIntersection),
         );
     }
+    (bvh, count)
+}
 
-    // Nesting of shells.
-    if info.closed && info.volume6.is_some() && shells > 1 && count == 0 {
-        let volumes = orientation::shell_volumes(mesh, &shell_of, shells);
-        let mut members: Vec<Vec<u32>> = vec![Vec::new(); shells];
-        for (t, &s) in shell_of.iter().enumerate() {
-            if members[s as usize].len() < 16 {
-                members[s as usize].push(t as u32);
-            }
+/// Checks that the `shells` shells of the closed solid nest properly: each bounds a
+/// region of winding number 0 outside it (a positive shell) or 1 (a cavity), and none
+/// has zero volume. `shell_of[t]` is the shell of triangle `t`.
+fn check_nesting(
+    mesh: &Mesh,
+    bvh: Bvh,
+    shell_of: &[u32],
+    shells: usize,
+    problems: &mut Vec<Problem>,
+) {
+    let volumes = orientation::shell_volumes(mesh, shell_of, shells);
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); shells];
+    for (t, &s) in shell_of.iter().enumerate() {
+        if members[s as usize].len() < 16 {
+            members[s as usize].push(t as u32);
         }
-        let locator = Locator::with_bvh(mesh, bvh);
-        let mut c = Capped::new(LIST);
-        for s in 0..shells {
-            let shell = format!(
-                "shell of face {}",
-                mesh.source_faces[members[s][0] as usize]
-            );
-            let sign = apart_kernel::int::sign_of(&volumes[s]);
-            if sign == Sign::Zero {
-                c.push(|| {
-                    Problem::error("this shell has zero volume")
-                        .at(shell)
-                        .with_kind(ProblemKind::ZeroVolume)
-                });
-                continue;
-            }
-            let expected = if sign == Sign::Positive { 0 } else { 1 };
-            match orientation::winding_of_others(&locator, &shell_of, s as u32, &members[s]) {
-                Some(w) if w == expected => {}
-                Some(w) => c.push(|| {
-                    let why = if sign == Sign::Positive {
-                        format!("this shell lies inside the solid (winding number {w}): shells with the same orientation are nested")
-                    } else if w == 0 {
-                        "this shell is inside out: its faces point inwards but it bounds no cavity".to_string()
-                    } else {
-                        format!("this cavity lies in a region of winding number {w}")
-                    };
-                    Problem::error(why).at(shell).with_kind(ProblemKind::Shell)
-                }),
-                None => {}
-            }
-        }
-        c.finish("badly nested shells", &mut problems);
     }
-
-    let has_errors = problems.iter().any(Problem::is_error);
-    info.convex = convexity::is_convex(&info, has_errors);
-    (info, problems)
+    let locator = Locator::with_bvh(mesh, bvh);
+    let mut c = Capped::new(LIST);
+    for s in 0..shells {
+        let shell = format!(
+            "shell of face {}",
+            mesh.source_faces[members[s][0] as usize]
+        );
+        let sign = apart_kernel::int::sign_of(&volumes[s]);
+        if sign == Sign::Zero {
+            c.push(|| {
+                Problem::error("this shell has zero volume")
+                    .at(shell)
+                    .with_kind(ProblemKind::ZeroVolume)
+            });
+            continue;
+        }
+        let expected = if sign == Sign::Positive { 0 } else { 1 };
+        match orientation::winding_of_others(&locator, shell_of, s as u32, &members[s]) {
+            Some(w) if w == expected => {}
+            Some(w) => c.push(|| {
+                let why = if sign == Sign::Positive {
+                    format!("this shell lies inside the solid (winding number {w}): shells with the same orientation are nested")
+                } else if w == 0 {
+                    "this shell is inside out: its faces point inwards but it bounds no cavity".to_string()
+                } else {
+                    format!("this cavity lies in a region of winding number {w}")
+                };
+                Problem::error(why).at(shell).with_kind(ProblemKind::Shell)
+            }),
+            None => {}
+        }
+    }
+    c.finish("badly nested shells", problems);
 }
 
 /// Triangles up to which a closed shell is first tried as the boundary of a convex body
