@@ -607,6 +607,12 @@ pub fn job_error(e: apart::jobs::JobError, _global: &crate::Global) -> anyhow::E
             limit_text(),
             memory_left().unwrap_or(0) >> 20
         ))),
+        apart::jobs::JobError::Stack(e) => e.into(),
+        e @ apart::jobs::JobError::Part { .. } => anyhow::anyhow!("{e}"),
+        apart::jobs::JobError::NotFinite { setting, value } => anyhow::anyhow!(
+            "--{} {value} is not a finite number",
+            setting.replace('_', "-")
+        ),
     }
 }
 

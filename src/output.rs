@@ -670,48 +670,20 @@ pub fn planner(global: &Global, label: &'static str) -> (Phase, apart::plan::Pro
     (Phase(bar), progress)
 }
 
-/// Where a partial answer stopped, in the JSON (`"stopped"`).
-#[derive(serde::Serialize)]
-pub struct StoppedJson {
-    /// What stopped it: "--timeout", "--max-memory" (the memory budget, given or by
-    /// default) or "Ctrl-C".
-    pub by: &'static str,
-    /// The `--timeout` given; otherwise the seconds from the start of the run.
-    pub after_seconds: f64,
-    pub phase: &'static str,
-    /// For the memory budget: the estimate refused, or the heap in use.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub detail: Option<String>,
-}
-
-/// The status of an answer in the JSON: "done", or for a partial answer "timeout",
-/// "out of memory" or "interrupted".
-pub fn status(stop: &Option<Stopped>) -> &'static str {
-    stop.as_ref().map_or("done", Stopped::status)
-}
-
-/// The `"stopped"` object of a partial answer.
-pub fn stopped_json(stop: &Option<Stopped>) -> Option<StoppedJson> {
-    stop.as_ref().map(|t| StoppedJson {
-        by: t.by_key(),
-        after_seconds: t.seconds,
-        phase: t.phase,
-        detail: t.detail.clone(),
-    })
-}
-
 /// States in `status` why a partial answer stopped, as the front end knows it.
 pub fn stamp(status: &mut apart::jobs::Status, stop: &Option<Stopped>) {
     if let Some(t) = stop {
-        status.stopped_by(
-            t.status(),
-            apart::jobs::StopFacts {
-                by: t.by_key().to_string(),
-                after_seconds: t.seconds,
-                phase: t.phase.to_string(),
-                detail: t.detail.clone(),
-            },
-        );
+        status.stopped_by(t.status(), stop_facts(t));
+    }
+}
+
+/// Where and why a partial answer stopped, as answers state it (`"stopped"`).
+pub fn stop_facts(t: &Stopped) -> apart::jobs::StopFacts {
+    apart::jobs::StopFacts {
+        by: t.by_key().to_string(),
+        after_seconds: t.seconds,
+        phase: t.phase.to_string(),
+        detail: t.detail.clone(),
     }
 }
 

@@ -4,6 +4,7 @@
 //! `apart.InputError` naming the argument, never reach the library.
 
 use crate::errors::value_error;
+use apart_stack::orientation::Base;
 use pyo3::prelude::*;
 
 /// Largest timeout, in seconds (one week, as the command line's `--timeout`).
@@ -153,7 +154,7 @@ pub fn clearance(py: Python<'_>, c: Option<f64>) -> PyResult<Option<f64>> {
 }
 
 /// `bases`: quarter turns (phi, psi), each 0 to 3.
-pub fn bases(py: Python<'_>, b: Option<Vec<(u8, u8)>>) -> PyResult<Option<Vec<(u8, u8)>>> {
+pub fn bases(py: Python<'_>, b: Option<Vec<(u8, u8)>>) -> PyResult<Option<Vec<Base>>> {
     if let Some(q) = b
         .as_ref()
         .and_then(|v| v.iter().find(|(a, c)| *a > 3 || *c > 3))
@@ -163,5 +164,5 @@ pub fn bases(py: Python<'_>, b: Option<Vec<(u8, u8)>>) -> PyResult<Option<Vec<(u
             format!("bases must be quarter turns from 0 to 3, not {q:?}"),
         );
     }
-    Ok(b)
+    Ok(b.map(|v| v.into_iter().map(|(phi, psi)| Base { phi, psi }).collect()))
 }

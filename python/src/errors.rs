@@ -156,6 +156,9 @@ pub fn job_error(py: Python<'_>, e: apart_jobs::JobError, stop: &Option<Stopped>
             Some(s) if s.by_memory() => stopped(py, stop.clone()),
             _ => plan_error(py, e),
         },
+        e @ (apart_jobs::JobError::Stack(_)
+        | apart_jobs::JobError::Part { .. }
+        | apart_jobs::JobError::NotFinite { .. }) => value_error(py, e.to_string()),
     }
 }
 

@@ -462,7 +462,7 @@ impl Assembly {
                 format!("part \"{}\" has no convex pieces", p.name),
             ));
         }
-        let args = answers::PlaceArgs {
+        let opts = apart_jobs::place::PlaceJobOptions {
             part: k,
             target,
             weight,
@@ -481,8 +481,10 @@ impl Assembly {
             // The placement engine watches no stop flag.
             stoppable: false,
         };
-        let (answer, _) = run(py, limits, move |_| answers::place(&loaded, &args))?;
-        Ok(answer.map_err(|m| errors::value_error(py, m))?.to_string())
+        let (answer, stop) = run(py, limits, move |_| answers::place(&loaded, &opts))?;
+        Ok(answer
+            .map_err(|e| errors::job_error(py, e, &stop))?
+            .to_string())
     }
 
     /// The motion-space sphere with every solution marked (`apart partition --svg` or
@@ -578,7 +580,7 @@ impl Assembly {
                 format!("part \"{part}\" has no convex pieces: load it with apart.stack(path) or apart.load(path) with two parts or more"),
             ));
         }
-        let args = answers::StackArgs {
+        let opts = apart_jobs::stack::StackJobOptions {
             part: k,
             count,
             weight,
@@ -597,8 +599,8 @@ impl Assembly {
             timeout,
             stoppable: true,
         };
-        let (answer, stop) = run(py, limits, move |p| answers::stack(&loaded, &args, p))?;
-        let mut answer = answer.map_err(|m| errors::value_error(py, m))?;
+        let (answer, stop) = run(py, limits, move |p| answers::stack(&loaded, &opts, p))?;
+        let mut answer = answer.map_err(|e| errors::job_error(py, e, &stop))?;
         work::mark(&mut answer, &stop);
         Ok(answer.to_string())
     }

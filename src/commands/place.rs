@@ -6,18 +6,11 @@
 
 use crate::commands::load::{load_valid_but, load_valid_named, named_files};
 use crate::commands::placement_args::{
-    exact_rotation, exact_units, grid_value, model_of, parse_bases, parse_numbers, percent, qunits,
-    stats_json, write_pictures, PictureArgs, StatsJson, STACKING_PAPER,
+    parse_bases, parse_numbers, percent, write_pictures, PictureArgs, STACKING_PAPER,
 };
 use crate::output;
 use crate::{limits, Global};
-use apart::assembly::Assembly;
-use apart::kernel::{Aabb, Rational};
-use apart::stack::orientation::{orientations, Base};
-use apart::stack::part::PartModel;
-use apart::stack::partial::{place, Cost, Moving, PlaceOptions, PlaceStats, Region};
-use apart::stack::scene::Scene;
-use serde::Serialize;
+use apart::jobs::place::{place, PlaceAnswer, PlaceJobOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -88,28 +81,6 @@ pub struct PlaceArgs {
     pub pictures: PictureArgs,
 }
 
-#[derive(Serialize)]
-struct CandidateJson {
-    translation: [f64; 3],
-    exact_translation: [String; 3],
-    rotation_deg: [f64; 3],
-    exact_rotation: [String; 2],
-    cost: f64,
-}
-
-#[derive(Serialize)]
-struct PlaceJson {
-    moving: String,
-    fixed: Vec<String>,
-    /// "distance" (to `target`) or "stacking" (eq. (1) with `weight`).
-    cost_kind: &'static str,
-    weight: Option<f64>,
-    target: [f64; 3],
-    grid_step: f64,
-    candidates: Vec<CandidateJson>,
-    stats: StatsJson,
-}
-
 /// Runs the command.
 pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     crate::input_facts::no_tolerance(global, "place")?;
@@ -132,97 +103,25 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
     }
     args.pictures.check(&inputs)?;
     let asm = &loaded.assembly;
-    let h = asm.grid.step();
-    let k = asm
+    let part = asm
         .parts
         .iter()
         .position(|p| p.name == name)
         .ok_or_else(|| anyhow::anyhow!("the assembly has no part named \"{name}\""))?;
-    let part = model_of(asm, k)?;
-    let mut scene = Scene::new();
-    let mut fixed = Vec::new();
-    for (i, p) in asm.parts.iter().enumerate() {
-        if i != k {
-            scene.add_fixed_part(&p.pieces);
-            fixed.push(p.name.clone());
-        }
-    }
-    let to_grid = |v: f64, flag: &str| grid_value(v, h, flag);
-    let boxed = |text: &str, flag: &str| -> anyhow::Result<Aabb<Rational>> {
-        let v = parse_numbers(text, 6, flag)?;
-        anyhow::ensure!(
-            (0..3).all(|i| v[i] <= v[i + 3]),
-            "{flag} \"{text}\" is empty (a low corner above the high one)"
-        );
-        Ok(Aabb {
-            min: [
-                to_grid(v[0], flag)?,
-                to_grid(v[1], flag)?,
-                to_grid(v[2], flag)?,
-            ],
-            max: [
-                to_grid(v[3], flag)?,
-                to_grid(v[4], flag)?,
-                to_grid(v[5], flag)?,
-            ],
-        })
-    };
-    let region = if let Some(t) = &args.translations {
-        Region::Translations(boxed(t, "--translations")?)
-    } else if let Some(r) = &args.region {
-        Region::Container(boxed(r, "--region")?)
-    } else {
-        Region::Container(default_region(asm, &part))
-    };
-    let target = parse_numbers(&args.target, 3, "--target")?;
-    let bases = if args.bases.is_empty() {
-        vec![Base::IDENTITY]
-    } else {
-        parse_bases(&args.bases)?
-    };
-    let moving = Moving::new(part.clone(), &orientations(args.dtheta, &bases, 0.05), true);
-    let opts = PlaceOptions {
-        region,
-        cost: match args.weight {
-            None => Cost::Distance([
-                to_grid(target[0], "--target")?,
-                to_grid(target[1], "--target")?,
-                to_grid(target[2], "--target")?,
-            ]),
-            Some(w) => {
-                anyhow::ensure!((0.0..=1.0).contains(&w), "--weight {w} is not in [0, 1]");
-                let f = parse_numbers(&args.floor_point, 3, "--floor-point")?;
-                Cost::Stacking {
-                    w: Rational::from_f64(w).expect("finite"),
-                    floor: [
-                        to_grid(f[0], "--floor-point")?,
-                        to_grid(f[1], "--floor-point")?,
-                        to_grid(f[2], "--floor-point")?,
-                    ],
-                }
-            }
-        },
-        clearance: args
-            .clearance
-            .map(|c| to_grid(c, "--clearance"))
-            .transpose()?,
-        extrapolate: true,
-    };
-    let result = {
+    let opts = options(args, part)?;
+    let run = {
         let _phase = output::phase(global, "placement");
-        place(&scene, &moving, &opts, args.candidates)?
+        place(&loaded, &opts).map_err(|e| limits::job_error(e, global))?
     };
-    let seconds = start.elapsed().as_secs_f64();
-    if let Some(best) = result.candidates.first() {
-        let placed = apart::stack::stability::placed_pieces(
-            &moving.oriented[best.orientation].pieces,
-            &best.translation,
-        );
+    let mut answer = run.answer;
+    answer.stats.seconds.total = start.elapsed().as_secs_f64();
+    if let Some(best) = run.best {
+        let h = answer.grid_step;
         write_pictures(&args.pictures, |view, w, hgt, svg| {
             let (shapes, names) = apart::draw::stack_render::scene_shapes(
-                &scene,
-                &fixed,
-                &[(part.name.clone(), placed.clone())],
+                &run.scene,
+                &answer.fixed,
+                &[(answer.moving.clone(), best.clone())],
                 h,
             );
             if svg {
@@ -232,74 +131,60 @@ pub fn run(args: &PlaceArgs, global: &Global) -> anyhow::Result<ExitCode> {
             }
         })?;
     }
-    let candidates: Vec<CandidateJson> = result
-        .candidates
-        .iter()
-        .map(|c| {
-            let o = &moving.orientations[c.orientation];
-            CandidateJson {
-                translation: c.translation.clone().map(|t| qunits(&t, h)),
-                exact_translation: c.translation.clone().map(|t| exact_units(&t, h)),
-                rotation_deg: o.degrees(),
-                exact_rotation: exact_rotation(o),
-                cost: c.cost.to_f64() * h * h,
-            }
-        })
-        .collect();
-    let found = !candidates.is_empty();
-    let json = PlaceJson {
-        moving: name.clone(),
-        fixed,
-        cost_kind: if args.weight.is_some() {
-            "stacking"
-        } else {
-            "distance"
-        },
-        weight: args.weight,
-        target: [target[0], target[1], target[2]],
-        grid_step: h,
-        candidates,
-        stats: stats_json(&result.stats, &result.obstacles, seconds),
-    };
     if global.json {
-        output::json(&json)?;
+        output::json(&answer)?;
     } else {
-        print_text(&json, &result.stats);
+        print_text(&answer);
     }
-    Ok(if found {
-        ExitCode::SUCCESS
-    } else {
+    Ok(if answer.candidates.is_empty() {
         ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
     })
 }
 
-/// The bounding box of every part grown by the new part's largest extent.
-fn default_region(asm: &Assembly, part: &PartModel) -> Aabb<Rational> {
-    let mut b: Option<Aabb<Rational>> = None;
-    for p in &asm.parts {
-        for piece in &p.pieces {
-            let pb = Aabb::of_scaled(piece.vertices(), piece.den());
-            b = Some(match b {
-                None => pb,
-                Some(a) => a.union(&pb),
-            });
-        }
+/// The job's options from the command line's, for part `part`.
+fn options(args: &PlaceArgs, part: usize) -> anyhow::Result<PlaceJobOptions> {
+    let boxed = |text: &str, flag: &str| -> anyhow::Result<[f64; 6]> {
+        let v = parse_numbers(text, 6, flag)?;
+        anyhow::ensure!(
+            (0..3).all(|i| v[i] <= v[i + 3]),
+            "{flag} \"{text}\" is empty (a low corner above the high one)"
+        );
+        Ok([v[0], v[1], v[2], v[3], v[4], v[5]])
+    };
+    let three = |text: &str, flag: &str| -> anyhow::Result<[f64; 3]> {
+        let v = parse_numbers(text, 3, flag)?;
+        Ok([v[0], v[1], v[2]])
+    };
+    if let Some(w) = args.weight {
+        anyhow::ensure!((0.0..=1.0).contains(&w), "--weight {w} is not in [0, 1]");
     }
-    let b = b.expect("a valid assembly has pieces");
-    let e = part
-        .orient(&apart::stack::orientation::Orientation::IDENTITY)
-        .extent;
-    let grow = (0..3)
-        .map(|i| &e.max[i] - &e.min[i])
-        .max()
-        .expect("three axes");
-    Aabb {
-        min: b.min.clone().map(|v| &v - &grow),
-        max: b.max.clone().map(|v| &v + &grow),
-    }
+    Ok(PlaceJobOptions {
+        part,
+        target: three(&args.target, "--target")?,
+        weight: args.weight,
+        floor_point: three(&args.floor_point, "--floor-point")?,
+        region: args
+            .region
+            .as_deref()
+            .map(|r| boxed(r, "--region"))
+            .transpose()?,
+        translations: args
+            .translations
+            .as_deref()
+            .map(|t| boxed(t, "--translations"))
+            .transpose()?,
+        dtheta: args.dtheta,
+        bases: (!args.bases.is_empty())
+            .then(|| parse_bases(&args.bases))
+            .transpose()?,
+        clearance: args.clearance,
+        candidates: args.candidates,
+    })
 }
 
-fn print_text(j: &PlaceJson, s: &PlaceStats) {
+fn print_text(j: &PlaceAnswer) {
     let cost = match j.weight {
         Some(w) => format!("cost eq. (1) with w = {w}"),
         None => format!(
@@ -332,12 +217,13 @@ fn print_text(j: &PlaceJson, s: &PlaceStats) {
             c.cost
         ));
     }
+    let s = &j.stats;
     output::line(format!(
         "piece pairs evaluated {} of {} ({:.2}%), {} orientations, {:.3} s",
         s.pairs_evaluated,
         s.pairs_total,
         percent(s.pairs_evaluated, s.pairs_total),
         s.orientations_considered,
-        j.stats.seconds.total
+        s.seconds.total
     ));
 }

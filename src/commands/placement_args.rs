@@ -1,15 +1,10 @@
 //! What `apart place` and `apart stack` share: the paper they cite, the picture flags,
-//! exact grid values parsed from the command line, the part to place as a placement
-//! model, and the JSON of exact values and of the placement engine's counters.
+//! the numbers and base orientations parsed from the command line, and the part named.
 
 use crate::output;
 use apart::assembly::Assembly;
 use apart::draw::View;
-use apart::kernel::Rational;
-use apart::stack::orientation::{Base, Orientation};
-use apart::stack::part::PartModel;
-use apart::stack::partial::{ObstacleStats, PlaceStats};
-use serde::Serialize;
+use apart::stack::orientation::Base;
 use std::path::{Path, PathBuf};
 
 /// The paper whose eq. (1) `place --weight` and `stack` minimize, cited in full in their
@@ -60,53 +55,6 @@ pub fn write_pictures(
     Ok(())
 }
 
-/// Counters shared by the JSON of `place` and `stack`.
-#[derive(Serialize)]
-pub struct StatsJson {
-    orientations_considered: usize,
-    pairs_total: u64,
-    pairs_evaluated: u64,
-    interference_tests: u64,
-    cells: u64,
-    qps: u64,
-    obstacles_fresh: u64,
-    obstacles_extrapolated: u64,
-    /// Where the time went.
-    pub seconds: StatsSeconds,
-}
-
-/// Seconds of a placement, in all and by phase.
-#[derive(Serialize)]
-pub struct StatsSeconds {
-    /// Wall-clock seconds of the whole command.
-    pub total: f64,
-    detect: f64,
-    cells: f64,
-    obstacles: f64,
-    extrapolation: f64,
-}
-
-/// The counters as JSON.
-pub fn stats_json(p: &PlaceStats, o: &ObstacleStats, seconds: f64) -> StatsJson {
-    StatsJson {
-        orientations_considered: p.orientations_considered,
-        pairs_total: p.pairs_total,
-        pairs_evaluated: p.pairs_evaluated,
-        interference_tests: p.interference_tests,
-        cells: p.cells,
-        qps: p.qps,
-        obstacles_fresh: o.fresh,
-        obstacles_extrapolated: o.extrapolated,
-        seconds: StatsSeconds {
-            total: seconds,
-            detect: p.detect_seconds,
-            cells: p.cells_seconds,
-            obstacles: o.fresh_seconds,
-            extrapolation: o.extrapolate_seconds,
-        },
-    }
-}
-
 /// Parses `n` comma-separated finite numbers.
 pub fn parse_numbers(text: &str, n: usize, flag: &str) -> anyhow::Result<Vec<f64>> {
     let v: Vec<f64> = text
@@ -146,31 +94,9 @@ pub fn parse_bases(texts: &[String]) -> anyhow::Result<Vec<Base>> {
         .collect()
 }
 
-/// A value given in input units, exactly in grid units (`h` is a power of two).
-pub fn grid_value(v: f64, h: f64, flag: &str) -> anyhow::Result<Rational> {
-    Rational::from_f64(v / h).ok_or_else(|| anyhow::anyhow!("{flag} {v} is not a finite number"))
-}
-
-/// The exact turn about z as its rational cosine and sine, `["a/c", "b/c"]`.
-pub fn exact_rotation(o: &Orientation) -> [String; 2] {
-    let t = o.theta;
-    [format!("{}/{}", t.a, t.c), format!("{}/{}", t.b, t.c)]
-}
-
-/// A grid-unit rational in input units, as `f64`.
-pub fn qunits(v: &Rational, h: f64) -> f64 {
-    v.to_f64() * h
-}
-
-/// A grid-unit rational in input units, exactly (`h` is a power of two).
-pub fn exact_units(v: &Rational, h: f64) -> String {
-    let step = Rational::from_f64(h).expect("the grid step is a finite power of two");
-    (v * &step).to_string()
-}
-
-/// The part named `name` (or the only part) of a loaded assembly, as a placement model.
-pub fn load_part(asm: &Assembly, name: Option<&str>, path: &Path) -> anyhow::Result<PartModel> {
-    let k = match name {
+/// The index of the part named `name` (or of the only part) of a loaded assembly.
+pub fn part_index(asm: &Assembly, name: Option<&str>, path: &Path) -> anyhow::Result<usize> {
+    Ok(match name {
         Some(n) => asm
             .parts
             .iter()
@@ -185,25 +111,7 @@ pub fn load_part(asm: &Assembly, name: Option<&str>, path: &Path) -> anyhow::Res
             );
             0
         }
-    };
-    model_of(asm, k)
-}
-
-/// Part `k` of a loaded assembly as a placement model (its pieces and its mesh).
-pub fn model_of(asm: &Assembly, k: usize) -> anyhow::Result<PartModel> {
-    let part = &asm.parts[k];
-    let mut model = PartModel::from_pieces(&part.name, part.pieces.clone())
-        .map_err(|e| anyhow::anyhow!("part \"{}\": {e}", part.name))?;
-    model.mesh = part.mesh.as_ref().map(|m| {
-        (
-            m.vertices
-                .iter()
-                .map(|&v| apart::kernel::Vec3::from(v))
-                .collect(),
-            m.triangles.clone(),
-        )
-    });
-    Ok(model)
+    })
 }
 
 /// `100 a / b`, 0 for an empty total.

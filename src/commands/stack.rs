@@ -8,16 +8,12 @@
 
 use crate::commands::load::load_valid;
 use crate::commands::placement_args::{
-    exact_rotation, exact_units, grid_value, load_part, parse_bases, parse_numbers, percent,
-    qunits, stats_json, write_pictures, PictureArgs, StatsJson,
+    parse_bases, parse_numbers, part_index, percent, write_pictures, PictureArgs,
 };
 use crate::limits::Stopped;
 use crate::output;
 use crate::{limits, Global};
-use apart::kernel::Rational;
-use apart::stack::planner::{stack_with, StackOptions, StackPlan};
-use apart::stack::stability::ContactWith;
-use serde::Serialize;
+use apart::jobs::stack::{stack, StackAnswer, StackJobOptions, Support};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -77,197 +73,91 @@ pub struct StackArgs {
     pub pictures: PictureArgs,
 }
 
-#[derive(Serialize)]
-struct ContactJson {
-    /// "floor" or the index of a part of the stack.
-    with: serde_json::Value,
-    supports: bool,
-}
-
-#[derive(Serialize)]
-struct PlacementJson {
-    index: usize,
-    translation: [f64; 3],
-    exact_translation: [String; 3],
-    rotation_deg: [f64; 3],
-    exact_rotation: [String; 2],
-    cost: f64,
-    stage: u8,
-    examined: usize,
-    contacts: Vec<ContactJson>,
-}
-
-#[derive(Serialize)]
-struct StackJson {
-    /// "done", or "timeout", "out of memory", "interrupted": --timeout, the memory
-    /// budget or Ctrl-C stopped the run and `placements` are the parts placed until then.
-    status: &'static str,
-    /// What stopped the run, and where; absent when it ran to its end.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    stopped: Option<output::StoppedJson>,
-    part: String,
-    count: usize,
-    complete: bool,
-    placements: Vec<PlacementJson>,
-    stack_height: f64,
-    grid_step: f64,
-    stats: StatsJson,
-    unstable: usize,
-    not_lowerable: usize,
-    orientations: usize,
-}
-
 /// Runs the command.
 pub fn run(args: &StackArgs, global: &Global) -> anyhow::Result<ExitCode> {
     crate::input_facts::no_tolerance(global, "stack")?;
     let loaded = load_valid(&args.part, global)?;
     args.pictures
         .check(&output::Inputs::of(&args.part, &loaded))?;
-    let grid = loaded.assembly.grid;
-    let part = load_part(&loaded.assembly, args.part_name.as_deref(), &args.part)?;
-    let h = grid.step();
-    let to_grid = |v: f64, flag: &str| grid_value(v, h, flag);
-    let extent = part
-        .orient(&apart::stack::orientation::Orientation::IDENTITY)
-        .extent;
-    let size = |i: usize| (&extent.max[i] - &extent.min[i]).to_f64() * h;
-    let floor = match &args.floor {
-        Some(text) => {
-            let v = parse_numbers(text, 4, "--floor")?;
-            [v[0], v[1], v[2], v[3]]
-        }
-        None => {
-            let side = (args.count as f64).sqrt().ceil() * size(0).max(size(1)) * 1.25;
-            let half = side / 2.0;
-            [-half, -half, half, half]
-        }
-    };
-    let mut opts = StackOptions::new(
-        args.count,
-        Rational::from_f64(args.weight).expect("checked finite"),
-        [
-            to_grid(floor[0], "--floor")?,
-            to_grid(floor[1], "--floor")?,
-            to_grid(floor[2], "--floor")?,
-            to_grid(floor[3], "--floor")?,
-        ],
-        match args.max_height {
-            Some(m) => to_grid(m, "--max-height")?,
-            None => {
-                let height = &extent.max[2] - &extent.min[2];
-                &height * &Rational::from(args.count as i64)
+    let part = part_index(&loaded.assembly, args.part_name.as_deref(), &args.part)?;
+    let opts = StackJobOptions {
+        part,
+        count: args.count,
+        weight: args.weight,
+        floor: match &args.floor {
+            Some(text) => {
+                let v = parse_numbers(text, 4, "--floor")?;
+                Some([v[0], v[1], v[2], v[3]])
             }
+            None => None,
         },
-    );
-    opts.floor_z = to_grid(args.floor_z, "--floor-z")?;
-    opts.dtheta_deg = args.dtheta;
-    if !args.bases.is_empty() {
-        opts.bases = parse_bases(&args.bases)?;
-    }
-    opts.clearance = args
-        .clearance
-        .map(|c| to_grid(c, "--clearance"))
-        .transpose()?;
-    opts.max_candidates = args.max_candidates;
-    opts.extrapolate = !args.no_extrapolation;
-    let plan = {
+        floor_z: args.floor_z,
+        max_height: args.max_height,
+        dtheta: args.dtheta,
+        bases: (!args.bases.is_empty())
+            .then(|| parse_bases(&args.bases))
+            .transpose()?,
+        clearance: args.clearance,
+        max_candidates: args.max_candidates,
+        extrapolate: !args.no_extrapolation,
+    };
+    let mut answer = {
         let (_phase, progress) = output::planner(global, "stacking");
-        stack_with(&part, &opts, &progress)?
+        stack(&loaded, &opts, &progress).map_err(|e| limits::job_error(e, global))?
     };
     let files = args.pictures.png.is_some() || args.pictures.svg.is_some();
-    let stop = output::partial(global, plan.stopped, files);
+    let stop = output::partial(global, answer.plan.stopped, files);
     if stop.is_none() {
+        let (plan, h) = (&answer.plan, answer.grid_step);
         write_pictures(&args.pictures, |view, w, hgt, svg| {
             if svg {
-                apart::draw::stack_render::plan_svg(&plan, h, view, w, hgt).into_bytes()
+                apart::draw::stack_render::plan_svg(plan, h, view, w, hgt).into_bytes()
             } else {
-                apart::draw::stack_render::plan_png(&plan, h, view, w, hgt)
+                apart::draw::stack_render::plan_png(plan, h, view, w, hgt)
             }
         })?;
     }
-    if global.json {
-        output::json(&to_json(&plan, &part.name, args.count, h, &stop))?;
-    } else {
-        print_text(&plan, &part.name, args.count, h, &stop);
+    if let Some(t) = &stop {
+        answer.stopped_by(t.status(), output::stop_facts(t));
     }
-    let answer = if plan.complete {
+    if global.json {
+        output::json(&answer)?;
+    } else {
+        print_text(&answer, &stop);
+    }
+    let done = if answer.complete {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
     };
-    Ok(output::exit_code(&stop, answer))
+    Ok(output::exit_code(&stop, done))
 }
 
-fn to_json(
-    plan: &StackPlan,
-    name: &str,
-    count: usize,
-    h: f64,
-    stop: &Option<Stopped>,
-) -> StackJson {
-    StackJson {
-        status: output::status(stop),
-        stopped: output::stopped_json(stop),
-        part: name.to_string(),
-        count,
-        complete: plan.complete,
-        placements: plan
-            .placements
-            .iter()
-            .map(|p| PlacementJson {
-                index: p.index,
-                translation: p.translation.clone().map(|t| qunits(&t, h)),
-                exact_translation: p.translation.clone().map(|t| exact_units(&t, h)),
-                rotation_deg: p.orientation.degrees(),
-                exact_rotation: exact_rotation(&p.orientation),
-                cost: p.cost.to_f64() * h * h,
-                stage: p.stage,
-                examined: p.examined,
-                contacts: p
-                    .contacts
-                    .iter()
-                    .map(|c| ContactJson {
-                        with: match c.with {
-                            ContactWith::Floor => "floor".into(),
-                            ContactWith::Part(k) => k.into(),
-                        },
-                        supports: c.supports,
-                    })
-                    .collect(),
-            })
-            .collect(),
-        stack_height: qunits(&plan.stack_height, h),
-        grid_step: h,
-        stats: stats_json(&plan.stats.place, &plan.stats.obstacles, plan.stats.seconds),
-        unstable: plan.stats.unstable,
-        not_lowerable: plan.stats.not_lowerable,
-        orientations: plan.stats.orientations,
-    }
-}
-
-fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<Stopped>) {
+fn print_text(a: &StackAnswer, stop: &Option<Stopped>) {
     if let Some(t) = stop {
         output::line(t);
     }
+    let count = a.count;
     output::line(format!(
-        "{name}: {} of {count} {} stacked, stack height {}",
-        plan.placements.len(),
+        "{}: {} of {count} {} stacked, stack height {}",
+        a.part,
+        a.placements.len(),
         if count == 1 { "part" } else { "parts" },
-        qunits(&plan.stack_height, h)
+        a.stack_height
     ));
     output::line("   #  stage  translation                      turn (deg)   cost        rests on");
-    for p in &plan.placements {
-        let t = p.translation.clone().map(|t| qunits(&t, h));
+    for p in &a.placements {
+        let t = p.pose.translation;
         let rests: Vec<String> = p
             .contacts
             .iter()
             .filter(|c| c.supports)
             .map(|c| match c.with {
-                ContactWith::Floor => "floor".to_string(),
-                ContactWith::Part(k) => format!("#{}", k + 1),
+                Support::Floor => "floor".to_string(),
+                Support::Part(k) => format!("#{}", k + 1),
             })
             .collect();
-        let [phi, psi, theta] = p.orientation.degrees();
+        let [phi, psi, theta] = p.pose.rotation_deg;
         let turn = if phi == 0.0 && psi == 0.0 {
             format!("{theta:.2}")
         } else {
@@ -281,17 +171,17 @@ fn print_text(plan: &StackPlan, name: &str, count: usize, h: f64, stop: &Option<
             t[1],
             t[2],
             turn,
-            p.cost.to_f64() * h * h,
+            p.pose.cost,
             rests.join(", ")
         ));
     }
-    if !plan.complete && stop.is_none() {
+    if !a.complete && stop.is_none() {
         output::line(format!(
             "incomplete: part {} fits nowhere in the region (raise --max-height or widen --floor)",
-            plan.placements.len() + 1
+            a.placements.len() + 1
         ));
     }
-    let s = &plan.stats;
+    let s = &a.plan.stats;
     output::line(format!(
         "{} orientations; piece pairs evaluated {} of {} ({:.3}%); {} candidates rejected as unstable, {} as not lowerable; {:.3} s",
         s.orientations,
