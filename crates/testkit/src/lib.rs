@@ -21,6 +21,7 @@ pub mod curved;
 pub mod defects;
 pub mod joints;
 mod scratch;
+pub mod shapes;
 pub mod sheet_metal;
 pub mod solids;
 mod soup;
