@@ -16,7 +16,12 @@
 //!   polygons (ear clipping), and the seeded generator [`solids::Lcg`].
 //! - [`sheet_metal`]: the parametric parts of the stacking paper (cube, channel,
 //!   triangle, complex part) as integer meshes.
+//! - [`shapes`]: integer solids with their volume, reflex edges and classified sample
+//!   points known by hand (grid unions, a polygonal ring, the Schönhardt prism, terrains).
+//! - [`assemblies`]: assemblies of convex pieces (the Split Star, a dovetail, a peg in a
+//!   hole, linked rings, cube lattices, random boxes, rows of bricks).
 
+pub mod assemblies;
 pub mod curved;
 pub mod defects;
 pub mod joints;
