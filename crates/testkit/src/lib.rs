@@ -20,11 +20,14 @@
 //!   points known by hand (grid unions, a polygonal ring, the Schönhardt prism, terrains).
 //! - [`assemblies`]: assemblies of convex pieces (the Split Star, a dovetail, a peg in a
 //!   hole, linked rings, cube lattices, random boxes, rows of bricks).
+//! - [`oracle`]: whether one convex piece sweeping along a direction meets another's
+//!   interior, by an exact linear program generic over the caller's rationals.
 
 pub mod assemblies;
 pub mod curved;
 pub mod defects;
 pub mod joints;
+pub mod oracle;
 mod scratch;
 pub mod shapes;
 pub mod sheet_metal;
