@@ -4,12 +4,9 @@
 //! pieces' facet inequalities) on the pieces the planner used — the shrunk pieces when a
 //! tolerance applies.
 
-#[path = "../crates/plan/tests/common/oracle.rs"]
-#[allow(dead_code)]
-mod oracle;
-
 use apart::assembly::{load, LoadOptions, Loaded, Tolerance};
-use apart::kernel::Vec3;
+use apart::kernel::{Rational, Vec3};
+use apart::pieces::Polytope;
 use apart::plan::{partition, parts_of, CellKind, Options, Part, Partitioning};
 use apart_testkit::curved::{self, NamedSoup};
 use apart_testkit::defects;
@@ -33,6 +30,20 @@ fn load_with(dir: &std::path::Path, tolerance: Tolerance) -> Loaded {
     load(dir, &opts).unwrap()
 }
 
+/// True when piece `a` moving along `d` meets the interior of `b`: the oracle of
+/// `apart_testkit` on the two pieces' facets at a common denominator.
+fn sweep_meets_interior(a: &Polytope, b: &Polytope, d: &Vec3) -> bool {
+    let rows = |p: &Polytope| -> Vec<([Rational; 3], Rational)> {
+        let q = Rational::from_int;
+        let f = p.facets().iter();
+        f.map(|f| ([0, 1, 2].map(|k| q(f.normal.get(k))), q(f.offset.clone())))
+            .collect()
+    };
+    let (a, b) = Polytope::common(a, b);
+    let d = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
+    apart_testkit::oracle::sweep_meets_interior(&rows(&a), &rows(&b), &d)
+}
+
 /// True when the parts in `moving` translate along `d` without meeting the others'
 /// interiors, decided by the oracle over every piece pair.
 fn oracle_free(parts: &[Part], moving: &[usize], d: &Vec3) -> bool {
@@ -46,7 +57,7 @@ fn oracle_free(parts: &[Part], moving: &[usize], d: &Vec3) -> bool {
             }
             for a in &pi.pieces {
                 for b in &pj.pieces {
-                    if oracle::sweep_meets_interior(a, b, d) {
+                    if sweep_meets_interior(a, b, d) {
                         return false;
                     }
                 }

@@ -4,15 +4,15 @@
 //! `cargo bench -p apart-decompose --bench curved [-- socket:20000 sleeve:1000 ... [noverify]]`;
 //! without arguments, the rows of PIECES.md.
 
-#[path = "../tests/common/curved.rs"]
-mod curved;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use apart_decompose::{decompose, verify, Options};
 use apart_testkit::curved as gen;
 use std::time::Instant;
 
 /// The named part of a generated assembly: `kind:size`.
-fn shape(case: &str) -> (String, curved::Snapped) {
+fn shape(case: &str) -> (String, common::Snapped) {
     let (kind, size) = case.split_once(':').expect("kind:size");
     let size: usize = size.parse().expect("a size");
     let (parts, name, label) = match kind {
@@ -56,7 +56,7 @@ fn shape(case: &str) -> (String, curved::Snapped) {
         ),
         _ => panic!("unknown kind {kind}"),
     };
-    (label, curved::part(&parts, name))
+    (label, common::part(&parts, name))
 }
 
 fn main() {

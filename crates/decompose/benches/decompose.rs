@@ -1,13 +1,14 @@
 //! Decomposition benchmark over the test shapes: prints a markdown table of reflex edges,
 //! pieces and times (best of several runs), sequential and parallel.
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use apart_decompose::{decompose, verify, Decomposition, Options};
+use apart_testkit::shapes;
 use std::time::Instant;
 
-fn best_of(shape: &shapes::Shape, opts: &Options, runs: usize) -> (Decomposition, f64) {
+fn best_of(shape: &common::Exact, opts: &Options, runs: usize) -> (Decomposition, f64) {
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..runs {
@@ -20,6 +21,7 @@ fn best_of(shape: &shapes::Shape, opts: &Options, runs: usize) -> (Decomposition
 }
 
 fn row(shape: &shapes::Shape, seq: &Options, par: &Options) {
+    let shape = &common::exact(shape);
     let runs = if shape.tris.len() > 5000 {
         3
     } else if shape.tris.len() > 1000 {

@@ -1,12 +1,10 @@
 //! Union-solid benchmark: self-crossing surfaces (shells that cross each other) and, for
 //! comparison, valid solids; prints a markdown table (best of several runs).
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-
 use apart_decompose::{decompose, decompose_union, Decomposition, Options};
 use apart_kernel::predicates::det3_sign;
 use apart_kernel::{Rational, Sign, Vec3};
+use apart_testkit::shapes;
 use std::time::Instant;
 
 struct Soup {
@@ -30,7 +28,7 @@ impl Soup {
     fn add(&mut self, s: &shapes::Shape, f: impl Fn([i64; 3]) -> [i64; 3]) {
         let base = self.points.len() as u32;
         for p in &s.points {
-            let q = f(*p.as_small().expect("small coordinates"));
+            let q = f(*p);
             self.points.push(Vec3::from_i64(q));
             self.raw.push(q);
         }

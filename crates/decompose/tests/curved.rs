@@ -1,12 +1,11 @@
 //! Tessellated curved parts (apart-testkit's `curved`, snapped as the loader does):
 //! decomposed and verified exactly, with an upper bound on the pieces.
 
-#[path = "common/curved.rs"]
-mod snapped;
+mod common;
 
 use apart_decompose::{decompose, verify, Options};
 use apart_testkit::curved as gen;
-use snapped::part;
+use common::part;
 
 #[test]
 fn socket_of_about_2000_triangles() {

@@ -1,14 +1,14 @@
 //! The decomposition of test solids with known structure: exact verification, volumes
 //! against hand formulas, point membership against the shapes' definitions.
 
-#[path = "common/shapes.rs"]
-mod shapes;
+mod common;
 
 use apart_decompose::{decompose, reflex_edges, verify, Decomposition, Options};
 use apart_kernel::Rational;
-use shapes::Shape;
+use apart_testkit::shapes;
 
-fn run(shape: &Shape) -> Decomposition {
+fn run(shape: &shapes::Shape) -> Decomposition {
+    let shape = &common::exact(shape);
     let d = decompose(&shape.points, &shape.tris, &Options::default())
         .unwrap_or_else(|e| panic!("{}: {e}", shape.name));
     verify(&shape.points, &shape.tris, &d.pieces).unwrap_or_else(|e| panic!("{}: {e}", shape.name));
@@ -21,7 +21,7 @@ fn run(shape: &Shape) -> Decomposition {
         assert_eq!(d.reflex_edges, r, "{}: reflex edges", shape.name);
         assert_eq!(reflex_edges(&shape.points, &shape.tris).len(), r);
     }
-    shapes::check_samples(shape, &d.pieces);
+    common::check_samples(shape, &d.pieces);
     eprintln!(
         "{}: {} triangles, r = {}, {} pieces ({} before merging), {:.3} s",
         shape.name,
@@ -106,6 +106,7 @@ fn without_merging_or_parallelism() {
         shapes::plus_prism(),
         shapes::schonhardt(),
     ] {
+        let shape = common::exact(&shape);
         let opts = Options {
             merge: false,
             parallel: false,

@@ -2,13 +2,13 @@
 //! formulas and a voxel oracle, point membership against the shapes' definitions, and
 //! independent checks that the pieces are convex with disjoint interiors.
 
-#[path = "common/shapes.rs"]
-mod shapes;
+mod common;
 
 use apart_decompose::{decompose, decompose_union, DecomposeError, Decomposition, Options};
 use apart_kernel::{Int, Rational, Sign, Vec3};
 use apart_pieces::interference::interiors_disjoint;
 use apart_pieces::{Containment, Polytope};
+use apart_testkit::shapes;
 use proptest::prelude::*;
 use std::collections::HashMap;
 
@@ -159,7 +159,7 @@ fn check_voxel_centres(
             for z in lo[2]..hi[2] {
                 let c = [2 * x as i128 + 1, 2 * y as i128 + 1, 2 * z as i128 + 1];
                 let loc: Vec<Containment> =
-                    pieces.iter().map(|p| shapes::locate(p, &c, 2)).collect();
+                    pieces.iter().map(|p| common::locate(p, &c, 2)).collect();
                 let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
                 let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
                 if inside([x, y, z]) {
@@ -375,7 +375,7 @@ fn crossing_octahedron_and_box() {
                 }
                 let inside = a == Sign::Negative || b == Sign::Negative;
                 let loc: Vec<Containment> =
-                    d.pieces.iter().map(|q| shapes::locate(q, &p, w)).collect();
+                    d.pieces.iter().map(|q| common::locate(q, &p, w)).collect();
                 let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
                 let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
                 if inside {
@@ -433,7 +433,7 @@ fn large_coordinates() {
 
 #[test]
 fn valid_solids_agree_with_decompose() {
-    for shape in shapes::all() {
+    for shape in shapes::all().iter().map(common::exact) {
         if shape.tris.len() > 600 {
             continue;
         }
@@ -444,7 +444,7 @@ fn valid_solids_agree_with_decompose() {
         assert_eq!(volume(&a.pieces), shape.volume, "{}", shape.name);
         assert_eq!(b.stats.winding, Some((0, 1)), "{}", shape.name);
         check_pieces(&b.pieces);
-        shapes::check_samples(&shape, &b.pieces);
+        common::check_samples(&shape, &b.pieces);
         eprintln!(
             "{}: {} pieces (decompose: {}), {} cells",
             shape.name,
@@ -546,24 +546,24 @@ proptest! {
     #[test]
     fn voxel_solids_agree_with_decompose(on in proptest::collection::vec(any::<bool>(), 27)) {
         prop_assume!(on.iter().any(|&b| b));
-        let shape = shapes::voxels([3, 3, 3], &on);
+        let shape = common::exact(&shapes::voxels([3, 3, 3], &on));
         let a = decompose(&shape.points, &shape.tris, &Options::default()).unwrap();
         let b = decompose_union(&shape.points, &shape.tris, &Options::default()).unwrap();
         prop_assert_eq!(volume(&b.pieces), shape.volume.clone());
         prop_assert_eq!(volume(&a.pieces), shape.volume.clone());
         prop_assert_eq!(b.stats.winding, Some((0, 1)));
         check_pieces(&b.pieces);
-        shapes::check_samples(&shape, &b.pieces);
+        common::check_samples(&shape, &b.pieces);
     }
 
     /// Height fields (valid solids with generic planes and rational vertices).
     #[test]
     fn terrains_agree_with_decompose(h in proptest::collection::vec(1i64..60, 16)) {
-        let shape = shapes::terrain(3, 20, &h);
+        let shape = common::exact(&shapes::terrain(3, 20, &h));
         let b = decompose_union(&shape.points, &shape.tris, &Options::default()).unwrap();
         prop_assert_eq!(volume(&b.pieces), shape.volume.clone());
         check_pieces(&b.pieces);
-        shapes::check_samples(&shape, &b.pieces);
+        common::check_samples(&shape, &b.pieces);
     }
 
     /// Random crossing tetrahedra: slanted planes, rational vertices; membership of
@@ -625,7 +625,7 @@ fn tetrahedra(pts: &[[i64; 3]]) {
                 }
                 let inside = sides.contains(&Sign::Negative);
                 let loc: Vec<Containment> =
-                    d.pieces.iter().map(|q| shapes::locate(q, &p, w)).collect();
+                    d.pieces.iter().map(|q| common::locate(q, &p, w)).collect();
                 let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
                 let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
                 if inside {

@@ -1,12 +1,12 @@
 //! Property test: random unions of unit voxels, welded into one closed mesh (touching
 //! edges and vertices included), decompose into exactly the voxel set.
 
-#[path = "common/shapes.rs"]
-mod shapes;
+mod common;
 
 use apart_decompose::{decompose, verify, Options};
 use apart_kernel::{Int, Rational};
 use apart_pieces::Containment;
+use apart_testkit::shapes;
 use proptest::prelude::*;
 
 const DIMS: [usize; 3] = [3, 3, 3];
@@ -16,7 +16,7 @@ fn check(on: &[bool]) {
 }
 
 fn check_dims(dims: [usize; 3], on: &[bool]) {
-    let shape = shapes::voxels(dims, on);
+    let shape = common::exact(&shapes::voxels(dims, on));
     let d = decompose(&shape.points, &shape.tris, &Options::default()).expect("decompose");
     verify(&shape.points, &shape.tris, &d.pieces).expect("verify");
     let mut total = Rational::zero();
@@ -41,7 +41,7 @@ fn check_dims(dims: [usize; 3], on: &[bool]) {
                 let c = [i, j, k].map(|v| (2 * v as i128 + 1) * 136900);
                 let x = [c[0] + 2, c[1] + 2 * 37, c[2] + 2 * 1369];
                 let loc: Vec<Containment> =
-                    d.pieces.iter().map(|p| shapes::locate(p, &x, w)).collect();
+                    d.pieces.iter().map(|p| common::locate(p, &x, w)).collect();
                 let inside = loc.iter().filter(|c| **c == Containment::Inside).count();
                 let touching = loc.iter().filter(|c| **c != Containment::Outside).count();
                 if filled {
@@ -106,7 +106,7 @@ proptest! {
     /// Height fields over a 3 x 3 grid: generic planes, rational vertices.
     #[test]
     fn random_terrains_decompose_exactly(h in proptest::collection::vec(1i64..60, 16)) {
-        let shape = shapes::terrain(3, 20, &h);
+        let shape = common::exact(&shapes::terrain(3, 20, &h));
         let d = decompose(&shape.points, &shape.tris, &Options::default()).expect("decompose");
         verify(&shape.points, &shape.tris, &d.pieces).expect("verify");
         let mut total = Rational::zero();
@@ -114,7 +114,7 @@ proptest! {
             total = &total + &p.volume();
         }
         prop_assert_eq!(&total, &shape.volume);
-        shapes::check_samples(&shape, &d.pieces);
+        common::check_samples(&shape, &d.pieces);
     }
 }
 
@@ -135,7 +135,7 @@ fn terrain_stress() {
         let h: Vec<i64> = (0..(n + 1) * (n + 1))
             .map(|_| 1 + (next() % range as u64) as i64)
             .collect();
-        let shape = shapes::terrain(n, 1 + (next() % 500) as i64, &h);
+        let shape = common::exact(&shapes::terrain(n, 1 + (next() % 500) as i64, &h));
         let d = decompose(&shape.points, &shape.tris, &Options::default()).expect("decompose");
         verify(&shape.points, &shape.tris, &d.pieces)
             .unwrap_or_else(|e| panic!("case {case}: {e}"));
@@ -144,6 +144,6 @@ fn terrain_stress() {
             total = &total + &p.volume();
         }
         assert_eq!(total, shape.volume, "case {case}");
-        shapes::check_samples(&shape, &d.pieces);
+        common::check_samples(&shape, &d.pieces);
     }
 }

@@ -2,7 +2,7 @@
 //! `cargo run -p apart-draw --release --example render_plan -- examples/split-star-3 /tmp/out`
 //! (`bricks` instead of a folder: a 20-part assembly built in code, four rows of five
 //! interlocking stepped bricks).
-#[path = "../../plan/tests/common/mod.rs"]
+#[path = "../tests/common/mod.rs"]
 mod common;
 
 use apart_draw::{SphereProjection, SphereSvgOptions, View};
@@ -18,7 +18,8 @@ fn main() {
     let out = std::path::PathBuf::from(args.next().unwrap_or_else(|| "/tmp/apart-draw".into()));
     std::fs::create_dir_all(&out).unwrap();
     let assembly = if input == "bricks" {
-        bricks()
+        // 20 parts given by convex pieces only.
+        common::assembly_of("bricks-20", common::brick_rows())
     } else {
         let loaded =
             apart_assembly::load(std::path::Path::new(&input), &Default::default()).unwrap();
@@ -95,29 +96,4 @@ fn main() {
         "sphere svg+png for every step in {:.3} s",
         t.elapsed().as_secs_f64()
     );
-}
-
-/// Four rows of five stepped bricks (a slab with a second slab on top shifted by half a
-/// brick), the rows side by side along y: 20 parts given by convex pieces only.
-fn bricks() -> apart_assembly::Assembly {
-    let mut parts = Vec::new();
-    for row in 0..4i64 {
-        for i in 0..5i64 {
-            let y = 2 * row;
-            parts.push(apart_assembly::Part::from_pieces(
-                format!("brick-{row}-{i}"),
-                vec![
-                    common::cuboid([2 * i, y, 0], [2 * i + 2, y + 2, 1]),
-                    common::cuboid([2 * i + 1, y, 1], [2 * i + 3, y + 2, 2]),
-                ],
-            ));
-        }
-    }
-    apart_assembly::Assembly {
-        name: "bricks-20".into(),
-        grid: apart_kernel::Grid::unit(30),
-        max_snap_displacement: 0.0,
-        parts,
-        tolerance: None,
-    }
 }

@@ -1,16 +1,19 @@
 //! Writes the motion-space SVG of an assembly built in code (for eyeballing).
-#[path = "../../plan/tests/common/mod.rs"]
+#[path = "../tests/common/mod.rs"]
 mod common;
+
+use apart_testkit::assemblies;
 
 fn main() {
     let which = std::env::args().nth(1).unwrap_or_else(|| "star".into());
     let parts = match which.as_str() {
-        "cubes" => common::stacked_cubes(),
-        "peg" => common::peg_in_hole(),
-        "dovetail" => common::dovetail(),
-        "row" => common::cubes_in_a_row(4),
-        _ => common::split_star(),
+        "cubes" => assemblies::stacked_cubes(),
+        "peg" => assemblies::peg_in_hole(),
+        "dovetail" => assemblies::dovetail(),
+        "row" => assemblies::cubes_in_a_row(4),
+        _ => assemblies::split_star(),
     };
+    let parts = common::parts(parts);
     let regions = apart_plan::BlockingRegions::compute(&parts).unwrap();
     let all: Vec<usize> = (0..parts.len()).collect();
     let (p, _) = apart_plan::partition_subset(&regions, &all, &Default::default());

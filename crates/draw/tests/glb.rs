@@ -175,9 +175,9 @@ fn parts_given_only_by_pieces_and_a_twenty_part_plan_export() {
 fn an_assembly_without_steps_still_exports() {
     let a = common::assembly_of(
         "one",
-        vec![common::plan_common::part(
+        vec![common::part(
             "cube",
-            vec![common::plan_common::cuboid([0, 0, 0], [1, 1, 1])],
+            vec![common::cuboid([0, 0, 0], [1, 1, 1])],
         )],
     );
     let (_, plan) = common::plan(&a);

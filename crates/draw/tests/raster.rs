@@ -123,7 +123,10 @@ fn labels_write_text_without_hiding_the_parts() {
 
 #[test]
 fn pieces_only_parts_render() {
-    let a = common::assembly_of("star", common::plan_common::split_star());
+    let a = common::assembly_of(
+        "star",
+        common::parts(apart_testkit::assemblies::split_star()),
+    );
     let colors = part_colors(&a.parts.iter().map(|p| p.name.clone()).collect::<Vec<_>>());
     let img = Pixmap::decode_png(&assembly_png(&a, &[0], &no_labels(), W, H)).unwrap();
     assert!(count_shades(&img, colors[0], W) > 1000);
@@ -256,8 +259,8 @@ fn scale_bar(svg: &str) -> (f64, f64) {
 fn the_scale_bar_measures_what_the_picture_shows() {
     // A cube of side 3 seen from straight above: its top is a square whose width in
     // pixels, divided by 3, is the picture's pixels per unit.
-    let cube = common::plan_common::cuboid([0, 0, 0], [3, 3, 3]);
-    let a = common::assembly_of("cube", vec![common::plan_common::part("cube", vec![cube])]);
+    let cube = common::cuboid([0, 0, 0], [3, 3, 3]);
+    let a = common::assembly_of("cube", vec![common::part("cube", vec![cube])]);
     let shapes = apart_draw::shapes::part_shapes(&a);
     let names = vec!["cube".to_string()];
     let color = part_colors(&names)[0];

@@ -7,11 +7,7 @@
 //! faces; the SVG's order must be right wherever faces overlap. Every part is named in
 //! the legend, in placing order.
 
-// apart-stack's test helpers: the sheet-metal test parts as placement models, the floor
-// region around a part, and shorthands for rationals.
 mod common;
-#[path = "../../stack/tests/common/mod.rs"]
-mod stack_common;
 
 use apart_draw::colors::{part_colors, Rgb};
 use apart_draw::stack_render::{plan_png, plan_shapes, plan_svg, scene_shapes};
@@ -20,10 +16,9 @@ use apart_draw::{shapes_part_ids, shapes_png, shapes_svg, View};
 use apart_stack::part::PartModel;
 use apart_stack::planner::{stack, StackOptions};
 use apart_stack::scene::Scene;
-use common::part_of;
+use apart_testkit::sheet_metal::{channel, complex_part, cube, triangle_part};
+use common::{floor_around, part_of, q, qfrac, sheet_model};
 use resvg::tiny_skia::Pixmap;
-use stack_common::parts::{channel, complex_part, cube, triangle_part};
-use stack_common::{floor_around, q, qfrac};
 
 const W: u32 = 480;
 const H: u32 = 360;
@@ -92,7 +87,7 @@ fn no_labels() -> View {
 
 #[test]
 fn nested_channels_in_svg_as_in_the_zbuffer() {
-    let part = channel();
+    let part = sheet_model(channel());
     let mut opts = StackOptions::new(8, qfrac(1, 2), floor_around(&part, 3, 2), q(1000));
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
@@ -102,7 +97,7 @@ fn nested_channels_in_svg_as_in_the_zbuffer() {
 fn channels_side_by_side_seen_from_several_sides() {
     // w = 0 keeps the stack low: the channels lie side by side on a wide floor, long
     // faces next to short ones.
-    let part = channel();
+    let part = sheet_model(channel());
     let mut opts = StackOptions::new(6, q(0), floor_around(&part, 4, 1), q(1000));
     opts.dtheta_deg = 90.0;
     for (azimuth, elevation) in [(-60.0, 25.0), (30.0, 40.0), (200.0, 15.0)] {
@@ -117,11 +112,11 @@ fn channels_side_by_side_seen_from_several_sides() {
 
 #[test]
 fn triangle_parts_and_cubes_in_svg_as_in_the_zbuffer() {
-    let part = triangle_part();
+    let part = sheet_model(triangle_part());
     let mut opts = StackOptions::new(6, qfrac(1, 2), floor_around(&part, 2, 1), q(1000));
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
-    let part = cube(1);
+    let part = sheet_model(cube(1));
     let mut opts = StackOptions::new(9, q(0), [q(-2), q(-2), q(2), q(2)], q(10));
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
@@ -129,7 +124,7 @@ fn triangle_parts_and_cubes_in_svg_as_in_the_zbuffer() {
 
 #[test]
 fn complex_parts_with_holes_and_flanges_in_svg_as_in_the_zbuffer() {
-    let part = complex_part();
+    let part = sheet_model(complex_part());
     let mut opts = StackOptions::new(3, qfrac(1, 2), floor_around(&part, 2, 1), q(100000));
     opts.dtheta_deg = 90.0;
     svg_matches_zbuffer(&part, &opts, &no_labels());
@@ -138,10 +133,15 @@ fn complex_parts_with_holes_and_flanges_in_svg_as_in_the_zbuffer() {
 #[test]
 fn scene_parts_keep_their_names() {
     let mut scene = Scene::new();
-    scene.add_fixed_part(&cube(1).pieces);
-    scene.add_fixed_part(&cube(1).pieces);
+    scene.add_fixed_part(&sheet_model(cube(1)).pieces);
+    scene.add_fixed_part(&sheet_model(cube(1)).pieces);
     let names = ["base".to_string()];
-    let (shapes, all) = scene_shapes(&scene, &names, &[("lid".into(), cube(1).pieces)], 1.0);
+    let (shapes, all) = scene_shapes(
+        &scene,
+        &names,
+        &[("lid".into(), sheet_model(cube(1)).pieces)],
+        1.0,
+    );
     assert_eq!(shapes.len(), 3);
     assert_eq!(all, ["base", "fixed 2", "lid"]);
 }
@@ -150,7 +150,7 @@ fn scene_parts_keep_their_names() {
 fn pictures_show_every_part() {
     let mut opts = StackOptions::new(3, q(1), [q(-2), q(-2), q(2), q(2)], q(10));
     opts.dtheta_deg = 90.0;
-    let plan = stack(&cube(1), &opts).unwrap();
+    let plan = stack(&sheet_model(cube(1)), &opts).unwrap();
     let (shapes, names) = plan_shapes(&plan, 1.0);
     assert_eq!(names, ["cube #1", "cube #2", "cube #3"]);
     // A cube: 6 square facets, 12 triangles, 6 planes.

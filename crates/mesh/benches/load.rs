@@ -1,11 +1,9 @@
 //! Loading benchmark: a ~1,000,000-triangle torus written as binary STL is read,
 //! snapped, welded and validated (including the self-intersection check).
 
-#[path = "../examples/common/torus.rs"]
-mod torus;
-
 use apart_kernel::Grid;
 use apart_mesh::{validate, Mesh};
+use apart_testkit::torus;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Instant;
 

@@ -3,11 +3,9 @@
 //! `... -- --torus N M FILE` to first write an `N * M * 2`-triangle torus as binary STL.
 //! Run it under `/usr/bin/time -v` for the peak memory.
 
-#[path = "common/torus.rs"]
-mod torus;
-
 use apart_kernel::Grid;
 use apart_mesh::{validate, Mesh};
+use apart_testkit::torus;
 use std::time::Instant;
 
 fn main() {

@@ -5,9 +5,6 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-#[path = "../../decompose/tests/common/shapes.rs"]
-mod shapes;
-
 use apart_plan::{partition_pieces, sequence, BlockingRegions, Options, Part, SequenceOptions};
 use std::time::Instant;
 
@@ -51,12 +48,12 @@ fn random_boxes(n: usize, k: usize, seed: u64) -> Vec<Part> {
 /// the decomposition time.
 fn ring_and_cone() -> (Vec<Part>, f64) {
     use apart_kernel::Vec3;
-    let ring = shapes::Ring::new(64);
+    let ring = apart_testkit::shapes::Ring::new(64);
     let r = ring.radius;
     let shape = ring.shape();
+    let points: Vec<Vec3> = shape.points.iter().map(|&p| Vec3::from_i64(p)).collect();
     let t = Instant::now();
-    let lower =
-        apart_decompose::decompose(&shape.points, &shape.tris, &Default::default()).unwrap();
+    let lower = apart_decompose::decompose(&points, &shape.tris, &Default::default()).unwrap();
     let decompose_s = t.elapsed().as_secs_f64();
     let lift = Vec3::new(0, 0, 16 * r);
     let upper: Vec<apart_pieces::Polytope> =

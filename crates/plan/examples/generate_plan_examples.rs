@@ -14,11 +14,8 @@
 //!
 //! `cargo run -p apart-plan --example generate_plan_examples [-- OUT_DIR]`
 
-#[path = "../../decompose/tests/common/shapes.rs"]
-mod shapes;
-
 use apart_formats::{off, Polygons};
-use apart_kernel::Vec3;
+use apart_testkit::shapes;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -304,11 +301,14 @@ fn main() -> std::io::Result<()> {
     let ring = shapes::Ring::new(64);
     let r = ring.radius;
     let s = ring.shape();
-    let lower: Mesh = (s.points.iter().map(to_f64).collect(), s.tris.clone());
+    let lower: Mesh = (
+        s.points.iter().map(|p| p.map(|c| c as f64)).collect(),
+        s.tris.clone(),
+    );
     let upper: Mesh = (
         s.points
             .iter()
-            .map(|p| to_f64(&p.add(&Vec3::new(0, 0, 16 * r))))
+            .map(|p| [p[0], p[1], p[2] + 16 * r].map(|c| c as f64))
             .collect(),
         s.tris.clone(),
     );
@@ -338,10 +338,6 @@ fn main() -> std::io::Result<()> {
         ],
     )?;
     Ok(())
-}
-
-fn to_f64(p: &Vec3) -> [f64; 3] {
-    p.approx()
 }
 
 fn clone_spec(s: &Spec) -> Spec {

@@ -1,15 +1,13 @@
 //! Times the ring-and-cone partition (for profiling).
 #[path = "../tests/common/mod.rs"]
 mod common;
-#[path = "../../decompose/tests/common/shapes.rs"]
-mod shapes;
 fn main() {
     use apart_kernel::Vec3;
-    let ring = shapes::Ring::new(64);
+    let ring = apart_testkit::shapes::Ring::new(64);
     let r = ring.radius;
     let shape = ring.shape();
-    let lower =
-        apart_decompose::decompose(&shape.points, &shape.tris, &Default::default()).unwrap();
+    let points: Vec<Vec3> = shape.points.iter().map(|&p| Vec3::from_i64(p)).collect();
+    let lower = apart_decompose::decompose(&points, &shape.tris, &Default::default()).unwrap();
     let upper: Vec<apart_pieces::Polytope> = lower
         .pieces
         .iter()

@@ -1,10 +1,13 @@
-//! Generators of test inputs for apart, modelled on what CAD exporters produce.
+//! Generators of test inputs for apart, modelled on what CAD exporters produce, and an
+//! independent blocking oracle.
 //!
 //! Everything here is plain data ([`Soup`]: `f64` vertices and polygons;
-//! [`solids::IntMesh`]: integer points and triangles) with no apart
-//! dependency, so that the tests and benchmarks of every crate can use it without a
-//! dependency cycle. Each generator documents the answer it is built to have, so tests
-//! compare apart's results with that known answer, never with apart's own output.
+//! [`solids::IntMesh`]: integer points and triangles; [`assemblies::Piece`]: boxes and
+//! hulls of integer points) with no apart dependency, so that the tests, examples and
+//! benchmarks of every crate can use it without a dependency cycle; each crate turns it
+//! into its own types in a small adapter of its own. Each generator documents the answer
+//! it is built to have, so tests compare apart's results with that known answer, never
+//! with apart's own output.
 //!
 //! - [`defects`]: meshes with the defects of real exports (T-junction seams,
 //!   float32-rounded coordinates, duplicated and flipped faces, holes, several bodies
@@ -16,14 +19,25 @@
 //!   polygons (ear clipping), and the seeded generator [`solids::Lcg`].
 //! - [`sheet_metal`]: the parametric parts of the stacking paper (cube, channel,
 //!   triangle, complex part) as integer meshes.
+//! - [`shapes`]: integer solids with their volume, reflex edges and classified sample
+//!   points known by hand (grid unions, a polygonal ring, the Schönhardt prism, terrains).
+//! - [`assemblies`]: assemblies of convex pieces (the Split Star, a dovetail, a peg in a
+//!   hole, linked rings, cube lattices, random boxes, rows of bricks).
+//! - [`torus`]: a large closed torus as binary STL, for loading benchmarks.
+//! - [`oracle`]: whether one convex piece sweeping along a direction meets another's
+//!   interior, by an exact linear program generic over the caller's rationals.
 
+pub mod assemblies;
 pub mod curved;
 pub mod defects;
 pub mod joints;
+pub mod oracle;
 mod scratch;
+pub mod shapes;
 pub mod sheet_metal;
 pub mod solids;
 mod soup;
+pub mod torus;
 
 pub use scratch::Scratch;
 pub use soup::{base64, Soup};

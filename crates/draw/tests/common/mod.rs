@@ -1,14 +1,19 @@
-//! Assemblies, plans and pixel checks shared by the picture tests.
+//! Assemblies, plans and pixel checks shared by the picture tests: the assemblies of
+//! `apart_testkit::assemblies` as parts and the sheet-metal parts of
+//! `apart_testkit::sheet_metal` as placement models, shipped examples, and colour tests
+//! on pixels.
 
 #![allow(dead_code)]
 
-#[path = "../../../plan/tests/common/mod.rs"]
-pub mod plan_common;
-
 use apart_assembly::{load, Assembly, LoadOptions, Part};
 use apart_draw::colors::Rgb;
-use apart_kernel::Grid;
+use apart_kernel::{Grid, Rational, Vec3};
+use apart_pieces::Polytope;
 use apart_plan::{parts_of, sequence, BlockingRegions, Sequence, SequenceOptions};
+use apart_stack::orientation::Orientation;
+use apart_stack::part::PartModel;
+use apart_testkit::assemblies::{self, Piece};
+use apart_testkit::sheet_metal::SheetPart;
 use resvg::tiny_skia::Pixmap;
 use std::path::PathBuf;
 
@@ -33,25 +38,81 @@ pub fn assembly_of(name: &str, parts: Vec<Part>) -> Assembly {
     }
 }
 
-/// A 20-part assembly: four rows of five stepped bricks (each brick a slab with a
-/// second slab on top, shifted by half a brick, so that neighbours in a row interlock),
-/// the rows side by side along y.
-pub fn brick_rows() -> Vec<Part> {
-    use plan_common::{cuboid, part};
-    let mut parts = Vec::new();
-    for row in 0..4i64 {
-        for i in 0..5i64 {
-            let y = 2 * row;
-            parts.push(part(
-                &format!("brick-{row}-{i}"),
-                vec![
-                    cuboid([2 * i, y, 0], [2 * i + 2, y + 2, 1]),
-                    cuboid([2 * i + 1, y, 1], [2 * i + 3, y + 2, 2]),
-                ],
-            ));
+/// An axis-aligned box [lo, hi].
+pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Polytope {
+    Polytope::cuboid(lo, hi).unwrap()
+}
+
+/// A part given by convex pieces only.
+pub fn part(name: &str, pieces: Vec<Polytope>) -> Part {
+    Part::from_pieces(name, pieces)
+}
+
+/// The parts of an assembly of `apart_testkit::assemblies`.
+pub fn parts(parts: Vec<assemblies::Part>) -> Vec<Part> {
+    let piece = |p: &Piece| match p {
+        Piece::Box(lo, hi) => cuboid(*lo, *hi),
+        Piece::Hull(points) => {
+            let v: Vec<Vec3> = points.iter().map(|&q| Vec3::from(q)).collect();
+            Polytope::hull_of_points(&v).unwrap()
         }
-    }
+    };
     parts
+        .iter()
+        .map(|p| part(&p.name, p.pieces.iter().map(piece).collect()))
+        .collect()
+}
+
+/// A 20-part assembly: `assemblies::brick_rows`.
+pub fn brick_rows() -> Vec<Part> {
+    parts(assemblies::brick_rows())
+}
+
+/// A sheet-metal test part as a placement model, its mesh kept: the cube as one convex
+/// piece (the hull of its corners), the others decomposed as the loader decomposes them.
+pub fn sheet_model(part: SheetPart) -> PartModel {
+    let points: Vec<Vec3> = part
+        .mesh
+        .points
+        .iter()
+        .map(|&p| Vec3::from_i64(p))
+        .collect();
+    let triangles = part.mesh.triangles;
+    let pieces = if part.convex {
+        vec![Polytope::hull_of_points(&points).expect("a convex solid")]
+    } else {
+        apart_decompose::decompose(&points, &triangles, &apart_decompose::Options::default())
+            .expect("the part decomposes")
+            .pieces
+    };
+    let mut model = PartModel::from_pieces(part.name, pieces).expect("pieces");
+    model.mesh = Some((points, triangles));
+    model
+}
+
+/// The integer `v` as a rational.
+pub fn q(v: i64) -> Rational {
+    Rational::from(v)
+}
+
+/// `n / d` as a rational.
+pub fn qfrac(n: i64, d: i64) -> Rational {
+    Rational::from_i128(n.into(), d.into())
+}
+
+/// A floor region `factor_num / factor_den` times the part's footprint in each
+/// direction, centred on the footprint of the part as given.
+pub fn floor_around(part: &PartModel, factor_num: i64, factor_den: i64) -> [Rational; 4] {
+    let e = part.orient(&Orientation::IDENTITY).extent;
+    let half = |i: usize| {
+        let w = &e.max[i] - &e.min[i];
+        let c = &(&e.max[i] + &e.min[i]) * &qfrac(1, 2);
+        let r = &(&w * &qfrac(factor_num, factor_den)) * &qfrac(1, 2);
+        (&c - &r, &c + &r)
+    };
+    let (x0, x1) = half(0);
+    let (y0, y1) = half(1);
+    [x0, y0, x1, y1]
 }
 
 /// The shared regions and the default plan of an assembly.

@@ -1,4 +1,6 @@
-//! Assemblies built in code for the planner tests (independent of the loaders).
+//! The assemblies of `apart_testkit::assemblies` as planner parts, and the planner
+//! tests' checks: every step of a plan against the brute-force oracle, and the angular
+//! clearance by brute force.
 
 #![allow(dead_code)]
 
@@ -7,25 +9,7 @@ pub mod oracle;
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use apart_plan::{Part, Sequence};
-
-/// Unit cubes on an `n × n × n` lattice spaced `1 + gap` (0: a touching block; 1:
-/// channels exactly one cube wide, so many sliding arcs and isolated directions).
-pub fn lattice(n: i64, gap: i64) -> Vec<Part> {
-    let s = 1 + gap;
-    let mut parts = Vec::new();
-    for x in 0..n {
-        for y in 0..n {
-            for z in 0..n {
-                let o = [x * s, y * s, z * s];
-                parts.push(part(
-                    &format!("c{x}{y}{z}"),
-                    vec![cuboid(o, [o[0] + 1, o[1] + 1, o[2] + 1])],
-                ));
-            }
-        }
-    }
-    parts
-}
+use apart_testkit::assemblies::{self, Piece};
 
 /// A convex piece: the hull of integer points.
 pub fn hull(pts: &[[i64; 3]]) -> Polytope {
@@ -42,164 +26,68 @@ pub fn part(name: &str, pieces: Vec<Polytope>) -> Part {
     Part::from_pieces(name, pieces)
 }
 
-/// `n` random disjoint boxes linked into `k` parts (paper 003, section 5.2; apart-testkit's
-/// generator), as parts of box pieces named `p0`, `p1`, ...
-pub fn random_box_parts(n: usize, k: usize, seed: u64) -> Vec<Part> {
-    apart_testkit::solids::random_boxes(n, k, seed)
-        .into_iter()
-        .enumerate()
-        .map(|(i, boxes)| {
-            let pieces = boxes.into_iter().map(|(lo, hi)| cuboid(lo, hi));
-            part(&format!("p{i}"), pieces.collect())
-        })
-        .collect()
-}
-
-/// The Split Star (Coffin), decomposed into two square pyramids and an octahedron per
-/// part, in the frame of the issue: red has vertices (±2,0,0) (±2,0,2) (±1,±1,1)
-/// (0,0,0) (0,0,2); green = red with z -> -z; blue = red under (x,y,z) -> (z,x,y);
-/// purple = blue with x -> -x; yellow = red under (x,y,z) -> (y,z,x); turquoise = yellow
-/// with y -> -y.
-pub fn split_star() -> Vec<Part> {
-    let red: Vec<Vec<[i64; 3]>> = vec![
-        vec![[-1, -1, 1], [-2, 0, 2], [-2, 0, 0], [-1, 1, 1], [0, 0, 2]],
-        vec![[1, -1, 1], [2, 0, 0], [2, 0, 2], [1, 1, 1], [0, 0, 2]],
-        vec![
-            [-1, -1, 1],
-            [0, 0, 0],
-            [1, -1, 1],
-            [-1, 1, 1],
-            [1, 1, 1],
-            [0, 0, 2],
-        ],
-    ];
-    let map = |f: &dyn Fn([i64; 3]) -> [i64; 3]| -> Vec<Polytope> {
-        red.iter()
-            .map(|pc| hull(&pc.iter().map(|&p| f(p)).collect::<Vec<_>>()))
-            .collect()
-    };
-    let blue = |p: [i64; 3]| [p[2], p[0], p[1]];
-    let yellow = |p: [i64; 3]| [p[1], p[2], p[0]];
-    vec![
-        part("red", map(&|p| p)),
-        part("green", map(&|p| [p[0], p[1], -p[2]])),
-        part("blue", map(&blue)),
-        part(
-            "purple",
-            map(&|p| {
-                let q = blue(p);
-                [-q[0], q[1], q[2]]
-            }),
-        ),
-        part("yellow", map(&yellow)),
-        part(
-            "turquoise",
-            map(&|p| {
-                let q = yellow(p);
-                [q[0], -q[1], q[2]]
-            }),
-        ),
-    ]
-}
-
-/// Two unit cubes, `bottom` under `top`.
-pub fn stacked_cubes() -> Vec<Part> {
-    vec![
-        part("bottom", vec![cuboid([0, 0, 0], [1, 1, 1])]),
-        part("top", vec![cuboid([0, 0, 1], [1, 1, 2])]),
-    ]
-}
-
-/// Four unit cubes in a row along x, each touching the next (paper 003, fig. 2).
-pub fn cubes_in_a_row(n: i64) -> Vec<Part> {
-    (0..n)
-        .map(|i| part(&format!("c{i}"), vec![cuboid([i, 0, 0], [i + 1, 1, 1])]))
-        .collect()
-}
-
-/// A dovetail: a slot part (base, two overhanging sides, an end wall at x = -1..0) and a
-/// trapezoidal tenon, wider at the bottom, sliding along x out of the open end x = 10.
-pub fn dovetail() -> Vec<Part> {
-    let prism = |yz: &[[i64; 2]], x0: i64, x1: i64| -> Polytope {
-        let pts: Vec<[i64; 3]> = yz
-            .iter()
-            .flat_map(|&[y, z]| [[x0, y, z], [x1, y, z]])
-            .collect();
-        hull(&pts)
-    };
-    let slot = vec![
-        cuboid([0, -4, 0], [10, 4, 1]),
-        prism(&[[-4, 1], [-3, 1], [-2, 3], [-4, 3]], 0, 10),
-        prism(&[[4, 1], [3, 1], [2, 3], [4, 3]], 0, 10),
-        cuboid([-1, -4, 0], [0, 4, 3]),
-    ];
-    let tenon = vec![prism(&[[-3, 1], [3, 1], [2, 3], [-2, 3]], 0, 10)];
-    vec![part("slot", slot), part("tenon", tenon)]
-}
-
-/// A peg in a blind hole whose floor and four walls are separate pieces.
-pub fn peg_in_hole() -> Vec<Part> {
-    let block = vec![
-        cuboid([-3, -3, 0], [3, 3, 1]),  // floor
-        cuboid([-3, -3, 1], [-1, 3, 4]), // wall x-
-        cuboid([1, -3, 1], [3, 3, 4]),   // wall x+
-        cuboid([-1, -3, 1], [1, -1, 4]), // wall y-
-        cuboid([-1, 1, 1], [1, 3, 4]),   // wall y+
-    ];
-    let peg = vec![cuboid([-1, -1, 1], [1, 1, 6])];
-    vec![part("block", block), part("peg", peg)]
-}
-
-/// Two square rings of four bars each, linked like chain links.
-pub fn linked_rings() -> Vec<Part> {
-    let a = vec![
-        cuboid([0, 0, 0], [6, 1, 1]),
-        cuboid([0, 0, 5], [6, 1, 6]),
-        cuboid([0, 0, 1], [1, 1, 5]),
-        cuboid([5, 0, 1], [6, 1, 5]),
-    ];
-    let b = vec![
-        cuboid([2, -2, 2], [3, 3, 3]),
-        cuboid([2, -2, -2], [3, 3, -1]),
-        cuboid([2, -2, -1], [3, -1, 2]),
-        cuboid([2, 2, -1], [3, 3, 2]),
-    ];
-    vec![part("ring_a", a), part("ring_b", b)]
-}
-
-/// Integer directions at angle `r` (and `r / 2`) around unit `u`: twelve on each circle,
-/// rounded at a scale of 2^20 (far below the 3% margin the callers leave).
-pub fn cap_directions(u: &[f64; 3], r: f64) -> Vec<Vec3> {
-    let helper = if u[0].abs() < 0.9 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let cross = |a: &[f64; 3], b: &[f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let v = cross(u, &helper);
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let v = v.map(|x| x / n);
-    let w = cross(u, &v);
-    let mut out = Vec::new();
-    for radius in [r, r / 2.0] {
-        for k in 0..12 {
-            let t = k as f64 * std::f64::consts::PI / 6.0;
-            let q: Vec<i64> = (0..3)
-                .map(|i| {
-                    let x = u[i] * radius.cos() + (v[i] * t.cos() + w[i] * t.sin()) * radius.sin();
-                    (x * (1u64 << 20) as f64).round() as i64
-                })
-                .collect();
-            out.push(Vec3::new(q[0], q[1], q[2]));
-        }
+/// A piece of `apart_testkit::assemblies` as a polytope.
+pub fn piece(p: &Piece) -> Polytope {
+    match p {
+        Piece::Box(lo, hi) => cuboid(*lo, *hi),
+        Piece::Hull(points) => hull(points),
     }
-    out
+}
+
+/// The parts of an assembly of `apart_testkit::assemblies`.
+pub fn parts(parts: Vec<assemblies::Part>) -> Vec<Part> {
+    parts
+        .iter()
+        .map(|p| part(&p.name, p.pieces.iter().map(piece).collect()))
+        .collect()
+}
+
+/// `assemblies::lattice`.
+pub fn lattice(n: i64, gap: i64) -> Vec<Part> {
+    parts(assemblies::lattice(n, gap))
+}
+
+/// `assemblies::random_boxes`.
+pub fn random_box_parts(n: usize, k: usize, seed: u64) -> Vec<Part> {
+    parts(assemblies::random_boxes(n, k, seed))
+}
+
+/// `assemblies::split_star`.
+pub fn split_star() -> Vec<Part> {
+    parts(assemblies::split_star())
+}
+
+/// `assemblies::stacked_cubes`.
+pub fn stacked_cubes() -> Vec<Part> {
+    parts(assemblies::stacked_cubes())
+}
+
+/// `assemblies::cubes_in_a_row`.
+pub fn cubes_in_a_row(n: i64) -> Vec<Part> {
+    parts(assemblies::cubes_in_a_row(n))
+}
+
+/// `assemblies::dovetail`.
+pub fn dovetail() -> Vec<Part> {
+    parts(assemblies::dovetail())
+}
+
+/// `assemblies::peg_in_hole`.
+pub fn peg_in_hole() -> Vec<Part> {
+    parts(assemblies::peg_in_hole())
+}
+
+/// `assemblies::linked_rings`.
+pub fn linked_rings() -> Vec<Part> {
+    parts(assemblies::linked_rings())
+}
+
+/// `assemblies::cap_directions` as `Vec3`.
+pub fn cap_directions(u: &[f64; 3], r: f64) -> Vec<Vec3> {
+    assemblies::cap_directions(u, r)
+        .into_iter()
+        .map(Vec3::from_i64)
+        .collect()
 }
 
 /// Checks every step: the moving side is free along the direction against the rest of

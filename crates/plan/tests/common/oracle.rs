@@ -3,8 +3,8 @@
 //! an interior point, i.e. the open ray `{t d : t > 0}` meets the interior of
 //! `b ⊕ (−a)`. Decided from the facet inequalities of the two pieces alone, without any
 //! Minkowski sum: first the box of differences (which contains the sum, and is the sum
-//! when both pieces are axis-aligned boxes), then a small exact linear program
-//! (`sweep_meets_interior`).
+//! when both pieces are axis-aligned boxes), then the small exact linear program of
+//! `apart_testkit::oracle` (`sweep_meets_interior`).
 
 use apart_kernel::{Int, Rational, Vec3};
 use apart_pieces::Polytope;
@@ -36,119 +36,25 @@ fn box_facets(a: &Polytope, b: &Polytope) -> Facets {
     out
 }
 
-fn recip(r: &Rational) -> Rational {
-    Rational::new(r.denom().clone(), r.numer().clone())
+/// The facet inequalities of a piece as rationals.
+fn rows(p: &Polytope) -> Vec<([Rational; 3], Rational)> {
+    let normal = |f: &apart_pieces::Facet| [0, 1, 2].map(|k| Rational::from_int(f.normal.get(k)));
+    p.facets()
+        .iter()
+        .map(|f| (normal(f), Rational::from_int(f.offset.clone())))
+        .collect()
 }
 
 /// True when some `x` in the interior of `a` and some `t > 0` put `x + t d` in the
-/// interior of `b`: the linear program over `(x, t, s)`
-///
-/// ```text
-/// maximize s  subject to  n_a · x + s <= c_a          (every facet of a)
-///                         n_b · x + (n_b · d) t + s <= c_b   (every facet of b)
-///                         s − t <= 0,  s <= 1
-/// ```
-///
-/// has optimum `s > 0`. Solved exactly by the simplex method with Bland's rule on a
-/// rational tableau: free variables split into two non-negative ones, `s = s0 + σ` with
-/// `s0 <= 0` chosen so that the origin is feasible, and the search stops as soon as
-/// `s > 0` is reached.
+/// interior of `b`: `apart_testkit::oracle::sweep_meets_interior` on the two pieces'
+/// facets, compared at a common denominator (then `t` absorbs the factor).
 pub fn sweep_meets_interior(a: &Polytope, b: &Polytope, d: &Vec3) -> bool {
-    // Facet offsets refer to the stored integers (den times the coordinates): compare
-    // the two pieces at a common denominator (then t absorbs the factor).
     if a.den() != b.den() {
         let (a, b) = Polytope::common(a, b);
         return sweep_meets_interior(&a, &b, d);
     }
-    // Rows: coefficients of (x, y, z, t) and the right-hand side; every row has s with
-    // coefficient 1.
-    let mut rows: Vec<([Int; 4], Int)> = Vec::new();
-    for f in a.facets() {
-        let n = &f.normal;
-        rows.push(([n.get(0), n.get(1), n.get(2), Int::ZERO], f.offset.clone()));
-    }
-    for f in b.facets() {
-        let n = &f.normal;
-        rows.push(([n.get(0), n.get(1), n.get(2), n.dot(d)], f.offset.clone()));
-    }
-    rows.push(([Int::ZERO, Int::ZERO, Int::ZERO, Int::from(-1)], Int::ZERO));
-    rows.push(([Int::ZERO, Int::ZERO, Int::ZERO, Int::ZERO], Int::from(1)));
-    let s0 = rows
-        .iter()
-        .map(|r| r.1.clone())
-        .min()
-        .unwrap()
-        .min(Int::ZERO);
-    // Columns: x+, y+, z+, t+, x-, y-, z-, t-, σ, one slack per row, right-hand side.
-    let m = rows.len();
-    let (nv, rhs) = (9 + m, 9 + m);
-    let z = Rational::zero();
-    let mut tab: Vec<Vec<Rational>> = rows
-        .iter()
-        .enumerate()
-        .map(|(i, (c, b))| {
-            let mut row = vec![z.clone(); nv + 1];
-            for k in 0..4 {
-                row[k] = Rational::from_int(c[k].clone());
-                row[4 + k] = Rational::from_int(-c[k].clone());
-            }
-            row[8] = Rational::from_int(1);
-            row[9 + i] = Rational::from_int(1);
-            row[rhs] = Rational::from_int(b - &s0);
-            row
-        })
-        .collect();
-    let mut basis: Vec<usize> = (9..9 + m).collect();
-    // Reduced costs of maximizing σ, and the current value of σ.
-    let mut cost = vec![z.clone(); nv];
-    cost[8] = Rational::from_int(1);
-    let mut sigma = z.clone();
-    let goal = Rational::from_int(-s0); // s > 0 iff σ > −s0
-    loop {
-        if sigma > goal {
-            return true;
-        }
-        let Some(col) = (0..nv).find(|&j| cost[j] > z) else {
-            return false; // optimal with s <= 0
-        };
-        let mut best: Option<(Rational, usize, usize)> = None;
-        for (i, row) in tab.iter().enumerate() {
-            if row[col] > z {
-                let ratio = &row[rhs] * &recip(&row[col]);
-                let better = match &best {
-                    None => true,
-                    Some((r, _, bi)) => ratio < *r || (ratio == *r && basis[i] < *bi),
-                };
-                if better {
-                    best = Some((ratio, i, basis[i]));
-                }
-            }
-        }
-        let (ratio, r, _) = best.expect("σ is bounded by s <= 1");
-        let inv = recip(&tab[r][col]);
-        for v in tab[r].iter_mut() {
-            *v = &*v * &inv;
-        }
-        let pivot = tab[r].clone();
-        for (i, row) in tab.iter_mut().enumerate() {
-            if i != r && !row[col].is_zero() {
-                let f = row[col].clone();
-                for (v, p) in row.iter_mut().zip(&pivot) {
-                    if !p.is_zero() {
-                        *v = &*v - &(&f * p);
-                    }
-                }
-            }
-        }
-        let f = cost[col].clone();
-        sigma = &sigma + &(&f * &ratio);
-        for (v, p) in cost.iter_mut().zip(&pivot) {
-            if !p.is_zero() {
-                *v = &*v - &(&f * p);
-            }
-        }
-        basis[r] = col;
-    }
+    let d = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
+    apart_testkit::oracle::sweep_meets_interior(&rows(a), &rows(b), &d)
 }
 
 pub fn ray_meets_interior(facets: &[(Vec3, Int)], d: &Vec3) -> bool {

@@ -1,9 +1,7 @@
 //! The sheet-metal parts of `apart_testkit::sheet_metal` as placement models: the cube
 //! as one convex piece (the hull of its corners), the others decomposed exactly (here, as
 //! the loader does for the CLI: apart-stack itself never decomposes). Shared
-//! by the stacking tests, the benchmark and the part generator of apart-stack, and by
-//! apart-draw's pictures of stacks (included by path: the models need apart-stack,
-//! which apart-testkit must not depend on).
+//! by the stacking tests, the benchmark and the examples of apart-stack.
 #![allow(dead_code)]
 
 use apart_kernel::Vec3;

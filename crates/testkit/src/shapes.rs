@@ -1,45 +1,75 @@
-//! Test solids with known structure, and independent truths about them (volumes by hand
-//! formulas, point membership from their definitions).
-#![allow(dead_code)]
+//! Closed integer solids with known structure, each with facts about it found without
+//! decomposing it: the volume by a hand formula, the reflex edges counted by hand, and
+//! sample points classified from the solid's definition.
+//!
+//! The shared inputs of the decomposition tests and benchmarks and of the planner's
+//! ring-and-cone benchmark. Everything is plain integers: callers convert the points and
+//! the volume to their exact types.
 
-use apart_kernel::{Int, Rational, Sign, Vec3};
-use apart_pieces::{Containment, Polytope};
 use std::collections::HashMap;
 
-/// A closed mesh with independent facts about it.
+/// A sample point `x / w` and whether it lies strictly inside (`true`) or strictly
+/// outside (`false`) its solid.
+pub type Sample = ([i128; 3], i128, bool);
+
+/// A closed integer mesh with independent facts about it.
+#[derive(Clone, Debug)]
 pub struct Shape {
+    /// What the solid is, for messages and tables.
     pub name: &'static str,
-    pub points: Vec<Vec3>,
+    /// Vertex coordinates.
+    pub points: Vec<[i64; 3]>,
+    /// Outward triangles as indices into `points`.
     pub tris: Vec<[u32; 3]>,
-    /// The volume, from a formula independent of the decomposition code.
-    pub volume: Rational,
+    /// The volume as `[numerator, denominator]`, from a formula independent of any
+    /// decomposition.
+    pub volume: [i128; 2],
     /// Reflex edges counted by hand, when known.
     pub reflex: Option<usize>,
-    /// Sample points `x / w` with their membership: `Some(true)` strictly inside,
-    /// `Some(false)` strictly outside.
-    pub samples: Vec<([i128; 3], i128, bool)>,
+    /// Sample points with their membership.
+    pub samples: Vec<Sample>,
 }
 
-/// Welds points given by key into indices.
+/// Welds points given by their coordinates into indices, in order of first use.
 #[derive(Default)]
 struct Welder {
     ids: HashMap<[i64; 3], u32>,
-    points: Vec<Vec3>,
+    points: Vec<[i64; 3]>,
 }
 
 impl Welder {
     fn id(&mut self, p: [i64; 3]) -> u32 {
         let n = self.points.len() as u32;
         *self.ids.entry(p).or_insert_with(|| {
-            self.points.push(Vec3::from_i64(p));
+            self.points.push(p);
             n
         })
     }
 }
 
+/// Six times the volume of a closed mesh by the divergence theorem (panics if it does not
+/// fit in an `i128`).
+fn volume6(points: &[[i64; 3]], tris: &[[u32; 3]]) -> i128 {
+    let mut v = 0i128;
+    for t in tris {
+        let [a, b, c] = t.map(|i| points[i as usize].map(i128::from));
+        let cross = [
+            b[1] * c[2] - b[2] * c[1],
+            b[2] * c[0] - b[0] * c[2],
+            b[0] * c[1] - b[1] * c[0],
+        ];
+        let det = (0..3)
+            .try_fold(0i128, |s, k| s.checked_add(a[k].checked_mul(cross[k])?))
+            .expect("the volume fits in i128");
+        v = v.checked_add(det).expect("the volume fits in i128");
+    }
+    v
+}
+
 /// The union of the filled cells of the rectilinear grid `xs × ys × zs` (strictly
 /// increasing coordinates): its boundary faces, two triangles per grid rectangle (the
-/// mesh is apart-testkit's), with its volume and sample points.
+/// mesh of [`crate::solids::rectilinear`]), with its volume and a sample point at the
+/// centre of every cell and just outside each face of the bounding box.
 pub fn rectilinear(
     name: &'static str,
     g: [&[i64]; 3],
@@ -47,8 +77,8 @@ pub fn rectilinear(
     reflex: Option<usize>,
 ) -> Shape {
     let n = [g[0].len() - 1, g[1].len() - 1, g[2].len() - 1];
-    let mesh = apart_testkit::solids::rectilinear(g, &filled);
-    let mut volume = Int::ZERO;
+    let mesh = crate::solids::rectilinear(g, &filled);
+    let mut volume = 0i128;
     let mut samples = Vec::new();
     for i in 0..n[0] {
         for j in 0..n[1] {
@@ -57,8 +87,8 @@ pub fn rectilinear(
                 let f = filled(c);
                 if f {
                     volume += (0..3)
-                        .map(|a| Int::from(g[a][c[a] + 1] - g[a][c[a]]))
-                        .fold(Int::ONE, |x, y| x * y);
+                        .map(|a| i128::from(g[a][c[a] + 1] - g[a][c[a]]))
+                        .product::<i128>();
                 }
                 let mid = [0, 1, 2].map(|a| (g[a][c[a]] + g[a][c[a] + 1]) as i128);
                 samples.push((mid, 2, f));
@@ -77,14 +107,15 @@ pub fn rectilinear(
     }
     Shape {
         name,
-        points: mesh.points.into_iter().map(Vec3::from_i64).collect(),
+        points: mesh.points,
         tris: mesh.triangles,
-        volume: Rational::from_int(volume),
+        volume: [volume, 1],
         reflex,
         samples,
     }
 }
 
+/// An L-shaped block: a 20 × 20 × 10 slab without one quarter (one reflex edge).
 pub fn l_block() -> Shape {
     rectilinear(
         "L-block",
@@ -94,6 +125,7 @@ pub fn l_block() -> Shape {
     )
 }
 
+/// A U-shaped channel: a base and two walls (two reflex edges).
 pub fn u_channel() -> Shape {
     rectilinear(
         "U-channel",
@@ -103,6 +135,7 @@ pub fn u_channel() -> Shape {
     )
 }
 
+/// A square slab with a square hole through it (four reflex edges).
 pub fn box_with_hole() -> Shape {
     rectilinear(
         "box with through-hole",
@@ -112,6 +145,7 @@ pub fn box_with_hole() -> Shape {
     )
 }
 
+/// A comb: a base with `teeth` teeth (`2 (teeth − 1)` reflex edges, all in one plane).
 pub fn comb(teeth: usize) -> Shape {
     let xs: Vec<i64> = (0..=(2 * teeth - 1) as i64).map(|i| 10 * i).collect();
     rectilinear(
@@ -143,6 +177,7 @@ pub fn i_beam() -> Shape {
     )
 }
 
+/// Two cubes of side 10 sharing an edge.
 pub fn two_cubes_edge() -> Shape {
     rectilinear(
         "two cubes sharing an edge",
@@ -152,6 +187,7 @@ pub fn two_cubes_edge() -> Shape {
     )
 }
 
+/// Two cubes of side 10 sharing a vertex.
 pub fn two_cubes_vertex() -> Shape {
     rectilinear(
         "two cubes sharing a vertex",
@@ -183,7 +219,8 @@ pub fn sheet_metal() -> Shape {
     )
 }
 
-/// The cells of a `dims` voxel grid listed in `on` (unit cubes).
+/// The unit cubes of a `dims` voxel grid whose entries of `on` are set (index
+/// `(x dims[1] + y) dims[2] + z`).
 pub fn voxels(dims: [usize; 3], on: &[bool]) -> Shape {
     let axis = |n: usize| (0..=n as i64).collect::<Vec<_>>();
     let (xs, ys, zs) = (axis(dims[0]), axis(dims[1]), axis(dims[2]));
@@ -195,17 +232,7 @@ pub fn voxels(dims: [usize; 3], on: &[bool]) -> Shape {
     )
 }
 
-/// Six times the volume by the divergence theorem, written independently of the crate.
-fn volume_by_divergence(points: &[Vec3], tris: &[[u32; 3]]) -> Rational {
-    let mut v = Int::ZERO;
-    for t in tris {
-        let [a, b, c] = t.map(|i| points[i as usize].clone());
-        v += a.dot(&b.cross(&c));
-    }
-    Rational::new(v, Int::from(6))
-}
-
-/// Integer points `(x, y)` with `x² + y² = r2`.
+/// Integer points `(x, y)` with `x² + y² = r2`, sorted.
 fn lattice_circle(r2: i64) -> Vec<[i64; 2]> {
     let r = (r2 as f64).sqrt() as i64 + 1;
     let mut out = Vec::new();
@@ -235,12 +262,16 @@ fn lattice_circle(r2: i64) -> Vec<[i64; 2]> {
 /// R). Consecutive cross-sections are exact rotations of each other, so the quads between
 /// them are planar trapezoids: every segment is convex.
 pub struct Ring {
+    /// The stations' directions in the xy plane, all of length `radius`.
     pub dirs: Vec<[i64; 2]>,
+    /// The cross-section `(s, z)`, counter-clockwise, in units of `radius`.
     pub section: Vec<[i64; 2]>,
+    /// The length of every direction.
     pub radius: i64,
 }
 
 impl Ring {
+    /// The ring of `stations` stations with the 16-gon cross-section.
     pub fn new(stations: usize) -> Ring {
         Ring::with_section(stations, 65, 20, 5 * 13 * 17 * 29)
     }
@@ -341,6 +372,9 @@ impl Ring {
         None
     }
 
+    /// The ring's surface (two triangles per trapezoid), its volume by the divergence
+    /// theorem, and sample points on a lattice through its box, classified by
+    /// [`Ring::inside`].
     pub fn shape(&self) -> Shape {
         let (m, q) = (self.dirs.len(), self.section.len());
         let mut w = Welder::default();
@@ -355,7 +389,7 @@ impl Ring {
                 tris.push([a, c, d]);
             }
         }
-        let volume = volume_by_divergence(&w.points, &tris);
+        let volume = [volume6(&w.points, &tris), 6];
         // Sample points on a lattice through the ring's box, classified by definition.
         let mut samples = Vec::new();
         let smax = self.section.iter().map(|p| p[0]).max().unwrap() + 1;
@@ -392,6 +426,15 @@ impl Ring {
     }
 }
 
+/// The sign of the determinant of `q − p`, `r − p`, `s − p`: positive when `s` lies on
+/// the positive side of the plane through `p`, `q`, `r` (counter-clockwise seen from it).
+fn orientation(p: [i64; 3], q: [i64; 3], r: [i64; 3], s: [i64; 3]) -> i128 {
+    let [u, v, w] = [q, r, s].map(|x| [0, 1, 2].map(|k| i128::from(x[k] - p[k])));
+    let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    det.signum()
+}
+
 /// The Schönhardt twisted prism: the top triangle turned by 30 degrees against the
 /// bottom one, each side quad split along its reflex diagonal. Volume by the prismatoid
 /// formula `h / 6 (A_bottom + A_top + 4 A_mid)`.
@@ -401,19 +444,7 @@ pub fn schonhardt() -> Shape {
     let b = [[87i64, 50], [-87, 50], [0, -100]];
     let pa = |i: usize| [a[i % 3][0], a[i % 3][1], 0];
     let pb = |i: usize| [b[i % 3][0], b[i % 3][1], h];
-    let points: Vec<Vec3> = (0..3)
-        .map(|i| Vec3::from_i64(pa(i)))
-        .chain((0..3).map(|i| Vec3::from_i64(pb(i))))
-        .collect();
-    let above = |p: [i64; 3], q: [i64; 3], r: [i64; 3], s: [i64; 3]| {
-        let (p, q, r, s) = (
-            Vec3::from_i64(p),
-            Vec3::from_i64(q),
-            Vec3::from_i64(r),
-            Vec3::from_i64(s),
-        );
-        apart_kernel::predicates::det3_sign(&q.sub(&p), &r.sub(&p), &s.sub(&p))
-    };
+    let points: Vec<[i64; 3]> = (0..3).map(pa).chain((0..3).map(pb)).collect();
     let mut tris = vec![[0u32, 2, 1], [3, 4, 5]];
     let mut lateral = Vec::new(); // lateral edges in cyclic order, as point pairs
     for i in 0..3 {
@@ -421,7 +452,7 @@ pub fn schonhardt() -> Shape {
         let (ai, aj, bi, bj) = (i as u32, j as u32, 3 + i as u32, 3 + j as u32);
         lateral.push((pa(i), pb(i)));
         // Diagonal a_i b_j is reflex when b_i is above the plane of (a_i, a_j, b_j).
-        if above(pa(i), pa(j), pb(j), pb(i)) == Sign::Positive {
+        if orientation(pa(i), pa(j), pb(j), pb(i)) > 0 {
             tris.push([ai, aj, bj]);
             tris.push([ai, bj, bi]);
             lateral.push((pa(i), pb(j)));
@@ -446,7 +477,7 @@ pub fn schonhardt() -> Shape {
         .collect();
     let (ab, at, am) = (area2(&a), area2(&b), area2(&mid)); // 2A, 2A, 8A
                                                             // V = h/6 (A_b + A_t + 4 A_m) = h/6 (ab/2 + at/2 + am/2)
-    let volume = Rational::new(Int::from(h * (ab + at + am)), Int::from(12));
+    let volume = [i128::from(h * (ab + at + am)), 12];
     let samples = vec![
         ([0, 0, 100], 2, true),
         ([0, 0, 1], 1, true),
@@ -465,7 +496,7 @@ pub fn schonhardt() -> Shape {
 
 /// The red part of the Split Star (faces from `split_star/0_red.off`).
 pub fn split_star_red() -> Shape {
-    let pts: [[i64; 3]; 10] = [
+    let points: Vec<[i64; 3]> = vec![
         [-1, -1, 1],
         [-2, 0, 2],
         [-2, 0, 0],
@@ -495,8 +526,7 @@ pub fn split_star_red() -> Shape {
         [9, 7, 3],
         [9, 3, 1],
     ];
-    let points: Vec<Vec3> = pts.iter().map(|&p| Vec3::from_i64(p)).collect();
-    let volume = volume_by_divergence(&points, &tris);
+    let volume = [volume6(&points, &tris), 6];
     Shape {
         name: "Split Star red part",
         points,
@@ -511,16 +541,17 @@ pub fn split_star_red() -> Shape {
     }
 }
 
-/// A prism over a simple counter-clockwise polygon in the xy plane, `z` in `[0, h]`.
+/// A prism over a simple counter-clockwise polygon in the xy plane, `z` in `[0, h]`,
+/// with the sample points of [`bent_sheet`].
 pub fn extrusion(name: &'static str, poly: &[[i64; 2]], h: i64, reflex: Option<usize>) -> Shape {
     let n = poly.len() as u32;
-    let points: Vec<Vec3> = poly
+    let points: Vec<[i64; 3]> = poly
         .iter()
-        .map(|p| Vec3::new(p[0], p[1], 0))
-        .chain(poly.iter().map(|p| Vec3::new(p[0], p[1], h)))
+        .map(|p| [p[0], p[1], 0])
+        .chain(poly.iter().map(|p| [p[0], p[1], h]))
         .collect();
     let mut tris = Vec::new();
-    for t in apart_testkit::solids::ear_clip(poly) {
+    for t in crate::solids::ear_clip(poly) {
         let t = t.map(|i| i as u32);
         tris.push([t[0], t[2], t[1]]);
         tris.push([t[0] + n, t[1] + n, t[2] + n]);
@@ -540,7 +571,7 @@ pub fn extrusion(name: &'static str, poly: &[[i64; 2]], h: i64, reflex: Option<u
         name,
         points,
         tris,
-        volume: Rational::new(Int::from(area2 * h), Int::from(2)),
+        volume: [i128::from(area2 * h), 2],
         reflex,
         samples: vec![
             ([1000, 1, 400], 1, true),
@@ -584,50 +615,6 @@ pub fn all() -> Vec<Shape> {
     ]
 }
 
-/// Where the point `x / w` lies in a polytope, exactly.
-pub fn locate(p: &Polytope, x: &[i128; 3], w: i128) -> Containment {
-    let stored = Vec3::from_i128(*x).scale(p.den());
-    let w = Int::from(w);
-    let mut on = false;
-    for f in p.facets() {
-        let v = f.normal.dot(&stored) - &f.offset * &w;
-        if v > Int::ZERO {
-            return Containment::Outside;
-        }
-        if v == Int::ZERO {
-            on = true;
-        }
-    }
-    if on {
-        Containment::Boundary
-    } else {
-        Containment::Inside
-    }
-}
-
-/// Checks the sample points against the pieces: a point strictly inside the solid is in
-/// some closed piece and in at most one open piece; a point outside is in no piece.
-pub fn check_samples(shape: &Shape, pieces: &[Polytope]) {
-    for (x, w, inside) in &shape.samples {
-        let loc: Vec<Containment> = pieces.iter().map(|p| locate(p, x, *w)).collect();
-        let interior = loc.iter().filter(|c| **c == Containment::Inside).count();
-        let closed = loc.iter().filter(|c| **c != Containment::Outside).count();
-        if *inside {
-            assert!(
-                closed >= 1 && interior <= 1,
-                "{}: inside point {x:?}/{w} in {closed} closed, {interior} open pieces",
-                shape.name
-            );
-        } else {
-            assert_eq!(
-                closed, 0,
-                "{}: outside point {x:?}/{w} is in a piece",
-                shape.name
-            );
-        }
-    }
-}
-
 /// The image of `shape` under the integer linear map `m` (rows), `det m > 0`: the same
 /// structure with generic planes. Volumes scale by `det m`, samples map along.
 pub fn transformed(shape: &Shape, m: [[i64; 3]; 3]) -> Shape {
@@ -642,16 +629,19 @@ pub fn transformed(shape: &Shape, m: [[i64; 3]; 3]) -> Shape {
         .points
         .iter()
         .map(|p| {
-            let c = p.as_small().unwrap();
-            let q = apply(c.map(|v| v as i128));
-            Vec3::from_i128(q)
+            apply(p.map(i128::from)).map(|v| i64::try_from(v).expect("coordinates fit in i64"))
         })
         .collect();
     Shape {
         name: shape.name,
         points,
         tris: shape.tris.clone(),
-        volume: &shape.volume * &Rational::from_int(det),
+        volume: [
+            shape.volume[0]
+                .checked_mul(i128::from(det))
+                .expect("the volume fits in i128"),
+            shape.volume[1],
+        ],
         reflex: shape.reflex,
         samples: shape
             .samples
@@ -708,11 +698,10 @@ pub fn terrain(n: usize, cell: i64, h: &[i64]) -> Shape {
         tris.push([bp, tq, tp]);
     }
     let area = cell * cell; // twice the projected area of a triangle
-    let mut volume = Int::ZERO;
+    let mut volume = 0i128;
     for t in &top_tris {
-        volume += Int::from(area * (t[0][2] + t[1][2] + t[2][2]));
+        volume += i128::from(area * (t[0][2] + t[1][2] + t[2][2]));
     }
-    let volume = Rational::new(volume, Int::from(6));
     // Samples: a lattice of points classified against the top triangle above them.
     let hmax = h.iter().max().unwrap() + 5;
     let mut samples = Vec::new();
@@ -736,7 +725,7 @@ pub fn terrain(n: usize, cell: i64, h: &[i64]) -> Shape {
         name: "terrain",
         points: w.points,
         tris,
-        volume,
+        volume: [volume, 6],
         reflex: None,
         samples,
     }
@@ -777,4 +766,29 @@ fn terrain_inside(
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn volumes_by_formula_match_the_divergence_theorem() {
+        let h: Vec<i64> = (0..16).map(|k| 10 + (k * 7) % 13).collect();
+        for s in all().into_iter().chain([
+            terrain(3, 20, &h),
+            transformed(&box_with_hole(), [[3, 1, 0], [1, 4, 1], [0, 2, 5]]),
+        ]) {
+            let v6 = volume6(&s.points, &s.tris);
+            assert_eq!(v6 * s.volume[1], 6 * s.volume[0], "{}", s.name);
+        }
+    }
+
+    #[test]
+    fn ring_samples_agree_with_membership() {
+        let ring = Ring::new(64);
+        let s = ring.shape();
+        assert_eq!(s.tris.len(), 64 * 16 * 2);
+        assert!(s.samples.iter().any(|x| x.2) && s.samples.iter().any(|x| !x.2));
+    }
 }

@@ -1,10 +1,11 @@
-//! A closed torus as a binary STL, for benchmarks (shared by `benches/load.rs` and the
-//! `check_mesh` example).
+//! A closed torus as binary STL, for loading benchmarks: large, closed, outward and free
+//! of self-intersections, with `f32` coordinates as real exports have.
 
 use std::io::Write;
 
-/// Writes a torus with `n * m * 2` triangles (outward) as binary STL to `path`.
-pub fn write_torus_stl(path: &std::path::Path, n: usize, m: usize) -> std::io::Result<u64> {
+/// A torus (radii 10 and 3) of `n` segments around its axis and `m` around its tube,
+/// `2 n m` outward triangles, as the bytes of a binary STL file.
+pub fn torus_stl(n: usize, m: usize) -> Vec<u8> {
     let (big, small) = (10.0f64, 3.0f64);
     let p = |i: usize, j: usize| {
         let u = 2.0 * std::f64::consts::PI * (i % n) as f64 / n as f64;
@@ -32,6 +33,22 @@ pub fn write_torus_stl(path: &std::path::Path, n: usize, m: usize) -> std::io::R
             }
         }
     }
+    out
+}
+
+/// Writes [`torus_stl`]`(n, m)` to `path` and returns its size in bytes.
+pub fn write_torus_stl(path: &std::path::Path, n: usize, m: usize) -> std::io::Result<u64> {
+    let out = torus_stl(n, m);
     std::fs::File::create(path)?.write_all(&out)?;
     Ok(out.len() as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_header_counts_every_triangle() {
+        let bytes = super::torus_stl(6, 4);
+        assert_eq!(bytes.len(), 84 + 50 * 2 * 6 * 4);
+        assert_eq!(u32::from_le_bytes(bytes[80..84].try_into().unwrap()), 48);
+    }
 }
