@@ -10,7 +10,7 @@ use apart_jobs::place::PlaceJobOptions;
 use apart_jobs::sequence::SequenceJobOptions;
 use apart_jobs::stack::StackJobOptions;
 use apart_jobs::JobError;
-use apart_kernel::{Grid, Vec3};
+use apart_kernel::Vec3;
 use apart_mesh::Problem;
 use apart_plan::progress::Progress;
 use apart_plan::SequenceOptions;
@@ -27,18 +27,14 @@ pub fn check(loaded: &Loaded, units: Option<&str>) -> Value {
     serde_json::to_value(apart_jobs::check::check(loaded, units)).unwrap_or(Value::Null)
 }
 
-/// Snaps a direction like the command line's `--direction X,Y,Z`: to a primitive
-/// integer vector on a grid of 30 bits.
+/// Snaps a direction like the command line's `--direction X,Y,Z` (see
+/// [`apart_jobs::partition::snap_direction`]), phrased for Python.
 pub fn snap_direction(v: [f64; 3]) -> Result<Vec3, String> {
-    if v.iter().any(|x| !x.is_finite()) {
-        return Err(format!("direction {v:?} has a non-finite number"));
-    }
-    let g = Grid::choose(v.iter().copied(), 30).map_err(|e| e.to_string())?;
-    let d = Vec3::new(g.snap(v[0]), g.snap(v[1]), g.snap(v[2])).primitive();
-    if d.is_zero() {
-        return Err(format!("direction {v:?} is zero"));
-    }
-    Ok(d)
+    use apart_jobs::partition::DirectionError;
+    apart_jobs::partition::snap_direction(v).map_err(|e| match e {
+        DirectionError::NonFinite => format!("direction {v:?} has a non-finite number"),
+        DirectionError::Zero => format!("direction {v:?} is zero"),
+    })
 }
 
 /// Partitioning: one direction's blocking graph (`direction`, with two parts or more),

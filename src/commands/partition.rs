@@ -21,7 +21,7 @@ use apart::jobs::partition::{
     EXAMPLES_PER_KIND,
 };
 use apart::jobs::Progress;
-use apart::kernel::{Grid, Vec3};
+use apart::kernel::Vec3;
 use apart::plan::{CellKind, MotionSpace};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -389,14 +389,13 @@ pub fn parse_direction(text: &str) -> anyhow::Result<Vec3> {
         v.len() == 3,
         "direction \"{text}\" needs three numbers X,Y,Z"
     );
-    anyhow::ensure!(
-        v.iter().all(|x| x.is_finite()),
-        "direction \"{text}\" has a non-finite number"
-    );
-    let g = Grid::choose(v.iter().copied(), 30)?;
-    let d = Vec3::new(g.snap(v[0]), g.snap(v[1]), g.snap(v[2])).primitive();
-    anyhow::ensure!(!d.is_zero(), "direction \"{text}\" is zero");
-    Ok(d)
+    use apart::jobs::partition::{snap_direction, DirectionError};
+    snap_direction([v[0], v[1], v[2]]).map_err(|e| match e {
+        DirectionError::NonFinite => {
+            anyhow::anyhow!("direction \"{text}\" has a non-finite number")
+        }
+        DirectionError::Zero => anyhow::anyhow!("direction \"{text}\" is zero"),
+    })
 }
 
 fn direction(

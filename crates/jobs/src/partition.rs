@@ -5,7 +5,7 @@
 use crate::{InputFacts, JobError, Progress, Status};
 use apart_assembly::{LoadSeconds, Loaded};
 use apart_kernel::progress::phases;
-use apart_kernel::Vec3;
+use apart_kernel::{Grid, Vec3};
 use apart_plan::along::{holds_without_tolerance, Motion};
 use apart_plan::{
     dbg_along, partition_first, partition_subset_with, parts_of, BlockingRegions, CellKind,
@@ -482,6 +482,29 @@ pub struct DirectionAnswer {
     /// given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub holds_without_tolerance: Option<Vec<bool>>,
+}
+
+/// Why a direction given as three numbers cannot be asked about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DirectionError {
+    /// One of the numbers is infinite or NaN.
+    NonFinite,
+    /// The numbers snap to the zero vector.
+    Zero,
+}
+
+/// Snaps a direction given in floats like coordinates: to a primitive integer vector
+/// on a grid of 30 bits (the `--direction X,Y,Z` of the CLI, `direction=` in Python).
+pub fn snap_direction(v: [f64; 3]) -> Result<Vec3, DirectionError> {
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(DirectionError::NonFinite);
+    }
+    let g = Grid::choose(v, 30).map_err(|_| DirectionError::NonFinite)?;
+    let d = Vec3::new(g.snap(v[0]), g.snap(v[1]), g.snap(v[2])).primitive();
+    if d.is_zero() {
+        return Err(DirectionError::Zero);
+    }
+    Ok(d)
 }
 
 /// The blocking graph of one direction `d` (a primitive integer vector) and the
