@@ -66,7 +66,7 @@ pub use apart_mesh::{Problem, Severity};
 pub use description::{DescribedPart, Description, MeshSource};
 pub use error::LoadError;
 pub use load::{load, load_description};
-pub use model::{Assembly, LoadSeconds, Loaded, Part, Repairs, Skipped};
+pub use model::{Assembly, LoadSeconds, Loaded, Part, Repairs, Skipped, WindingReport};
 pub use options::{Decompose, LoadOptions};
 pub use tolerance::{AppliedTolerance, Tolerance};
 pub use witness::{fmt_witness, witness_units};

@@ -45,6 +45,47 @@ pub struct Part {
     /// what the part really is, for telling which answers hold only under the
     /// tolerance.
     pub unshrunk_pieces: Vec<Polytope>,
+    /// How the part's solid was made from a surface that is not a closed manifold (the
+    /// points its faces wind around at least once), when it was.
+    pub winding: Option<WindingReport>,
+}
+
+/// What making a solid of a surface that is not a closed manifold did: the points its
+/// faces wind around at least once, after closing the boundary loops that are planar
+/// or nearly so, or seams.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct WindingReport {
+    /// The part.
+    pub part: String,
+    /// Edges of the net boundary (used more often one way than the other), counted
+    /// with that difference.
+    pub open_edges: usize,
+    /// Edges used by more than two faces.
+    pub nonmanifold_edges: usize,
+    /// Pairs of faces that cross.
+    pub crossing_pairs: usize,
+    /// Boundary loops closed (planar or nearly so, or seams).
+    pub loops_closed: usize,
+    /// Of those, the seams.
+    pub seams_closed: usize,
+    /// Triangles added to close them.
+    pub cap_triangles: usize,
+    /// Faces with the solid on both sides or on neither: they enclose nothing.
+    pub faces_dropped: usize,
+    /// Convex cells of winding number at least 1 kept.
+    pub cells_kept: usize,
+    /// Convex pieces they were merged into.
+    pub pieces: usize,
+    /// The surface was inside out (negative signed volume) and was reversed.
+    pub inside_out: bool,
+    /// The least and greatest winding numbers met.
+    pub lowest_winding: i64,
+    /// See `lowest_winding`.
+    pub highest_winding: i64,
+    /// The surface's signed volume (the integral of its winding number), grid units.
+    pub volume_before: Rational,
+    /// The solid's volume, grid units.
+    pub volume_after: Rational,
 }
 
 impl Part {
@@ -65,6 +106,7 @@ impl Part {
             reflex_edges: 0,
             bbox: None,
             unshrunk_pieces: Vec::new(),
+            winding: None,
         }
     }
 
@@ -111,6 +153,8 @@ pub struct Repairs {
     pub parts: Vec<String>,
     /// The repairs, by kind.
     pub report: RepairReport,
+    /// The parts made by the winding rule, and how.
+    pub winding: Vec<WindingReport>,
 }
 
 /// A file or folder inside an assembly folder that was not read, and why (hidden

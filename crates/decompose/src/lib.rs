@@ -60,7 +60,8 @@ pub use verify::verify;
 use apart_kernel::Vec3;
 use apart_pieces::Polytope;
 use rayon::prelude::*;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Settings of [`decompose`].
@@ -70,6 +71,9 @@ pub struct Options {
     pub merge: bool,
     /// Process independent cells in parallel with rayon (default true).
     pub parallel: bool,
+    /// Raised by another thread to stop [`decompose_union`] early, which then fails
+    /// with [`DecomposeError::Stopped`] (default: none).
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 impl Default for Options {
@@ -77,6 +81,7 @@ impl Default for Options {
         Options {
             merge: true,
             parallel: true,
+            stop: None,
         }
     }
 }
@@ -162,6 +167,9 @@ pub enum DecomposeError {
     /// A failure of the algorithm on input it should handle (a bug: please report).
     #[error("internal error: {0}")]
     Internal(String),
+    /// The stop flag of [`Options::stop`] was raised.
+    #[error("stopped")]
+    Stopped,
 }
 
 /// Why a set of pieces is not a decomposition of a solid.
@@ -305,7 +313,7 @@ pub fn decompose_union(
 ) -> Result<Decomposition, DecomposeError> {
     let start = Instant::now();
     let surface = solid::Solid::surface(points, triangles)?;
-    let part = union::UnionPartition::new(&surface, opts.parallel);
+    let part = union::UnionPartition::new(&surface, opts.parallel, opts.stop.clone());
     let leaves = part.run()?;
     let lo = leaves.iter().map(|l| l.w).min().unwrap_or(0);
     let hi = leaves.iter().map(|l| l.w).max().unwrap_or(0);

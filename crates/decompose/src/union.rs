@@ -52,7 +52,7 @@ use crate::DecomposeError;
 use apart_kernel::plane::{HPoint, Plane};
 use apart_kernel::{int, Int, Rational, Sign};
 use rustc_hash::FxHashMap;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// Cells with fewer fragments than this in either part are processed sequentially.
@@ -76,6 +76,7 @@ pub(crate) struct UnionPartition<'a> {
     solid: &'a Solid,
     rays: RayIndex,
     parallel: bool,
+    stop: Option<Arc<AtomicBool>>,
     pub counters: Counters,
 }
 
@@ -90,11 +91,16 @@ enum Step {
 }
 
 impl<'a> UnionPartition<'a> {
-    pub fn new(solid: &'a Solid, parallel: bool) -> UnionPartition<'a> {
+    pub fn new(
+        solid: &'a Solid,
+        parallel: bool,
+        stop: Option<Arc<AtomicBool>>,
+    ) -> UnionPartition<'a> {
         UnionPartition {
             solid,
             rays: RayIndex::new(solid),
             parallel,
+            stop,
             counters: Counters::default(),
         }
     }
@@ -163,7 +169,10 @@ impl<'a> UnionPartition<'a> {
     }
 
     fn step(&self, t: Task) -> Result<Step, DecomposeError> {
-        self.counters.cells.fetch_add(1, Ordering::Relaxed);
+        let cells = self.counters.cells.fetch_add(1, Ordering::Relaxed);
+        if cells % 1024 == 0 && self.stop.as_ref().is_some_and(|s| s.load(Ordering::Relaxed)) {
+            return Err(DecomposeError::Stopped);
+        }
         if t.frags.is_empty() {
             let q = interior_point(&t.cell);
             let w = self.rays.winding(self.solid, &q)?;

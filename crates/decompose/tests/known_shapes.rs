@@ -110,6 +110,7 @@ fn without_merging_or_parallelism() {
         let opts = Options {
             merge: false,
             parallel: false,
+            ..Options::default()
         };
         let d = decompose(&shape.points, &shape.tris, &opts).unwrap();
         verify(&shape.points, &shape.tris, &d.pieces).unwrap();

@@ -191,7 +191,11 @@ fn two_overlapping_boxes() {
     });
     // Sequential and unmerged runs give the same solid.
     for (merge, parallel) in [(false, false), (false, true), (true, false)] {
-        let opts = Options { merge, parallel };
+        let opts = Options {
+            merge,
+            parallel,
+            ..Options::default()
+        };
         let e = decompose_union(&m.points, &m.tris, &opts).unwrap();
         check_pieces(&e.pieces);
         assert_eq!(volume(&e.pieces), Rational::from_int(84));

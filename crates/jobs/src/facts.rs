@@ -1,7 +1,7 @@
 //! What every answer states about its input: the length unit, the tolerance it holds
 //! under, the repairs made on load and the files not read.
 
-use apart_assembly::Loaded;
+use apart_assembly::{Loaded, WindingReport};
 use apart_mesh::repair::RepairReport;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -36,6 +36,66 @@ pub struct RepairFacts {
     /// The repairs, by kind.
     #[serde(flatten)]
     pub counts: RepairReport,
+    /// The parts made by the winding rule from a surface that is not a closed
+    /// manifold, and how (absent when none was).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub winding: Vec<WindingFacts>,
+}
+
+/// How one part was made the solid its surface winds around (winding number at least
+/// 1), as answers list it.
+#[derive(Clone, Debug, Serialize)]
+pub struct WindingFacts {
+    /// The part.
+    pub part: String,
+    /// Net boundary edges of the surface (used more often one way than the other).
+    pub open_edges: usize,
+    /// Edges used by more than two faces.
+    pub nonmanifold_edges: usize,
+    /// Pairs of faces that cross.
+    pub crossing_pairs: usize,
+    /// Boundary loops closed (planar or nearly so, or seams).
+    pub loops_closed: usize,
+    /// Of those, seams.
+    pub seams_closed: usize,
+    /// Triangles added to close them.
+    pub cap_triangles: usize,
+    /// Faces with the solid on both sides or on neither.
+    pub faces_dropped: usize,
+    /// Convex cells of winding number at least 1 kept.
+    pub cells_kept: usize,
+    /// Convex pieces they were merged into.
+    pub pieces: usize,
+    /// The surface was inside out and was reversed.
+    pub inside_out: bool,
+    /// The least and greatest winding numbers met.
+    pub winding_range: [i64; 2],
+    /// The surface's signed volume, in input units (exact, as a fraction).
+    pub volume_before: String,
+    /// The solid's volume, in input units (exact, as a fraction).
+    pub volume_after: String,
+}
+
+impl WindingFacts {
+    fn of(w: &WindingReport, grid: &apart_kernel::Grid) -> WindingFacts {
+        let units = |v| apart_mesh::validate::volume_in_units(v, grid).to_string();
+        WindingFacts {
+            part: w.part.clone(),
+            open_edges: w.open_edges,
+            nonmanifold_edges: w.nonmanifold_edges,
+            crossing_pairs: w.crossing_pairs,
+            loops_closed: w.loops_closed,
+            seams_closed: w.seams_closed,
+            cap_triangles: w.cap_triangles,
+            faces_dropped: w.faces_dropped,
+            cells_kept: w.cells_kept,
+            pieces: w.pieces,
+            inside_out: w.inside_out,
+            winding_range: [w.lowest_winding, w.highest_winding],
+            volume_before: units(&w.volume_before),
+            volume_after: units(&w.volume_after),
+        }
+    }
 }
 
 /// A file not read, and why.
@@ -83,6 +143,11 @@ impl InputFacts {
                     file: (!r.file.as_os_str().is_empty()).then(|| r.file.clone()),
                     parts: r.parts.clone(),
                     counts: r.report.clone(),
+                    winding: r
+                        .winding
+                        .iter()
+                        .map(|w| WindingFacts::of(w, &asm.grid))
+                        .collect(),
                 })
                 .collect(),
             skipped_files: loaded

@@ -2,20 +2,20 @@
 //! separate solids, validated, and given its convex pieces (declared, the part itself
 //! when convex, or those of the solid a surface with crossing faces encloses).
 
-use super::RawPart;
+use super::{winding, RawPart};
 use crate::inputs::{Names, PartSpec, SourceRef};
-use crate::model::{Part, Repairs};
+use crate::model::{Part, Repairs, WindingReport};
 use crate::options::LoadOptions;
 use crate::pieces::{self, piece_box};
 use apart_formats::escape::escape;
 use apart_formats::RawObject;
 use apart_kernel::grid::MAX_BITS;
+use apart_kernel::plane::HPoint;
 use apart_kernel::{Aabb, Grid, Int, Rational};
 use apart_mesh::locate::Locator;
 use apart_mesh::repair::{bodies, repair, RepairOptions};
-use apart_mesh::validate::{validate, MeshInfo};
+use apart_mesh::validate::validate;
 use apart_mesh::{Mesh, Problem, ProblemKind};
-use apart_pieces::Polytope;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -89,6 +89,7 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
                 file: src.origin.file().map(Path::to_path_buf).unwrap_or_default(),
                 parts: Vec::new(),
                 report,
+                winding: Vec::new(),
             });
         }
     }
@@ -157,6 +158,10 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
             }
         }
     }
+    for (a, b) in deeply_overlapping(&bodies) {
+        let (x, y) = (find(&mut parent, a), find(&mut parent, b));
+        parent[x.max(y)] = x.min(y);
+    }
     let mut groups: Vec<Vec<usize>> = vec![Vec::new(); bodies.len()];
     for b in 0..bodies.len() {
         let r = find(&mut parent, b);
@@ -177,6 +182,50 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
             it.fold(first, |m, other| merged(m, &other))
         })
         .collect()
+}
+
+/// Pairs of bodies of one mesh that overlap deeply: a vertex of one lies inside the
+/// other (winding number positive) with none of the other's faces within
+/// [`crate::tolerance::AUTO_LIMIT`] of the pair's size (in every coordinate). Such
+/// shells are one part modelled as overlapping solids, not two parts in contact: no
+/// tolerance `--tolerance auto` may choose could make them apart. Shallower overlaps
+/// stay separate parts, for the overlap check and a tolerance to judge.
+fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
+    let boxes: Vec<Option<Aabb>> = bodies.iter().map(Mesh::bbox).collect();
+    let mut out = Vec::new();
+    let mut locators: Vec<Option<Locator>> = (0..bodies.len()).map(|_| None).collect();
+    for a in 0..bodies.len() {
+        for b in 0..bodies.len() {
+            let (Some(ba), Some(bb)) = (&boxes[a], &boxes[b]) else {
+                continue;
+            };
+            if a == b || !ba.overlaps_open(bb) || out.contains(&(a.min(b), a.max(b))) {
+                continue;
+            }
+            let size = (0..3)
+                .map(|k| (ba.max[k] - ba.min[k]).max(bb.max[k] - bb.min[k]))
+                .max()
+                .unwrap_or(0);
+            let margin = ((size as f64) * crate::tolerance::AUTO_LIMIT).ceil() as i64;
+            let lb = locators[b].get_or_insert_with(|| Locator::new(&bodies[b]));
+            let deep = bodies[a].vertices.iter().any(|v| {
+                let near = Aabb {
+                    min: v.map(|c| c.saturating_sub(margin)),
+                    max: v.map(|c| c.saturating_add(margin)),
+                };
+                if !near.overlaps(bb) {
+                    return false;
+                }
+                let mut close = false;
+                lb.bvh().query(&near, |_| close = true);
+                !close && matches!(lb.winding(&HPoint::int(*v)), Some(w) if w > 0)
+            });
+            if deep {
+                out.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    out
 }
 
 /// Two meshes as one, identifying equal grid points.
@@ -231,31 +280,6 @@ pub(super) fn unique_name(names: &mut Names, part: &mut Part, problems: &mut Vec
     part.name = new;
 }
 
-/// True for validation's reports of faces that cross.
-fn is_crossing(p: &Problem) -> bool {
-    p.kind == ProblemKind::SelfIntersection
-}
-
-/// The convex pieces of the solid a closed surface with crossing faces encloses (its
-/// union, where the winding number is at least 1), with a note saying so; `None` when
-/// that solid is ambiguous (a region of negative winding number: a fold turned inside
-/// out) or cannot be computed, so that validation's witnesses stand.
-fn union_of_crossing(mesh: &Mesh, info: &MeshInfo) -> Option<(Vec<Polytope>, String)> {
-    let d = apart_decompose::decompose_union(&mesh.points(), &mesh.triangles, &Default::default())
-        .ok()?;
-    let (lowest, _) = d.stats.winding?;
-    if lowest < 0 || d.pieces.is_empty() {
-        return None;
-    }
-    let (pairs, pieces) = (info.self_intersections, d.pieces.len());
-    let note = format!(
-        "repaired: {pairs} {}; the part is the solid they enclose (their union, {pieces} exact convex {})",
-        if pairs == 1 { "pair of faces crosses" } else { "pairs of faces cross" },
-        if pieces == 1 { "piece" } else { "pieces" }
-    );
-    Some((d.pieces, note))
-}
-
 /// One part of a specification, from its (repaired) mesh and its declared pieces.
 fn build_part(
     r: &RawPart,
@@ -300,6 +324,7 @@ fn empty_part(spec: &PartSpec, name: String) -> Part {
         reflex_edges: 0,
         bbox: None,
         unshrunk_pieces: Vec::new(),
+        winding: None,
     }
 }
 
@@ -318,19 +343,29 @@ fn add_mesh(
 ) -> (bool, InputPoints, Vec<Problem>) {
     let grid = ctx.grid;
     let (info, mut probs) = validate(&mut mesh, grid);
-    if ctx.opts.repair && info.closed && info.self_intersections > 0 {
-        if let Some((pieces, note)) = union_of_crossing(&mesh, &info) {
-            // The crossings are resolved: the part is the solid they enclose.
-            probs.retain(|p| !(p.is_error() && is_crossing(p)));
-            probs.push(Problem::warning(note).with_kind(ProblemKind::Repaired));
-            part.volume = pieces
-                .iter()
-                .fold(Rational::zero(), |s, p| &s + &p.volume());
-            part.pieces = pieces;
-            part.decomposed = true;
+    let mut winding_ok = false;
+    if ctx.opts.repair && probs.iter().any(winding::resolves) {
+        match winding::winding_solid(&mesh, &info, grid, ctx.opts) {
+            Ok(solid) => {
+                // The surface's defects are resolved: the part is the solid it winds
+                // around, and the note says how it was found.
+                probs.retain(|p| !winding::resolves(p));
+                probs.push(
+                    Problem::warning(winding_note(&solid.report, grid))
+                        .with_kind(ProblemKind::Repaired),
+                );
+                part.volume = solid.report.volume_after.clone();
+                part.pieces = solid.pieces;
+                part.decomposed = true;
+                part.winding = Some(solid.report);
+                mesh = solid.mesh;
+                winding_ok = true;
+            }
+            Err(refusal) => probs.extend(refusal),
         }
     }
-    let mesh_ok = info.volume6.is_some() && !probs.iter().any(Problem::is_error);
+    let mesh_ok =
+        (info.volume6.is_some() || winding_ok) && !probs.iter().any(Problem::is_error);
     let mut raw_points = None;
     if let Some(raw) = raw {
         explain_collapse(&mut probs, raw, spec_name, ctx);
@@ -541,4 +576,45 @@ pub(crate) fn fmt_len(v: f64) -> String {
         return s;
     }
     format!("{v:.3e}")
+}
+
+/// The note of a part made by the winding rule: what the surface had, what was closed,
+/// what the solid is.
+fn winding_note(r: &WindingReport, grid: &Grid) -> String {
+    let mut had = Vec::new();
+    let mut say = |n: usize, one: &str, many: &str| {
+        if n > 0 {
+            had.push(format!("{n} {}", if n == 1 { one } else { many }));
+        }
+    };
+    say(r.open_edges, "open edge", "open edges");
+    say(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges");
+    say(r.crossing_pairs, "pair of crossing faces", "pairs of crossing faces");
+    let mut text = format!(
+        "repaired: the surface is not a closed manifold ({}); the part is the solid it winds around (winding number at least 1)",
+        if had.is_empty() { "its shells overlap".to_string() } else { had.join(", ") }
+    );
+    if r.loops_closed > 0 {
+        text += &format!(
+            ", after closing {} boundary {} ({} {}, {} triangles)",
+            r.loops_closed,
+            if r.loops_closed == 1 { "loop" } else { "loops" },
+            r.seams_closed,
+            if r.seams_closed == 1 { "seam" } else { "seams" },
+            r.cap_triangles
+        );
+    }
+    if r.inside_out {
+        text += ", the surface reversed (it was inside out)";
+    }
+    text += &format!(
+        ": {} faces enclose nothing, {} cells kept as {} exact convex {}, volume {} (signed, of the surface) → {}",
+        r.faces_dropped,
+        r.cells_kept,
+        r.pieces,
+        if r.pieces == 1 { "piece" } else { "pieces" },
+        crate::fmt_volume(&r.volume_before, grid),
+        crate::fmt_volume(&r.volume_after, grid)
+    );
+    text
 }

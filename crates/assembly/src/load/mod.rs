@@ -3,13 +3,14 @@
 //! check the parts against each other.
 
 mod build;
+mod winding;
 
 pub(crate) use build::fmt_len;
 
 use crate::description::Description;
 use crate::error::LoadError;
 use crate::inputs::{self, Names, Origin, PartSpec, Plan, Root, SourceRef};
-use crate::model::{Assembly, LoadSeconds, Loaded, Part, Repairs};
+use crate::model::{Assembly, LoadSeconds, Loaded, Part, Repairs, WindingReport};
 use crate::options::{check_stop, Decompose, LoadOptions};
 use crate::overlap;
 use crate::snapping;
@@ -347,8 +348,28 @@ fn build_all(
         for (part, probs, _) in &mut b.parts {
             unique_name(&mut names, part, probs);
         }
-        if let Some(mut record) = b.repairs {
+        let wound: Vec<WindingReport> = b
+            .parts
+            .iter_mut()
+            .filter_map(|(p, _, _)| {
+                let w = p.winding.as_mut()?;
+                w.part = p.name.clone();
+                Some(w.clone())
+            })
+            .collect();
+        let record = match (b.repairs, wound.is_empty()) {
+            (Some(r), _) => Some(r),
+            (None, false) => Some(Repairs {
+                file: b.parts[0].0.source.clone(),
+                parts: Vec::new(),
+                report: Default::default(),
+                winding: Vec::new(),
+            }),
+            (None, true) => None,
+        };
+        if let Some(mut record) = record {
             record.parts = b.parts.iter().map(|(p, _, _)| p.name.clone()).collect();
+            record.winding = wound;
             repairs.push(record);
         }
         for (part, probs, points) in b.parts {

@@ -22,6 +22,7 @@ mod clean;
 mod compact;
 mod edges;
 mod holes;
+pub mod loops;
 mod nesting;
 mod orient;
 mod report;

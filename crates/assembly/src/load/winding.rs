@@ -1,0 +1,231 @@
+//! The solid a surface winds around, for a mesh that is not a closed manifold: open
+//! edges, non-manifold edges whose faces do not alternate, faces that cross, doubled
+//! walls, overlapping shells.
+//!
+//! The part is the set of points whose winding number with respect to its oriented
+//! faces is at least 1. That number is defined (the same for every ray that counts it)
+//! once the surface has no net boundary, so the open boundary is first closed where that
+//! can be done without guessing (loops that are planar or nearly so, and seams whose
+//! two sides lie within the seam width; see `apart_mesh::repair::loops`); any other
+//! loop leaves the part refused, with its loops and their sizes. The solid is then cut
+//! into convex cells by the exact winding-number decomposition
+//! (`apart_decompose::decompose_union`), which keeps a cell exactly when its winding
+//! number is at least 1: every piece is inside the solid or it is not, with no
+//! tolerance. A surface whose total signed volume is negative is taken as inside out
+//! and reversed first (the solid is then where it winds at most -1).
+//!
+//! Everything is reported: the defects, the loops closed, the faces that enclose
+//! nothing (the same winding number, at least 1 or at most 0, on both sides, decided
+//! exactly at an interior point of each face), the cells kept, and the volume before
+//! (the signed volume, the integral of the winding number) and after.
+
+use crate::model::WindingReport;
+use crate::options::LoadOptions;
+use apart_decompose::{decompose_union, DecomposeError};
+use apart_kernel::plane::HPoint;
+use apart_kernel::{Grid, Int, Rational};
+use apart_mesh::locate::Locator;
+use apart_mesh::repair::loops::{close_loops, nonmanifold_edges, LoopClosing, PLANAR};
+use apart_mesh::validate::MeshInfo;
+use apart_mesh::{fmt_point, Mesh, Problem, ProblemKind};
+use apart_pieces::Polytope;
+use rayon::prelude::*;
+
+/// A seam may be this fraction of the part's size wide (unless a larger tolerance was
+/// stated): a tenth of the largest tolerance `--tolerance auto` may choose.
+pub const SEAM_WIDTH: f64 = 1e-4;
+
+/// The solid a surface winds around: its pieces, the surface with its caps, and what
+/// was done.
+pub(super) struct WindingSolid {
+    pub pieces: Vec<Polytope>,
+    pub mesh: Mesh,
+    pub report: WindingReport,
+}
+
+/// The problems that the solid of the winding number resolves: the surface's own
+/// defects, not those of its vertices, faces or pieces.
+pub(super) fn resolves(p: &Problem) -> bool {
+    p.is_error()
+        && matches!(
+            p.kind,
+            ProblemKind::OpenBoundary
+                | ProblemKind::InconsistentOrientation
+                | ProblemKind::NonManifold
+                | ProblemKind::SelfIntersection
+                | ProblemKind::Shell
+                | ProblemKind::ZeroVolume
+        )
+}
+
+/// The solid `mesh` winds around, or the problems that refuse it (open loops that are
+/// neither planar nor seams, an empty solid, a stopped or failed decomposition).
+pub(super) fn winding_solid(
+    mesh: &Mesh,
+    info: &MeshInfo,
+    grid: &Grid,
+    opts: &LoadOptions,
+) -> Result<WindingSolid, Vec<Problem>> {
+    let mut mesh = mesh.clone();
+    let nonmanifold = nonmanifold_edges(&mesh);
+    let gap = seam_width(info, grid, opts);
+    let closing = close_loops(&mut mesh, gap);
+    if !closing.open.is_empty() {
+        return Err(open_loops(&closing, grid, gap));
+    }
+    let volume6 = mesh.volume6();
+    let inside_out = volume6 < Int::ZERO;
+    if inside_out {
+        mesh.flip();
+    }
+    let mut triangles = mesh.triangles.clone();
+    triangles.extend(closing.balance.iter().map(|t| {
+        if inside_out {
+            [t[0], t[2], t[1]]
+        } else {
+            *t
+        }
+    }));
+    let d_opts = apart_decompose::Options {
+        stop: Some(opts.progress.stop_flag()),
+        ..Default::default()
+    };
+    let d = match decompose_union(&mesh.points(), &triangles, &d_opts) {
+        Ok(d) => d,
+        Err(DecomposeError::NotPositive) => {
+            return Err(vec![Problem::error(
+                "the surface winds around nothing: no point has a winding number of at least 1",
+            )
+            .with_kind(ProblemKind::ZeroVolume)])
+        }
+        Err(DecomposeError::Stopped) => {
+            return Err(vec![Problem::error(
+                "stopped while finding the solid the surface winds around",
+            )])
+        }
+        Err(e) => {
+            return Err(vec![Problem::error(format!(
+                "the solid the surface winds around could not be computed: {e}"
+            ))
+            .with_kind(ProblemKind::Decomposition)])
+        }
+    };
+    let (lowest, highest) = d.stats.winding.unwrap_or((0, 1));
+    let after = d
+        .pieces
+        .iter()
+        .fold(Rational::zero(), |s, p| &s + &p.volume());
+    let report = WindingReport {
+        part: String::new(),
+        open_edges: closing.boundary_edges,
+        nonmanifold_edges: nonmanifold,
+        crossing_pairs: info.self_intersections,
+        loops_closed: closing.planar + closing.seams,
+        seams_closed: closing.seams,
+        cap_triangles: closing.triangles,
+        faces_dropped: faces_enclosing_nothing(&mesh),
+        cells_kept: d.stats.partition_pieces,
+        pieces: d.pieces.len(),
+        inside_out,
+        lowest_winding: lowest,
+        highest_winding: highest,
+        volume_before: Rational::new(if inside_out { -volume6 } else { volume6 }, Int::from(6)),
+        volume_after: after,
+    };
+    Ok(WindingSolid {
+        pieces: d.pieces,
+        mesh,
+        report,
+    })
+}
+
+/// The widest seam closed, in grid units: [`SEAM_WIDTH`] of the part's box diagonal, or
+/// the stated fixed tolerance when larger.
+fn seam_width(info: &MeshInfo, grid: &Grid, opts: &LoadOptions) -> f64 {
+    let diagonal = info.bbox.map_or(0.0, |b| {
+        (0..3)
+            .map(|k| ((b.max[k] - b.min[k]) as f64).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    });
+    let stated = match opts.tolerance {
+        crate::Tolerance::Fixed(t) => t / grid.step(),
+        _ => 0.0,
+    };
+    (SEAM_WIDTH * diagonal).max(stated)
+}
+
+/// The refusal of a surface with loops that cannot be closed.
+fn open_loops(c: &LoopClosing, grid: &Grid, gap: f64) -> Vec<Problem> {
+    let mut out = vec![Problem::error(format!(
+        "the surface is open and {} of its boundary loops cannot be closed: a loop is closed only when it is planar (every vertex within {}% of its size from its plane) or a seam narrower than {}",
+        c.open.len(),
+        PLANAR * 100.0,
+        fmt_length(gap * grid.step())
+    ))
+    .with_kind(ProblemKind::OpenBoundary)];
+    let mut open = c.open.clone();
+    open.sort_by(|a, b| b.size.total_cmp(&a.size));
+    for o in open.iter().take(5) {
+        out.push(
+            Problem::error(format!(
+                "open loop of {} edges, {} across, up to {} from its plane",
+                o.edges,
+                fmt_length(o.size * grid.step()),
+                fmt_length(o.deviation * grid.step())
+            ))
+            .with_kind(ProblemKind::OpenBoundary)
+            .at(fmt_point(grid, &o.at)),
+        );
+    }
+    if open.len() > 5 {
+        out.push(
+            Problem::error(format!("... and {} more open loops", open.len() - 5))
+                .with_kind(ProblemKind::OpenBoundary),
+        );
+    }
+    out
+}
+
+/// A length in input units, with four significant digits.
+fn fmt_length(v: f64) -> String {
+    format!("{}", (v * 1e4).round() / 1e4).replace("inf", "∞")
+}
+
+/// Faces with the same side of 1 in winding number on both sides: inside the solid
+/// (an interior wall, a doubled face) or outside it (a fin). Decided exactly at the
+/// centroid of each face, from the winding number of the other faces there; a face
+/// whose centroid lies on another face is counted as bounding the solid.
+fn faces_enclosing_nothing(mesh: &Mesh) -> usize {
+    let locator = Locator::new(mesh);
+    (0..mesh.triangles.len() as u32)
+        .into_par_iter()
+        .with_min_len(256)
+        .filter(|&t| {
+            let [a, b, c] = mesh.corners(t as usize);
+            let centroid = HPoint::from_wide(
+                [0, 1, 2].map(|k| a[k] as i128 + b[k] as i128 + c[k] as i128),
+                3,
+            );
+            let Some(others) = locator.winding_filtered(&centroid, |u| u != t) else {
+                return false;
+            };
+            // `others` is counted along +x from the centroid moved by (0, ε, ε²). When
+            // the face is not parallel to x, points just in front of it and just behind
+            // it see the same other faces ahead, and the face itself ahead when its
+            // normal points against x (from the front, adding -1) or along x (from the
+            // back, adding +1). When it is parallel to x, the moved point lies on the
+            // side its normal's y (or else z) component points to, and the ray does not
+            // cross the face: `others` is the winding number on that side.
+            let n = apart_kernel::orient::normal(a, b, c);
+            let (front, back) = if n[0] != 0 {
+                (others - i64::from(n[0] < 0), others + i64::from(n[0] > 0))
+            } else if (if n[1] != 0 { n[1] } else { n[2] }) > 0 {
+                (others, others + 1)
+            } else {
+                (others - 1, others)
+            };
+            (front >= 1) == (back >= 1)
+        })
+        .count()
+}
