@@ -17,7 +17,8 @@
 //! - [`folded_fillet`]: a box with one edge rounded by a strip whose faces fold back
 //!   over themselves (a region of winding −1).
 //! - [`overlapping_shells`]: two closed boxes of one part that overlap.
-//! - [`on_plate`]: any of them resting on a plain box.
+//! - [`on_plate`]: any of them resting on a plain box; [`families`]: all of them at
+//!   their usual parameters, with their assemblies.
 
 use crate::winding::TriSoup;
 
@@ -122,24 +123,28 @@ fn quad(s: &mut TriSoup, a: [i64; 3], b: [i64; 3], c: [i64; 3], d: [i64; 3]) {
     s.fan(&[a, b, c, d]);
 }
 
-/// A box `0..extent` whose top is open and whose rim carries a ring of faces doubled
-/// back inside it, as exporters leave a socket's lip: the bottom is an
+/// A box `0..extent` whose rim carries a ring of faces doubled back inside it, as
+/// exporters leave a socket's lip: the bottom (and with `lid` the top) is an
 /// `segments × segments` grid, each side wall `segments` columns by two rows (z in
 /// `0..Z − fold` and `Z − fold..Z`), and from each of the `4 · segments` rim edges a
 /// flap goes down into the box to the rectangle inset by `inset` at `z = Z − fold`.
 /// The flaps run along the rim edges the same way as the walls do (their normals face
-/// out of the box like the walls'), so the rim edges carry two faces that do not
-/// alternate; the rim loop (`z = Z`, `4 · segments` edges) is open, and so is the inset
-/// loop (4 edges): both planar.
+/// out of the box like the walls'), so the faces at a rim edge do not alternate: with
+/// `lid`, three faces (wall, lid, flap: non-manifold); without, two faces the same way
+/// and the rim loop (`z = Z`, `4 · segments` edges) open. The inset loop (4 edges) is
+/// open in both: every open loop is planar.
 ///
-/// Known answer: the boundary is the rim loop twice and the inset loop once; capped,
-/// the walls and bottom enclose the box (winding 1) and the flaps with the caps
-/// enclose the frustum between the rim and the inset rectangle (winding 1 more). The
-/// solid is the box: volume `X · Y · Z`.
+/// Known answer: the boundary (as a chain) is the rim loop (twice without the lid,
+/// once with it) and the inset loop once; capped, the walls, bottom and lid enclose
+/// the box (winding 1) and the flaps with their caps enclose the frustum between the
+/// rim and the inset rectangle (winding 1 more). The solid is the box: volume
+/// `X · Y · Z`. (Flipping the flaps to match the walls instead, as an orientation
+/// repair would, turns the frustum's winding to 0 and carves it out: a different,
+/// wrong answer.)
 ///
 /// # Panics
 /// Unless `segments` divides `X` and `Y`, `0 < fold < Z` and `0 < 2 · inset < min(X, Y)`.
-pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64) -> Case {
+pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64, lid: bool) -> Case {
     let [x, y, z] = extent;
     let s = segments as i64;
     assert!(s >= 1 && x % s == 0 && y % s == 0);
@@ -157,6 +162,15 @@ pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64) ->
                 [x1, y1, 0],
                 [x1, y0, 0],
             );
+            if lid {
+                quad(
+                    &mut soup,
+                    [x0, y0, z],
+                    [x1, y0, z],
+                    [x1, y1, z],
+                    [x0, y1, z],
+                );
+            }
         }
     }
     let rim = footprint([0, 0], [x, y]);
@@ -184,8 +198,9 @@ pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64) ->
         }
         soup.fan(&[lq, at(p, z), li]);
     }
-    // Caps: the rim loop twice (facing +z, fanned from a corner: the triangles along
-    // the two sides at that corner have zero area), the inset loop once facing -z.
+    // Caps: the rim loop twice without the lid, once with it (facing +z, fanned from a
+    // corner: the triangles along the two sides at that corner have zero area), the
+    // inset loop once facing -z.
     let mut caps = TriSoup::default();
     let mut loop_pts = Vec::new();
     for side in 0..4 {
@@ -198,7 +213,9 @@ pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64) ->
         }
     }
     caps.fan(&loop_pts);
-    caps.fan(&loop_pts);
+    if !lid {
+        caps.fan(&loop_pts);
+    }
     caps.fan(
         &inner
             .map(|v| at(v, z - fold))
@@ -470,7 +487,7 @@ pub fn fillet_profile(
             ]
         })
         .collect();
-    let mut profile = vec![[0, 0]];
+    let mut profile = vec![[0, 0], [x, 0]];
     let mut a = arc.clone();
     a.swap(fold, fold + 1);
     profile.extend(a);
@@ -510,7 +527,8 @@ pub fn folded_fillet(extent: [i64; 3], radius: i64, segments: usize, fold: usize
 }
 
 /// The exact volume of [`folded_fillet`]: `Y ·` the area of the profile with
-/// `Q1, Q2` (entries `fold + 1, fold + 2` of the profile) replaced by the crossing `X`.
+/// `Q1, Q2` (entries `fold + 2, fold + 3` of the profile, swapped) replaced by the
+/// crossing `X`.
 fn fillet_volume(
     extent: [i64; 3],
     profile: &[[i64; 2]],
@@ -519,6 +537,7 @@ fn fillet_volume(
 ) -> (i128, i128) {
     let c = |a: [i64; 2], b: [i64; 2]| a[0] as i128 * b[1] as i128 - a[1] as i128 * b[0] as i128;
     let d = |a: [i64; 2], b: [i64; 2]| [b[0] - a[0], b[1] - a[1]];
+    // The profile is (0, 0), (X, 0), the arc, (0, Z): arc point j is entry j + 2.
     // X = Q0 + t (Q2 − Q0), t = ((Q1 − Q0) × (Q3 − Q1)) / ((Q2 − Q0) × (Q3 − Q1)).
     let (e, f) = (d(q[0], q[2]), d(q[1], q[3]));
     let den = c(e, f);
@@ -532,9 +551,9 @@ fn fillet_volume(
     ];
     let mut poly: Vec<[i128; 2]> = Vec::new();
     for (k, &p) in profile.iter().enumerate() {
-        if k == fold + 1 {
+        if k == fold + 2 {
             poly.push(x);
-        } else if k != fold + 2 {
+        } else if k != fold + 3 {
             poly.push(scaled(p));
         }
     }
@@ -579,6 +598,61 @@ pub fn on_plate(name: &str, part: TriSoup) -> Vec<NamedTriSoup> {
     vec![(name.into(), part), ("plate".into(), plate)]
 }
 
+/// One family at its usual parameters: the defective part, its name in the
+/// assembly, and the two-part assembly.
+#[derive(Clone, Debug)]
+pub struct Family {
+    /// The family's name (also a folder name).
+    pub name: &'static str,
+    /// The defective part's name in [`Family::assembly`].
+    pub part: &'static str,
+    /// The defective part with its known volume.
+    pub case: Case,
+    /// Two parts: the defective one and a plain partner ([`on_plate`]), or the nut of
+    /// [`nut_on_thread`] for the thread.
+    pub assembly: Vec<NamedTriSoup>,
+}
+
+/// Every family of this module at its usual parameters: `folded-rim` and
+/// `folded-rim-open` ([`folded_rim_box`]`([12, 8, 10], 4, 3, 2, lid)` with and without
+/// the lid, volume 960), `thread`
+/// ([`thread`]`(4, 1)` with its nut, interlocked), `gear` ([`gear`]`(12, 30, 40, 6,
+/// 1)`), `folded-fillet` ([`folded_fillet`]`([40, 10, 36], 20, 5, 2)`) and
+/// `overlapping-shells` ([`bracket_shells`]`(10, 4, 2, 8)`, volume 128).
+pub fn families() -> Vec<Family> {
+    let plated = |name: &'static str, part: &'static str, case: Case| Family {
+        name,
+        part,
+        assembly: on_plate(part, case.soup.clone()),
+        case,
+    };
+    vec![
+        plated(
+            "folded-rim",
+            "rim",
+            folded_rim_box([12, 8, 10], 4, 3, 2, true),
+        ),
+        plated(
+            "folded-rim-open",
+            "rim",
+            folded_rim_box([12, 8, 10], 4, 3, 2, false),
+        ),
+        Family {
+            name: "thread",
+            part: "bolt",
+            case: thread(4, 1),
+            assembly: nut_on_thread(4, 1),
+        },
+        plated("gear", "gear", gear(12, 30, 40, 6, 1)),
+        plated(
+            "folded-fillet",
+            "fillet",
+            folded_fillet([40, 10, 36], 20, 5, 2),
+        ),
+        plated("overlapping-shells", "shells", bracket_shells(10, 4, 2, 8)),
+    ]
+}
+
 /// Writes each part as `<name>.off` into `dir` (created if needed).
 pub fn write_off_dir(parts: &[NamedTriSoup], dir: &std::path::Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
@@ -605,7 +679,17 @@ mod tests {
 
     #[test]
     fn folded_rim_box_is_open_and_non_manifold_and_is_the_box() {
-        let c = folded_rim_box([12, 8, 10], 4, 3, 2);
+        let lidded = folded_rim_box([12, 8, 10], 4, 3, 2, true);
+        assert_eq!(lidded.volume, (960, 1));
+        // With the lid: the rim edges carry three faces, the boundary counts them once.
+        let bal = lidded.soup.edge_balance();
+        let rim = bal
+            .iter()
+            .filter(|(e, &n)| n.abs() == 1 && e.0[2] == 10 && e.1[2] == 10);
+        assert_eq!(rim.count(), 16);
+        assert_eq!(bal.values().filter(|&&n| n != 0).count(), 20);
+        check_estimate("lidded rim", &lidded, 4000);
+        let c = folded_rim_box([12, 8, 10], 4, 3, 2, false);
         assert_eq!(c.volume, (960, 1));
         let bal = c.soup.edge_balance();
         // Rim edges: two faces the same way (balance ±2); inset loop: ±1.
@@ -626,7 +710,7 @@ mod tests {
         assert_eq!(o.winding([11, 9, 21]), Some(0));
         check_estimate("rim", &c, 4000);
         for s in [2, 3, 5] {
-            let c = folded_rim_box([6 * s, 3 * s, 7], s as u32, 2, 1);
+            let c = folded_rim_box([6 * s, 3 * s, 7], s as u32, 2, 1, s % 2 == 0);
             assert_eq!(c.volume.0, 126 * (s * s) as i128);
         }
     }
@@ -781,10 +865,15 @@ mod tests {
             let v = c.volume_f64();
             let full = area2(&profile);
             let mut rounded = profile.clone();
-            rounded.swap(fold + 1, fold + 2);
+            rounded.swap(fold + 2, fold + 3);
             let hi = (area2(&rounded) * e[1] as i128) as f64 / 2.0;
             let lo = hi - (area2(&q) * e[1] as i128) as f64 / 2.0;
             assert!(lo < v && v < hi, "{lo} {v} {hi}");
+            // Against the box with a true quarter-round edge: the facets and the fold
+            // only take material away, and never more than the corner square.
+            let (xz, r2) = ((e[0] * e[2]) as f64, (radius * radius) as f64);
+            let round = e[1] as f64 * (xz - (1.0 - std::f64::consts::FRAC_PI_4) * r2);
+            assert!(v < round && v > e[1] as f64 * (xz - r2), "{v} {round}");
             // The folded profile's own signed area is smaller still (the pocket
             // counts −1, the two wings 0).
             assert!(((full * e[1] as i128) as f64 / 2.0) < v);
@@ -818,6 +907,17 @@ mod tests {
         let c = overlapping_shells(([0, 0, 0], [5, 5, 5]), ([3, 2, 1], [9, 4, 4]));
         assert_eq!(c.volume.0, 125 + 6 * 2 * 3 - 2 * 2 * 3);
         check_estimate("shells2", &c, 4000);
+    }
+
+    #[test]
+    fn every_family_is_sampled_to_its_volume() {
+        for f in families() {
+            check_estimate(f.name, &f.case, 4000);
+            assert!(f
+                .assembly
+                .iter()
+                .any(|(n, s)| n == f.part && *s == f.case.soup));
+        }
     }
 
     #[test]
