@@ -618,7 +618,10 @@ pub struct Family {
 /// the lid, volume 960), `thread`
 /// ([`thread`]`(4, 1)` with its nut, interlocked), `gear` ([`gear`]`(12, 30, 40, 6,
 /// 1)`), `folded-fillet` ([`folded_fillet`]`([40, 10, 36], 20, 5, 2)`) and
-/// `overlapping-shells` ([`bracket_shells`]`(10, 4, 2, 8)`, volume 128).
+/// `overlapping-shells` ([`bracket_shells`]`(10, 4, 2, 8)`, volume 128: the shells
+/// share a corner edge and overlap in coplanar faces) and `crossing-shells`
+/// ([`overlapping_shells`] of `0..6` and `(3, 2, 1)..(9, 4, 4)`, volume 234: faces in
+/// general position).
 pub fn families() -> Vec<Family> {
     let plated = |name: &'static str, part: &'static str, case: Case| Family {
         name,
@@ -650,6 +653,11 @@ pub fn families() -> Vec<Family> {
             folded_fillet([40, 10, 36], 20, 5, 2),
         ),
         plated("overlapping-shells", "shells", bracket_shells(10, 4, 2, 8)),
+        plated(
+            "crossing-shells",
+            "shells",
+            overlapping_shells(([0, 0, 0], [6, 6, 6]), ([3, 2, 1], [9, 4, 4])),
+        ),
     ]
 }
 
