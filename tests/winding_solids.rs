@@ -239,6 +239,12 @@ fn a_box_with_a_lidded_rim_of_doubled_back_faces_is_the_box_and_leaves_its_plate
 
 #[test]
 #[ignore = "needs the winding-number loader"]
+fn a_box_with_a_rim_folded_to_a_nearly_planar_loop_is_the_box_and_leaves_its_plate() {
+    run_plated("warped-rim");
+}
+
+#[test]
+#[ignore = "needs the winding-number loader"]
 fn a_box_with_an_open_rim_of_doubled_back_faces_is_the_box_not_the_box_less_a_frustum() {
     run_plated("folded-rim-open");
 }

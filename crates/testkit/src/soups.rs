@@ -10,13 +10,15 @@
 //! a two-part assembly with a known plan.
 //!
 //! - [`folded_rim_box`]: a box whose rim carries a subdivided ring of faces doubled
-//!   back inside it (edges used twice the same way, open planar loops).
+//!   back inside it (rim edges of three faces that do not alternate, or of two faces
+//!   the same way with the rim open; open planar loops).
 //! - [`thread`]: a threaded rod of stacked crossing rings with open seams and
 //!   zero-area slivers; [`nut_on_thread`] puts a nut on it (interlocked).
 //! - [`gear`]: an extruded gear whose adjacent tooth flanks run past the root and cross.
 //! - [`folded_fillet`]: a box with one edge rounded by a strip whose faces fold back
 //!   over themselves (a region of winding −1).
-//! - [`overlapping_shells`]: two closed boxes of one part that overlap.
+//! - [`overlapping_shells`], [`bracket_shells`]: two closed boxes of one part that
+//!   overlap.
 //! - [`on_plate`]: any of them resting on a plain box; [`families`]: all of them at
 //!   their usual parameters, with their assemblies.
 
@@ -230,6 +232,24 @@ pub fn folded_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64, li
     }
 }
 
+/// [`folded_rim_box`] with the lid, its inset loop made nearly planar: the inset
+/// corner `(inset, inset)` raised one grid step (to `z = Z − fold + 1`), so the loop's
+/// four points are no longer coplanar and how it is capped is the loader's choice.
+///
+/// Known answer: still the box, volume `X · Y · Z`: the loop lies inside the box, and
+/// any cap spanning it there only moves the boundary between winding 2 and winding 1.
+pub fn warped_rim_box(extent: [i64; 3], segments: u32, fold: i64, inset: i64) -> Case {
+    assert!(fold >= 2, "the raised corner stays below the rim");
+    let mut c = folded_rim_box(extent, segments, fold, inset, true);
+    let corner = [inset, inset, extent[2] - fold];
+    for p in c.soup.points.iter_mut().chain(c.caps.points.iter_mut()) {
+        if *p == corner {
+            p[2] += 1;
+        }
+    }
+    c
+}
+
 /// The half-widths and core of [`thread`] for a horizontal `unit`: `(a, b, c)` =
 /// `(5, 3, 2) · unit`.
 pub fn thread_sizes(unit: i64) -> (i64, i64, i64) {
@@ -290,7 +310,7 @@ fn seamed_ring(lo: [i64; 3], hi: [i64; 3], seam: usize) -> (TriSoup, TriSoup) {
     let corners = footprint([lo[0], lo[1]], [hi[0], hi[1]]);
     let mut s = TriSoup::default();
     let mut caps = TriSoup::default();
-    // The footprint loop with the seam's two vertices, and which entries are corners.
+    // The footprint loop, with the seam's two vertices.
     let mut lp: Vec<[i64; 2]> = Vec::new();
     for side in 0..4 {
         let (p, q) = (corners[side], corners[(side + 1) % 4]);
@@ -318,7 +338,8 @@ fn seamed_ring(lo: [i64; 3], hi: [i64; 3], seam: usize) -> (TriSoup, TriSoup) {
             caps.triangle(at(p, z0), at(q, z0), at(m, z0));
         }
     }
-    // Caps fanned from the corner opposite the seam's wall (never collinear).
+    // The ring's top and bottom, fanned from a corner off the seam's wall (so that no
+    // fan triangle is degenerate).
     let apex = corners[(seam + 2) % 4];
     let k = lp.iter().position(|&v| v == apex).expect("a corner");
     lp.rotate_left(k);
@@ -615,7 +636,8 @@ pub struct Family {
 
 /// Every family of this module at its usual parameters: `folded-rim` and
 /// `folded-rim-open` ([`folded_rim_box`]`([12, 8, 10], 4, 3, 2, lid)` with and without
-/// the lid, volume 960), `thread`
+/// the lid, volume 960), `warped-rim` ([`warped_rim_box`]`([12, 8, 10], 4, 3, 2)`,
+/// volume 960), `thread`
 /// ([`thread`]`(4, 1)` with its nut, interlocked), `gear` ([`gear`]`(12, 30, 40, 6,
 /// 1)`), `folded-fillet` ([`folded_fillet`]`([40, 10, 36], 20, 5, 2)`) and
 /// `overlapping-shells` ([`bracket_shells`]`(10, 4, 2, 8)`, volume 128: the shells
@@ -635,6 +657,7 @@ pub fn families() -> Vec<Family> {
             "rim",
             folded_rim_box([12, 8, 10], 4, 3, 2, true),
         ),
+        plated("warped-rim", "rim", warped_rim_box([12, 8, 10], 4, 3, 2)),
         plated(
             "folded-rim-open",
             "rim",
@@ -697,6 +720,12 @@ mod tests {
         assert_eq!(rim.count(), 16);
         assert_eq!(bal.values().filter(|&&n| n != 0).count(), 20);
         check_estimate("lidded rim", &lidded, 4000);
+        let warped = warped_rim_box([12, 8, 10], 4, 3, 2);
+        assert_eq!(warped.volume, (960, 1));
+        check_estimate("warped rim", &warped, 4000);
+        // The inset loop is not planar: its four points span a volume.
+        let inset: Vec<[i64; 3]> = warped.caps.points[warped.caps.points.len() - 6..].to_vec();
+        assert!(inset.iter().any(|p| p[2] == 8) && inset.iter().any(|p| p[2] == 7));
         let c = folded_rim_box([12, 8, 10], 4, 3, 2, false);
         assert_eq!(c.volume, (960, 1));
         let bal = c.soup.edge_balance();
