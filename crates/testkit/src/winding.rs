@@ -478,6 +478,56 @@ mod tests {
     }
 
     #[test]
+    fn points_on_grid_planes_are_counted_exactly_or_found_on_the_surface() {
+        // Random points on a lattice of quarter steps, so that most rays run along
+        // grid planes, through edges and vertices of the voxels' triangles: the answer
+        // is 1 inside the union, 0 outside, None on its boundary (a point in the
+        // closure of a filled and of an empty cell).
+        let mut rng = Lcg(21);
+        let dims = [3usize, 4, 3];
+        let on: Vec<bool> = (0..36).map(|_| rng.below(2) == 0).collect();
+        let s = TriSoup::from(&voxels(dims, &on));
+        let o = WindingOracle::new(&s, 4);
+        let filled = |c: [i64; 3]| {
+            (0..3).all(|k| c[k] >= 0 && (c[k] as usize) < dims[k])
+                && on[(c[0] as usize * dims[1] + c[1] as usize) * dims[2] + c[2] as usize]
+        };
+        let (mut inside, mut outside, mut surface) = (0, 0, 0);
+        for _ in 0..3000 {
+            let p: [i64; 3] = std::array::from_fn(|k| rng.range(-4, 4 * dims[k] as i64 + 4));
+            // The cells whose closure holds p.
+            let span = |k: usize| {
+                let c = p[k].div_euclid(4);
+                if p[k] % 4 == 0 {
+                    vec![c - 1, c]
+                } else {
+                    vec![c]
+                }
+            };
+            let mut states = Vec::new();
+            for x in span(0) {
+                for y in span(1) {
+                    for z in span(2) {
+                        states.push(filled([x, y, z]));
+                    }
+                }
+            }
+            let want = if states.iter().all(|&b| b) {
+                inside += 1;
+                Some(1)
+            } else if states.iter().all(|&b| !b) {
+                outside += 1;
+                Some(0)
+            } else {
+                surface += 1;
+                None
+            };
+            assert_eq!(o.winding(p), want, "{p:?}");
+        }
+        assert!(inside > 100 && outside > 100 && surface > 100);
+    }
+
+    #[test]
     fn a_box_is_sampled_to_its_volume() {
         let b = cuboid([0; 3], [4, 5, 6]);
         // Sampling box = the box: every sample hits, the bound stays small.
