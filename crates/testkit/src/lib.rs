@@ -24,6 +24,13 @@
 //! - [`assemblies`]: assemblies of convex pieces (the Split Star, a dovetail, a peg in a
 //!   hole, linked rings, cube lattices, random boxes, rows of bricks).
 //! - [`torus`]: a large closed torus as binary STL, for loading benchmarks.
+//! - [`soups`]: triangle soups that only the winding-number rule makes solid (a rim
+//!   of doubled-back faces, a thread of crossing rings with open seams and slivers, gear
+//!   flanks that cross, a fillet folded over itself, overlapping shells), each with
+//!   the exact volume of its solid and a two-part assembly with a known plan.
+//! - [`winding`]: the independent oracle for that rule: exact winding numbers of
+//!   points (`i128`, a symbolically perturbed ray) and a seeded Monte Carlo volume
+//!   with a confidence bound.
 //! - [`oracle`]: whether one convex piece sweeping along a direction meets another's
 //!   interior, by an exact linear program generic over the caller's rationals.
 
@@ -37,7 +44,9 @@ pub mod shapes;
 pub mod sheet_metal;
 pub mod solids;
 mod soup;
+pub mod soups;
 pub mod torus;
+pub mod winding;
 
 pub use scratch::Scratch;
 pub use soup::{base64, Soup};
