@@ -232,49 +232,41 @@ fn run_plated(name: &str) {
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_box_with_a_lidded_rim_of_doubled_back_faces_is_the_box_and_leaves_its_plate() {
     run_plated("folded-rim");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_box_with_a_rim_folded_to_a_nearly_planar_loop_is_the_box_and_leaves_its_plate() {
     run_plated("warped-rim");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_box_with_an_open_rim_of_doubled_back_faces_is_the_box_not_the_box_less_a_frustum() {
     run_plated("folded-rim-open");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_gear_whose_flanks_cross_is_its_outline_and_leaves_its_plate() {
     run_plated("gear");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_fillet_folded_over_itself_loses_its_pocket_and_leaves_its_plate() {
     run_plated("folded-fillet");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn two_overlapping_shells_are_their_union_and_leave_their_plate() {
     run_plated("overlapping-shells");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn two_shells_crossing_in_general_position_are_their_union_and_leave_their_plate() {
     run_plated("crossing-shells");
 }
 
 #[test]
-#[ignore = "needs the winding-number loader"]
 fn a_nut_on_a_thread_of_crossing_rings_with_open_seams_is_interlocked() {
     let (f, dir) = written("thread");
     let loaded = load_one_part_per_file(&dir);

@@ -170,7 +170,12 @@ impl<'a> UnionPartition<'a> {
 
     fn step(&self, t: Task) -> Result<Step, DecomposeError> {
         let cells = self.counters.cells.fetch_add(1, Ordering::Relaxed);
-        if cells % 1024 == 0 && self.stop.as_ref().is_some_and(|s| s.load(Ordering::Relaxed)) {
+        if cells % 1024 == 0
+            && self
+                .stop
+                .as_ref()
+                .is_some_and(|s| s.load(Ordering::Relaxed))
+        {
             return Err(DecomposeError::Stopped);
         }
         if t.frags.is_empty() {

@@ -2,7 +2,8 @@
 //! separate solids, validated, and given its convex pieces (declared, the part itself
 //! when convex, or those of the solid a surface with crossing faces encloses).
 
-use super::{winding, RawPart};
+use super::winding::{self, WindingSolid};
+use super::RawPart;
 use crate::inputs::{Names, PartSpec, SourceRef};
 use crate::model::{Part, Repairs, WindingReport};
 use crate::options::LoadOptions;
@@ -13,7 +14,7 @@ use apart_kernel::grid::MAX_BITS;
 use apart_kernel::plane::HPoint;
 use apart_kernel::{Aabb, Grid, Int, Rational};
 use apart_mesh::locate::Locator;
-use apart_mesh::repair::{bodies, repair, RepairOptions};
+use apart_mesh::repair::{bodies, repair_keeping_orientation, RepairOptions};
 use apart_mesh::validate::validate;
 use apart_mesh::{Mesh, Problem, ProblemKind};
 use std::collections::HashMap;
@@ -59,6 +60,7 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
                 &r,
                 spec.name.clone(),
                 None,
+                None,
                 r.problems.clone(),
                 ctx,
             )],
@@ -70,39 +72,49 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
     problems.extend(probs.into_iter().map(|p| src.locate(p).in_part(&spec.name)));
     let Some(mut mesh) = mesh else {
         return Built {
-            parts: vec![build_part(&r, spec.name.clone(), None, problems, ctx)],
+            parts: vec![build_part(&r, spec.name.clone(), None, None, problems, ctx)],
             repairs: None,
         };
     };
-    let mut repairs = None;
-    if opts.repair {
-        let report = repair(&mut mesh, &RepairOptions::default());
-        if !report.is_empty() {
-            problems.push(
-                src.locate(
-                    Problem::warning(format!("repaired: {report}"))
-                        .with_kind(ProblemKind::Repaired),
-                )
-                .in_part(&spec.name),
-            );
-            repairs = Some(Repairs {
-                file: src.origin.file().map(Path::to_path_buf).unwrap_or_default(),
-                parts: Vec::new(),
-                report,
-                winding: Vec::new(),
-            });
-        }
-    }
+    let (mut report, unoriented) = match opts.repair {
+        true => repair_keeping_orientation(&mut mesh, &RepairOptions::default()),
+        false => Default::default(),
+    };
     // A mesh without triangles has no body; it stays whole for validation to report.
     let solids = match opts.repair && opts.split_bodies && spec.splittable {
         true => Some(joined_bodies(&mesh)).filter(|b| !b.is_empty()),
         false => None,
     }
     .unwrap_or_else(|| vec![mesh]);
+    // One body whose faces disagree in orientation: a fold, or faces flipped by the
+    // exporter (see `winding::as_given`).
+    let mut given = None;
+    if let (Some(u), 1) = (&unoriented, solids.len()) {
+        given = winding::as_given(u, &solids[0], grid, opts);
+        if given.is_some() {
+            report.flipped_faces = 0;
+            report.flipped_shells = 0;
+        }
+    }
+    let mut repairs = None;
+    if !report.is_empty() {
+        problems.push(
+            src.locate(
+                Problem::warning(format!("repaired: {report}")).with_kind(ProblemKind::Repaired),
+            )
+            .in_part(&spec.name),
+        );
+        repairs = Some(Repairs {
+            file: src.origin.file().map(Path::to_path_buf).unwrap_or_default(),
+            parts: Vec::new(),
+            report,
+            winding: Vec::new(),
+        });
+    }
     if solids.len() <= 1 {
         let m = solids.into_iter().next();
         return Built {
-            parts: vec![build_part(&r, spec.name.clone(), m, problems, ctx)],
+            parts: vec![build_part(&r, spec.name.clone(), m, given, problems, ctx)],
             repairs,
         };
     }
@@ -124,7 +136,7 @@ pub(super) fn build_parts(r: RawPart, ctx: &Ctx) -> Built {
             } else {
                 Vec::new()
             };
-            build_part(&r, name, Some(m), probs, ctx)
+            build_part(&r, name, Some(m), None, probs, ctx)
         })
         .collect();
     Built { parts, repairs }
@@ -184,8 +196,9 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
         .collect()
 }
 
-/// Pairs of bodies of one mesh that overlap deeply: a vertex of one lies inside the
-/// other (winding number positive) with none of the other's faces within
+/// Pairs of bodies of one mesh that overlap deeply: a vertex of one, or the centroid of
+/// one of its faces, lies inside the other (winding number positive) with none of the
+/// other's faces within
 /// [`crate::tolerance::AUTO_LIMIT`] of the pair's size (in every coordinate). Such
 /// shells are one part modelled as overlapping solids, not two parts in contact: no
 /// tolerance `--tolerance auto` may choose could make them apart. Shallower overlaps
@@ -208,17 +221,27 @@ fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
                 .unwrap_or(0);
             let margin = ((size as f64) * crate::tolerance::AUTO_LIMIT).ceil() as i64;
             let lb = locators[b].get_or_insert_with(|| Locator::new(&bodies[b]));
-            let deep = bodies[a].vertices.iter().any(|v| {
+            // Its vertices and the centroids of its faces (crossing shells may have
+            // no vertex inside each other), three times over.
+            let m = &bodies[a];
+            let vertices = m.vertices.iter().map(|v| v.map(|c| 3 * c as i128));
+            let centroids = m.triangles.iter().map(|t| {
+                let [p, q, r] = t.map(|i| m.vertices[i as usize]);
+                [0, 1, 2].map(|k| p[k] as i128 + q[k] as i128 + r[k] as i128)
+            });
+            let deep = vertices.chain(centroids).any(|x3| {
+                // The box of the point (between `v` and `v + 1`) grown by the margin.
+                let v = x3.map(|c| c.div_euclid(3) as i64);
                 let near = Aabb {
                     min: v.map(|c| c.saturating_sub(margin)),
-                    max: v.map(|c| c.saturating_add(margin)),
+                    max: v.map(|c| c.saturating_add(margin + 1)),
                 };
                 if !near.overlaps(bb) {
                     return false;
                 }
                 let mut close = false;
                 lb.bvh().query(&near, |_| close = true);
-                !close && matches!(lb.winding(&HPoint::int(*v)), Some(w) if w > 0)
+                !close && matches!(lb.winding(&HPoint::from_wide(x3, 3)), Some(w) if w > 0)
             });
             if deep {
                 out.push((a.min(b), a.max(b)));
@@ -285,6 +308,7 @@ fn build_part(
     r: &RawPart,
     name: String,
     mesh: Option<Mesh>,
+    given: Option<WindingSolid>,
     mut problems: Vec<Problem>,
     ctx: &Ctx,
 ) -> BuiltPart {
@@ -293,7 +317,8 @@ fn build_part(
     let mut raw_points = None;
     let mut mesh_ok = false;
     if let (Some(mesh), Some(src)) = (mesh, &spec.mesh) {
-        let (ok, points, probs) = add_mesh(&mut part, mesh, r.mesh.as_ref(), &spec.name, ctx);
+        let (ok, points, probs) =
+            add_mesh(&mut part, mesh, given, r.mesh.as_ref(), &spec.name, ctx);
         (mesh_ok, raw_points) = (ok, points);
         problems.extend(probs.into_iter().map(|p| src.locate(p).in_part(&part.name)));
     }
@@ -337,6 +362,7 @@ fn empty_part(spec: &PartSpec, name: String) -> Part {
 fn add_mesh(
     part: &mut Part,
     mut mesh: Mesh,
+    given: Option<WindingSolid>,
     raw: Option<&RawObject>,
     spec_name: &str,
     ctx: &Ctx,
@@ -344,14 +370,22 @@ fn add_mesh(
     let grid = ctx.grid;
     let (info, mut probs) = validate(&mut mesh, grid);
     let mut winding_ok = false;
-    if ctx.opts.repair && probs.iter().any(winding::resolves) {
-        match winding::winding_solid(&mesh, &info, grid, ctx.opts) {
+    let as_given = given.is_some();
+    let solid = match given {
+        Some(s) => Some(Ok(s)),
+        None if ctx.opts.repair && probs.iter().any(winding::resolves) => {
+            Some(winding::winding_solid(&mesh, &info, grid, ctx.opts))
+        }
+        None => None,
+    };
+    if let Some(solid) = solid {
+        match solid {
             Ok(solid) => {
                 // The surface's defects are resolved: the part is the solid it winds
                 // around, and the note says how it was found.
                 probs.retain(|p| !winding::resolves(p));
                 probs.push(
-                    Problem::warning(winding_note(&solid.report, grid))
+                    Problem::warning(winding_note(&solid.report, as_given, grid))
                         .with_kind(ProblemKind::Repaired),
                 );
                 part.volume = solid.report.volume_after.clone();
@@ -364,8 +398,7 @@ fn add_mesh(
             Err(refusal) => probs.extend(refusal),
         }
     }
-    let mesh_ok =
-        (info.volume6.is_some() || winding_ok) && !probs.iter().any(Problem::is_error);
+    let mesh_ok = (info.volume6.is_some() || winding_ok) && !probs.iter().any(Problem::is_error);
     let mut raw_points = None;
     if let Some(raw) = raw {
         explain_collapse(&mut probs, raw, spec_name, ctx);
@@ -580,7 +613,7 @@ pub(crate) fn fmt_len(v: f64) -> String {
 
 /// The note of a part made by the winding rule: what the surface had, what was closed,
 /// what the solid is.
-fn winding_note(r: &WindingReport, grid: &Grid) -> String {
+fn winding_note(r: &WindingReport, as_given: bool, grid: &Grid) -> String {
     let mut had = Vec::new();
     let mut say = |n: usize, one: &str, many: &str| {
         if n > 0 {
@@ -588,8 +621,16 @@ fn winding_note(r: &WindingReport, grid: &Grid) -> String {
         }
     };
     say(r.open_edges, "open edge", "open edges");
-    say(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges");
-    say(r.crossing_pairs, "pair of crossing faces", "pairs of crossing faces");
+    say(
+        r.nonmanifold_edges,
+        "non-manifold edge",
+        "non-manifold edges",
+    );
+    say(
+        r.crossing_pairs,
+        "pair of crossing faces",
+        "pairs of crossing faces",
+    );
     let mut text = format!(
         "repaired: the surface is not a closed manifold ({}); the part is the solid it winds around (winding number at least 1)",
         if had.is_empty() { "its shells overlap".to_string() } else { had.join(", ") }
@@ -606,6 +647,9 @@ fn winding_note(r: &WindingReport, grid: &Grid) -> String {
     }
     if r.inside_out {
         text += ", the surface reversed (it was inside out)";
+    }
+    if as_given {
+        text += ", the faces oriented as given (those that disagree with their neighbours fold back inside the solid: turning them would carve it, and they make no winding number negative)";
     }
     text += &format!(
         ": {} faces enclose nothing, {} cells kept as {} exact convex {}, volume {} (signed, of the surface) → {}",

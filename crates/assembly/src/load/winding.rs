@@ -79,13 +79,15 @@ pub(super) fn winding_solid(
         mesh.flip();
     }
     let mut triangles = mesh.triangles.clone();
-    triangles.extend(closing.balance.iter().map(|t| {
-        if inside_out {
-            [t[0], t[2], t[1]]
-        } else {
-            *t
-        }
-    }));
+    triangles.extend(closing.balance.iter().map(
+        |t| {
+            if inside_out {
+                [t[0], t[2], t[1]]
+            } else {
+                *t
+            }
+        },
+    ));
     let d_opts = apart_decompose::Options {
         stop: Some(opts.progress.stop_flag()),
         ..Default::default()
@@ -228,4 +230,66 @@ fn faces_enclosing_nothing(mesh: &Mesh) -> usize {
             (front >= 1) == (back >= 1)
         })
         .count()
+}
+
+/// The solid of the faces as given, when orienting them (to agree with their
+/// neighbours) changed the surface and the faces as given wind nowhere negatively: then
+/// the disagreeing faces are a fold (flaps doubled back inside the solid, raising its
+/// winding number), not faces an exporter flipped (which make it negative where they
+/// turn against the rest). `None` keeps the oriented surface: the two are the same
+/// chain once the open loops are capped (single flipped faces), or the faces as given
+/// have no solid, or wind negatively somewhere.
+pub(super) fn as_given(
+    unoriented: &Mesh,
+    oriented: &Mesh,
+    grid: &Grid,
+    opts: &LoadOptions,
+) -> Option<WindingSolid> {
+    let mut capped = unoriented.clone();
+    let probe = close_loops(&mut capped, 0.0);
+    if probe.open.is_empty() && same_chain(&capped.triangles, &oriented.triangles) {
+        return None;
+    }
+    let info = bare_info(unoriented);
+    let solid = winding_solid(unoriented, &info, grid, opts).ok()?;
+    (solid.report.lowest_winding >= 0 && !solid.report.inside_out).then_some(solid)
+}
+
+/// What `winding_solid` reads of a mesh's validation, for a mesh not validated.
+fn bare_info(mesh: &Mesh) -> MeshInfo {
+    MeshInfo {
+        vertices: mesh.vertices.len(),
+        triangles: mesh.triangles.len(),
+        faces: mesh.triangles.len(),
+        edges: 0,
+        shells: 0,
+        closed: false,
+        volume6: None,
+        reflex_edges: 0,
+        touching_edges: 0,
+        touching_vertices: 0,
+        self_intersections: 0,
+        flipped: false,
+        convex: false,
+        bbox: mesh.bbox(),
+    }
+}
+
+/// Two lists of oriented triangles are the same chain: each oriented triangle used as
+/// often in both, a triangle and its reverse cancelling.
+fn same_chain(a: &[[u32; 3]], b: &[[u32; 3]]) -> bool {
+    let mut count: std::collections::HashMap<[u32; 3], i64> = Default::default();
+    for (list, sign) in [(a, 1), (b, -1)] {
+        for t in list {
+            let k = (0..3).min_by_key(|&k| t[k]).expect("three corners");
+            let (m, x, y) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let (key, s) = if x < y {
+                ([m, x, y], sign)
+            } else {
+                ([m, y, x], -sign)
+            };
+            *count.entry(key).or_default() += s;
+        }
+    }
+    count.values().all(|&c| c == 0)
 }

@@ -52,6 +52,16 @@ impl Default for RepairOptions {
 /// their `source_vertices`. Never panics; an empty report means the mesh is unchanged
 /// (up to the numbering of unused vertices).
 pub fn repair(mesh: &mut Mesh, opts: &RepairOptions) -> RepairReport {
+    repair_keeping_orientation(mesh, opts).0
+}
+
+/// [`repair`], and when orienting flipped faces or shells, the mesh as it was before
+/// (every other repair made, vertices numbered alike): for a caller that reads the
+/// faces' own orientation (the winding-number rule) and must decide which to trust.
+pub fn repair_keeping_orientation(
+    mesh: &mut Mesh,
+    opts: &RepairOptions,
+) -> (RepairReport, Option<Mesh>) {
     let mut report = RepairReport::default();
     clean::clean(mesh, &mut report);
     let before = report.tjunctions;
@@ -60,7 +70,14 @@ pub fn repair(mesh: &mut Mesh, opts: &RepairOptions) -> RepairReport {
         clean::clean(mesh, &mut report);
     }
     holes::close(mesh, opts.max_hole_edges, &mut report);
+    let unoriented = mesh.clone();
     orient::orient(mesh, &mut report);
     compact::drop_unused_vertices(mesh);
-    report
+    let flipped = report.flipped_faces > 0 || report.flipped_shells > 0;
+    let unoriented = flipped.then(|| {
+        let mut u = unoriented;
+        compact::drop_unused_vertices(&mut u);
+        u
+    });
+    (report, unoriented)
 }
