@@ -428,6 +428,12 @@ def emit(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--angular-tolerance", type=float, default=DEFAULT_ANGULAR_TOLERANCE)
     ap.add_argument("--units", default="mm")
     a = ap.parse_args(argv)
+    # Standard output carries the answer alone: whatever OpenCASCADE (or anything else)
+    # prints while reading goes to standard error.
+    sys.stdout.flush()
+    saved, stdout = os.dup(1), sys.stdout
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
     try:
         s = read(a.input, chordal_tolerance=a.chordal_tolerance,
                  angular_tolerance=a.angular_tolerance, units=a.units)
@@ -437,6 +443,10 @@ def emit(argv: Optional[Sequence[str]] = None) -> int:
     except InputError as e:
         print(e, file=sys.stderr)
         return 1
+    finally:
+        sys.stdout = stdout
+        os.dup2(saved, 1)
+        os.close(saved)
     parts = [{"name": p.name,
               "vertices": np.ascontiguousarray(p.vertices, dtype="<f8").view("<u8").ravel().tolist(),
               "triangles": np.asarray(p.faces, dtype=np.int64).ravel().tolist()}

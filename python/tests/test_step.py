@@ -344,3 +344,30 @@ def test_the_command_line_reads_a_nested_step_assembly(tmp_path):
     assert len(j["parts"]) == 6
     for key in SAME:
         assert j[key] == direct[key], key
+
+
+def test_emit_prints_the_parts_alone_on_standard_output(tmp_path, monkeypatch, capfd):
+    """What the reader prints while reading (OpenCASCADE's messages) goes to standard
+    error: standard output holds the JSON the command line parses, and the
+    coordinates are the very doubles apart.step.read gives."""
+    path = tmp_path / "pinbox.step"
+    pin_in_block(path, 2.9)
+    real = apart_step.read
+
+    def noisy(*args, **kwargs):
+        os.write(1, b"*** a message of the kernel ***\n")
+        print("and one of Python")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(apart_step, "read", noisy)
+    assert apart_step.emit([str(path), "--units", "cm"]) == 0
+    out, err = capfd.readouterr()
+    assert "a message of the kernel" in err and "one of Python" in err
+    j = json.loads(out)
+    s = real(path, units="cm")
+    assert j["units"] == "cm" and j["name"] == s.name
+    assert [p["name"] for p in j["parts"]] == [p.name for p in s.parts]
+    for got, p in zip(j["parts"], s.parts):
+        v = np.array(got["vertices"], dtype=np.uint64).view(np.float64).reshape(-1, 3)
+        assert np.array_equal(v, p.vertices)
+        assert np.array_equal(np.array(got["triangles"]).reshape(-1, 3), p.faces)
