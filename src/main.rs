@@ -5,6 +5,7 @@ mod commands;
 mod input_facts;
 mod limits;
 mod output;
+mod step;
 
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
@@ -77,9 +78,17 @@ pub struct Global {
     #[arg(long, global = true, value_name = "EPS|auto", value_parser = limits::tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<String>,
     /// The length unit of the input files, stated in answers (coordinates are not
-    /// rescaled).
+    /// rescaled). A STEP file's parts are converted to this unit (default mm).
     #[arg(long, global = true, value_enum, value_name = "UNIT")]
     pub units: Option<input_facts::Units>,
+    /// STEP files only: the largest distance between a surface and its triangles, in
+    /// the unit of --units (default: 1/1000 of the assembly's bounding-box diagonal).
+    #[arg(long, global = true, value_name = "L", value_parser = step::chordal, allow_negative_numbers = true)]
+    pub chordal_tolerance: Option<f64>,
+    /// STEP files only: the largest angle between neighbouring triangles of a curved
+    /// face, in radians (default 0.5).
+    #[arg(long, global = true, value_name = "RAD", value_parser = step::angular, allow_negative_numbers = true)]
+    pub angular_tolerance: Option<f64>,
     /// Repair nothing on load: any defect of a mesh is an error.
     #[arg(long, global = true)]
     pub strict: bool,
@@ -151,10 +160,15 @@ fn main() -> ExitCode {
     // Made now, so that the allocator and the Ctrl-C handler only read it.
     let _ = limits::stop_flag();
     apart::formats::quiet_parser_panics();
-    let cli = match Cli::try_parse() {
+    let mut cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
+    // A STEP file's parts come in millimetres unless --units asks for another unit, and
+    // every answer states it (also a tolerance such as 5um then converts).
+    if cli.global.units.is_none() && step_input(&cli.command).is_some() {
+        cli.global.units = Some(step::DEFAULT_UNITS);
+    }
     // Before any command runs, so that no "wrote FILE" line escapes --quiet.
     output::set_quiet(cli.global.quiet);
     limits::set_json(cli.global.json);
@@ -211,6 +225,20 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// The STEP file the command reads as its assembly, if it reads one.
+fn step_input(command: &Command) -> Option<&std::path::Path> {
+    let path: &std::path::Path = match command {
+        Command::Check(a) => &a.assembly,
+        Command::Partition(a) => &a.assembly,
+        Command::Sequence(a) => &a.assembly,
+        Command::Decompose(a) => &a.assembly,
+        Command::Separate(a) => a.inputs.first()?.as_ref(),
+        Command::Place(a) => a.inputs.first()?.as_ref(),
+        Command::Stack(_) | Command::Batch(_) => return None,
+    };
+    step::is_step(path).then_some(path)
 }
 
 /// Help and version exit with 0; every other command-line error (no arguments, an

@@ -2,7 +2,9 @@
 
 ``apart.load("x.step")`` calls :func:`load`; ``python -m apart.step IN.step OUTDIR``
 (or the ``apart-step`` script) writes an assembly folder the command line reads: one
-OFF file per part and an ``assembly.json`` manifest.
+OFF file per part and an ``assembly.json`` manifest. The command line also reads a
+STEP file directly (``apart check x.step``): it runs :func:`emit` in a child Python
+(``APART_PYTHON``, else ``python3``), which prints the parts on standard output.
 
 Needs the ``step`` extra: ``pip install './python[step]'`` (the ``cadquery-ocp-novtk`` wheel,
 which bundles OpenCASCADE). It is imported only when a STEP file is read.
@@ -401,6 +403,60 @@ def write_folder(step: StepAssembly, outdir: "os.PathLike[str] | str") -> str:
                   fh, indent=1)
         fh.write("\n")
     return manifest
+
+
+#: Exit status of :func:`emit` when this Python cannot read STEP files (no OCP).
+EXIT_NEEDS_EXTRA = 3
+
+
+def emit(argv: Optional[Sequence[str]] = None) -> int:
+    """The command line's STEP reader (``apart check x.step`` runs it in a child Python):
+    ``IN.step [--chordal-tolerance L] [--angular-tolerance RAD] [--units U]`` read as
+    :func:`read` reads it, printed on standard output as one JSON object: ``name``,
+    ``units``, ``chordal_tolerance``, ``angular_tolerance`` and ``parts``, each with its
+    ``name``, ``vertices`` (the 3n coordinates as the bit patterns of IEEE 754 doubles,
+    unsigned 64-bit integers, so that the command line gets the very numbers
+    :func:`load` hands to the loader) and ``triangles`` (3m vertex indices). A file
+    that cannot be read: its message on standard error, status 1; no OCP: status
+    :data:`EXIT_NEEDS_EXTRA`."""
+    import argparse
+    import json
+
+    ap = argparse.ArgumentParser(prog="apart-step-emit")
+    ap.add_argument("input")
+    ap.add_argument("--chordal-tolerance", type=float, default=None)
+    ap.add_argument("--angular-tolerance", type=float, default=DEFAULT_ANGULAR_TOLERANCE)
+    ap.add_argument("--units", default="mm")
+    a = ap.parse_args(argv)
+    # Standard output carries the answer alone: whatever OpenCASCADE (or anything else)
+    # prints while reading goes to standard error.
+    sys.stdout.flush()
+    saved, stdout = os.dup(1), sys.stdout
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    try:
+        s = read(a.input, chordal_tolerance=a.chordal_tolerance,
+                 angular_tolerance=a.angular_tolerance, units=a.units)
+    except ImportError as e:
+        print(e, file=sys.stderr)
+        return EXIT_NEEDS_EXTRA
+    except InputError as e:
+        print(e, file=sys.stderr)
+        return 1
+    finally:
+        sys.stdout = stdout
+        os.dup2(saved, 1)
+        os.close(saved)
+    parts = [{"name": p.name,
+              "vertices": np.ascontiguousarray(p.vertices, dtype="<f8").view("<u8").ravel().tolist(),
+              "triangles": np.asarray(p.faces, dtype=np.int64).ravel().tolist()}
+             for p in s.parts]
+    json.dump({"name": s.name, "units": s.units, "chordal_tolerance": s.chordal_tolerance,
+               "angular_tolerance": s.angular_tolerance, "parts": parts},
+              sys.stdout, separators=(",", ":"))
+    sys.stdout.write("\n")
+    sys.stdout.flush()
+    return 0
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

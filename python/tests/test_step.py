@@ -8,7 +8,9 @@ always."""
 
 from __future__ import annotations
 
+import json
 import math
+import os
 import subprocess
 import sys
 
@@ -32,15 +34,36 @@ def test_step_options_apply_to_step_files_only():
         apart.load(REPO / "examples" / "split-star", chordal_tolerance=0.1)
 
 
-def test_the_command_line_says_how_to_convert_a_step_file(tmp_path):
+def test_the_command_line_names_the_install_command_without_a_python_for_step(tmp_path):
     exe = apart_bin()
     if not exe.is_file():
         pytest.fail(f"the apart binary is not at {exe}")
     path = tmp_path / "gearbox.step"
     path.write_text("ISO-10303-21;")
-    r = subprocess.run([str(exe), "check", str(path)], capture_output=True, text=True)
-    assert r.returncode != 0
-    assert "is a STEP file" in r.stderr and "python -m apart.step" in r.stderr, r.stderr
+    env = dict(os.environ, APART_PYTHON=str(tmp_path / "no-such-python"))
+    r = subprocess.run([str(exe), "check", str(path)], capture_output=True, text=True, env=env)
+    assert r.returncode == 1, r.stderr
+    assert str(path) in r.stderr and "pip install './python[step]'" in r.stderr, r.stderr
+    assert "panicked" not in r.stderr and "Traceback" not in r.stderr, r.stderr
+
+
+def test_the_command_line_names_a_step_file_it_cannot_read(tmp_path):
+    """With this Python (the package, with or without OCP): a file that is no STEP file
+    is an error naming it, or, without OCP, the install command."""
+    exe = apart_bin()
+    if not exe.is_file():
+        pytest.fail(f"the apart binary is not at {exe}")
+    path = tmp_path / "gearbox.step"
+    path.write_text("ISO-10303-21;")
+    env = dict(os.environ, APART_PYTHON=sys.executable)
+    r = subprocess.run([str(exe), "check", str(path)], capture_output=True, text=True, env=env)
+    assert r.returncode == 1, r.stderr
+    assert str(path) in r.stderr, r.stderr
+    try:
+        import OCP  # noqa: F401
+        assert "not a STEP file OpenCASCADE can read" in r.stderr, r.stderr
+    except ImportError:
+        assert "pip install './python[step]'" in r.stderr, r.stderr
 
 
 OCP = pytest.importorskip("OCP", reason="OCP is not installed (pip install './python[step]')")
@@ -265,3 +288,86 @@ def test_python_m_apart_step_writes_a_folder_the_command_line_reads(tmp_path, cl
     moves = {(frozenset(s["moving"]), tuple(int(c) for c in s["exact_direction"]))
              for s in j["solutions"]}
     assert (frozenset(["pin"]), (0, 0, 1)) in moves and (frozenset(["pin"]), (0, 0, -1)) in moves
+
+
+def step_cli(*args):
+    """Runs `apart ARGS --json --quiet` with this Python as the STEP reader."""
+    exe = apart_bin()
+    if not exe.is_file():
+        pytest.fail(f"the apart binary is not at {exe}")
+    r = subprocess.run([str(exe), *args, "--json", "--quiet"], capture_output=True, text=True,
+                       cwd=REPO, timeout=600, env=dict(os.environ, APART_PYTHON=sys.executable))
+    assert r.stdout, r.stderr
+    return r.returncode, json.loads(r.stdout)
+
+
+SAME = ("assembly", "valid", "units", "grid", "parts", "problems")
+
+
+def test_the_command_line_reads_a_step_file_as_apart_load_does(tmp_path):
+    path = tmp_path / "pinbox.step"
+    pin_in_block(path, 2.9)
+    code, j = step_cli("check", str(path))
+    direct = apart.load(path).check().to_dict()
+    assert code == 0 and j["valid"], j
+    assert [p["name"] for p in j["parts"]] == ["block", "pin"] and j["units"] == "mm"
+    for key in SAME:
+        assert j[key] == direct[key], key
+    code, j = step_cli("partition", str(path), "--all")
+    assert code == 0
+    assert j["solutions"] == apart.load(path).partition(all=True).to_dict()["solutions"]
+    code, j = step_cli("sequence", str(path))
+    assert code == 0 and j["units"] == "mm"
+    assert len(j["steps"]) == len(apart.load(path).sequence().to_dict()["steps"]) >= 1
+    # The tessellation and the unit, as apart.load's options.
+    code, j = step_cli("check", str(path), "--chordal-tolerance", "0.05", "--units", "in")
+    direct = apart.load(path, chordal_tolerance=0.05, units="in").check().to_dict()
+    assert code == 0 and j["units"] == "in"
+    for key in SAME:
+        assert j[key] == direct[key], key
+
+
+def test_the_command_line_reads_a_nested_step_assembly(tmp_path):
+    path = tmp_path / "cart.step"
+    axle = bd.Cylinder(1, 20, rotation=(0, 90, 0))
+    axle.label = "axle"
+    wheels = []
+    for x in (-8.0, 8.0):
+        w = bd.Cylinder(5, 2, rotation=(0, 90, 0)).moved(bd.Location((x, 0, 0)))
+        w.label = "wheel"
+        wheels.append(w)
+    axles = [bd.Compound(children=[axle.moved(bd.Location()), *(w.moved(bd.Location()) for w in wheels)],
+                         label="axle set").moved(bd.Location((0, y, 7))) for y in (0.0, 30.0)]
+    bd.export_step(bd.Compound(children=axles, label="cart"), str(path))
+    code, j = step_cli("check", str(path), "--angular-tolerance", "0.3")
+    direct = apart.load(path, angular_tolerance=0.3).check().to_dict()
+    assert len(j["parts"]) == 6
+    for key in SAME:
+        assert j[key] == direct[key], key
+
+
+def test_emit_prints_the_parts_alone_on_standard_output(tmp_path, monkeypatch, capfd):
+    """What the reader prints while reading (OpenCASCADE's messages) goes to standard
+    error: standard output holds the JSON the command line parses, and the
+    coordinates are the very doubles apart.step.read gives."""
+    path = tmp_path / "pinbox.step"
+    pin_in_block(path, 2.9)
+    real = apart_step.read
+
+    def noisy(*args, **kwargs):
+        os.write(1, b"*** a message of the kernel ***\n")
+        print("and one of Python")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(apart_step, "read", noisy)
+    assert apart_step.emit([str(path), "--units", "cm"]) == 0
+    out, err = capfd.readouterr()
+    assert "a message of the kernel" in err and "one of Python" in err
+    j = json.loads(out)
+    s = real(path, units="cm")
+    assert j["units"] == "cm" and j["name"] == s.name
+    assert [p["name"] for p in j["parts"]] == [p.name for p in s.parts]
+    for got, p in zip(j["parts"], s.parts):
+        v = np.array(got["vertices"], dtype=np.uint64).view(np.float64).reshape(-1, 3)
+        assert np.array_equal(v, p.vertices)
+        assert np.array_equal(np.array(got["triangles"]).reshape(-1, 3), p.faces)

@@ -12,7 +12,8 @@ use std::process::ExitCode;
 /// Arguments of `apart check`.
 #[derive(clap::Args, Debug)]
 pub struct CheckArgs {
-    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    /// A folder of mesh files, one mesh file, an assembly.json manifest, or a STEP file
+    /// (.step, .stp: read by the Python package, pip install './python[step]').
     pub assembly: PathBuf,
 }
 

@@ -22,7 +22,8 @@ use std::time::Instant;
 /// Arguments of `apart decompose`.
 #[derive(clap::Args, Debug)]
 pub struct DecomposeArgs {
-    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    /// A folder of mesh files, one mesh file, an assembly.json manifest, or a STEP file
+    /// (.step, .stp: read by the Python package, pip install './python[step]').
     pub assembly: PathBuf,
     /// The folder to write the pieces and the manifest to. It is written whole or not
     /// at all (beside it, then renamed into place). An existing folder is replaced only

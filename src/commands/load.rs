@@ -26,6 +26,17 @@ pub fn load_with(path: &Path, global: &Global, decompose: Decompose) -> anyhow::
 
 /// Loads `input` as [`load_with`] does.
 fn load_input(input: Input, global: &Global, decompose: Decompose) -> anyhow::Result<Loaded> {
+    // A STEP file is read (tessellated) by the Python package first, before the bar.
+    let step = match input {
+        Input::Path(path) if crate::step::is_step(path) => {
+            crate::limits::set_phase("reading the STEP file");
+            Some(crate::step::description(path, global)?)
+        }
+        _ => {
+            crate::step::no_tessellation(global)?;
+            None
+        }
+    };
     let (bar, progress) = output::progress(global);
     // The loader's other options keep their defaults (also any added later).
     #[allow(clippy::needless_update)]
@@ -40,9 +51,10 @@ fn load_input(input: Input, global: &Global, decompose: Decompose) -> anyhow::Re
         allow_outside: global.allow_outside,
         ..LoadOptions::default()
     };
-    let loaded = match input {
-        Input::Path(path) => load(path, &opts),
-        Input::Named(named) => load_description(named.description.clone(), &opts),
+    let loaded = match (input, step) {
+        (_, Some(description)) => load_description(description, &opts),
+        (Input::Path(path), None) => load(path, &opts),
+        (Input::Named(named), None) => load_description(named.description.clone(), &opts),
     };
     if let Some(bar) = &bar {
         bar.finish_and_clear();

@@ -33,7 +33,8 @@ const LARGE: usize = 10_000;
 /// Arguments of `apart partition`.
 #[derive(clap::Args, Debug)]
 pub struct PartitionArgs {
-    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    /// A folder of mesh files, one mesh file, an assembly.json manifest, or a STEP file
+    /// (.step, .stp: read by the Python package, pip install './python[step]').
     pub assembly: PathBuf,
     /// Stop at the first solution found (faces, then edges, then vertices): decides
     /// quickly whether the assembly comes apart.

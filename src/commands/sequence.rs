@@ -55,7 +55,8 @@ impl From<RankingArg> for Ranking {
 /// Arguments of `apart sequence`.
 #[derive(clap::Args, Debug)]
 pub struct SequenceArgs {
-    /// A folder of mesh files, one mesh file, or an assembly.json manifest.
+    /// A folder of mesh files, one mesh file, an assembly.json manifest, or a STEP file
+    /// (.step, .stp: read by the Python package, pip install './python[step]').
     pub assembly: PathBuf,
     /// Split each subassembly along the first likely direction that frees a subset of
     /// it (the axes, the axes of tessellated cylinders, the normals of touching planes,

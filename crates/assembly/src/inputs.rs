@@ -399,8 +399,9 @@ fn not_a_mesh(p: &Path, gltf: bool) -> Option<String> {
             "a JSON file not named assembly.json (only assembly.json is read as a manifest)".into()
         }
         Some(e @ ("step" | "stp")) => format!(
-            "a CAD file (.{e}), not a mesh: convert it with `python -m apart.step FILE OUTDIR` \
-             (pip install './python[step]'), or export its parts as {formats}"
+            "a CAD file (.{e}), not a mesh: give it to apart as the assembly itself \
+             (`apart check FILE`), or convert it with `python -m apart.step FILE OUTDIR` \
+             (both need pip install './python[step]'), or export its parts as {formats}"
         ),
         Some(
             e @ ("iges" | "igs" | "sat" | "x_t" | "x_b" | "3dm" | "sldprt" | "sldasm" | "ipt"

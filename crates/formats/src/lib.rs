@@ -199,12 +199,14 @@ pub enum ReadError {
         /// folder", "a symbolic link leads to ...".
         why: String,
     },
-    /// A STEP file (`.step`, `.stp`): a CAD B-rep, which apart does not read itself.
-    /// The message says how to convert it with the Python package.
+    /// A STEP file (`.step`, `.stp`) where a mesh is wanted: a CAD B-rep, which the
+    /// command line reads (through the Python package) only as a whole assembly. The
+    /// message says so, and how to convert it.
     #[error(
-        "{} is a STEP file (a CAD model, not a mesh), which the command line does not read: \
-         convert it with the Python package (pip install './python[step]'), \
-         `python -m apart.step {} OUTDIR`, then run apart on OUTDIR (or use apart.load in Python)",
+        "{} is a STEP file (a CAD model, not a mesh), which is read only as a whole assembly: \
+         give it as the assembly (`apart check {}`), or convert it with \
+         `python -m apart.step {} OUTDIR` (both need pip install './python[step]')",
+        crate::escape::path(path),
         crate::escape::path(path),
         crate::escape::path(path)
     )]
