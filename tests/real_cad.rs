@@ -281,7 +281,7 @@ fn a_nut_on_a_bolt_with_a_ring_thread_is_interlocked() {
 }
 
 #[test]
-fn faces_that_cross_become_the_solid_they_enclose_and_a_fold_stays_an_error() {
+fn faces_that_cross_become_the_solid_they_wind_around_even_a_fold() {
     // One file, two boxes crossing each other, read as one part: its union (volume
     // 4³ + 2·2·2 = 72, by hand), beside a box it touches at x = 6.
     let dir = folder("crossing");
@@ -301,30 +301,43 @@ fn faces_that_cross_become_the_solid_they_enclose_and_a_fold_stays_an_error() {
     assert!(loaded
         .problems
         .iter()
-        .any(|p| p.message.contains("the solid they enclose")));
+        .any(|p| p.message.contains("winding number at least 1")));
     let part = loaded.assembly.part("cross").unwrap();
     assert_eq!(part.volume_units(&loaded.assembly.grid).to_f64(), 72.0);
     let (_, p) = partition_checked(&loaded);
     let side = index(&p, "side");
     assert!(leaves_through_a_face(&p, side, 0));
-    // Split into bodies (the default), the two boxes are two parts that overlap.
+    // Split into bodies (the default), the two boxes still make one part: each lies
+    // deep inside the other, far beyond any tolerance.
     let split = load_with(&dir, Tolerance::None);
-    assert!(split
-        .problems
-        .iter()
-        .any(|p| p.is_error() && p.message.contains("overlaps part \"cross_2\"")));
+    assert!(split.is_valid(), "{:#?}", split.problems);
+    let part = split.assembly.part("cross").unwrap();
+    assert_eq!(part.volume_units(&split.assembly.grid).to_f64(), 72.0);
     let _ = std::fs::remove_dir_all(&dir);
 
-    // A corner pulled through the opposite face turns part of the solid inside out
-    // (winding number -1): ambiguous, so validation's witnesses stand.
+    // A corner pulled through the opposite face turns part of the box inside out
+    // (winding number -1 there): the part is where it winds at least once, whose
+    // volume the independent Monte Carlo oracle estimates.
     let dir = folder("fold");
-    write_off(&dir, "fold", &defects::self_crossing_fold());
+    let fold = defects::self_crossing_fold();
+    write_off(&dir, "fold", &fold);
     let loaded = load_with(&dir, Tolerance::None);
-    assert!(!loaded.is_valid());
-    assert!(loaded
-        .problems
-        .iter()
-        .any(|p| p.is_error() && p.message.starts_with("self-intersection")));
+    assert!(loaded.is_valid(), "{:#?}", loaded.problems);
+    let part = loaded.assembly.part("fold").unwrap();
+    let w = part.winding.as_ref().expect("made by the winding rule");
+    assert!(w.lowest_winding < 0, "{w:?}");
+    let surface = apart_testkit::winding::TriSoup {
+        points: fold.vertices.iter().map(|v| v.map(|c| c as i64)).collect(),
+        triangles: fold
+            .faces
+            .iter()
+            .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
+            .collect(),
+    };
+    let e = apart_testkit::winding::monte_carlo_volume(&surface, 20_000, 7);
+    let v = part.volume_units(&loaded.assembly.grid).to_f64();
+    assert!(e.agrees(v), "{v} against {e:?}");
+    assert!(v < 1000.0, "the inside-out corner is not part of the solid: {v}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -219,7 +219,7 @@ fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
                 .map(|k| (ba.max[k] - ba.min[k]).max(bb.max[k] - bb.min[k]))
                 .max()
                 .unwrap_or(0);
-            let margin = ((size as f64) * crate::tolerance::AUTO_LIMIT).ceil() as i64;
+            let margin = (size as f64) * crate::tolerance::AUTO_LIMIT;
             let lb = locators[b].get_or_insert_with(|| Locator::new(&bodies[b]));
             // Its vertices and the centroids of its faces (crossing shells may have
             // no vertex inside each other), three times over.
@@ -230,17 +230,18 @@ fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
                 [0, 1, 2].map(|k| p[k] as i128 + q[k] as i128 + r[k] as i128)
             });
             let deep = vertices.chain(centroids).any(|x3| {
-                // The box of the point (between `v` and `v + 1`) grown by the margin.
-                let v = x3.map(|c| c.div_euclid(3) as i64);
+                let x = x3.map(|c| c as f64 / 3.0);
                 let near = Aabb {
-                    min: v.map(|c| c.saturating_sub(margin)),
-                    max: v.map(|c| c.saturating_add(margin + 1)),
+                    min: x.map(|c| (c - margin).floor() as i64 - 1),
+                    max: x.map(|c| (c + margin).ceil() as i64 + 1),
                 };
                 if !near.overlaps(bb) {
                     return false;
                 }
                 let mut close = false;
-                lb.bvh().query(&near, |_| close = true);
+                lb.bvh().query(&near, |t| {
+                    close = close || within(&bodies[b], t as usize, &x, margin);
+                });
                 !close && matches!(lb.winding(&HPoint::from_wide(x3, 3)), Some(w) if w > 0)
             });
             if deep {
@@ -249,6 +250,31 @@ fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
         }
     }
     out
+}
+
+/// True when face `t` of `mesh` may pass within `d` of `x` (its plane does, and its
+/// box grown by `d` holds `x`; floating point, generous).
+fn within(mesh: &Mesh, t: usize, x: &[f64; 3], d: f64) -> bool {
+    let [a, b, c] = mesh.corners(t).map(|p| p.map(|v| v as f64));
+    for k in 0..3 {
+        let lo = a[k].min(b[k]).min(c[k]) - d;
+        let hi = a[k].max(b[k]).max(c[k]) + d;
+        if x[k] < lo || x[k] > hi {
+            return false;
+        }
+    }
+    let (u, v) = (
+        [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+        [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+    );
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let off = n[0] * (x[0] - a[0]) + n[1] * (x[1] - a[1]) + n[2] * (x[2] - a[2]);
+    len == 0.0 || off.abs() <= d * len * (1.0 + 1e-9) + 1e-9 * len
 }
 
 /// Two meshes as one, identifying equal grid points.
