@@ -337,7 +337,10 @@ fn faces_that_cross_become_the_solid_they_wind_around_even_a_fold() {
     let e = apart_testkit::winding::monte_carlo_volume(&surface, 20_000, 7);
     let v = part.volume_units(&loaded.assembly.grid).to_f64();
     assert!(e.agrees(v), "{v} against {e:?}");
-    assert!(v < 1000.0, "the inside-out corner is not part of the solid: {v}");
+    assert!(
+        v < 1000.0,
+        "the inside-out corner is not part of the solid: {v}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -283,6 +283,38 @@ fn finish(cells: &[cell::Cell], parallel: bool) -> Result<(u32, Vec<Polytope>), 
     Ok((max_den_bits, pieces))
 }
 
+/// Checks that the leaves of the union partition fill its box exactly (their volumes
+/// add up to the box's): a partition that lost a cell would silently drop part of the
+/// solid, so it is reported as an internal error instead.
+fn check_cover(
+    leaves: &[union::Leaf],
+    surface: &solid::Solid,
+    parallel: bool,
+) -> Result<(), DecomposeError> {
+    let volume = |l: &union::Leaf| l.cell.to_polytope().map(|p| p.volume());
+    let volumes: Vec<_> = if parallel {
+        leaves.par_iter().map(volume).collect()
+    } else {
+        leaves.iter().map(volume).collect()
+    };
+    let mut total = apart_kernel::Rational::zero();
+    for v in volumes {
+        let v =
+            v.map_err(|e| DecomposeError::Internal(format!("a cell is not a polytope: {e}")))?;
+        total = &total + &v;
+    }
+    let (lo, hi) = union::partition_box(surface);
+    let boxed = (0..3).fold(apart_kernel::Int::from(1), |p, k| {
+        p * apart_kernel::Int::from(hi[k] - lo[k])
+    });
+    if total != apart_kernel::Rational::from_int(boxed.clone()) {
+        return Err(DecomposeError::Internal(format!(
+            "the cells of the winding-number partition fill {total} of their box's volume {boxed}"
+        )));
+    }
+    Ok(())
+}
+
 /// Decomposes the union solid of a closed, possibly self-crossing triangle surface into
 /// convex pieces, exactly: the pieces have pairwise disjoint interiors and their union is
 /// the closure of `{x : w(x) >= 1}`, `w` the winding number of the surface.
@@ -315,6 +347,7 @@ pub fn decompose_union(
     let surface = solid::Solid::surface(points, triangles)?;
     let part = union::UnionPartition::new(&surface, opts.parallel, opts.stop.clone());
     let leaves = part.run()?;
+    check_cover(&leaves, &surface, opts.parallel)?;
     let lo = leaves.iter().map(|l| l.w).min().unwrap_or(0);
     let hi = leaves.iter().map(|l| l.w).max().unwrap_or(0);
     let cells: Vec<cell::Cell> = leaves

@@ -109,8 +109,7 @@ impl<'a> UnionPartition<'a> {
     /// number.
     pub fn run(&self) -> Result<Vec<Leaf>, DecomposeError> {
         let s = self.solid;
-        let lo = s.bbox.min.map(|v| v - 1);
-        let hi = s.bbox.max.map(|v| v + 1);
+        let (lo, hi) = partition_box(s);
         let frags = Frag::all_whole(s);
         self.solve(Task {
             cell: Cell::boxed(lo, hi),
@@ -273,6 +272,11 @@ fn interior_point(cell: &Cell) -> HPoint {
 }
 
 /// Triangles binned by their `(y, z)` bounding boxes, widened by one unit (far more than
+/// The box the partition starts from: the surface's box grown by one grid step.
+pub(crate) fn partition_box(s: &Solid) -> ([i64; 3], [i64; 3]) {
+    (s.bbox.min.map(|v| v - 1), s.bbox.max.map(|v| v + 1))
+}
+
 /// the error of a point's floating-point shadow), for rays along `x`.
 struct RayIndex {
     lo: [i64; 2],

@@ -23,7 +23,7 @@ fn main() -> std::io::Result<()> {
         ));
     }
     for layers in [100usize, 500, 1500] {
-        cases.push((format!("thread-{layers}"), "bolt", thread(layers, 1000)));
+        cases.push((format!("thread-{layers}"), "bolt", thread(layers, 1)));
     }
     for (name, part, case) in cases {
         let dir = root.join(&name);

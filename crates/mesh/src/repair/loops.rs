@@ -98,10 +98,7 @@ pub fn simple_loops(edges: &[(u32, u32)]) -> Vec<Vec<u32>> {
     let mut starts: Vec<u32> = out_of.keys().copied().collect();
     starts.sort_unstable();
     for s in starts {
-        loop {
-            let Some(next) = out_of.get_mut(&s).and_then(Vec::pop) else {
-                break;
-            };
+        while let Some(next) = out_of.get_mut(&s).and_then(Vec::pop) {
             // Walk from s until a vertex of the path repeats; cut off each cycle.
             let mut path = vec![s];
             let mut pos: HashMap<u32, usize> = HashMap::from([(s, 0)]);
