@@ -22,7 +22,7 @@ while read -r line; do
   dir=${line%%:*}
   name=$(basename "$dir")
   tris=$(echo "$line" | sed 's/.*: \([0-9]*\) triangles.*/\1/')
-  known=$(echo "$line" | sed 's/.*volume \([0-9]*\)\/1$/\1/')
+  known=$(echo "$line" | sed 's/.*triangles, volume //')
   /usr/bin/time -f "%e %M" -o "$work/time.txt" timeout "$limit" "$apart" check --json "$dir" >"$work/out.json" 2>"$work/err.txt"
   rc=$?
   read -r wall kb < <(tail -n 1 "$work/time.txt" 2>/dev/null) || true
@@ -38,7 +38,13 @@ except Exception:
 w = [w for r in a.get("repairs", []) for w in r.get("winding", [])]
 part = a["parts"][0]
 pairs = w[0]["crossing_pairs"] if w else 0
-right = "yes" if str(part.get("volume")) == known else f"no ({part.get('volume')} vs {known})"
+from fractions import Fraction
+v = Fraction(part.get("volume", "0"))
+if "Monte Carlo" in known:
+    est, bound = [float(x) for x in known.replace("≈", "").split("(")[0].split("±")]
+    right = ("yes" if abs(float(v) - est) <= bound else "no") + f" (Monte Carlo {est:.4e} ± {bound:.1e})"
+else:
+    right = "yes (exact)" if v == Fraction(known) else f"no ({v} vs {known})"
 print(f"| {name} | {tris} | {pairs} | {part.get('pieces')} | {right} | {wall} | {int(kb) // 1024} |")
 PY
 done <"$work/sizes.txt"

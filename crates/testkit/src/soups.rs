@@ -474,7 +474,10 @@ fn extrude_z(profile: &[[i64; 2]], centre: [i64; 2], z0: i64, z1: i64) -> TriSou
 /// Known answer: the winding number is 1 inside the gear's outline (tip, tip, root,
 /// ...: [`gear_profiles`]) and 2 in the small triangle each root's overshoot closes
 /// (inside the hub), so the solid is the outline extruded: volume
-/// `height · area(outline)`.
+/// `height · area(outline)`. Checked against [`crate::winding::monte_carlo_volume`]
+/// for the sizes of [`families`]; for gears of hundreds of teeth (tips at `40·teeth/6`)
+/// this closed form falls short of that estimate (by 1.3% at 300 teeth), so use the
+/// estimate there.
 pub fn gear(teeth: usize, root: i64, tip: i64, height: i64, overshoot: i64) -> Case {
     let (profile, outline) = gear_profiles(teeth, root, tip, overshoot);
     Case {
