@@ -16,7 +16,7 @@ fn main() -> std::io::Result<()> {
         .nth(1)
         .map_or_else(|| PathBuf::from("winding-scale"), PathBuf::from);
     let mut cases: Vec<(String, &str, Case)> = Vec::new();
-    for teeth in [100usize, 300, 900] {
+    for teeth in [100usize, 300, 900, 1250] {
         // A pitch of about 40 grid units at the tips.
         let tip = (teeth as i64 * 40 / 6).max(60);
         cases.push((

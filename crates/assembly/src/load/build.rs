@@ -153,13 +153,6 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
     }
     let mut owner: HashMap<[i64; 3], usize> = HashMap::new();
     let mut parent: Vec<usize> = (0..bodies.len()).collect();
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
     for (b, m) in bodies.iter().enumerate() {
         for v in &m.vertices {
             if let Some(&o) = owner.get(v) {
@@ -170,10 +163,7 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
             }
         }
     }
-    for (a, b) in deeply_overlapping(&bodies) {
-        let (x, y) = (find(&mut parent, a), find(&mut parent, b));
-        parent[x.max(y)] = x.min(y);
-    }
+    deeply_overlapping(&bodies, &mut parent);
     let mut groups: Vec<Vec<usize>> = vec![Vec::new(); bodies.len()];
     for b in 0..bodies.len() {
         let r = find(&mut parent, b);
@@ -203,16 +193,16 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
 /// shells are one part modelled as overlapping solids, not two parts in contact: no
 /// tolerance `--tolerance auto` may choose could make them apart. Shallower overlaps
 /// stay separate parts, for the overlap check and a tolerance to judge.
-fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
+fn deeply_overlapping(bodies: &[Mesh], parent: &mut [usize]) {
     let boxes: Vec<Option<Aabb>> = bodies.iter().map(Mesh::bbox).collect();
-    let mut out = Vec::new();
     let mut locators: Vec<Option<Locator>> = (0..bodies.len()).map(|_| None).collect();
     for a in 0..bodies.len() {
         for b in 0..bodies.len() {
             let (Some(ba), Some(bb)) = (&boxes[a], &boxes[b]) else {
                 continue;
             };
-            if a == b || !ba.overlaps_open(bb) || out.contains(&(a.min(b), a.max(b))) {
+            // Bodies already joined are not tested again.
+            if a == b || !ba.overlaps_open(bb) || find(parent, a) == find(parent, b) {
                 continue;
             }
             let size = (0..3)
@@ -245,11 +235,20 @@ fn deeply_overlapping(bodies: &[Mesh]) -> Vec<(usize, usize)> {
                 !close && matches!(lb.winding(&HPoint::from_wide(x3, 3)), Some(w) if w > 0)
             });
             if deep {
-                out.push((a.min(b), a.max(b)));
+                let (x, y) = (find(parent, a), find(parent, b));
+                parent[x.max(y)] = x.min(y);
             }
         }
     }
-    out
+}
+
+/// The representative of `x` in the union-find forest `p`.
+fn find(p: &mut [usize], mut x: usize) -> usize {
+    while p[x] != x {
+        p[x] = p[p[x]];
+        x = p[x];
+    }
+    x
 }
 
 /// True when face `t` of `mesh` may pass within `d` of `x` (its plane does, and its

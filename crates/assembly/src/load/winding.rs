@@ -199,16 +199,19 @@ fn fmt_length(v: f64) -> String {
 /// centroid of each face, from the winding number of the other faces there; a face
 /// whose centroid lies on another face is counted as bounding the solid.
 fn faces_enclosing_nothing(mesh: &Mesh) -> usize {
-    let locator = Locator::new(mesh);
+    // The surface three times larger, so that each face's centroid is a grid point and
+    // the exact predicates keep to machine integers.
+    let tripled = Mesh {
+        vertices: mesh.vertices.iter().map(|v| v.map(|c| 3 * c)).collect(),
+        ..mesh.clone()
+    };
+    let locator = Locator::new(&tripled);
     (0..mesh.triangles.len() as u32)
         .into_par_iter()
         .with_min_len(256)
         .filter(|&t| {
             let [a, b, c] = mesh.corners(t as usize);
-            let centroid = HPoint::from_wide(
-                [0, 1, 2].map(|k| a[k] as i128 + b[k] as i128 + c[k] as i128),
-                3,
-            );
+            let centroid = HPoint::int([0, 1, 2].map(|k| a[k] + b[k] + c[k]));
             let Some(others) = locator.winding_filtered(&centroid, |u| u != t) else {
                 return false;
             };
