@@ -6,7 +6,9 @@
 //! exact winding oracle of `apart_testkit::winding`, and no point is strictly inside two
 //! pieces.
 
-use apart_assembly::{load_description, DescribedPart, Description, LoadOptions, MeshSource};
+use apart_assembly::{
+    load_description, Decompose, DescribedPart, Description, LoadOptions, MeshSource,
+};
 use apart_kernel::{Int, Vec3};
 use apart_pieces::Polytope;
 use apart_testkit::soups::families;
@@ -87,7 +89,9 @@ proptest! {
         samples in prop::collection::vec([-10i64..50, -10i64..50, -10i64..50], 40),
     ) {
         let soup = damaged(family, &delete, &flip, copy, &junk);
-        let Ok(loaded) = load_description(described(&soup), &LoadOptions::default()) else {
+        // One part: decomposed always, so that every valid part has its pieces.
+        let opts = LoadOptions { decompose: Decompose::Always, ..LoadOptions::default() };
+        let Ok(loaded) = load_description(described(&soup), &opts) else {
             return Ok(());
         };
         if !loaded.is_valid() {

@@ -181,7 +181,7 @@ fn joined_bodies(mesh: &Mesh) -> Vec<Mesh> {
                 .into_iter()
                 .map(|b| bodies[b].take().expect("one group each"));
             let first = it.next().expect("non-empty group");
-            it.fold(first, |m, other| merged(m, &other))
+            merged(first, it)
         })
         .collect()
 }
@@ -276,29 +276,32 @@ fn within(mesh: &Mesh, t: usize, x: &[f64; 3], d: f64) -> bool {
     len == 0.0 || off.abs() <= d * len * (1.0 + 1e-9) + 1e-9 * len
 }
 
-/// Two meshes as one, identifying equal grid points.
-fn merged(mut m: Mesh, other: &Mesh) -> Mesh {
+/// Meshes as one, identifying equal grid points (one index for the whole group, so a
+/// part of many shells is joined in linear time).
+fn merged(mut m: Mesh, others: impl Iterator<Item = Mesh>) -> Mesh {
     let mut index: HashMap<[i64; 3], u32> = m
         .vertices
         .iter()
         .enumerate()
         .map(|(i, v)| (*v, i as u32))
         .collect();
-    let remap: Vec<u32> = other
-        .vertices
-        .iter()
-        .zip(&other.source_vertices)
-        .map(|(v, &s)| {
-            *index.entry(*v).or_insert_with(|| {
-                m.vertices.push(*v);
-                m.source_vertices.push(s);
-                (m.vertices.len() - 1) as u32
+    for other in others {
+        let remap: Vec<u32> = other
+            .vertices
+            .iter()
+            .zip(&other.source_vertices)
+            .map(|(v, &s)| {
+                *index.entry(*v).or_insert_with(|| {
+                    m.vertices.push(*v);
+                    m.source_vertices.push(s);
+                    (m.vertices.len() - 1) as u32
+                })
             })
-        })
-        .collect();
-    m.triangles
-        .extend(other.triangles.iter().map(|t| t.map(|v| remap[v as usize])));
-    m.source_faces.extend_from_slice(&other.source_faces);
+            .collect();
+        m.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|v| remap[v as usize])));
+        m.source_faces.extend_from_slice(&other.source_faces);
+    }
     m
 }
 
