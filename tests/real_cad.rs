@@ -5,13 +5,15 @@
 //! tolerance applies.
 
 use apart::assembly::{load, LoadOptions, Loaded, Tolerance};
-use apart::kernel::{Rational, Vec3};
-use apart::pieces::Polytope;
+use apart::kernel::Vec3;
 use apart::plan::{partition, parts_of, CellKind, Options, Part, Partitioning};
 use apart_testkit::curved::{self, NamedSoup};
 use apart_testkit::defects;
 use apart_testkit::Scratch;
 use apart_testkit::Soup;
+
+mod common;
+use common::oracle_free;
 
 /// A fresh folder for one test's files.
 fn folder(tag: &str) -> Scratch {
@@ -28,43 +30,6 @@ fn load_with(dir: &std::path::Path, tolerance: Tolerance) -> Loaded {
         ..LoadOptions::default()
     };
     load(dir, &opts).unwrap()
-}
-
-/// True when piece `a` moving along `d` meets the interior of `b`: the oracle of
-/// `apart_testkit` on the two pieces' facets at a common denominator.
-fn sweep_meets_interior(a: &Polytope, b: &Polytope, d: &Vec3) -> bool {
-    let rows = |p: &Polytope| -> Vec<([Rational; 3], Rational)> {
-        let q = Rational::from_int;
-        let f = p.facets().iter();
-        f.map(|f| ([0, 1, 2].map(|k| q(f.normal.get(k))), q(f.offset.clone())))
-            .collect()
-    };
-    let (a, b) = Polytope::common(a, b);
-    let d = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
-    apart_testkit::oracle::sweep_meets_interior(&rows(&a), &rows(&b), &d)
-}
-
-/// True when the parts in `moving` translate along `d` without meeting the others'
-/// interiors, decided by the oracle over every piece pair.
-fn oracle_free(parts: &[Part], moving: &[usize], d: &Vec3) -> bool {
-    for (i, pi) in parts.iter().enumerate() {
-        if !moving.contains(&i) {
-            continue;
-        }
-        for (j, pj) in parts.iter().enumerate() {
-            if moving.contains(&j) {
-                continue;
-            }
-            for a in &pi.pieces {
-                for b in &pj.pieces {
-                    if sweep_meets_interior(a, b, d) {
-                        return false;
-                    }
-                }
-            }
-        }
-    }
-    true
 }
 
 /// Partitions the loaded assembly and checks every solution with the oracle (only the

@@ -17,7 +17,6 @@ use apart::assembly::{load, LoadOptions, Loaded};
 use apart::kernel::{Rational, Vec3};
 use apart::mesh::validate::volume_in_units;
 use apart::mesh::{ProblemKind, Severity};
-use apart::pieces::Polytope;
 use apart::plan::{partition, parts_of, sequence, BlockingRegions, CellKind, Options, Part};
 use apart::plan::{Partitioning, SequenceOptions};
 use apart_testkit::soups::{families, write_off_dir, Family};
@@ -25,6 +24,9 @@ use apart_testkit::winding::monte_carlo_volume;
 use apart_testkit::Scratch;
 use serde_json::Value;
 use std::process::Command;
+
+mod common;
+use common::oracle_free;
 
 /// The family called `name`, written into a fresh folder.
 fn written(name: &str) -> (Family, Scratch) {
@@ -43,43 +45,6 @@ fn load_one_part_per_file(dir: &std::path::Path) -> Loaded {
         ..LoadOptions::default()
     };
     load(dir, &opts).unwrap()
-}
-
-/// True when piece `a` moving along `d` meets the interior of `b`: the oracle of
-/// `apart_testkit` on the two pieces' facets at a common denominator.
-fn sweep_meets_interior(a: &Polytope, b: &Polytope, d: &Vec3) -> bool {
-    let rows = |p: &Polytope| -> Vec<([Rational; 3], Rational)> {
-        let q = Rational::from_int;
-        let f = p.facets().iter();
-        f.map(|f| ([0, 1, 2].map(|k| q(f.normal.get(k))), q(f.offset.clone())))
-            .collect()
-    };
-    let (a, b) = Polytope::common(a, b);
-    let d = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
-    apart_testkit::oracle::sweep_meets_interior(&rows(&a), &rows(&b), &d)
-}
-
-/// True when the parts in `moving` translate along `d` without meeting the others'
-/// interiors, decided by the oracle over every piece pair.
-fn oracle_free(parts: &[Part], moving: &[usize], d: &Vec3) -> bool {
-    for (i, pi) in parts.iter().enumerate() {
-        if !moving.contains(&i) {
-            continue;
-        }
-        for (j, pj) in parts.iter().enumerate() {
-            if moving.contains(&j) {
-                continue;
-            }
-            for a in &pi.pieces {
-                for b in &pj.pieces {
-                    if sweep_meets_interior(a, b, d) {
-                        return false;
-                    }
-                }
-            }
-        }
-    }
-    true
 }
 
 /// (a) and (b) through the library: the part is a valid solid made by the winding
