@@ -13,7 +13,7 @@ use apart_testkit::Scratch;
 use apart_testkit::Soup;
 
 mod common;
-use common::oracle_free;
+use common::{index, oracle_free, partition_checked};
 
 /// A fresh folder for one test's files.
 fn folder(tag: &str) -> Scratch {
@@ -30,34 +30,6 @@ fn load_with(dir: &std::path::Path, tolerance: Tolerance) -> Loaded {
         ..LoadOptions::default()
     };
     load(dir, &opts).unwrap()
-}
-
-/// Partitions the loaded assembly and checks every solution with the oracle (only the
-/// face solutions under a tolerance: the sliding and isolated directions on the rim of a
-/// widened cone have components of hundreds of bits, too slow for the oracle's rational
-/// simplex in a test).
-fn partition_checked(loaded: &Loaded) -> (Vec<Part>, Partitioning) {
-    assert!(loaded.is_valid(), "{:#?}", loaded.problems);
-    let parts = parts_of(&loaded.assembly).unwrap().to_vec();
-    let p = partition(&loaded.assembly, &Options::default()).unwrap();
-    let all = loaded.assembly.tolerance.is_none();
-    for s in p
-        .solutions
-        .iter()
-        .filter(|s| all || s.cell == CellKind::Face)
-    {
-        assert!(
-            oracle_free(&parts, &s.moving, &s.direction),
-            "the oracle blocks {:?} along {:?}",
-            s.moving,
-            s.direction
-        );
-    }
-    (parts, p)
-}
-
-fn index(p: &Partitioning, name: &str) -> usize {
-    p.names.iter().position(|n| n == name).unwrap()
 }
 
 /// Whether part `k` alone has a face solution (an open region of directions) whose

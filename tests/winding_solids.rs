@@ -17,8 +17,7 @@ use apart::assembly::{load, LoadOptions, Loaded};
 use apart::kernel::{Rational, Vec3};
 use apart::mesh::validate::volume_in_units;
 use apart::mesh::{ProblemKind, Severity};
-use apart::plan::{partition, parts_of, sequence, BlockingRegions, CellKind, Options, Part};
-use apart::plan::{Partitioning, SequenceOptions};
+use apart::plan::{sequence, BlockingRegions, CellKind, SequenceOptions};
 use apart_testkit::soups::{families, write_off_dir, Family};
 use apart_testkit::winding::monte_carlo_volume;
 use apart_testkit::Scratch;
@@ -26,7 +25,7 @@ use serde_json::Value;
 use std::process::Command;
 
 mod common;
-use common::oracle_free;
+use common::{index, oracle_free, partition_checked};
 
 /// The family called `name`, written into a fresh folder.
 fn written(name: &str) -> (Family, Scratch) {
@@ -124,25 +123,6 @@ fn check_cli(f: &Family, dir: &std::path::Path) {
         "{}: {v:#}",
         f.name
     );
-}
-
-/// Partitions the assembly, checking every solution with the oracle.
-fn partition_checked(loaded: &Loaded) -> (Vec<Part>, Partitioning) {
-    let parts = parts_of(&loaded.assembly).unwrap().to_vec();
-    let p = partition(&loaded.assembly, &Options::default()).unwrap();
-    for s in &p.solutions {
-        assert!(
-            oracle_free(&parts, &s.moving, &s.direction),
-            "the oracle blocks {:?} along {:?}",
-            s.moving,
-            s.direction
-        );
-    }
-    (parts, p)
-}
-
-fn index(p: &Partitioning, name: &str) -> usize {
-    p.names.iter().position(|n| n == name).unwrap()
 }
 
 /// (c) for a part resting on a plate: the part leaves through the open upper
