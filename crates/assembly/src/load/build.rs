@@ -5,7 +5,7 @@
 use super::winding::{self, WindingSolid};
 use super::RawPart;
 use crate::inputs::{Names, PartSpec, SourceRef};
-use crate::model::{Part, Repairs, WindingReport};
+use crate::model::{Part, Repairs};
 use crate::options::LoadOptions;
 use crate::pieces::{self, piece_box};
 use apart_formats::escape::escape;
@@ -401,30 +401,29 @@ fn add_mesh(
     let as_given = given.is_some();
     let solid = match given {
         Some(s) => Some(Ok(s)),
-        None if ctx.opts.repair && probs.iter().any(winding::resolves) => {
-            Some(winding::winding_solid(&mesh, &info, grid, ctx.opts))
-        }
+        None if ctx.opts.repair && probs.iter().any(winding::resolves) => Some(
+            winding::winding_solid(&mesh, info.self_intersections, grid, ctx.opts),
+        ),
         None => None,
     };
-    if let Some(solid) = solid {
-        match solid {
-            Ok(solid) => {
-                // The surface's defects are resolved: the part is the solid it winds
-                // around, and the note says how it was found.
-                probs.retain(|p| !winding::resolves(p));
-                probs.push(
-                    Problem::warning(winding_note(&solid.report, as_given, grid))
-                        .with_kind(ProblemKind::Repaired),
-                );
-                part.volume = solid.report.volume_after.clone();
-                part.pieces = solid.pieces;
-                part.decomposed = true;
-                part.winding = Some(solid.report);
-                mesh = solid.mesh;
-                winding_ok = true;
-            }
-            Err(refusal) => probs.extend(refusal),
+    match solid {
+        Some(Ok(solid)) => {
+            // The surface's defects are resolved: the part is the solid it winds around,
+            // and the note says how it was found.
+            probs.retain(|p| !winding::resolves(p));
+            probs.push(
+                Problem::warning(winding::note(&solid.report, as_given, grid))
+                    .with_kind(ProblemKind::Repaired),
+            );
+            part.volume = solid.report.volume_after.clone();
+            part.pieces = solid.pieces;
+            part.decomposed = true;
+            part.winding = Some(solid.report);
+            mesh = solid.mesh;
+            winding_ok = true;
         }
+        Some(Err(refusal)) => probs.extend(refusal),
+        None => {}
     }
     let mesh_ok = (info.volume6.is_some() || winding_ok) && !probs.iter().any(Problem::is_error);
     let mut raw_points = None;
@@ -637,56 +636,4 @@ pub(crate) fn fmt_len(v: f64) -> String {
         return s;
     }
     format!("{v:.3e}")
-}
-
-/// The note of a part made by the winding rule: what the surface had, what was closed,
-/// what the solid is.
-fn winding_note(r: &WindingReport, as_given: bool, grid: &Grid) -> String {
-    let mut had = Vec::new();
-    let mut say = |n: usize, one: &str, many: &str| {
-        if n > 0 {
-            had.push(format!("{n} {}", if n == 1 { one } else { many }));
-        }
-    };
-    say(r.open_edges, "open edge", "open edges");
-    say(
-        r.nonmanifold_edges,
-        "non-manifold edge",
-        "non-manifold edges",
-    );
-    say(
-        r.crossing_pairs,
-        "pair of crossing faces",
-        "pairs of crossing faces",
-    );
-    let mut text = format!(
-        "repaired: the surface is not a closed manifold ({}); the part is the solid it winds around (winding number at least 1)",
-        if had.is_empty() { "its shells overlap".to_string() } else { had.join(", ") }
-    );
-    if r.loops_closed > 0 {
-        text += &format!(
-            ", after closing {} boundary {} ({} {}, {} triangles)",
-            r.loops_closed,
-            if r.loops_closed == 1 { "loop" } else { "loops" },
-            r.seams_closed,
-            if r.seams_closed == 1 { "seam" } else { "seams" },
-            r.cap_triangles
-        );
-    }
-    if r.inside_out {
-        text += ", the surface reversed (it was inside out)";
-    }
-    if as_given {
-        text += ", the faces oriented as given (those that disagree with their neighbours fold back inside the solid: turning them would carve it, and they make no winding number negative)";
-    }
-    text += &format!(
-        ": {} faces enclose nothing, {} cells kept as {} exact convex {}, volume {} (signed, of the surface) → {}",
-        r.faces_dropped,
-        r.cells_kept,
-        r.pieces,
-        if r.pieces == 1 { "piece" } else { "pieces" },
-        crate::fmt_volume(&r.volume_before, grid),
-        crate::fmt_volume(&r.volume_after, grid)
-    );
-    text
 }

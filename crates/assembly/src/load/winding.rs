@@ -26,7 +26,6 @@ use apart_kernel::plane::HPoint;
 use apart_kernel::{Grid, Int, Rational};
 use apart_mesh::locate::Locator;
 use apart_mesh::repair::loops::{close_loops, nonmanifold_edges, LoopClosing, PLANAR};
-use apart_mesh::validate::MeshInfo;
 use apart_mesh::{fmt_point, Mesh, Problem, ProblemKind};
 use apart_pieces::Polytope;
 use rayon::prelude::*;
@@ -62,13 +61,13 @@ pub(super) fn resolves(p: &Problem) -> bool {
 /// neither planar nor seams, an empty solid, a stopped or failed decomposition).
 pub(super) fn winding_solid(
     mesh: &Mesh,
-    info: &MeshInfo,
+    crossing_pairs: usize,
     grid: &Grid,
     opts: &LoadOptions,
 ) -> Result<WindingSolid, Vec<Problem>> {
     let mut mesh = mesh.clone();
     let nonmanifold = nonmanifold_edges(&mesh);
-    let gap = seam_width(info, grid, opts);
+    let gap = seam_width(&mesh, grid, opts);
     let closing = close_loops(&mut mesh, gap);
     if !closing.open.is_empty() {
         return Err(open_loops(&closing, grid, gap));
@@ -121,7 +120,7 @@ pub(super) fn winding_solid(
         part: String::new(),
         open_edges: closing.boundary_edges,
         nonmanifold_edges: nonmanifold,
-        crossing_pairs: info.self_intersections,
+        crossing_pairs,
         loops_closed: closing.planar + closing.seams,
         seams_closed: closing.seams,
         cap_triangles: closing.triangles,
@@ -143,8 +142,8 @@ pub(super) fn winding_solid(
 
 /// The widest seam closed, in grid units: [`SEAM_WIDTH`] of the part's box diagonal, or
 /// the stated fixed tolerance when larger.
-fn seam_width(info: &MeshInfo, grid: &Grid, opts: &LoadOptions) -> f64 {
-    let diagonal = info.bbox.map_or(0.0, |b| {
+fn seam_width(mesh: &Mesh, grid: &Grid, opts: &LoadOptions) -> f64 {
+    let diagonal = mesh.bbox().map_or(0.0, |b| {
         (0..3)
             .map(|k| ((b.max[k] - b.min[k]) as f64).powi(2))
             .sum::<f64>()
@@ -253,29 +252,9 @@ pub(super) fn as_given(
     if probe.open.is_empty() && same_chain(&capped.triangles, &oriented.triangles) {
         return None;
     }
-    let info = bare_info(unoriented);
-    let solid = winding_solid(unoriented, &info, grid, opts).ok()?;
+    // Validation has not looked at these faces: their crossings are not counted.
+    let solid = winding_solid(unoriented, 0, grid, opts).ok()?;
     (solid.report.lowest_winding >= 0 && !solid.report.inside_out).then_some(solid)
-}
-
-/// What `winding_solid` reads of a mesh's validation, for a mesh not validated.
-fn bare_info(mesh: &Mesh) -> MeshInfo {
-    MeshInfo {
-        vertices: mesh.vertices.len(),
-        triangles: mesh.triangles.len(),
-        faces: mesh.triangles.len(),
-        edges: 0,
-        shells: 0,
-        closed: false,
-        volume6: None,
-        reflex_edges: 0,
-        touching_edges: 0,
-        touching_vertices: 0,
-        self_intersections: 0,
-        flipped: false,
-        convex: false,
-        bbox: mesh.bbox(),
-    }
 }
 
 /// Two lists of oriented triangles are the same chain: each oriented triangle used as
@@ -295,4 +274,56 @@ fn same_chain(a: &[[u32; 3]], b: &[[u32; 3]]) -> bool {
         }
     }
     count.values().all(|&c| c == 0)
+}
+
+/// The note of a part made by the winding rule: what the surface had, what was closed,
+/// what the solid is.
+pub(super) fn note(r: &WindingReport, as_given: bool, grid: &Grid) -> String {
+    let mut had = Vec::new();
+    let mut say = |n: usize, one: &str, many: &str| {
+        if n > 0 {
+            had.push(format!("{n} {}", if n == 1 { one } else { many }));
+        }
+    };
+    say(r.open_edges, "open edge", "open edges");
+    say(
+        r.nonmanifold_edges,
+        "non-manifold edge",
+        "non-manifold edges",
+    );
+    say(
+        r.crossing_pairs,
+        "pair of crossing faces",
+        "pairs of crossing faces",
+    );
+    let mut text = format!(
+        "repaired: the surface is not a closed manifold ({}); the part is the solid it winds around (winding number at least 1)",
+        if had.is_empty() { "its shells overlap".to_string() } else { had.join(", ") }
+    );
+    if r.loops_closed > 0 {
+        text += &format!(
+            ", after closing {} boundary {} ({} {}, {} triangles)",
+            r.loops_closed,
+            if r.loops_closed == 1 { "loop" } else { "loops" },
+            r.seams_closed,
+            if r.seams_closed == 1 { "seam" } else { "seams" },
+            r.cap_triangles
+        );
+    }
+    if r.inside_out {
+        text += ", the surface reversed (it was inside out)";
+    }
+    if as_given {
+        text += ", the faces oriented as given (those that disagree with their neighbours fold back inside the solid: turning them would carve it, and they make no winding number negative)";
+    }
+    text += &format!(
+        ": {} faces enclose nothing, {} cells kept as {} exact convex {}, volume {} (signed, of the surface) → {}",
+        r.faces_dropped,
+        r.cells_kept,
+        r.pieces,
+        if r.pieces == 1 { "piece" } else { "pieces" },
+        crate::fmt_volume(&r.volume_before, grid),
+        crate::fmt_volume(&r.volume_after, grid)
+    );
+    text
 }
