@@ -48,6 +48,17 @@ pub struct OpenLoop {
     pub at: [i64; 3],
 }
 
+impl OpenLoop {
+    fn new(lp: &[u32], v: &[[i64; 3]], shape: &LoopShape) -> OpenLoop {
+        OpenLoop {
+            edges: lp.len(),
+            size: shape.size,
+            deviation: shape.deviation,
+            at: v[lp[0] as usize],
+        }
+    }
+}
+
 /// What [`close_loops`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LoopClosing {
@@ -57,8 +68,6 @@ pub struct LoopClosing {
     pub planar: usize,
     /// Loops capped because they are seams.
     pub seams: usize,
-    /// The most edges of one capped loop.
-    pub largest: usize,
     /// Triangles added to the mesh.
     pub triangles: usize,
     /// Zero-area triangles that balance what the caps' triangulation dropped (not in
@@ -156,12 +165,7 @@ pub fn close_loops(mesh: &mut Mesh, gap: f64) -> LoopClosing {
         let planar = shape.deviation <= PLANAR * shape.size;
         let seam = !planar && is_seam(&lp, &mesh.vertices, gap);
         if !planar && !seam {
-            c.open.push(OpenLoop {
-                edges: lp.len(),
-                size: shape.size,
-                deviation: shape.deviation,
-                at: mesh.vertices[lp[0] as usize],
-            });
+            c.open.push(OpenLoop::new(&lp, &mesh.vertices, &shape));
             continue;
         }
         let source = source_of.get(&(lp[0], lp[1])).copied().unwrap_or(0);
@@ -169,7 +173,6 @@ pub fn close_loops(mesh: &mut Mesh, gap: f64) -> LoopClosing {
         out.clear();
         triangulate(&reversed, &mesh.vertices, &mut out);
         c.triangles += out.len();
-        c.largest = c.largest.max(lp.len());
         if planar {
             c.planar += 1;
         } else {
@@ -191,12 +194,7 @@ pub fn close_loops(mesh: &mut Mesh, gap: f64) -> LoopClosing {
             .any(|v| open_vertices.contains(&mesh.vertices[*v as usize]))
         {
             let shape = LoopShape::of(&lp, &mesh.vertices);
-            c.open.push(OpenLoop {
-                edges: lp.len(),
-                size: shape.size,
-                deviation: shape.deviation,
-                at: mesh.vertices[lp[0] as usize],
-            });
+            c.open.push(OpenLoop::new(&lp, &mesh.vertices, &shape));
         }
     }
     c
