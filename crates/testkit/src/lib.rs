@@ -46,6 +46,7 @@ pub mod solids;
 mod soup;
 pub mod soups;
 pub mod torus;
+pub mod voxel_puzzles;
 pub mod winding;
 
 pub use scratch::Scratch;
