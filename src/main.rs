@@ -139,6 +139,10 @@ enum Command {
     /// an assembly plan), with pictures and animated exports; exit 2 when a subassembly
     /// is interlocked.
     Sequence(commands::sequence::SequenceArgs),
+    /// A plan of several moves (finite translations, then one to infinity, recursively)
+    /// with the puzzle's level: exact and off the grid; exit 2 when no plan exists within
+    /// the bounds.
+    Disassemble(commands::disassemble::DisassembleArgs),
     /// Every direction along which one part leaves another: exact regions, sliding arcs,
     /// isolated directions, free area and the direction of largest clearance.
     Separate(commands::separate::SeparateArgs),
@@ -211,6 +215,7 @@ fn main() -> ExitCode {
         Command::Partition(args) => commands::partition::run(args, &cli.global),
         Command::Decompose(args) => commands::decompose::run(args, &cli.global),
         Command::Sequence(args) => commands::sequence::run(args, &cli.global),
+        Command::Disassemble(args) => commands::disassemble::run(args, &cli.global),
         Command::Separate(args) => commands::separate::run(args, &cli.global),
         Command::Place(args) => commands::place::run(args, &cli.global),
         Command::Stack(args) => commands::stack::run(args, &cli.global),
@@ -233,6 +238,7 @@ fn step_input(command: &Command) -> Option<&std::path::Path> {
         Command::Check(a) => &a.assembly,
         Command::Partition(a) => &a.assembly,
         Command::Sequence(a) => &a.assembly,
+        Command::Disassemble(a) => &a.assembly,
         Command::Decompose(a) => &a.assembly,
         Command::Separate(a) => a.inputs.first()?.as_ref(),
         Command::Place(a) => a.inputs.first()?.as_ref(),

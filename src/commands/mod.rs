@@ -3,6 +3,7 @@
 pub mod batch;
 pub mod check;
 pub mod decompose;
+pub mod disassemble;
 pub mod load;
 pub mod partition;
 pub mod place;

@@ -13,6 +13,7 @@
 
 pub mod check;
 pub mod decompose;
+pub mod disassemble;
 pub mod facts;
 pub mod gate;
 pub mod partition;

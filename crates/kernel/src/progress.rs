@@ -83,6 +83,9 @@ pub mod phases {
     pub const SEQUENCE: &str = "sequence steps";
     /// apart-stack's `stack_with`: parts placed, of the count asked for.
     pub const STACKING: &str = "stacking";
+    /// apart-plan's `disassemble_with`: states of the current subassembly's search
+    /// explored, of the state limit.
+    pub const MOVES: &str = "move states";
 }
 
 /// A progress callback and a stop flag, shared by a planner and its caller (see the

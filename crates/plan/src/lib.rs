@@ -49,6 +49,7 @@ pub mod clearance;
 mod cull;
 pub mod dbg;
 pub mod motion_space;
+pub mod moves;
 mod pairs;
 pub mod partition;
 pub mod progress;
@@ -60,6 +61,7 @@ pub mod store;
 pub use along::{dbg_along, partition_first, DirectionAnswer, DirectionQuery, QueryStats};
 pub use dbg::{BitGraph, Dbg};
 pub use motion_space::{CellKind, MotionSpace, OverlayEstimate};
+pub use moves::{disassemble, GroupSearch, Move, MoveOptions, MovePlan, SearchEnd};
 pub use partition::{
     dbg_at, partition, partition_pieces, partition_pieces_with, partition_subset,
     partition_subset_with, MovingSet, Options, Partitioning, Solution, Stats,
