@@ -2,7 +2,7 @@
 
 Load an assembly (:func:`load`, :meth:`Assembly.from_meshes`,
 :meth:`Assembly.from_trimesh`), then ask it: :meth:`Assembly.check`,
-:meth:`Assembly.partition`, :meth:`Assembly.sequence`, :func:`separate`,
+:meth:`Assembly.partition`, :meth:`Assembly.sequence`, :func:`disassemble`, :func:`separate`,
 :func:`place`, :func:`stack`; pictures with :meth:`Assembly.render`,
 :meth:`Sequence.to_glb` and :meth:`Sequence.to_html`. STEP assemblies load with
 ``load("x.step")`` when the ``step`` extra is installed (:mod:`apart.step`). Answers are
@@ -18,6 +18,7 @@ geometry is the Rust library's, called through the compiled module ``apart._apar
 from ._core import (
     UNITS,
     Assembly,
+    disassemble,
     load,
     memory_budget,
     memory_in_use,
@@ -38,6 +39,8 @@ from ._errors import (
 from ._results import (
     CheckReport,
     DirectionAnswer,
+    Disassembly,
+    Move,
     MovingSet,
     PartInfo,
     Partition,
@@ -57,6 +60,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Assembly",
     "load",
+    "disassemble",
     "separate",
     "place",
     "stack",
@@ -78,6 +82,8 @@ __all__ = [
     "Partition",
     "Problem",
     "Separation",
+    "Disassembly",
+    "Move",
     "Sequence",
     "Solution",
     "Step",

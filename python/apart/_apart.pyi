@@ -96,6 +96,17 @@ class Assembly:
         timeout: Optional[float],
     ) -> str:
         """Positions of ``part`` among the others (``apart place --json``)."""
+    def disassemble_json(
+        self,
+        *,
+        axes: bool,
+        max_moves: Optional[int],
+        max_states: Optional[int],
+        symmetry: bool,
+        progress: Optional[ProgressCallback],
+        timeout: Optional[float],
+    ) -> str:
+        """A plan of several moves with the puzzle's level, as JSON."""
     def separate_json(
         self,
         a: str,

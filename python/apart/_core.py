@@ -12,8 +12,8 @@ import numpy as np
 
 from . import _apart
 from ._errors import InputError
-from ._results import (CheckReport, DirectionAnswer, Partition, PlaceResult, Problem,
-                       Separation, Sequence, StackPlan)
+from ._results import (CheckReport, DirectionAnswer, Disassembly, Partition, PlaceResult,
+                       Problem, Separation, Sequence, StackPlan)
 
 ProgressArg = Union[None, bool, Callable[[str, int, int], Any]]
 PathLike = Union[str, "os.PathLike[str]"]
@@ -551,6 +551,25 @@ class Assembly:
                               candidates=candidates, timeout=_timeout(timeout)))
         return PlaceResult(raw)
 
+    def disassemble(self, *, axes: bool = False, max_moves: Optional[int] = None,
+                    max_states: Optional[int] = None, symmetry: bool = True,
+                    progress: ProgressArg = None,
+                    timeout: Optional[float] = None) -> Disassembly:
+        """A plan of several moves with the puzzle's level (``apart disassemble``):
+        finite translations (exact rationals, off the grid), then one to infinity,
+        recursively on the separated groups. ``axes`` allows only moves along the axes
+        (on voxel puzzles, BurrTools' level); ``max_moves`` (default 200) bounds each
+        subassembly's moves, ``max_states`` (default 2,000,000) its search; ``symmetry``
+        makes translated copies of one part interchangeable. A plan that is not
+        ``complete`` says why in ``verdict`` (exhaustive, or cut off by a bound)."""
+        for name, v in (("max_moves", max_moves), ("max_states", max_states)):
+            if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < 1):
+                raise InputError(f"{name} must be an integer of 1 or more, not {v!r}")
+        raw = json.loads(_run(self._inner.disassemble_json, progress, axes=bool(axes),
+                              max_moves=max_moves, max_states=max_states,
+                              symmetry=bool(symmetry), timeout=_timeout(timeout)))
+        return Disassembly(raw)
+
     def separate(self, a: str, b: str, *, progress: ProgressArg = None,
                  timeout: Optional[float] = None) -> Separation:
         """Every direction along which part ``a`` leaves part ``b`` (``apart separate``)."""
@@ -660,6 +679,15 @@ def place(assembly: Union[PathLike, Assembly], part: str, *, strict: bool = Fals
                             timeout=None, decompose_all=True, **opts)
         assembly = Assembly._wrap(inner)
     return assembly.place(part, **options)
+
+
+def disassemble(assembly: Union[PathLike, Assembly], **options: Any) -> Disassembly:
+    """A plan of several moves with the puzzle's level for ``assembly`` (an
+    :class:`Assembly`, or a path loaded as ``apart disassemble`` loads it); the options
+    are :meth:`Assembly.disassemble`'s."""
+    if not isinstance(assembly, Assembly):
+        assembly = load(assembly)
+    return assembly.disassemble(**options)
 
 
 def separate(assembly: Assembly, a: str, b: str, **options: Any) -> Separation:

@@ -4,9 +4,10 @@ the command line's ``--json`` output, and gives it back with ``to_dict()``."""
 from __future__ import annotations
 
 import copy
+import math
 import os
 from fractions import Fraction
-from typing import Any, Dict, Iterator, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -629,3 +630,84 @@ class PlaceResult(_Answer):
         n, k = len(self.candidates), len(self.fixed)
         return (f"<PlaceResult {self.moving!r}: {n} position{'s' if n != 1 else ''} among "
                 f"{k} fixed part{'s' if k != 1 else ''}, best {self.candidates[0]!r}>")
+
+
+class Move(_Answer):
+    """One move of a plan of moves (``apart disassemble``): ``moving`` translate by
+    ``distance`` times ``exact_direction`` (input units), or to infinity."""
+
+    subassembly: Tuple[str, ...]
+    moving: Tuple[str, ...]
+    direction: np.ndarray
+    exact_direction: ExactDirection
+    distance: Union[Fraction, float]
+    positions: Dict[str, np.ndarray]
+    exact_positions: Dict[str, Tuple[Fraction, Fraction, Fraction]]
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self._raw = raw
+        self.subassembly = tuple(raw["subassembly"])
+        self.moving = tuple(raw["moving"])
+        self.direction = _vec(raw["direction"])
+        self.exact_direction = _exact(raw["exact_direction"])
+        d = raw["distance"]
+        self.distance = math.inf if d == "infinity" else Fraction(d)
+        self.positions = {k: _vec(v) for k, v in raw["positions"].items()}
+        self.exact_positions = {
+            k: (Fraction(v[0]), Fraction(v[1]), Fraction(v[2]))
+            for k, v in raw["exact_positions"].items()
+        }
+
+    @property
+    def to_infinity(self) -> bool:
+        """The move separates its subassembly."""
+        return self.distance == math.inf
+
+    def __repr__(self) -> str:
+        how = "to infinity" if self.to_infinity else f"by {self.distance} x"
+        return f"Move({list(self.moving)} {how} {_fmt_dir(self.exact_direction)})"
+
+
+class Disassembly(_Facts):
+    """A plan of several moves (``apart disassemble``): finite translations, then one to
+    infinity, recursively on the separated groups; ``level`` counts the moves up to and
+    including the first move to infinity. Iterating gives the moves in order."""
+
+    status: str
+    level: Optional[int]
+    complete: bool
+    verdict: Optional[str]
+    model: str
+    parts: Tuple[str, ...]
+    moves: List[Move]
+    states_explored: int
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self._raw = raw
+        self.status = raw["status"]
+        self.level = raw["level"]
+        self.complete = raw["complete"]
+        self.verdict = raw.get("verdict")
+        self.model = raw["model"]
+        self.parts = tuple(raw["parts"])
+        self.moves = [Move(m) for m in raw["moves"]]
+        self.states_explored = raw["states_explored"]
+
+    @property
+    def searches(self) -> List[Dict[str, Any]]:
+        """Every subassembly's search: its parts, level, states and how it ended."""
+        return self._raw["searches"]
+
+    @property
+    def stopped(self) -> Optional[Dict[str, Any]]:
+        """Why and when a partial plan stopped (None when it ran to its end)."""
+        return self._raw.get("stopped")
+
+    def __iter__(self) -> Iterator[Move]:
+        return iter(self.moves)
+
+    def __len__(self) -> int:
+        return len(self.moves)
+
+    def __repr__(self) -> str:
+        return f"Disassembly(level={self.level}, moves={len(self.moves)}, complete={self.complete})"

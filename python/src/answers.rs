@@ -1,5 +1,5 @@
 //! The answers as JSON values, field for field as the command line's `--json` prints
-//! them (`apart check`, `partition`, `sequence`, `separate`, `place`, `stack`), so that the Python
+//! them (`apart check`, `partition`, `sequence`, `disassemble`, `separate`, `place`, `stack`), so that the Python
 //! objects and the command line say the same thing. A partition lists what the command
 //! line lists ([`Listing`]): by default at most 20 moving sets with at most 5 solutions
 //! of each kind, every solution still counted.
@@ -109,5 +109,18 @@ pub fn stack(
 ) -> Result<Value, JobError> {
     let mut a = apart_jobs::stack::stack(loaded, opts, progress)?;
     a.seconds = a.stats.take().map(|s| s.seconds.total);
+    Ok(serde_json::to_value(a).unwrap_or(Value::Null))
+}
+
+/// A plan of several moves, with the seconds it took.
+pub fn disassemble(
+    loaded: &Loaded,
+    units: Option<&str>,
+    opts: &apart_plan::MoveOptions,
+    progress: &Progress,
+) -> Result<Value, JobError> {
+    let t = std::time::Instant::now();
+    let mut a = apart_jobs::disassemble::disassemble(loaded, units, opts, progress)?;
+    a.stats.seconds.total = Some(t.elapsed().as_secs_f64());
     Ok(serde_json::to_value(a).unwrap_or(Value::Null))
 }

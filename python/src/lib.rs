@@ -362,6 +362,45 @@ impl Assembly {
         Ok((answer.to_string(), plan))
     }
 
+    /// A plan of several moves with the puzzle's level (`apart disassemble --json`), as
+    /// JSON text.
+    #[pyo3(signature = (*, axes, max_moves, max_states, symmetry, progress, timeout))]
+    #[allow(clippy::too_many_arguments)]
+    fn disassemble_json(
+        &self,
+        py: Python<'_>,
+        axes: bool,
+        max_moves: Option<i64>,
+        max_states: Option<i64>,
+        symmetry: bool,
+        progress: Option<Py<PyAny>>,
+        timeout: Option<f64>,
+    ) -> PyResult<String> {
+        errors::require_valid(py, &self.loaded)?;
+        let timeout = args::timeout(py, timeout)?;
+        let defaults = apart_plan::MoveOptions::default();
+        let opts = apart_plan::MoveOptions {
+            axes,
+            max_moves: args::positive(py, "max_moves", max_moves)?.unwrap_or(defaults.max_moves),
+            max_states: args::positive(py, "max_states", max_states)?
+                .unwrap_or(defaults.max_states),
+            symmetry,
+        };
+        let loaded = self.loaded.clone();
+        let units = self.units.clone();
+        let limits = Limits {
+            callback: progress,
+            timeout,
+            stoppable: true,
+        };
+        let (answer, stop) = run(py, limits, move |p| {
+            answers::disassemble(&loaded, units.as_deref(), &opts, p)
+        })?;
+        let mut answer = answer.map_err(|e| errors::job_error(py, e, &stop))?;
+        work::mark(&mut answer, &stop);
+        Ok(answer.to_string())
+    }
+
     /// Every direction along which part `a` leaves part `b` (`apart separate --json`),
     /// as JSON text.
     #[pyo3(signature = (a, b, *, progress, timeout))]
