@@ -31,6 +31,9 @@
 //! - [`winding`]: the independent oracle for that rule: exact winding numbers of
 //!   points (`i128`, a symbolically perturbed ray) and a seeded Monte Carlo volume
 //!   with a confidence bound.
+//! - [`voxel_puzzles`]: the level of voxel interlocking puzzles by exhaustive search
+//!   over moves of whole steps, with a witness plan; [`voxel_generate`]: puzzles of a
+//!   chosen level by hill climbing on that level, and their boundary meshes.
 //! - [`oracle`]: whether one convex piece sweeping along a direction meets another's
 //!   interior, by an exact linear program generic over the caller's rationals.
 
@@ -46,6 +49,7 @@ pub mod solids;
 mod soup;
 pub mod soups;
 pub mod torus;
+pub mod voxel_generate;
 pub mod voxel_puzzles;
 pub mod winding;
 
