@@ -18,9 +18,15 @@
 //! exhaustive and exact: a puzzle whose search space is exhausted without a separating
 //! move has no level.
 //!
+//! The search looks up, for each ordered pair of pieces, the table of relative offsets at
+//! which they share a cell (computed once from the cells), so a state costs a few table
+//! look-ups per subset and direction; the tests check it against the first, plain
+//! version that hashes every cell of every state. [`solve`] also returns a witness plan,
+//! and [`replay`] checks any plan with plain sets of cells.
+//!
 //! [`random_puzzle`] cuts a box of cells into pieces at random (seeded), for property
 //! tests. Pieces grown at random come apart in one move (300 seeds of 4 pieces in a
-//! 3×3×3 box: all level 1); puzzles of higher levels need a constructive generator.
+//! 3×3×3 box: all level 1); [`crate::voxel_generate`] climbs to higher levels.
 
 use crate::solids::Lcg;
 use std::collections::HashMap;
