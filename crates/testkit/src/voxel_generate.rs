@@ -10,8 +10,11 @@
 //! of steps) does not drop, nor, at the same level, the number of separating moves from
 //! the states one move short of it rise (fewer ways out lead to longer ones); it stops
 //! at the first puzzle of the target level or more. Everything is deterministic from the
-//! seed. Measured: in a 4×4×4 box with 5 pieces a level of 6 to 8 within 100 000 changes
-//! for most seeds (a few seconds), 10 for some; 6×6×6 with 6 pieces reached 10.
+//! seed. Measured (`write_voxel_puzzles --survey`: 8 seeds, 100 000 changes, aiming at
+//! 12, release build): 4×4×4 with 4 pieces reaches levels 5 to 9 (about 3 s a seed),
+//! with 5 pieces 5 to 10; 5×5×5 with 6 pieces 6 to 13 (about 4 s); 6×6×6 with 6 pieces
+//! 3 to 13 and with 8 pieces 5 to 12 (8 to 15 s) — some seeds stall, so callers try
+//! several.
 
 use crate::solids::{rectilinear, IntMesh, Lcg};
 use crate::voxel_puzzles::{level_and_exits, random_puzzle, Cell};
@@ -32,6 +35,19 @@ const FACES: [Cell; 6] = [
 /// least `target_level`, with that level, from `seed`, trying at most `budget` changes;
 /// `None` when the budget runs out first.
 pub fn puzzle_of_level(
+    dims: [i64; 3],
+    count: usize,
+    target_level: usize,
+    seed: u64,
+    budget: usize,
+) -> Option<(Vec<Vec<Cell>>, usize)> {
+    climb(dims, count, target_level, seed, budget).filter(|(_, l)| *l >= target_level)
+}
+
+/// The climb of [`puzzle_of_level`]: the puzzle it ends with (at `target_level` or
+/// when the budget runs out) and its level; `None` only when no admissible starting
+/// partition was found (pieces too small for the box).
+pub fn climb(
     dims: [i64; 3],
     count: usize,
     target_level: usize,
@@ -118,7 +134,7 @@ pub fn puzzle_of_level(
             }
         }
     }
-    (current.0 >= target_level).then(|| (pieces_of(&owner), current.0))
+    Some((pieces_of(&owner), current.0))
 }
 
 /// The cells are face-connected (and there is at least one).
@@ -283,9 +299,14 @@ mod tests {
             let plan = plan.expect("a plan");
             assert_eq!(plan.len(), l);
             assert!(replay(&p, &plan), "seed {seed}: {plan:?}");
-            // Unit steps never do better.
-            if let Level::Moves(one) = level(&p, Steps::One, 1_000_000) {
+            // Unit steps never do better, and their plan moves one cell at a time.
+            let (one, unit_plan) = solve(&p, Steps::One, 1_000_000);
+            if let Level::Moves(one) = one {
                 assert!(one >= l);
+                let unit_plan = unit_plan.expect("a plan");
+                assert_eq!(unit_plan.len(), one);
+                assert!(unit_plan[..one - 1].iter().all(|m| m.steps == Some(1)));
+                assert!(replay(&p, &unit_plan));
             }
             levels.push(l);
         }
