@@ -198,9 +198,11 @@ fn hull(mut pts: Vec<[i64; 2]>) -> Vec<[i64; 2]> {
 /// The interiors of two prisms meet: their height ranges overlap with positive length
 /// and no edge line of either section separates the sections (exact integers).
 pub fn interiors_meet(a: &Prism, b: &Prism) -> bool {
-    if a.z[1] <= b.z[0] || b.z[1] <= a.z[0] {
-        return false;
-    }
+    a.z[0] < b.z[1] && b.z[0] < a.z[1] && sections_meet(&a.poly, &b.poly)
+}
+
+/// The interiors of two convex polygons meet (no edge line of either separates them).
+fn sections_meet(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
     let separates = |p: &[[i64; 2]], q: &[[i64; 2]]| {
         (0..p.len()).any(|i| {
             let (s, e) = (p[i], p[(i + 1) % p.len()]);
@@ -208,7 +210,61 @@ pub fn interiors_meet(a: &Prism, b: &Prism) -> bool {
             q.iter().all(|&x| cross(s, e, x) <= 0)
         })
     };
-    !separates(&a.poly, &b.poly) && !separates(&b.poly, &a.poly)
+    !separates(a, b) && !separates(b, a)
+}
+
+/// The outward normals (reduced to coprime integers, without repeats) of the faces of
+/// `moving` that touch a face of `fixed` over a positive area: a translation with a
+/// positive component along any of them pushes into `fixed` at once.
+pub fn contact_normals(moving: &[Prism], fixed: &[Prism]) -> Vec<[i64; 3]> {
+    let mut normals = Vec::new();
+    for a in moving {
+        for b in fixed {
+            if sections_meet(&a.poly, &b.poly) {
+                if a.z[1] == b.z[0] {
+                    normals.push([0, 0, 1]);
+                }
+                if a.z[0] == b.z[1] {
+                    normals.push([0, 0, -1]);
+                }
+            }
+            if !(a.z[0] < b.z[1] && b.z[0] < a.z[1]) {
+                continue;
+            }
+            for i in 0..a.poly.len() {
+                let (p, q) = (a.poly[i], a.poly[(i + 1) % a.poly.len()]);
+                for j in 0..b.poly.len() {
+                    let (r, s) = (b.poly[j], b.poly[(j + 1) % b.poly.len()]);
+                    if cross(p, q, r) != 0 || cross(p, q, s) != 0 {
+                        continue;
+                    }
+                    // Opposite edges on one line overlapping over a positive length.
+                    let e = [q[0] - p[0], q[1] - p[1]];
+                    let at = |x: [i64; 2]| i128::from(e[0] * (x[0] - p[0]) + e[1] * (x[1] - p[1]));
+                    let len = at(q);
+                    let (lo, hi) = (at(s).min(at(r)), at(s).max(at(r)));
+                    if at(s) < at(r) && lo.max(0) < hi.min(len) {
+                        normals.push(reduced([e[1], -e[0], 0]));
+                    }
+                }
+            }
+        }
+    }
+    normals.sort_unstable();
+    normals.dedup();
+    normals
+}
+
+/// The vector divided by the greatest common divisor of its entries.
+fn reduced(v: [i64; 3]) -> [i64; 3] {
+    let gcd = |mut a: i64, mut b: i64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a.abs()
+    };
+    let g = gcd(gcd(v[0], v[1]), v[2]).max(1);
+    v.map(|c| c / g)
 }
 
 impl TwoMoves {
@@ -520,6 +576,50 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn the_moving_part_can_start_along_its_first_direction_only() {
+        let dot = |a: [i64; 3], b: [i64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        for a in all() {
+            let normals = contact_normals(&a.parts[a.moving].pieces, &a.parts[1 - a.moving].pieces);
+            let f = a.first;
+            // `first` pushes into no contact face, and some contact face opposes it.
+            assert!(normals.iter().all(|&n| dot(n, f) <= 0), "{}", a.name);
+            assert!(normals.iter().any(|&n| dot(n, f) < 0), "{}", a.name);
+            // Contact faces facing both ways along two independent directions across
+            // `first`: a direction pushing into none is a positive multiple of `first`
+            // (and that move is finite, by the sweep test), so no single translation
+            // separates the parts.
+            let across: Vec<[i64; 3]> = normals
+                .iter()
+                .copied()
+                .filter(|&n| dot(n, f) == 0 && normals.contains(&n.map(|c| -c)))
+                .collect();
+            let independent = across.iter().any(|&u| {
+                across.iter().any(|&v| {
+                    let c = [
+                        u[1] * v[2] - u[2] * v[1],
+                        u[2] * v[0] - u[0] * v[2],
+                        u[0] * v[1] - u[1] * v[0],
+                    ];
+                    c != [0, 0, 0]
+                })
+            });
+            assert!(independent, "{}: {normals:?}", a.name);
+        }
+    }
+
+    #[test]
+    fn contact_normals_of_a_cube_in_a_corner() {
+        let cube = [Prism::cuboid([1, 1, 1], [2, 2, 2])];
+        let walls = [
+            Prism::cuboid([0, 0, 0], [3, 3, 1]),
+            Prism::cuboid([0, 0, 1], [1, 3, 3]),
+            // Touching only along an edge: no contact face.
+            Prism::cuboid([2, 2, 1], [3, 3, 3]),
+        ];
+        assert_eq!(contact_normals(&cube, &walls), vec![[-1, 0, 0], [0, 0, -1]]);
     }
 
     #[test]
