@@ -13,7 +13,7 @@
 //! - [`l_slot`]: a block under two lips in a channel running along (1, 1, 0) in the
 //!   xy-plane; slid to the far end, past the lips, it lifts out along +z.
 //! - [`keyhole`]: a key (a square head under a plate, a shaft up through a slot)
-//!   slides along −x to the keyhole's round end, then lifts out.
+//!   slides along −x to the keyhole's wide (square) end, then lifts out.
 //! - [`drawer`]: a drawer in a cabinet behind a lip at the front bottom edge: up over
 //!   the lip, then out along −y.
 //! - [`diagonal_two_move`]: a block in a covered channel along (2, 1, 0) slides to a
