@@ -31,6 +31,12 @@
 //! - [`winding`]: the independent oracle for that rule: exact winding numbers of
 //!   points (`i128`, a symbolically perturbed ray) and a seeded Monte Carlo volume
 //!   with a confidence bound.
+//! - [`voxel_puzzles`]: the level of voxel interlocking puzzles by exhaustive search
+//!   over moves of whole steps, with a witness plan; [`voxel_generate`]: puzzles of a
+//!   chosen level by hill climbing on that level, and their boundary meshes.
+//! - [`moves`]: two-part assemblies off the grid that come apart in two moves and not
+//!   in one (a slot at 45°, a keyhole, a drawer behind a lip, a slanted channel), with
+//!   the first move's direction and extent known by construction.
 //! - [`oracle`]: whether one convex piece sweeping along a direction meets another's
 //!   interior, by an exact linear program generic over the caller's rationals.
 
@@ -38,6 +44,7 @@ pub mod assemblies;
 pub mod curved;
 pub mod defects;
 pub mod joints;
+pub mod moves;
 pub mod oracle;
 mod scratch;
 pub mod shapes;
@@ -46,6 +53,7 @@ pub mod solids;
 mod soup;
 pub mod soups;
 pub mod torus;
+pub mod voxel_generate;
 pub mod voxel_puzzles;
 pub mod winding;
 

@@ -18,12 +18,18 @@
 //! exhaustive and exact: a puzzle whose search space is exhausted without a separating
 //! move has no level.
 //!
+//! The search looks up, for each ordered pair of pieces, the table of relative offsets at
+//! which they share a cell (computed once from the cells), so a state costs a few table
+//! look-ups per subset and direction; the tests check it against the first, plain
+//! version that hashes every cell of every state. [`solve`] also returns a witness plan,
+//! and [`replay`] checks any plan with plain sets of cells.
+//!
 //! [`random_puzzle`] cuts a box of cells into pieces at random (seeded), for property
 //! tests. Pieces grown at random come apart in one move (300 seeds of 4 pieces in a
-//! 3×3×3 box: all level 1); puzzles of higher levels need a constructive generator.
+//! 3×3×3 box: all level 1); [`crate::voxel_generate`] climbs to higher levels.
 
 use crate::solids::Lcg;
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::HashMap;
 
 /// A grid cell (the unit cube with this minimum corner).
 pub type Cell = [i64; 3];
@@ -57,51 +63,123 @@ const AXES: [[i64; 3]; 6] = [
     [0, 0, -1],
 ];
 
+/// One move of a plan: the pieces that move (never piece 0, which the search holds
+/// still), the axis direction, and how many steps (`None`: for ever, the separating move).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Move {
+    /// Indices of the moving pieces, increasing.
+    pub pieces: Vec<usize>,
+    /// The direction, one of ±x, ±y, ±z.
+    pub dir: Cell,
+    /// Whole steps along `dir`, or `None` for the last move, which goes on for ever.
+    pub steps: Option<i64>,
+}
+
 /// The level of `pieces` (at least two, cells disjoint), exploring at most `max_states`
 /// states.
 ///
 /// # Panics
 /// With fewer than two pieces, or more than 16.
 pub fn level(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> Level {
+    solve(pieces, steps, max_states).0
+}
+
+/// The level and, when there is one, a witness plan of that many moves found by the
+/// same search: replaying it from the assembled puzzle, every move is free and the last
+/// separates.
+///
+/// # Panics
+/// With fewer than two pieces, or more than 16.
+pub fn solve(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> (Level, Option<Vec<Move>>) {
+    let (level, plan, _) = search(pieces, steps, max_states, false);
+    (level, plan)
+}
+
+/// The level (moves of any number of steps) and how many separating moves there are
+/// from the states one move short of it (pairs of a state and a subset and direction
+/// that can go on for ever): the fewer, the harder the last move is to find. `None`
+/// without a level within `max_states` states.
+pub fn level_and_exits(pieces: &[Vec<Cell>], max_states: usize) -> Option<(usize, usize)> {
+    match search(pieces, Steps::Any, max_states, true) {
+        (Level::Moves(l), _, exits) => Some((l, exits)),
+        _ => None,
+    }
+}
+
+/// The breadth-first search; with `count_exits`, it finishes the layer where the first
+/// separating move was found and counts the separating moves from that layer.
+fn search(
+    pieces: &[Vec<Cell>],
+    steps: Steps,
+    max_states: usize,
+    count_exits: bool,
+) -> (Level, Option<Vec<Move>>, usize) {
     let n = pieces.len();
     assert!((2..=16).contains(&n), "2 to 16 pieces");
-    let start: Vec<Cell> = vec![[0; 3]; n];
-    let mut seen: HashSet<Vec<Cell>> = HashSet::from([start.clone()]);
-    let mut queue = VecDeque::from([(start, 0usize)]);
-    // Bounding extent: a subset that has moved past every other piece's cells is free.
-    let span = pieces
-        .iter()
-        .flatten()
-        .flat_map(|c| c.iter().copied())
-        .fold((i64::MAX, i64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
-    let reach = span.1 - span.0 + 2;
-    while let Some((state, depth)) = queue.pop_front() {
-        let occupied = occupancy(pieces, &state);
-        // Subsets without piece 0 (moving a subset with it is moving the rest back).
-        for mask in 1u32..(1 << n) - 1 {
-            if mask & 1 == 1 {
-                continue;
+    let table = Collisions::new(pieces);
+    let start: State = [[0; 3]; 16];
+    let mut seen: HashMap<State, usize> = HashMap::from([(start, 0)]);
+    // Every state found, with the index of the state it was reached from and the move.
+    let mut states: Vec<(State, usize, u32, Cell, i64)> = vec![(start, 0, 0, [0; 3], 0)];
+    let mut depth = vec![0usize];
+    let mut head = 0;
+    let mut found: Option<(usize, Vec<Move>)> = None;
+    let mut exits = 0;
+    while head < states.len() {
+        if let Some((l, plan)) = &found {
+            if depth[head] + 1 > *l {
+                return (Level::Moves(*l), Some(plan.clone()), exits);
             }
+        }
+        let state = states[head].0;
+        // Subsets without piece 0 (moving a subset with it is moving the rest back).
+        for mask in (2u32..(1 << n) - 1).step_by(2) {
             for d in AXES {
                 let mut k = 1;
-                loop {
-                    if !fits(pieces, &state, &occupied, mask, d, k) {
+                while table.fits(&state, n, mask, d, k) {
+                    if table.escapes(&state, n, mask, d, k) {
+                        exits += 1;
+                        if found.is_none() {
+                            let mut plan = vec![mv(mask, n, d, None)];
+                            let mut at = head;
+                            while at != 0 {
+                                let (_, from, m, dir, s) = states[at];
+                                plan.push(mv(m, n, dir, Some(s)));
+                                at = from;
+                            }
+                            plan.reverse();
+                            found = Some((depth[head] + 1, plan));
+                        }
+                        if !count_exits {
+                            let (l, plan) = found.expect("just found");
+                            return (Level::Moves(l), Some(plan), exits);
+                        }
                         break;
                     }
-                    if k > 2 * reach || escapes(pieces, &state, &occupied, mask, d, k) {
-                        return Level::Moves(depth + 1);
+                    if found.is_some() {
+                        // Only the separating moves of this last layer are still counted.
+                        k += 1;
+                        if steps == Steps::One {
+                            break;
+                        }
+                        continue;
                     }
-                    let mut next = state.clone();
-                    for (i, o) in next.iter_mut().enumerate() {
+                    let mut next = state;
+                    for (i, o) in next.iter_mut().enumerate().take(n) {
                         if mask >> i & 1 == 1 {
-                            *o = [o[0] + k * d[0], o[1] + k * d[1], o[2] + k * d[2]];
+                            for a in 0..3 {
+                                let v = i64::from(o[a]) + k * d[a];
+                                o[a] = i16::try_from(v).expect("offsets fit in i16");
+                            }
                         }
                     }
-                    if seen.insert(next.clone()) {
-                        if seen.len() > max_states {
-                            return Level::Unknown;
+                    if let std::collections::hash_map::Entry::Vacant(e) = seen.entry(next) {
+                        e.insert(states.len());
+                        states.push((next, head, mask, d, k));
+                        depth.push(depth[head] + 1);
+                        if states.len() > max_states {
+                            return (Level::Unknown, None, exits);
                         }
-                        queue.push_back((next, depth + 1));
                     }
                     if steps == Steps::One {
                         break;
@@ -110,71 +188,155 @@ pub fn level(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> Level {
                 }
             }
         }
+        head += 1;
     }
-    Level::Interlocked(seen.len())
+    match found {
+        Some((l, plan)) => (Level::Moves(l), Some(plan), exits),
+        None => (Level::Interlocked(states.len()), None, exits),
+    }
 }
 
-/// Which piece holds each occupied cell in `state`.
-fn occupancy(pieces: &[Vec<Cell>], state: &[Cell]) -> HashMap<Cell, usize> {
-    let mut m = HashMap::new();
-    for (i, (p, o)) in pieces.iter().zip(state).enumerate() {
-        for c in p {
-            m.insert([c[0] + o[0], c[1] + o[1], c[2] + o[2]], i);
+/// Replays `plan` on the assembled puzzle with plain sets of cells, independently of
+/// the search: true when every finite move goes step by step without two pieces sharing
+/// a cell, every move but the last is finite, and the last can go on for ever (its
+/// pieces, pushed step by step past every other cell along its axis, never meet one).
+pub fn replay(pieces: &[Vec<Cell>], plan: &[Move]) -> bool {
+    let mut at: Vec<Vec<Cell>> = pieces.to_vec();
+    let moves = plan.len();
+    for (m, mv) in plan.iter().enumerate() {
+        let last = m + 1 == moves;
+        if last != mv.steps.is_none() || mv.pieces.is_empty() {
+            return false;
+        }
+        let fixed: HashMap<Cell, usize> = at
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !mv.pieces.contains(i))
+            .flat_map(|(i, p)| p.iter().map(move |c| (*c, i)))
+            .collect();
+        // Every coordinate is within `reach` of 0, so the last move's pieces are past
+        // every fixed cell along its axis after `2 reach + 1` steps.
+        let reach = at
+            .iter()
+            .map(|p| {
+                p.iter()
+                    .flat_map(|c| c.iter().map(|v| v.abs()))
+                    .max()
+                    .unwrap_or(0)
+            })
+            .max()
+            .unwrap_or(0);
+        let steps = mv.steps.unwrap_or(2 * reach + 1);
+        for k in 1..=steps {
+            let clash = mv.pieces.iter().any(|&i| {
+                at[i]
+                    .iter()
+                    .any(|c| fixed.contains_key(&[0, 1, 2].map(|a| c[a] + k * mv.dir[a])))
+            });
+            if clash {
+                return false;
+            }
+        }
+        for &i in &mv.pieces {
+            for c in &mut at[i] {
+                *c = [0, 1, 2].map(|a| c[a] + steps * mv.dir[a]);
+            }
         }
     }
-    m
+    moves > 0
 }
 
-/// The pieces of `mask`, moved by `k · d`, meet no cell of the others (and every
-/// intermediate step is free too, checked by the caller's increasing `k`).
-fn fits(
-    pieces: &[Vec<Cell>],
-    state: &[Cell],
-    occupied: &HashMap<Cell, usize>,
-    mask: u32,
-    d: Cell,
-    k: i64,
-) -> bool {
-    pieces.iter().zip(state).enumerate().all(|(i, (p, o))| {
-        mask >> i & 1 == 0
-            || p.iter().all(|c| {
-                let q = [
-                    c[0] + o[0] + k * d[0],
-                    c[1] + o[1] + k * d[1],
-                    c[2] + o[2] + k * d[2],
-                ];
-                occupied.get(&q).is_none_or(|&j| mask >> j & 1 == 1)
-            })
-    })
+/// Offsets of the pieces (piece 0 always at the origin; unused entries zero).
+type State = [[i16; 3]; 16];
+
+fn mv(mask: u32, n: usize, dir: Cell, steps: Option<i64>) -> Move {
+    Move {
+        pieces: (0..n).filter(|i| mask >> i & 1 == 1).collect(),
+        dir,
+        steps,
+    }
 }
 
-/// No cell of another piece lies ahead of a moving cell (beyond `k` steps) along `d`:
-/// the subset can go on for ever.
-fn escapes(
-    pieces: &[Vec<Cell>],
-    state: &[Cell],
-    occupied: &HashMap<Cell, usize>,
-    mask: u32,
-    d: Cell,
-    k: i64,
-) -> bool {
-    let axis = d.iter().position(|&v| v != 0).expect("an axis");
-    let sign = d[axis];
-    pieces.iter().zip(state).enumerate().all(|(i, (p, o))| {
-        mask >> i & 1 == 0
-            || p.iter().all(|c| {
-                let q = [
-                    c[0] + o[0] + k * d[0],
-                    c[1] + o[1] + k * d[1],
-                    c[2] + o[2] + k * d[2],
-                ];
-                !occupied.iter().any(|(r, &j)| {
-                    mask >> j & 1 == 0
-                        && (0..3).all(|a| a == axis || r[a] == q[a])
-                        && (r[axis] - q[axis]) * sign > 0
-                })
+/// For every ordered pair of pieces `(i, j)`, the relative offsets `o_i − o_j` at which
+/// they share a cell: `{b − a : a ∈ P_i, b ∈ P_j}`, as a dense table over the cube
+/// `[−e, e]³` (outside it no cells can meet).
+struct Collisions {
+    n: usize,
+    e: i64,
+    side: i64,
+    meet: Vec<Vec<bool>>,
+}
+
+impl Collisions {
+    fn new(pieces: &[Vec<Cell>]) -> Collisions {
+        let n = pieces.len();
+        let (lo, hi) = pieces
+            .iter()
+            .flatten()
+            .flat_map(|c| c.iter().copied())
+            .fold((i64::MAX, i64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let e = (hi - lo).max(0);
+        let side = 2 * e + 1;
+        let mut meet = vec![vec![false; (side * side * side) as usize]; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                for a in &pieces[i] {
+                    for b in &pieces[j] {
+                        let r = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                        let idx = ((r[0] + e) * side + r[1] + e) * side + r[2] + e;
+                        meet[i * n + j][idx as usize] = true;
+                    }
+                }
+            }
+        }
+        Collisions { n, e, side, meet }
+    }
+
+    /// Pieces `i` and `j` share a cell when `o_i − o_j = r`.
+    fn meets(&self, i: usize, j: usize, r: Cell) -> bool {
+        let e = self.e;
+        if r.iter().any(|v| v.abs() > e) {
+            return false;
+        }
+        let idx = ((r[0] + e) * self.side + r[1] + e) * self.side + r[2] + e;
+        self.meet[i * self.n + j][idx as usize]
+    }
+
+    /// The relative offset of moving piece `i` (moved by `k · d`) to fixed piece `j`.
+    fn rel(state: &State, i: usize, j: usize, d: Cell, k: i64) -> Cell {
+        [0, 1, 2].map(|a| i64::from(state[i][a]) + k * d[a] - i64::from(state[j][a]))
+    }
+
+    /// The pieces of `mask`, moved by `k · d`, meet no cell of the others (every
+    /// intermediate step is free too, checked by the caller's increasing `k`).
+    fn fits(&self, state: &State, n: usize, mask: u32, d: Cell, k: i64) -> bool {
+        (0..n).filter(|i| mask >> i & 1 == 1).all(|i| {
+            (0..n)
+                .filter(|j| mask >> j & 1 == 0)
+                .all(|j| !self.meets(i, j, Self::rel(state, i, j, d, k)))
+        })
+    }
+
+    /// After `k` steps the subset can go on along `d` for ever: no pair meets at any
+    /// later step (once the offset is past `e` along `d` it has left the table for good).
+    fn escapes(&self, state: &State, n: usize, mask: u32, d: Cell, k: i64) -> bool {
+        (0..n).filter(|i| mask >> i & 1 == 1).all(|i| {
+            (0..n).filter(|j| mask >> j & 1 == 0).all(|j| {
+                let mut r = Self::rel(state, i, j, d, k);
+                // Step on until the offset is past the table along the axis.
+                loop {
+                    if self.meets(i, j, r) {
+                        return false;
+                    }
+                    let along: i64 = (0..3).map(|a| r[a] * d[a]).sum();
+                    if along > self.e {
+                        return true;
+                    }
+                    r = [r[0] + d[0], r[1] + d[1], r[2] + d[2]];
+                }
             })
-    })
+        })
+    }
 }
 
 /// A random puzzle: the box `dims` of cells cut into `count` pieces grown from random
@@ -226,6 +388,162 @@ pub fn random_puzzle(dims: [i64; 3], count: usize, seed: u64) -> Vec<Vec<Cell>> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::collections::{HashSet, VecDeque};
+
+    // The first, slow and plain version of the search (a hash map of occupied cells
+    // per state), kept to check the table-driven one on random puzzles.
+    fn naive_level(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> Level {
+        let n = pieces.len();
+        assert!((2..=16).contains(&n), "2 to 16 pieces");
+        let start: Vec<Cell> = vec![[0; 3]; n];
+        let mut seen: HashSet<Vec<Cell>> = HashSet::from([start.clone()]);
+        let mut queue = VecDeque::from([(start, 0usize)]);
+        // Bounding extent: a subset that has moved past every other piece's cells is free.
+        let span = pieces
+            .iter()
+            .flatten()
+            .flat_map(|c| c.iter().copied())
+            .fold((i64::MAX, i64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let reach = span.1 - span.0 + 2;
+        while let Some((state, depth)) = queue.pop_front() {
+            let occupied = occupancy(pieces, &state);
+            // Subsets without piece 0 (moving a subset with it is moving the rest back).
+            for mask in 1u32..(1 << n) - 1 {
+                if mask & 1 == 1 {
+                    continue;
+                }
+                for d in AXES {
+                    let mut k = 1;
+                    loop {
+                        if !fits(pieces, &state, &occupied, mask, d, k) {
+                            break;
+                        }
+                        if k > 2 * reach || escapes(pieces, &state, &occupied, mask, d, k) {
+                            return Level::Moves(depth + 1);
+                        }
+                        let mut next = state.clone();
+                        for (i, o) in next.iter_mut().enumerate() {
+                            if mask >> i & 1 == 1 {
+                                *o = [o[0] + k * d[0], o[1] + k * d[1], o[2] + k * d[2]];
+                            }
+                        }
+                        if seen.insert(next.clone()) {
+                            if seen.len() > max_states {
+                                return Level::Unknown;
+                            }
+                            queue.push_back((next, depth + 1));
+                        }
+                        if steps == Steps::One {
+                            break;
+                        }
+                        k += 1;
+                    }
+                }
+            }
+        }
+        Level::Interlocked(seen.len())
+    }
+
+    /// Which piece holds each occupied cell in `state`.
+    fn occupancy(pieces: &[Vec<Cell>], state: &[Cell]) -> HashMap<Cell, usize> {
+        let mut m = HashMap::new();
+        for (i, (p, o)) in pieces.iter().zip(state).enumerate() {
+            for c in p {
+                m.insert([c[0] + o[0], c[1] + o[1], c[2] + o[2]], i);
+            }
+        }
+        m
+    }
+
+    /// The pieces of `mask`, moved by `k · d`, meet no cell of the others (and every
+    /// intermediate step is free too, checked by the caller's increasing `k`).
+    fn fits(
+        pieces: &[Vec<Cell>],
+        state: &[Cell],
+        occupied: &HashMap<Cell, usize>,
+        mask: u32,
+        d: Cell,
+        k: i64,
+    ) -> bool {
+        pieces.iter().zip(state).enumerate().all(|(i, (p, o))| {
+            mask >> i & 1 == 0
+                || p.iter().all(|c| {
+                    let q = [
+                        c[0] + o[0] + k * d[0],
+                        c[1] + o[1] + k * d[1],
+                        c[2] + o[2] + k * d[2],
+                    ];
+                    occupied.get(&q).is_none_or(|&j| mask >> j & 1 == 1)
+                })
+        })
+    }
+
+    /// No cell of another piece lies ahead of a moving cell (beyond `k` steps) along `d`:
+    /// the subset can go on for ever.
+    fn escapes(
+        pieces: &[Vec<Cell>],
+        state: &[Cell],
+        occupied: &HashMap<Cell, usize>,
+        mask: u32,
+        d: Cell,
+        k: i64,
+    ) -> bool {
+        let axis = d.iter().position(|&v| v != 0).expect("an axis");
+        let sign = d[axis];
+        pieces.iter().zip(state).enumerate().all(|(i, (p, o))| {
+            mask >> i & 1 == 0
+                || p.iter().all(|c| {
+                    let q = [
+                        c[0] + o[0] + k * d[0],
+                        c[1] + o[1] + k * d[1],
+                        c[2] + o[2] + k * d[2],
+                    ];
+                    !occupied.iter().any(|(r, &j)| {
+                        mask >> j & 1 == 0
+                            && (0..3).all(|a| a == axis || r[a] == q[a])
+                            && (r[axis] - q[axis]) * sign > 0
+                    })
+                })
+        })
+    }
+
+    #[test]
+    fn the_table_search_agrees_with_the_plain_one_on_generated_puzzles() {
+        let mut found = 0;
+        for seed in 0..3 {
+            if let Some((p, l)) =
+                crate::voxel_generate::puzzle_of_level([4, 4, 3], 4, 3, seed, 20_000)
+            {
+                assert!(l >= 3);
+                for steps in [Steps::Any, Steps::One] {
+                    assert_eq!(level(&p, steps, 100_000), naive_level(&p, steps, 100_000));
+                }
+                found += 1;
+            }
+        }
+        assert!(found > 0);
+    }
+
+    #[test]
+    fn the_table_search_agrees_with_the_plain_one() {
+        let mut levels = Vec::new();
+        for seed in 0..60 {
+            let p = random_puzzle([3, 3, 3], 3 + (seed % 3) as usize, seed);
+            if p.iter().any(Vec::is_empty) {
+                continue;
+            }
+            for steps in [Steps::Any, Steps::One] {
+                let fast = level(&p, steps, 20_000);
+                assert_eq!(
+                    fast,
+                    naive_level(&p, steps, 20_000),
+                    "seed {seed} {steps:?}"
+                );
+                levels.push(fast);
+            }
+        }
+        assert!(levels.len() > 60);
+    }
 
     #[test]
     fn two_stacked_cubes_come_apart_in_one_move() {
