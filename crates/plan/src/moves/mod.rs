@@ -22,9 +22,9 @@
 //!   at once along `d`: all of them up to 13 parts, beyond that the closure of each part
 //!   and the complement of what each part and the first one push.
 //! - **distances**: to infinity when nothing is ever met; otherwise the farthest free
-//!   distance, and on the way every distance where the moving parts' relative offset
-//!   crosses a facet plane of an obstacle (where contacts begin and end, and where
-//!   faces come into line); the nearest 64 of them. With `axes`, also every multiple of
+//!   distance, and on the way every distance where a contact between a moving and a
+//!   fixed part begins or ends (the moving parts' relative offset enters or leaves an
+//!   obstacle's closed set); the nearest 64 of them. With `axes`, also every multiple of
 //!   the grid step along the axis ([`directions::lattice_steps`]: the cell size of a
 //!   voxel puzzle) up to the farthest distance, when there are at most 64.
 //!
@@ -43,7 +43,7 @@ use crate::progress::Progress;
 use crate::{Part, PlanError};
 use apart_kernel::{Int, Rational, Vec3};
 use apart_pieces::Polytope;
-use obstacles::{pair_obstacles, Obstacle};
+use obstacles::{pair_obstacles, PairObstacles};
 use rayon::prelude::*;
 use search::{LocalMove, Outcome, Search, State};
 use std::collections::VecDeque;
@@ -180,7 +180,7 @@ pub fn disassemble(
     let pairs: Vec<(usize, usize)> = (0..n)
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .collect();
-    let obstacles: Vec<Vec<Obstacle>> = pairs
+    let obstacles: Vec<PairObstacles> = pairs
         .par_iter()
         .map(|&(i, j)| pair_obstacles(&parts[i].pieces, &parts[j].pieces))
         .collect::<Result<_, _>>()?;
@@ -214,10 +214,10 @@ pub fn disassemble(
             plan.complete = false;
             continue;
         }
-        let mut local: Vec<&[Obstacle]> = vec![&[]; m * m];
+        let mut local: Vec<Option<&PairObstacles>> = vec![None; m * m];
         for a in 0..m {
             for b in a + 1..m {
-                local[a * m + b] = &obstacles[index(group[a], group[b])];
+                local[a * m + b] = Some(&obstacles[index(group[a], group[b])]);
             }
         }
         let (classes, anchors) = symmetry(&group, &shapes, opts.symmetry);

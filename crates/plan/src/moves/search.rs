@@ -10,7 +10,7 @@
 //! obstacles (and at every grid step with `--axes`).
 
 use super::directions::{axes, candidates};
-use super::obstacles::{contact_normals, ray_facts, Obstacle, RayFacts};
+use super::obstacles::{contact_normals, ray_facts, PairObstacles, RayFacts};
 use crate::progress::Progress;
 use apart_kernel::{Rational, Vec3};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -49,7 +49,7 @@ pub enum Outcome {
 pub struct Search<'a> {
     /// Obstacles of local part `a` moving against `b` fixed, for `a < b` (index
     /// `a * m + b`); the offset difference they take is `p_a − p_b`.
-    pub obstacles: Vec<&'a [Obstacle]>,
+    pub obstacles: Vec<Option<&'a PairObstacles>>,
     /// Parts in the subassembly.
     pub m: usize,
     /// Only the six axis directions.
@@ -100,7 +100,7 @@ impl<'a> Search<'a> {
         for a in 0..m {
             for b in a + 1..m {
                 let r = apart_kernel::rational::sub(&s[a], &s[b]);
-                let f: RayFacts = ray_facts(self.obstacles[a * m + b], &r, d);
+                let f: RayFacts = ray_facts(self.obstacles[a * m + b].expect("a pair"), &r, d);
                 if f.forward.as_ref().is_some_and(|t| t.is_zero()) {
                     pushes[a] |= 1 << b;
                 }
@@ -130,7 +130,7 @@ impl<'a> Search<'a> {
         for a in 0..m {
             for b in a + 1..m {
                 let r = apart_kernel::rational::sub(&s[a], &s[b]);
-                contact_normals(self.obstacles[a * m + b], &r, &mut normals);
+                contact_normals(self.obstacles[a * m + b].expect("a pair"), &r, &mut normals);
             }
         }
         candidates(&normals)
@@ -358,7 +358,7 @@ fn farthest(t: &Table, set: u64) -> Option<Rational> {
     best
 }
 
-/// Where a move of `set` may stop: the facet-plane crossings before `far` (at most
+/// Where a move of `set` may stop: where contacts begin or end before `far` (at most
 /// [`MAX_STOPS`], the nearest), every grid step before it (`step`, when there are at
 /// most [`MAX_STOPS`]), and `far` itself.
 fn stops(t: &Table, set: u64, far: &Rational, step: Option<&Rational>) -> Vec<Rational> {
