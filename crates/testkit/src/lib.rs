@@ -33,7 +33,9 @@
 //!   with a confidence bound.
 //! - [`voxel_puzzles`]: the level of voxel interlocking puzzles by exhaustive search
 //!   over moves of whole steps, with a witness plan; [`voxel_generate`]: puzzles of a
-//!   chosen level by hill climbing on that level, and their boundary meshes.
+//!   chosen level by hill climbing on that level (optionally only puzzles that come
+//!   apart completely), and their boundary meshes; [`voxel_bench`]: a committed
+//!   fixture of complete puzzles of 4 to 8 pieces and levels 2 and up, for benchmarks.
 //! - [`moves`]: two-part assemblies off the grid that come apart in two moves and not
 //!   in one (a slot at 45°, a keyhole, a drawer behind a lip, a slanted channel), with
 //!   the first move's direction and extent known by construction.
@@ -53,6 +55,7 @@ pub mod solids;
 mod soup;
 pub mod soups;
 pub mod torus;
+pub mod voxel_bench;
 pub mod voxel_generate;
 pub mod voxel_puzzles;
 pub mod winding;

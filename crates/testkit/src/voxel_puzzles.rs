@@ -91,7 +91,7 @@ pub fn level(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> Level {
 /// # Panics
 /// With fewer than two pieces, or more than 16.
 pub fn solve(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> (Level, Option<Vec<Move>>) {
-    let (level, plan, _) = search(pieces, steps, max_states, false);
+    let (level, plan, _) = search(pieces, steps, max_states, false, None);
     (level, plan)
 }
 
@@ -100,19 +100,22 @@ pub fn solve(pieces: &[Vec<Cell>], steps: Steps, max_states: usize) -> (Level, O
 /// that can go on for ever): the fewer, the harder the last move is to find. `None`
 /// without a level within `max_states` states.
 pub fn level_and_exits(pieces: &[Vec<Cell>], max_states: usize) -> Option<(usize, usize)> {
-    match search(pieces, Steps::Any, max_states, true) {
+    match search(pieces, Steps::Any, max_states, true, None) {
         (Level::Moves(l), _, exits) => Some((l, exits)),
         _ => None,
     }
 }
 
 /// The breadth-first search; with `count_exits`, it finishes the layer where the first
-/// separating move was found and counts the separating moves from that layer.
+/// separating move was found and counts the separating moves from that layer, and
+/// pushes each distinct pair of a state and a separating subset of that layer, with a
+/// plan up to it, onto `last`.
 fn search(
     pieces: &[Vec<Cell>],
     steps: Steps,
     max_states: usize,
     count_exits: bool,
+    mut last: Option<&mut Vec<Exit>>,
 ) -> (Level, Option<Vec<Move>>, usize) {
     let n = pieces.len();
     assert!((2..=16).contains(&n), "2 to 16 pieces");
@@ -139,7 +142,7 @@ fn search(
                 while table.fits(&state, n, mask, d, k) {
                     if table.escapes(&state, n, mask, d, k) {
                         exits += 1;
-                        if found.is_none() {
+                        let path = || {
                             let mut plan = vec![mv(mask, n, d, None)];
                             let mut at = head;
                             while at != 0 {
@@ -148,7 +151,26 @@ fn search(
                                 at = from;
                             }
                             plan.reverse();
-                            found = Some((depth[head] + 1, plan));
+                            plan
+                        };
+                        if let Some(last) = last.as_deref_mut() {
+                            // A state's exits are pushed together.
+                            let seen = last
+                                .iter()
+                                .rev()
+                                .take_while(|e| e.state == head)
+                                .any(|e| e.mask == mask);
+                            if !seen {
+                                last.push(Exit {
+                                    state: head,
+                                    mask,
+                                    offsets: state[..n].iter().map(|o| o.map(i64::from)).collect(),
+                                    plan: path(),
+                                });
+                            }
+                        }
+                        if found.is_none() {
+                            found = Some((depth[head] + 1, path()));
                         }
                         if !count_exits {
                             let (l, plan) = found.expect("just found");
@@ -248,6 +270,157 @@ pub fn replay(pieces: &[Vec<Cell>], plan: &[Move]) -> bool {
 
 /// Offsets of the pieces (piece 0 always at the origin; unused entries zero).
 type State = [[i16; 3]; 16];
+
+/// A separating move of the last layer: the index of the state it leaves from, the
+/// subset that goes (bit `i`: piece `i`), every piece's offset in that state, and a
+/// shortest plan ending with it.
+struct Exit {
+    state: usize,
+    mask: u32,
+    offsets: Vec<Cell>,
+    plan: Vec<Move>,
+}
+
+/// Which of the shortest first separations complete disassembly asks about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Separations {
+    /// Some shortest separation leaves two groups that come apart completely.
+    Some,
+    /// Every shortest separation does (whichever a planner picks, it can go on).
+    Every,
+}
+
+/// One stage of a complete disassembly: the pieces of a group (indices into the whole
+/// puzzle, placed where the earlier stages left them) and a shortest plan separating it
+/// in two, its moves naming pieces of the whole puzzle (the group's first piece stays
+/// put).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Stage {
+    /// The group's pieces, increasing.
+    pub group: Vec<usize>,
+    /// The moves, the last going on for ever.
+    pub plan: Vec<Move>,
+}
+
+/// A complete disassembly: a shortest first separation (so the first stage has the
+/// puzzle's level), then recursively a shortest separation of each group from the
+/// positions its pieces have after it (the group that left keeps its pieces' relative
+/// offsets), down to single pieces; stages in depth-first order. `None` when no choice
+/// among the shortest separations comes apart completely (or a search reaches
+/// `max_states`).
+pub fn complete_plan(pieces: &[Vec<Cell>], max_states: usize) -> Option<Vec<Stage>> {
+    let ids: Vec<usize> = (0..pieces.len()).collect();
+    let mut stages = Vec::new();
+    let mut memo = HashMap::new();
+    complete(
+        pieces,
+        &ids,
+        max_states,
+        Separations::Some,
+        &mut memo,
+        Some(&mut stages),
+    )
+    .then_some(stages)
+}
+
+/// Whether the puzzle comes apart completely: some (or every) shortest first separation
+/// leaves two groups that, from their positions then, each come apart completely in
+/// the same sense, recursively down to single pieces. False also when a search of a
+/// group reaches `max_states`.
+pub fn disassembles_completely(
+    pieces: &[Vec<Cell>],
+    max_states: usize,
+    which: Separations,
+) -> bool {
+    let ids: Vec<usize> = (0..pieces.len()).collect();
+    complete(pieces, &ids, max_states, which, &mut HashMap::new(), None)
+}
+
+/// The recursion of [`complete_plan`] and [`disassembles_completely`] on a group
+/// `pieces` (placed) whose pieces are `ids` of the whole puzzle; `memo` remembers the
+/// answer for groups already seen (cells moved so the group's least corner is 0).
+fn complete(
+    pieces: &[Vec<Cell>],
+    ids: &[usize],
+    max_states: usize,
+    which: Separations,
+    memo: &mut HashMap<Vec<Vec<Cell>>, bool>,
+    mut stages: Option<&mut Vec<Stage>>,
+) -> bool {
+    if pieces.len() < 2 {
+        return true;
+    }
+    let lo = [0, 1, 2].map(|a| pieces.iter().flatten().map(|c| c[a]).min().unwrap_or(0));
+    let key: Vec<Vec<Cell>> = pieces
+        .iter()
+        .map(|p| p.iter().map(|c| [0, 1, 2].map(|a| c[a] - lo[a])).collect())
+        .collect();
+    if stages.is_none() {
+        if let Some(&known) = memo.get(&key) {
+            return known;
+        }
+    }
+    let mut exits = Vec::new();
+    let found = search(pieces, Steps::Any, max_states, true, Some(&mut exits)).0;
+    let mut answer = matches!(found, Level::Moves(_)) && which == Separations::Every;
+    if matches!(found, Level::Moves(_)) {
+        for exit in &exits {
+            // Each group from the state the separating move leaves.
+            let mut ok = true;
+            let mut sub_stages = Vec::new();
+            for goes in [false, true] {
+                let members: Vec<usize> = (0..pieces.len())
+                    .filter(|&i| (exit.mask >> i & 1 == 1) == goes)
+                    .collect();
+                let placed: Vec<Vec<Cell>> = members
+                    .iter()
+                    .map(|&i| {
+                        let o = exit.offsets[i];
+                        pieces[i]
+                            .iter()
+                            .map(|c| [0, 1, 2].map(|a| c[a] + o[a]))
+                            .collect()
+                    })
+                    .collect();
+                let sub_ids: Vec<usize> = members.iter().map(|&i| ids[i]).collect();
+                let out = stages.as_ref().map(|_| &mut sub_stages);
+                if !complete(&placed, &sub_ids, max_states, which, memo, out) {
+                    ok = false;
+                    break;
+                }
+            }
+            match which {
+                Separations::Every if !ok => {
+                    answer = false;
+                    break;
+                }
+                Separations::Some if ok => {
+                    answer = true;
+                    if let Some(stages) = stages.as_deref_mut() {
+                        let plan = exit
+                            .plan
+                            .iter()
+                            .map(|m| Move {
+                                pieces: m.pieces.iter().map(|&i| ids[i]).collect(),
+                                dir: m.dir,
+                                steps: m.steps,
+                            })
+                            .collect();
+                        stages.push(Stage {
+                            group: ids.to_vec(),
+                            plan,
+                        });
+                        stages.append(&mut sub_stages);
+                    }
+                    break;
+                }
+                _ => {}
+            }
+        }
+    }
+    memo.insert(key, answer);
+    answer
+}
 
 fn mv(mask: u32, n: usize, dir: Cell, steps: Option<i64>) -> Move {
     Move {
@@ -575,6 +748,87 @@ mod tests {
         let p = vec![frame, vec![[1, 1, 1]]];
         assert_eq!(level(&p, Steps::Any, 1000), Level::Moves(2));
         assert_eq!(level(&p, Steps::One, 1000), Level::Moves(2));
+    }
+
+    /// Replays the stages of a complete plan, each on its group where the earlier
+    /// stages left it, and checks that they split the puzzle down to single pieces.
+    fn replay_stages(pieces: &[Vec<Cell>], stages: &[Stage]) {
+        let mut at = pieces.to_vec();
+        let mut groups = vec![(0..pieces.len()).collect::<Vec<_>>()];
+        for stage in stages {
+            let k = groups
+                .iter()
+                .position(|g| *g == stage.group)
+                .expect("a group");
+            let group = groups.remove(k);
+            let local: Vec<Vec<Cell>> = group.iter().map(|&i| at[i].clone()).collect();
+            let plan: Vec<Move> = stage
+                .plan
+                .iter()
+                .map(|m| Move {
+                    pieces: m
+                        .pieces
+                        .iter()
+                        .map(|i| group.binary_search(i).unwrap())
+                        .collect(),
+                    dir: m.dir,
+                    steps: m.steps,
+                })
+                .collect();
+            assert!(replay(&local, &plan), "{stage:?}");
+            for m in &plan {
+                for &i in &m.pieces {
+                    for c in &mut at[group[i]] {
+                        *c = [0, 1, 2].map(|a| c[a] + m.steps.unwrap_or(0) * m.dir[a]);
+                    }
+                }
+            }
+            let goes = &stage.plan.last().unwrap().pieces;
+            let (a, b): (Vec<usize>, Vec<usize>) = group.iter().partition(|i| goes.contains(i));
+            groups.extend([a, b].into_iter().filter(|g| g.len() > 1));
+        }
+        assert!(groups.is_empty(), "left together: {groups:?}");
+    }
+
+    #[test]
+    fn a_stack_of_slabs_and_a_key_in_a_slot_come_apart_completely() {
+        let slabs: Vec<Vec<Cell>> = (0..3)
+            .map(|z| (0..9).map(|i| [i % 3, i / 3, z]).collect())
+            .collect();
+        let stages = complete_plan(&slabs, 10_000).expect("complete");
+        assert_eq!(stages.len(), 2);
+        replay_stages(&slabs, &stages);
+        for which in [Separations::Some, Separations::Every] {
+            assert!(disassembles_completely(&slabs, 10_000, which));
+        }
+        // The key in the L slot, with a loose cube on the frame: the first stage has the
+        // level, 2 moves.
+        let slot = [[1, 1, 1], [1, 2, 1], [1, 2, 2]];
+        let frame: Vec<Cell> = (0..36)
+            .map(|i| [i % 3, i / 3 % 4, i / 12])
+            .filter(|c| !slot.contains(c))
+            .collect();
+        let p = vec![frame, vec![[1, 1, 1]], vec![[0, 0, 3]]];
+        let stages = complete_plan(&p, 10_000).expect("complete");
+        assert_eq!(stages[0].plan.len(), 1, "the loose cube goes first");
+        replay_stages(&p, &stages);
+        assert_eq!(stages.iter().map(|s| s.plan.len()).sum::<usize>(), 3);
+    }
+
+    #[test]
+    fn a_shell_left_around_its_cube_is_not_complete() {
+        // The closed shell around its centre cube, and a loose cube beside it: the loose
+        // cube slides away (level 1), but the rest stays interlocked.
+        let shell: Vec<Cell> = (0..27)
+            .map(|i| [i % 3, i / 3 % 3, i / 9])
+            .filter(|c| *c != [1, 1, 1])
+            .collect();
+        let p = vec![shell, vec![[1, 1, 1]], vec![[3, 1, 1]]];
+        assert_eq!(level(&p, Steps::Any, 10_000), Level::Moves(1));
+        assert_eq!(complete_plan(&p, 10_000), None);
+        for which in [Separations::Some, Separations::Every] {
+            assert!(!disassembles_completely(&p, 10_000, which));
+        }
     }
 
     #[test]

@@ -1,10 +1,13 @@
 //! The shipped puzzle examples say what the oracles find: each `examples/voxel-level-*`
 //! piece mesh, read back into cells, gives the level of its `expected.json` and a plan
-//! that replays; each level-2 assembly of `apart_testkit::moves` is on disk exactly as
+//! that replays, and the puzzle comes apart completely whichever shortest first
+//! separation is taken; each level-2 assembly of `apart_testkit::moves` is on disk exactly as
 //! written from its definition.
 
 use apart_testkit::moves::{all, write_parts};
-use apart_testkit::voxel_puzzles::{replay, solve, Cell, Level, Steps};
+use apart_testkit::voxel_puzzles::{
+    disassembles_completely, replay, solve, Cell, Level, Separations, Steps,
+};
 use apart_testkit::Scratch;
 use std::path::{Path, PathBuf};
 
@@ -110,6 +113,10 @@ fn shipped_voxel_puzzles_have_their_expected_levels() {
         let plan = plan.unwrap();
         assert_eq!(plan.len(), level);
         assert!(replay(&pieces, &plan), "{name}");
+        assert!(
+            disassembles_completely(&pieces, 10_000_000, Separations::Every),
+            "{name} comes apart completely"
+        );
         assert_eq!(name, format!("voxel-level-{level}"));
         checked += 1;
     }
