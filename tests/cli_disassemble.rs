@@ -23,7 +23,8 @@ fn disassemble(args: &[&str]) -> (i32, Value) {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    let v = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"));
+    let v =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"));
     (out.status.code().unwrap(), v)
 }
 
@@ -38,13 +39,25 @@ fn the_keyhole_slides_then_lifts_with_exact_numbers() {
     assert_eq!(moves.len(), 2);
     let first = &moves[0];
     assert_eq!(first["moving"], serde_json::json!(["key"]));
-    assert_eq!(first["exact_direction"], serde_json::json!(["-1", "0", "0"]));
+    assert_eq!(
+        first["exact_direction"],
+        serde_json::json!(["-1", "0", "0"])
+    );
     // The head reaches the keyhole's wide end after 9 units (the construction's least).
     assert_eq!(first["distance"], "9");
-    assert_eq!(first["exact_positions"]["key"], serde_json::json!(["-9", "0", "0"]));
-    assert_eq!(first["positions"]["box"], serde_json::json!([0.0, 0.0, 0.0]));
+    assert_eq!(
+        first["exact_positions"]["key"],
+        serde_json::json!(["-9", "0", "0"])
+    );
+    assert_eq!(
+        first["positions"]["box"],
+        serde_json::json!([0.0, 0.0, 0.0])
+    );
     assert_eq!(moves[1]["distance"], "infinity");
-    assert_eq!(moves[1]["exact_direction"], serde_json::json!(["0", "0", "1"]));
+    assert_eq!(
+        moves[1]["exact_direction"],
+        serde_json::json!(["0", "0", "1"])
+    );
     assert!(v["states_explored"].as_u64().unwrap() >= 2);
     assert!(v["stats"]["seconds"]["search"].as_f64().is_some());
     assert_eq!(v["searches"][0]["end"], "separated");
@@ -57,13 +70,19 @@ fn no_plan_within_the_bounds_exits_2_and_says_whether_it_was_exhaustive() {
     assert_eq!(v["complete"], false);
     assert!(v["level"].is_null());
     let verdict = v["verdict"].as_str().unwrap();
-    assert!(verdict.contains("no plan with at most 1 moves exists"), "{verdict}");
+    assert!(
+        verdict.contains("no plan with at most 1 moves exists"),
+        "{verdict}"
+    );
     let (code, v) = disassemble(&[&example("l-slot"), "--max-states", "1"]);
     assert_eq!(code, 2);
     assert!(v["verdict"].as_str().unwrap().contains("cut off"), "{v}");
     let (code, v) = disassemble(&[&example("linked-rings")]);
     assert_eq!(code, 2);
-    assert!(v["verdict"].as_str().unwrap().contains("exhaustively"), "{v}");
+    assert!(
+        v["verdict"].as_str().unwrap().contains("exhaustively"),
+        "{v}"
+    );
     assert_eq!(v["searches"][0]["end"], "interlocked");
 }
 

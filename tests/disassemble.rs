@@ -181,6 +181,14 @@ fn generated_puzzles_of_higher_levels_match_the_oracle() {
             assert!(l <= one, "seed {seed}");
         }
         replay_moves(&parts, &plan).unwrap_or_else(|m| panic!("seed {seed}: {m}"));
+        // Free-cone moves include every axis move: never more moves.
+        let free = disassemble(&parts, &MoveOptions::default(), &Progress::new()).unwrap();
+        assert!(
+            free.level.is_some_and(|f| f <= l),
+            "seed {seed}: {:?}",
+            free.level
+        );
+        replay_moves(&parts, &free).unwrap_or_else(|m| panic!("seed {seed}: {m}"));
         top = top.max(l);
     }
     assert!(top >= 3, "the generator reached level {top} only");
@@ -228,4 +236,17 @@ fn bounds_say_whether_the_search_was_exhaustive() {
     )
     .unwrap();
     assert_eq!(plan.searches[0].end, SearchEnd::Interlocked);
+}
+
+/// The benchmark's puzzles (4 to 8 pieces up to 6x6x6, levels 2 to 10, each level and
+/// complete disassembly found by the oracle): the same level, complete, replayed.
+#[test]
+fn benchmark_puzzles_have_the_oracles_levels() {
+    for p in apart_testkit::voxel_bench::bench_puzzles() {
+        let parts = voxel_parts(&p.pieces, 2);
+        let plan = disassemble(&parts, &axes(), &Progress::new()).unwrap();
+        assert_eq!(plan.level, Some(p.level), "{}", p.name);
+        assert!(plan.complete, "{}", p.name);
+        replay_moves(&parts, &plan).unwrap_or_else(|m| panic!("{}: {m}", p.name));
+    }
 }

@@ -1,4 +1,4 @@
-//! The directions a search tries from a state, and the grid step of `--axes` moves.
+//! The directions a search tries from a state, and the grid step of moves along an axis.
 
 use apart_kernel::Sign;
 use apart_kernel::{int, Int, Rational, Vec3};

@@ -24,9 +24,10 @@
 //! - **distances**: to infinity when nothing is ever met; otherwise the farthest free
 //!   distance, and on the way every distance where a contact between a moving and a
 //!   fixed part begins or ends (the moving parts' relative offset enters or leaves an
-//!   obstacle's closed set); the nearest 64 of them. With `axes`, also every multiple of
-//!   the grid step along the axis ([`directions::lattice_steps`]: the cell size of a
-//!   voxel puzzle) up to the farthest distance, when there are at most 64.
+//!   obstacle's closed set); the nearest 64 of them. Along an axis, also every multiple
+//!   of the grid step along it ([`directions::lattice_steps`]: the cell size of a voxel
+//!   puzzle) up to the farthest distance, when there are at most 64; so the model
+//!   without `axes` holds every move of the model with it, and never needs more moves.
 //!
 //! The search is breadth-first over exact states (offsets relative to the first part,
 //! with congruent parts interchangeable), so the plan has the fewest moves in this

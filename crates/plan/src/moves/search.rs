@@ -6,8 +6,8 @@
 //! exact rationals, so states are told apart exactly. From a state, every candidate
 //! direction is met with every pair's obstacles once; a moving set must then contain
 //! every part that a part of it pushes on at once, and goes as far as its first
-//! blocking distance, stopping on the way at the facet-plane crossings of its
-//! obstacles (and at every grid step with `--axes`).
+//! blocking distance, stopping on the way where a contact begins or ends (and, along
+//! an axis, at every grid step).
 
 use super::directions::{axes, candidates};
 use super::obstacles::{contact_normals, ray_facts, PairObstacles, RayFacts};
@@ -54,7 +54,7 @@ pub struct Search<'a> {
     pub m: usize,
     /// Only the six axis directions.
     pub axes_only: bool,
-    /// With `axes_only`: the grid step along each axis.
+    /// The grid step along each axis (moves along an axis stop at every one).
     pub steps: [Option<Rational>; 3],
     /// Groups of congruent parts (local indices, never part 0) and every part's anchor
     /// (a vertex that congruent parts share), for symmetric states.
@@ -249,10 +249,10 @@ impl<'a> Search<'a> {
         for d in self.directions(s) {
             let dr = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
             let t = self.table(s, &dr);
-            let axis = self
-                .axes_only
-                .then(|| (0..3).find(|&k| !dr[k].is_zero()))
-                .flatten();
+            let axis = match dr.iter().filter(|c| !c.is_zero()).count() {
+                1 => (0..3).find(|&k| !dr[k].is_zero()),
+                _ => None,
+            };
             let step = axis.and_then(|k| self.steps[k].clone());
             let mut sets: Vec<u64> = Vec::new();
             moving_sets(m, &t.pushes, &mut sets);
