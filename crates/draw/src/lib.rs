@@ -63,7 +63,7 @@ pub mod svg_png;
 
 pub use gltf_export::{disassembly_glb, disassembly_glb_with};
 pub use html_viewer::{disassembly_html, disassembly_html_with};
-pub use motion::AnimationOptions;
+pub use motion::{AnimationOptions, Keyframes};
 pub use raster::{assembly_png, shapes_part_ids, shapes_png, shapes_svg, step_pngs, View};
 pub use sphere_svg::{
     motion_space_png, motion_space_svg, step_motion_space_png, step_motion_space_svg,
