@@ -197,3 +197,63 @@ fn an_interlocked_sequence_still_answers_and_draws_its_blocked_motion_space() {
         stderr(&o)
     );
 }
+
+#[test]
+fn disassemble_writes_the_moves_as_svg_glb_and_html() {
+    // A frame with an L-shaped slot open at the top, and a key at the slot's bottom
+    // end: it slides along the slot (a finite move), then lifts out.
+    let dir = scratch("disassemble");
+    let input = dir.join("key-in-slot");
+    std::fs::create_dir_all(&input).unwrap();
+    let slot = [[1, 1, 1], [1, 2, 1], [1, 2, 2]];
+    let on: Vec<bool> = (0..36)
+        .map(|i| [i / 12, i / 3 % 4, i % 3])
+        .map(|c| !slot.contains(&c))
+        .collect();
+    let frame = apart_testkit::solids::voxels([3, 4, 3], &on);
+    let mut key = apart_testkit::solids::voxels([1, 1, 1], &[true]);
+    for p in &mut key.points {
+        *p = p.map(|c| c + 1);
+    }
+    std::fs::write(input.join("frame.off"), frame.off_text()).unwrap();
+    std::fs::write(input.join("key.off"), key.off_text()).unwrap();
+    let (svg, glb, html) = (dir.join("m.svg"), dir.join("m.glb"), dir.join("m.html"));
+    let out = apart(&[
+        "disassemble",
+        &path(&input),
+        "--svg",
+        &path(&svg),
+        "--glb",
+        &path(&glb),
+        "--html",
+        &path(&html),
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
+    assert_eq!(v["level"], 2, "{v}");
+    let moves = v["moves"].as_array().unwrap();
+    assert_eq!(moves.len(), 2);
+    assert_ne!(moves[0]["distance"], "infinity");
+    let mut said = announced(&out);
+    said.sort();
+    let mut written = vec![path(&svg), path(&glb), path(&html)];
+    written.sort();
+    assert_eq!(said, written);
+    // One panel per state, the key lit after each move.
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(text.matches(r#"<g class="panel""#).count(), 3);
+    assert_eq!(text.matches(r#"data-moving="key""#).count(), 2);
+    assert!(text.contains("→ ∞ along"));
+    assert!(std::fs::read(&glb).unwrap().starts_with(b"glTF"));
+    let page = std::fs::read_to_string(&html).unwrap();
+    for needle in [
+        "\"frame\"",
+        "\"key\"",
+        "to infinity",
+        "first separation (level 2)",
+    ] {
+        assert!(page.contains(needle), "{needle}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -9,6 +9,7 @@ use crate::commands::load::load_valid;
 use crate::input_facts::{tolerance_statement, Units};
 use crate::output;
 use crate::{limits, Global};
+use apart::draw::{moves_glb, moves_html, moves_svg};
 use apart::jobs::disassemble::{disassemble, DisassembleAnswer};
 use apart::jobs::Status;
 use apart::plan::MoveOptions;
@@ -79,7 +80,15 @@ pub fn run(args: &DisassembleArgs, global: &Global) -> anyhow::Result<ExitCode> 
     let stop = output::partial(global, plan.stopped, files);
     if stop.is_none() && !plan.moves.is_empty() {
         let _phase = output::phase(global, "pictures and exports");
-        // PICTURES
+        if let Some(p) = &args.svg {
+            output::write_file(p, moves_svg(asm, &plan))?;
+        }
+        if let Some(p) = &args.glb {
+            output::write_file(p, moves_glb(asm, &plan))?;
+        }
+        if let Some(p) = &args.html {
+            output::write_file(p, moves_html(asm, &plan))?;
+        }
     }
     let mut status = Status::of(plan.stopped);
     output::stamp(&mut status, &stop);

@@ -4,14 +4,15 @@
 //! glTF's y-up frame (a rotation of −90° about x), and under it one node per part, named
 //! after the part, with its own mesh (flat-shaded triangles in input units: positions
 //! with min/max, per-face normals) and material (the part's colour, matte). One
-//! animation, `disassembly`, has a translation channel per part node: step `k` moves its
+//! animation, `disassembly`, has a translation channel per part node: step `k` moves the
+//! parts from keyframe `k` to keyframe `k + 1` ([`Keyframes`]: for a sequence, its
 //! moving side out along its unit direction by `distance_factor` × the assembly's
-//! bounding-box diagonal between `k·(step + pause)` and `k·(step + pause) + step`
-//! seconds; the translations are in the input frame (the root's), and a part's final
-//! translation is the sum of the displacements of the steps that moved it.
+//! bounding-box diagonal; for a plan of moves, by each move's translation) between
+//! `k·(step + pause)` and `k·(step + pause) + step` seconds; the translations are in the
+//! input frame (the root's).
 
 use crate::colors::part_colors;
-use crate::motion::{offsets_after, step_displacements, AnimationOptions};
+use crate::motion::{AnimationOptions, Keyframes};
 use crate::shapes::{bounds_of, part_shapes, PartShape};
 use apart_assembly::Assembly;
 use apart_plan::Sequence;
@@ -30,10 +31,20 @@ pub fn disassembly_glb_with(
     opts: &AnimationOptions,
 ) -> Vec<u8> {
     let shapes = part_shapes(assembly);
+    let distance = opts.distance_factor * bounds_of(&shapes, None).diagonal();
+    let frames = Keyframes::of_sequence(sequence, shapes.len(), distance);
+    animated_glb(assembly, &shapes, &frames, opts)
+}
+
+/// The GLB of `assembly` (its surfaces `shapes`) playing `frames` with `opts`' timings.
+pub(crate) fn animated_glb(
+    assembly: &Assembly,
+    shapes: &[PartShape],
+    frames: &Keyframes,
+    opts: &AnimationOptions,
+) -> Vec<u8> {
     let names: Vec<&str> = assembly.parts.iter().map(|p| p.name.as_str()).collect();
     let colors = part_colors(&names);
-    let distance = opts.distance_factor * bounds_of(&shapes, None).diagonal();
-    let displacements = step_displacements(sequence, distance);
 
     let mut w = Writer::default();
     let mut nodes = vec![json!({
@@ -72,13 +83,13 @@ pub fn disassembly_glb_with(
     }
 
     let mut animations = Vec::new();
-    if !sequence.steps.is_empty() {
+    if frames.steps() > 0 {
         // Keys at each step's start (everything where the previous steps left it) and
         // end (its moving side displaced); a start equal to the previous end is merged.
         let step = opts.step_seconds.max(1e-3);
         let period = step + opts.pause_seconds.max(0.0);
         let mut keys: Vec<(f64, usize)> = Vec::new();
-        for k in 0..sequence.steps.len() {
+        for k in 0..frames.steps() {
             let start = k as f64 * period;
             if keys.last().is_none_or(|&(t, _)| t < start - 1e-6) {
                 keys.push((start, k));
@@ -89,11 +100,11 @@ pub fn disassembly_glb_with(
         let input = w.accessor_scalar(&times);
         let mut samplers = Vec::new();
         let mut channels = Vec::new();
-        let keyed: Vec<Vec<[f64; 3]>> = (0..=sequence.steps.len())
-            .map(|done| offsets_after(sequence, &displacements, shapes.len(), done))
-            .collect();
-        for (k, _) in shapes.iter().enumerate() {
-            let values: Vec<[f64; 3]> = keys.iter().map(|&(_, done)| keyed[done][k]).collect();
+        for k in 0..shapes.len() {
+            let values: Vec<[f64; 3]> = keys
+                .iter()
+                .map(|&(_, done)| frames.offsets[done][k])
+                .collect();
             let output = w.accessor_vec3(&values, None, false);
             channels.push(json!({
                 "sampler": samplers.len(),

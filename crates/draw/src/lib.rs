@@ -23,6 +23,9 @@
 //! - **A self-contained HTML viewer** ([`disassembly_html`]): the assembly in 3-D with a
 //!   small canvas renderer, orbit and zoom, play and step buttons, the list of steps,
 //!   the parts by name, an axis triad and a scale bar.
+//! - **Plans of moves** ([`apart_plan::moves`]): [`moves_html`] and [`moves_glb`] play
+//!   the moves (finite ones by their exact translations), [`moves_svg`] draws the plan
+//!   state by state, the moving parts highlighted.
 //! - **Placements and stacks** of apart-stack ([`stack_render`]): a scene with a placed
 //!   part, or a stacking plan, every part by its name.
 //!
@@ -54,6 +57,7 @@ pub mod colors;
 pub mod gltf_export;
 pub mod html_viewer;
 pub mod motion;
+pub mod moves;
 pub mod painter;
 pub mod raster;
 pub mod shapes;
@@ -63,7 +67,8 @@ pub mod svg_png;
 
 pub use gltf_export::{disassembly_glb, disassembly_glb_with};
 pub use html_viewer::{disassembly_html, disassembly_html_with};
-pub use motion::AnimationOptions;
+pub use motion::{AnimationOptions, Keyframes};
+pub use moves::{moves_glb, moves_html, moves_svg};
 pub use raster::{assembly_png, shapes_part_ids, shapes_png, shapes_svg, step_pngs, View};
 pub use sphere_svg::{
     motion_space_png, motion_space_svg, step_motion_space_png, step_motion_space_svg,

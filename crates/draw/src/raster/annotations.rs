@@ -5,6 +5,7 @@ use super::camera::Camera;
 use crate::colors::Rgb;
 use crate::svg_png::{escape, FONT_FAMILY};
 use apart_kernel::fvec::dot;
+use apart_kernel::Vec3;
 use apart_plan::Step;
 use std::fmt::Write;
 
@@ -199,12 +200,17 @@ pub(crate) fn round_length(max: f64) -> Option<(f64, String)> {
 
 /// "(0.577, 0.577, 0.577)" with the exact integer direction when it is short.
 pub(crate) fn direction_label(step: &Step) -> String {
-    let exact = step.direction.to_strings();
+    vector_label(&step.direction, step.unit)
+}
+
+/// The integer `direction` as "(1, 1, 0)" when its coordinates are short, else its
+/// `unit` vector as "(0.577, 0.577, 0.577)".
+pub(crate) fn vector_label(direction: &Vec3, unit: [f64; 3]) -> String {
+    let exact = direction.to_strings();
     if exact.iter().all(|s| s.len() <= 6) {
         format!("({})", exact.join(", "))
     } else {
-        let u = step.unit;
-        format!("({:.3}, {:.3}, {:.3})", u[0], u[1], u[2])
+        format!("({:.3}, {:.3}, {:.3})", unit[0], unit[1], unit[2])
     }
 }
 

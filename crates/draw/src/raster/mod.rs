@@ -19,12 +19,12 @@
 pub(crate) mod annotations;
 pub(crate) mod camera;
 pub(crate) mod render;
-mod steps;
-mod svg;
+pub(crate) mod steps;
+pub(crate) mod svg;
 pub(crate) mod zbuffer;
 
 pub use annotations::AXIS_COLORS;
-pub(crate) use annotations::{direction_label, names_list};
+pub(crate) use annotations::{direction_label, names_list, vector_label};
 pub use steps::step_pngs;
 pub use svg::shapes_svg;
 

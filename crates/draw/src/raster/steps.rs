@@ -140,7 +140,7 @@ fn step_svg(
             shapes,
             &moved,
             b.center(),
-            step,
+            step.unit,
             colour,
             camera,
             width,
@@ -214,23 +214,23 @@ fn step_caption(svg: &mut String, sequence: &Sequence, k: usize, step: &Step, wi
     );
 }
 
-/// The step's direction drawn from `center`, the centre of the moving parts `moved`: an
-/// arrow in `colour` along the projected direction, or, when the direction runs along
-/// the line of sight, a ⊙ (towards the eye) or ⊗ (away from it).
+/// The unit direction `unit` drawn from `center`, the centre of the moving parts
+/// `moved`: an arrow in `colour` along the projected direction, or, when the direction
+/// runs along the line of sight, a ⊙ (towards the eye) or ⊗ (away from it).
 #[allow(clippy::too_many_arguments)]
-fn step_arrow(
+pub(crate) fn step_arrow(
     svg: &mut String,
     shapes: &[PartShape],
     moved: &[Item],
     center: [f64; 3],
-    step: &Step,
+    unit: [f64; 3],
     colour: Rgb,
     camera: &Camera,
     width: u32,
     height: u32,
 ) {
     let (x0, y0, _) = camera.project(center);
-    let tip = add(center, scale(step.unit, 1.0));
+    let tip = add(center, scale(unit, 1.0));
     let (x1, y1, _) = camera.project(tip);
     let (dx, dy) = (x1 - x0, y1 - y0);
     let len = (dx * dx + dy * dy).sqrt();
@@ -274,7 +274,7 @@ fn step_arrow(
             c = colour.hex()
         );
     } else {
-        let toward = dot(step.unit, camera.eye) > 0.0;
+        let toward = dot(unit, camera.eye) > 0.0;
         sight_mark(svg, (x0, y0), toward);
     }
 }
