@@ -74,11 +74,9 @@ fn off_grid_examples_take_their_known_first_move_then_leave() {
         } else {
             // The rest moved the opposite way: the same relative motion.
             assert!(first.moving.iter().all(|&k| k != mover), "{name}");
-            for k in 0..3 {
-                assert_eq!(
-                    first.direction.approx()[k].signum(),
-                    -(d[k] as f64).signum()
-                );
+            let got = first.direction.approx();
+            for (g, w) in got.iter().zip(d) {
+                assert_eq!(g.signum(), -(w as f64).signum());
             }
         }
     }

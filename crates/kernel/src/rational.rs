@@ -84,6 +84,11 @@ impl Rational {
         if n == 0 {
             return Rational::zero();
         }
+        if d == 1 {
+            if let Some(a) = small(n) {
+                return Rational(Repr::Small(a, 1));
+            }
+        }
         let g = int::gcd_u128(n.unsigned_abs(), d as u128) as i128;
         let (n, d) = (n / g, d / g);
         match (small(n), small(d)) {

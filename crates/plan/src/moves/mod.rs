@@ -188,7 +188,7 @@ pub fn disassemble(
     let index = |i: usize, j: usize| i * n - i * (i + 1) / 2 + (j - i - 1);
     let all: Vec<&Polytope> = parts.iter().flat_map(|p| &p.pieces).collect();
     let steps = directions::lattice_steps(&all);
-    let shapes: Vec<(Vec<Vec<[Rational; 3]>>, [Rational; 3])> = parts.iter().map(shape).collect();
+    let shapes: Vec<Shape> = parts.iter().map(shape).collect();
     let obstacle_seconds = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();
@@ -318,9 +318,12 @@ fn present(group: &[usize], mv: LocalMove) -> (Vec<usize>, Vec3, Option<Rational
     (members(group, mv.moving), mv.direction, mv.distance)
 }
 
+/// A part's pieces as sorted vertex lists relative to its anchor, and the anchor.
+type Shape = (Vec<Vec<[Rational; 3]>>, [Rational; 3]);
+
 /// A part's pieces as sorted vertex lists relative to its least vertex (its anchor),
 /// and that anchor: two parts with equal lists are translates of each other.
-fn shape(part: &Part) -> (Vec<Vec<[Rational; 3]>>, [Rational; 3]) {
+fn shape(part: &Part) -> Shape {
     let true_vertices = |p: &Polytope| -> Vec<[Rational; 3]> {
         let den = Rational::from_int(p.den().clone());
         p.vertices()
@@ -352,11 +355,7 @@ fn shape(part: &Part) -> (Vec<Vec<[Rational; 3]>>, [Rational; 3]) {
 
 /// Classes of congruent parts of a subassembly (local indices; the first part's class
 /// is left out, as the first part stays put) and every part's anchor.
-fn symmetry(
-    group: &[usize],
-    shapes: &[(Vec<Vec<[Rational; 3]>>, [Rational; 3])],
-    on: bool,
-) -> (Vec<Vec<usize>>, Vec<[Rational; 3]>) {
+fn symmetry(group: &[usize], shapes: &[Shape], on: bool) -> (Vec<Vec<usize>>, Vec<[Rational; 3]>) {
     let anchors = group.iter().map(|&g| shapes[g].1.clone()).collect();
     let mut classes: Vec<Vec<usize>> = Vec::new();
     if !on {

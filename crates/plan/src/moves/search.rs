@@ -18,6 +18,51 @@ use rustc_hash::{FxHashMap, FxHashSet};
 /// Positions of a subassembly's parts, relative to its first part.
 pub type State = Box<[[Rational; 3]]>;
 
+/// A state's identity: its offsets as `(numerator, denominator)` machine words when
+/// every one is small (else exactly), with a well-mixed hash computed once (offsets
+/// are multiples of large powers of two on the grid, which weak hashes bucket badly).
+#[derive(PartialEq, Eq)]
+enum Key {
+    Words(u64, Box<[i64]>),
+    Exact(u64, State),
+}
+
+impl std::hash::Hash for Key {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        match self {
+            Key::Words(x, _) | Key::Exact(x, _) => h.write_u64(*x),
+        }
+    }
+}
+
+/// splitmix64's finaliser.
+fn mix(mut x: u64) -> u64 {
+    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    x ^ (x >> 31)
+}
+
+impl Key {
+    fn of(s: &[[Rational; 3]]) -> Key {
+        let mut words = Vec::with_capacity(s.len() * 6);
+        for c in s.iter().flatten() {
+            match c.as_small() {
+                Some((n, d)) => words.extend([n, d]),
+                None => {
+                    let mut h = rustc_hash::FxHasher::default();
+                    std::hash::Hash::hash(s, &mut h);
+                    let x = mix(std::hash::Hasher::finish(&h));
+                    return Key::Exact(x, s.into());
+                }
+            }
+        }
+        let x = words
+            .iter()
+            .fold(0x9e37_79b9_7f4a_7c15u64, |h, &w| mix(h ^ w as u64));
+        Key::Words(x, words.into_boxed_slice())
+    }
+}
+
 /// A move within one subassembly: the parts of `moving` (bits of the subassembly's
 /// local indices) translate by `distance × direction`, or to infinity.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -136,10 +181,20 @@ impl<'a> Search<'a> {
         candidates(&normals)
     }
 
-    fn key(&self, s: &State) -> State {
-        if self.classes.is_empty() {
-            return s.clone();
-        }
+    /// The state as it is told apart from others: congruent parts sorted by where
+    /// they are, packed into machine words when its numbers are small.
+    fn key(&self, s: &State) -> Key {
+        let sorted;
+        let s = if self.classes.is_empty() {
+            s
+        } else {
+            sorted = self.canonical(s);
+            &sorted
+        };
+        Key::of(s)
+    }
+
+    fn canonical(&self, s: &State) -> State {
         let mut out: Vec<[Rational; 3]> = Vec::with_capacity(s.len());
         let mut in_class = vec![false; s.len()];
         for c in &self.classes {
@@ -171,7 +226,7 @@ impl<'a> Search<'a> {
         extra: &mut dyn FnMut() -> Vec<LocalMove>,
         progress: &Progress,
     ) -> (Outcome, usize) {
-        let mut seen: FxHashSet<State> = FxHashSet::default();
+        let mut seen: FxHashSet<Key> = FxHashSet::default();
         seen.insert(self.key(&start));
         let mut nodes = vec![Node {
             state: start,
