@@ -13,6 +13,7 @@ use super::directions::{axes, candidates};
 use super::obstacles::{contact_normals, ray_facts, PairObstacles, RayFacts};
 use crate::progress::Progress;
 use apart_kernel::{Rational, Vec3};
+use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Positions of a subassembly's parts, relative to its first part.
@@ -119,6 +120,19 @@ pub const MAX_STOPS: usize = 64;
 /// of one part beyond.
 pub const ALL_SUBSETS_UP_TO: usize = 13;
 
+/// Nodes expanded in parallel at a time.
+const BATCH: usize = 256;
+
+/// What expanding one node gave.
+enum Expansion {
+    /// It is at the move limit.
+    TooDeep,
+    /// A move to infinity (the first found).
+    Leaves(LocalMove),
+    /// Every move to a finite position, with its state and key.
+    Children(Vec<(LocalMove, State, Key)>),
+}
+
 struct Node {
     state: State,
     parent: u32,
@@ -183,7 +197,7 @@ impl<'a> Search<'a> {
 
     /// The state as it is told apart from others: congruent parts sorted by where
     /// they are, packed into machine words when its numbers are small.
-    fn key(&self, s: &State) -> Key {
+    fn key(&self, s: &[[Rational; 3]]) -> Key {
         let sorted;
         let s = if self.classes.is_empty() {
             s
@@ -194,7 +208,7 @@ impl<'a> Search<'a> {
         Key::of(s)
     }
 
-    fn canonical(&self, s: &State) -> State {
+    fn canonical(&self, s: &[[Rational; 3]]) -> State {
         let mut out: Vec<[Rational; 3]> = Vec::with_capacity(s.len());
         let mut in_class = vec![false; s.len()];
         for c in &self.classes {
@@ -237,57 +251,71 @@ impl<'a> Search<'a> {
         let mut limited = false;
         let mut i = 0;
         while i < nodes.len() {
-            if i % 256 == 0 {
-                if progress.stopped() {
-                    return (Outcome::Stopped, nodes.len());
-                }
-                progress.report(crate::progress::phases::MOVES, nodes.len(), self.max_states);
+            if progress.stopped() {
+                return (Outcome::Stopped, nodes.len());
             }
-            if nodes[i].depth as usize + 1 > self.max_moves {
-                limited = true;
-                i += 1;
-                continue;
-            }
-            let mut found = None;
-            let mut children = Vec::new();
-            self.expand(&nodes[i].state, &mut |mv, state| match state {
-                None => {
-                    found = Some(mv);
-                    false
-                }
-                Some(s) => {
-                    children.push((mv, s));
-                    true
-                }
-            });
-            if found.is_none() && i == 0 {
-                found = extra().into_iter().next();
-            }
-            if let Some(esc) = found {
-                let mut path = vec![esc];
-                let mut k = i;
-                while let Some(mv) = &nodes[k].mv {
-                    path.push(mv.clone());
-                    k = nodes[k].parent as usize;
-                }
-                path.reverse();
-                return (Outcome::Separated(path), nodes.len());
-            }
-            let depth = nodes[i].depth + 1;
-            for (mv, s) in children {
-                if nodes.len() >= self.max_states {
-                    return (Outcome::StateLimit, nodes.len());
-                }
-                if seen.insert(self.key(&s)) {
-                    nodes.push(Node {
-                        state: s,
-                        parent: i as u32,
-                        depth,
-                        mv: Some(mv),
+            progress.report(crate::progress::phases::MOVES, nodes.len(), self.max_states);
+            // A batch of nodes expanded in parallel, then taken in order: the same
+            // search, node for node, as one at a time.
+            let end = nodes.len().min(i + BATCH);
+            let seen_now = &seen;
+            let results: Vec<Expansion> = nodes[i..end]
+                .par_iter()
+                .map(|n| {
+                    if n.depth as usize + 1 > self.max_moves {
+                        return Expansion::TooDeep;
+                    }
+                    let mut out = Expansion::Children(Vec::new());
+                    self.expand(&n.state, &mut |mv, state| match (state, &mut out) {
+                        (None, _) => {
+                            out = Expansion::Leaves(mv);
+                            false
+                        }
+                        (Some(s), Expansion::Children(c)) => {
+                            // States seen before this batch are dropped here, in parallel.
+                            let key = self.key(&s);
+                            if !seen_now.contains(&key) {
+                                c.push((mv, s.into(), key));
+                            }
+                            true
+                        }
+                        _ => false,
                     });
+                    out
+                })
+                .collect();
+            for (k, result) in results.into_iter().enumerate() {
+                let at = i + k;
+                let found = match result {
+                    Expansion::TooDeep => {
+                        limited = true;
+                        continue;
+                    }
+                    Expansion::Leaves(mv) => Some(mv),
+                    Expansion::Children(c) => {
+                        let esc = if at == 0 {
+                            extra().into_iter().next()
+                        } else {
+                            None
+                        };
+                        if esc.is_none() && !self.insert(&mut nodes, &mut seen, at, c) {
+                            return (Outcome::StateLimit, nodes.len());
+                        }
+                        esc
+                    }
+                };
+                if let Some(esc) = found {
+                    let mut path = vec![esc];
+                    let mut k = at;
+                    while let Some(mv) = &nodes[k].mv {
+                        path.push(mv.clone());
+                        k = nodes[k].parent as usize;
+                    }
+                    path.reverse();
+                    return (Outcome::Separated(path), nodes.len());
                 }
             }
-            i += 1;
+            i = end;
         }
         let outcome = if limited {
             Outcome::MoveLimit
@@ -297,10 +325,36 @@ impl<'a> Search<'a> {
         (outcome, nodes.len())
     }
 
+    /// Adds the new states among `children` of node `at`; false at the state limit.
+    fn insert(
+        &self,
+        nodes: &mut Vec<Node>,
+        seen: &mut FxHashSet<Key>,
+        at: usize,
+        children: Vec<(LocalMove, State, Key)>,
+    ) -> bool {
+        let depth = nodes[at].depth + 1;
+        for (mv, s, key) in children {
+            if nodes.len() >= self.max_states {
+                return false;
+            }
+            if seen.insert(key) {
+                nodes.push(Node {
+                    state: s,
+                    parent: at as u32,
+                    depth,
+                    mv: Some(mv),
+                });
+            }
+        }
+        true
+    }
+
     /// Hands every move from `s` to `each` (`None` as the state for a move to
     /// infinity); stops when `each` returns false.
-    fn expand(&self, s: &State, each: &mut dyn FnMut(LocalMove, Option<State>) -> bool) {
+    fn expand(&self, s: &State, each: &mut dyn FnMut(LocalMove, Option<&[[Rational; 3]]>) -> bool) {
         let m = self.m;
+        let mut next: Vec<[Rational; 3]> = s.to_vec();
         for d in self.directions(s) {
             let dr = [0, 1, 2].map(|k| Rational::from_int(d.get(k)));
             let t = self.table(s, &dr);
@@ -324,7 +378,7 @@ impl<'a> Search<'a> {
                     continue;
                 };
                 for dist in stops(&t, set, &far, step.as_ref()) {
-                    let mut next = s.clone();
+                    next.clone_from_slice(s);
                     for (k, p) in next.iter_mut().enumerate() {
                         if set >> k & 1 == 1 {
                             *p = [0, 1, 2].map(|c| &p[c] + &(&dr[c] * &dist));
@@ -335,7 +389,7 @@ impl<'a> Search<'a> {
                         direction: d.clone(),
                         distance: Some(dist),
                     };
-                    if !each(mv, Some(next)) {
+                    if !each(mv, Some(&next)) {
                         return;
                     }
                 }
