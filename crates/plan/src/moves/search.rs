@@ -120,6 +120,10 @@ pub const MAX_STOPS: usize = 64;
 /// of one part beyond.
 pub const ALL_SUBSETS_UP_TO: usize = 13;
 
+/// Takes each move from a state with the state it reaches (`None`: to infinity);
+/// false stops the expansion.
+type Visit<'a> = dyn FnMut(LocalMove, Option<&[[Rational; 3]]>) -> bool + 'a;
+
 /// Nodes expanded in parallel at a time.
 const BATCH: usize = 256;
 
@@ -273,7 +277,7 @@ impl<'a> Search<'a> {
                         }
                         (Some(s), Expansion::Children(c)) => {
                             // States seen before this batch are dropped here, in parallel.
-                            let key = self.key(&s);
+                            let key = self.key(s);
                             if !seen_now.contains(&key) {
                                 c.push((mv, s.into(), key));
                             }
@@ -352,7 +356,7 @@ impl<'a> Search<'a> {
 
     /// Hands every move from `s` to `each` (`None` as the state for a move to
     /// infinity); stops when `each` returns false.
-    fn expand(&self, s: &State, each: &mut dyn FnMut(LocalMove, Option<&[[Rational; 3]]>) -> bool) {
+    fn expand(&self, s: &State, each: &mut Visit<'_>) {
         let m = self.m;
         let mut next: Vec<[Rational; 3]> = s.to_vec();
         for d in self.directions(s) {
