@@ -142,6 +142,12 @@ pub fn plan_error(py: Python<'_>, e: apart_plan::PlanError) -> PyErr {
             format!("stopped during {phase}: no answer yet"),
             serde_json::json!({"phase": phase}),
         ),
+        apart_plan::PlanError::TooManyParts { parts, limit } => make(
+            py,
+            "InputError",
+            e.to_string(),
+            serde_json::json!({"parts": parts, "limit": limit}),
+        ),
         apart_plan::PlanError::Internal(_) => internal(py, e.to_string()),
     }
 }

@@ -98,6 +98,13 @@ pub enum PlanError {
     },
     /// An internal inconsistency (a bug): reported, never hidden.
     Internal(String),
+    /// More parts than a planner takes (`apart disassemble`: 64 per assembly).
+    TooManyParts {
+        /// Parts given.
+        parts: usize,
+        /// Parts taken.
+        limit: usize,
+    },
     /// The stop flag of a [`Progress`] was raised before the planner had a partial
     /// answer to return (while it computed the pair regions).
     Stopped {
@@ -119,6 +126,10 @@ impl std::fmt::Display for PlanError {
                 names.0, names.1, pieces.0, pieces.1
             ),
             PlanError::Internal(m) => write!(f, "internal error: {m}"),
+            PlanError::TooManyParts { parts, limit } => write!(
+                f,
+                "the assembly has {parts} parts; disassembly by moves takes at most {limit} (split it, or use sequence)"
+            ),
             PlanError::Stopped { phase } => write!(f, "stopped during {phase}"),
         }
     }

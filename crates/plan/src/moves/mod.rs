@@ -50,6 +50,9 @@ use search::{LocalMove, Outcome, Search, State};
 use std::collections::VecDeque;
 use std::time::Instant;
 
+/// Parts a plan of moves takes (moving sets are bit sets of one machine word).
+pub const MAX_PARTS: usize = 64;
+
 /// How to search for moves.
 #[derive(Clone, Debug)]
 pub struct MoveOptions {
@@ -173,10 +176,11 @@ pub fn disassemble(
             name: p.name.clone(),
         });
     }
-    if n > 64 {
-        return Err(PlanError::Internal(format!(
-            "disassembly by moves takes at most 64 parts ({n} given)"
-        )));
+    if n > MAX_PARTS {
+        return Err(PlanError::TooManyParts {
+            parts: n,
+            limit: MAX_PARTS,
+        });
     }
     let pairs: Vec<(usize, usize)> = (0..n)
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
