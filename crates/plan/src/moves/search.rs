@@ -19,20 +19,45 @@ use rustc_hash::{FxHashMap, FxHashSet};
 /// Positions of a subassembly's parts, relative to its first part.
 pub type State = Box<[[Rational; 3]]>;
 
-/// A state's identity: its offsets as `(numerator, denominator)` machine words when
-/// every one is small (else exactly), with a well-mixed hash computed once (offsets
+/// A state as a node keeps it: integer offsets (on the grid, the usual case) as machine
+/// words, three per part, else exactly.
+#[derive(Clone, PartialEq, Eq)]
+enum Packed {
+    Ints(Box<[i64]>),
+    Exact(State),
+}
+
+impl Packed {
+    fn of(s: &[[Rational; 3]]) -> Packed {
+        let mut words = Vec::with_capacity(s.len() * 3);
+        for c in s.iter().flatten() {
+            match c.as_small() {
+                Some((n, 1)) => words.push(n),
+                _ => return Packed::Exact(s.into()),
+            }
+        }
+        Packed::Ints(words.into_boxed_slice())
+    }
+
+    fn unpack(&self) -> State {
+        match self {
+            Packed::Ints(w) => w
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]].map(Rational::from))
+                .collect(),
+            Packed::Exact(s) => s.clone(),
+        }
+    }
+}
+
+/// A state's identity: its [`Packed`] form with a well-mixed hash computed once (offsets
 /// are multiples of large powers of two on the grid, which weak hashes bucket badly).
 #[derive(PartialEq, Eq)]
-enum Key {
-    Words(u64, Box<[i64]>),
-    Exact(u64, State),
-}
+struct Key(u64, Packed);
 
 impl std::hash::Hash for Key {
     fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
-        match self {
-            Key::Words(x, _) | Key::Exact(x, _) => h.write_u64(*x),
-        }
+        h.write_u64(self.0)
     }
 }
 
@@ -44,23 +69,18 @@ fn mix(mut x: u64) -> u64 {
 }
 
 impl Key {
-    fn of(s: &[[Rational; 3]]) -> Key {
-        let mut words = Vec::with_capacity(s.len() * 6);
-        for c in s.iter().flatten() {
-            match c.as_small() {
-                Some((n, d)) => words.extend([n, d]),
-                None => {
-                    let mut h = rustc_hash::FxHasher::default();
-                    std::hash::Hash::hash(s, &mut h);
-                    let x = mix(std::hash::Hasher::finish(&h));
-                    return Key::Exact(x, s.into());
-                }
+    fn of(packed: Packed) -> Key {
+        let x = match &packed {
+            Packed::Ints(w) => w
+                .iter()
+                .fold(0x9e37_79b9_7f4a_7c15u64, |h, &v| mix(h ^ v as u64)),
+            Packed::Exact(s) => {
+                let mut h = rustc_hash::FxHasher::default();
+                std::hash::Hash::hash(s, &mut h);
+                mix(std::hash::Hasher::finish(&h))
             }
-        }
-        let x = words
-            .iter()
-            .fold(0x9e37_79b9_7f4a_7c15u64, |h, &w| mix(h ^ w as u64));
-        Key::Words(x, words.into_boxed_slice())
+        };
+        Key(x, packed)
     }
 }
 
@@ -134,11 +154,11 @@ enum Expansion {
     /// A move to infinity (the first found).
     Leaves(LocalMove),
     /// Every move to a finite position, with its state and key.
-    Children(Vec<(LocalMove, State, Key)>),
+    Children(Vec<(LocalMove, Packed, Key)>),
 }
 
 struct Node {
-    state: State,
+    state: Packed,
     parent: u32,
     depth: u32,
     mv: Option<LocalMove>,
@@ -209,7 +229,7 @@ impl<'a> Search<'a> {
             sorted = self.canonical(s);
             &sorted
         };
-        Key::of(s)
+        Key::of(Packed::of(s))
     }
 
     fn canonical(&self, s: &[[Rational; 3]]) -> State {
@@ -247,7 +267,7 @@ impl<'a> Search<'a> {
         let mut seen: FxHashSet<Key> = FxHashSet::default();
         seen.insert(self.key(&start));
         let mut nodes = vec![Node {
-            state: start,
+            state: Packed::of(&start),
             parent: u32::MAX,
             depth: 0,
             mv: None,
@@ -270,21 +290,24 @@ impl<'a> Search<'a> {
                         return Expansion::TooDeep;
                     }
                     let mut out = Expansion::Children(Vec::new());
-                    self.expand(&n.state, &mut |mv, state| match (state, &mut out) {
-                        (None, _) => {
-                            out = Expansion::Leaves(mv);
-                            false
-                        }
-                        (Some(s), Expansion::Children(c)) => {
-                            // States seen before this batch are dropped here, in parallel.
-                            let key = self.key(s);
-                            if !seen_now.contains(&key) {
-                                c.push((mv, s.into(), key));
+                    self.expand(
+                        &n.state.unpack(),
+                        &mut |mv, state| match (state, &mut out) {
+                            (None, _) => {
+                                out = Expansion::Leaves(mv);
+                                false
                             }
-                            true
-                        }
-                        _ => false,
-                    });
+                            (Some(s), Expansion::Children(c)) => {
+                                // States seen before this batch are dropped here, in parallel.
+                                let key = self.key(s);
+                                if !seen_now.contains(&key) {
+                                    c.push((mv, Packed::of(s), key));
+                                }
+                                true
+                            }
+                            _ => false,
+                        },
+                    );
                     out
                 })
                 .collect();
@@ -335,7 +358,7 @@ impl<'a> Search<'a> {
         nodes: &mut Vec<Node>,
         seen: &mut FxHashSet<Key>,
         at: usize,
-        children: Vec<(LocalMove, State, Key)>,
+        children: Vec<(LocalMove, Packed, Key)>,
     ) -> bool {
         let depth = nodes[at].depth + 1;
         for (mv, s, key) in children {
@@ -494,4 +517,28 @@ fn stops(t: &Table, set: u64, far: &Rational, step: Option<&Rational>) -> Vec<Ra
     out.truncate(MAX_STOPS);
     out.push(far.clone());
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packed_states_round_trip_and_key_equal_states_alike() {
+        let ints: Vec<[Rational; 3]> = vec![
+            [0, 0, 0].map(Rational::from),
+            [3, -4, 1 << 40].map(Rational::from),
+        ];
+        let half: Vec<[Rational; 3]> = vec![
+            [0, 0, 0].map(Rational::from),
+            [Rational::from_i128(1, 2), 0.into(), 0.into()],
+        ];
+        for s in [&ints, &half] {
+            assert_eq!(&*Packed::of(s).unpack(), s.as_slice());
+            assert!(Key::of(Packed::of(s)) == Key::of(Packed::of(&s.clone())));
+        }
+        assert!(matches!(Packed::of(&ints), Packed::Ints(_)));
+        assert!(matches!(Packed::of(&half), Packed::Exact(_)));
+        assert!(Key::of(Packed::of(&ints)) != Key::of(Packed::of(&half)));
+    }
 }
