@@ -1,7 +1,7 @@
 //! The directions a search tries from a state, and the grid step of moves along an axis.
 
-use apart_kernel::Sign;
 use apart_kernel::{int, Int, Rational, Vec3};
+use apart_pieces::polytope::canonical_sign;
 use apart_pieces::Polytope;
 
 /// `+x, −x, +y, −y, +z, −z`.
@@ -47,18 +47,6 @@ pub fn candidates(normals: &[Vec3]) -> Vec<Vec3> {
         }
     }
     out
-}
-
-/// `d` or `−d`, whichever has its first non-zero component positive.
-fn canonical_sign(d: Vec3) -> Vec3 {
-    for k in 0..3 {
-        match int::sign_of(&d.get(k)) {
-            Sign::Positive => return d,
-            Sign::Negative => return d.neg(),
-            Sign::Zero => {}
-        }
-    }
-    d
 }
 
 /// The grid step along each axis: the greatest common divisor of the differences of

@@ -313,7 +313,7 @@ fn members(group: &[usize], set: u64) -> Vec<usize> {
 /// along the opposite direction).
 fn present(group: &[usize], mv: LocalMove) -> (Vec<usize>, Vec3, Option<Rational>) {
     let m = group.len();
-    let all = if m == 64 { u64::MAX } else { (1u64 << m) - 1 };
+    let all = search::all_parts(m);
     let size = mv.moving.count_ones() as usize;
     if 2 * size > m {
         let rest = all & !mv.moving;
@@ -411,7 +411,7 @@ fn partition_escapes(
         .collect();
     let found = crate::partition_pieces(&moved, &crate::Options::default())?;
     let m = group.len();
-    let all = if m == 64 { u64::MAX } else { (1u64 << m) - 1 };
+    let all = search::all_parts(m);
     Ok(found
         .solutions
         .iter()

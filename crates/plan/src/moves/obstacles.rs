@@ -62,9 +62,8 @@ impl Obstacle {
                 let mut n = [0i64; 3];
                 n[k] = sign;
                 let nr = n.map(Rational::from);
-                // The largest n · x over every vertex is the largest offset of a facet
-                // along n, or else the support over the facets' planes: use the LP-free
-                // bound of the obstacles' own box facets when present.
+                // The box's side along n is the farthest of the obstacles' own facets
+                // with normal n; an obstacle without one (not a box) gives no box.
                 let mut best: Option<Rational> = None;
                 for o in list {
                     let c = o.support(&nr)?;

@@ -234,14 +234,8 @@ impl<'a> Search<'a> {
 
     fn canonical(&self, s: &[[Rational; 3]]) -> State {
         let mut out: Vec<[Rational; 3]> = Vec::with_capacity(s.len());
-        let mut in_class = vec![false; s.len()];
-        for c in &self.classes {
-            for &k in c {
-                in_class[k] = true;
-            }
-        }
         for (k, p) in s.iter().enumerate() {
-            if !in_class[k] {
+            if !self.classes.iter().any(|c| c.contains(&k)) {
                 out.push(p.clone());
             }
         }
@@ -425,6 +419,15 @@ impl<'a> Search<'a> {
     }
 }
 
+/// The bit set of all `m` parts of a subassembly.
+pub(crate) fn all_parts(m: usize) -> u64 {
+    if m == 64 {
+        u64::MAX
+    } else {
+        (1u64 << m) - 1
+    }
+}
+
 /// Moving sets (never holding part 0) closed under "pushes at once": every subset for
 /// small subassemblies, the closures of one part and the complements of what one part
 /// and part 0 push beyond.
@@ -459,7 +462,7 @@ fn moving_sets(m: usize, pushes: &[u64], out: &mut Vec<u64>) {
             .filter(|&a| pushes[a] >> b & 1 == 1)
             .fold(0u64, |x, a| x | 1 << a)
     };
-    let all = if m == 64 { u64::MAX } else { (1u64 << m) - 1 };
+    let all = all_parts(m);
     let mut seen = FxHashMap::default();
     for a in 1..m {
         let s = closure(1 << a, &|k| pushes[k]);
